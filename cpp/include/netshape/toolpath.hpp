@@ -1,0 +1,4 @@
+#pragma once
+/// \file toolpath.hpp  Area umbrella: blocks, programs, G-code reading and writing.
+#include "netshape/toolpath/block.hpp"
+#include "netshape/toolpath/toolpath.hpp"

@@ -1,0 +1,5 @@
+import sys
+
+from netshape.cli import main
+
+sys.exit(main())

@@ -1,0 +1,73 @@
+"""The ``netshape`` command. Each subcommand lives in its own module here with a
+``register(subparsers)`` function that adds its parser and sets ``func``.
+
+Exit codes: 0 success, 2 bad input (one clear line on stderr), 1 other failure.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from importlib import import_module
+
+# name of the module in netshape.cli, in the order they appear in --help
+_COMMANDS = ("info", "forces", "volumetric", "plan", "demo")
+
+_EPILOG = """\
+examples:
+  netshape demo                              run the bundled default job
+  netshape info part.ngc --json              block counts, lengths, bounding box, time
+  netshape <command> --help                  what a command does and its options
+
+Units: mm, s, N, MPa, rad; feeds in mm/min on the command line where the option says so.
+"""
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="netshape",
+        description="Predict the shape errors a CNC program will produce and rewrite it so the part "
+        "comes out right.",
+        epilog=_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    from netshape import __version__
+
+    parser.add_argument("--version", action="version", version=f"netshape {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    for name in _COMMANDS:
+        import_module(f"netshape.cli.{name}").register(sub)
+    return parser
+
+
+class CliError(Exception):
+    """Bad input detected by the CLI itself; printed as one line, exit code 2."""
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if not getattr(args, "func", None):
+        parser.print_help()
+        return 2
+    try:
+        result = args.func(args)
+    except (ValueError, CliError, FileNotFoundError, IsADirectoryError, PermissionError) as exc:
+        print(f"netshape {args.command}: error: {_one_line(exc)}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("netshape: interrupted", file=sys.stderr)
+        return 130
+    return int(result or 0)
+
+
+def _one_line(exc: BaseException) -> str:
+    if isinstance(exc, FileNotFoundError) and exc.filename:
+        return f"{exc.filename}: no such file"
+    if isinstance(exc, (IsADirectoryError, PermissionError)) and exc.filename:
+        return f"{exc.filename}: {exc.strerror}"
+    return " ".join(str(exc).split()) or type(exc).__name__
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

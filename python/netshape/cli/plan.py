@@ -1,0 +1,14 @@
+"""`netshape plan`."""
+
+from __future__ import annotations
+
+
+def register(sub) -> None:
+    p = sub.add_parser("plan", help="(not yet available)", description="(not yet available)")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from netshape.cli import CliError
+
+    raise CliError("'plan' is not implemented yet")
