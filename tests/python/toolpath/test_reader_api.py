@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 
@@ -12,6 +13,14 @@ import netshape as ns
 from netshape.cli import main as cli_main
 
 tp_mod = ns.toolpath
+
+
+def _child_env():
+    """Environment for a child `python -m netshape` that imports this same netshape."""
+    from pathlib import Path as _P
+
+    root = str(_P(ns.__file__).parent.parent)
+    return dict(os.environ, PYTHONPATH=os.pathsep.join([root, os.environ.get("PYTHONPATH", "")]))
 
 
 def test_parse_error_has_position_and_reason():
@@ -102,12 +111,12 @@ def test_reprs_and_summary_dict():
 def test_cli_bad_input_is_one_line_exit_2(tmp_path):
     bad = tmp_path / "bad.ngc"
     bad.write_text("G21\nG0 X1\nG1 X2 Y[1+] F100\n")
-    proc = subprocess.run([sys.executable, "-m", "netshape", "info", str(bad)], capture_output=True, text=True)
+    proc = subprocess.run([sys.executable, "-m", "netshape", "info", str(bad)], capture_output=True, text=True, env=_child_env())
     assert proc.returncode == 2 and proc.stdout == ""
     assert proc.stderr.count("\n") == 1
     assert f"{bad}:3:11: expected a value, found ']'" in proc.stderr
     proc = subprocess.run([sys.executable, "-m", "netshape", "info", str(tmp_path / "none.ngc")],
-                          capture_output=True, text=True)
+                          capture_output=True, text=True, env=_child_env())
     assert proc.returncode == 2 and proc.stderr.count("\n") == 1 and "no such file" in proc.stderr
     binary = tmp_path / "bin.ngc"
     binary.write_bytes(b"G0 X1\n\x00\x01\x02garbage\n")

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import importlib.util
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -21,6 +22,14 @@ independent = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(independent)
 
 _FIGURES: dict = {}
+
+
+def _child_env():
+    """Environment for a child `python -m netshape` that imports this same netshape."""
+    from pathlib import Path as _P
+
+    root = str(_P(ns.__file__).parent.parent)
+    return dict(os.environ, PYTHONPATH=os.pathsep.join([root, os.environ.get("PYTHONPATH", "")]))
 
 
 def reference(path):
@@ -125,7 +134,7 @@ def test_nurbs_programs_are_refused(shared_data, name):
     assert code in str(err.value) and "not supported" in str(err.value)
     assert err.value.line == line and err.value.column == 1
     proc = subprocess.run([sys.executable, "-m", "netshape", "info", str(shared_data / "gcode" / name)],
-                          capture_output=True, text=True)
+                          capture_output=True, text=True, env=_child_env())
     assert proc.returncode == 2
     assert proc.stdout == ""
     assert proc.stderr.count("\n") == 1 and f"{name}:{line}:1: " in proc.stderr and code in proc.stderr
