@@ -1,7 +1,120 @@
-"""netshape.cutter — see DESIGN §4 and the C++ namespace netshape::cutter."""
+"""netshape.cutter — flat, ball and bull-nose end mills, read from and written to TOML.
+
+TOML keys (units in the names)::
+
+    kind = "bull"              # "flat", "ball" or "bull"
+    diameter_mm = 10.0
+    corner_radius_mm = 1.0     # flat: 0 (may be left out); ball: = diameter/2 (may be left out)
+    flutes = 3
+    helix_deg = 30.0
+    flute_length_mm = 22.0
+    stick_out_mm = 40.0
+    youngs_modulus_MPa = 600000.0   # optional (carbide by default)
+"""
 
 from __future__ import annotations
 
-from ._core import cutter as _cutter  # noqa: F401
+import math
+import os
+import sys
 
-__all__: list[str] = []
+from ._atomic import atomic_write
+from ._core import cutter as _cutter
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+Cutter = _cutter.Cutter
+CutterKind = _cutter.CutterKind
+
+_KEYS = ("kind", "diameter_mm", "corner_radius_mm", "flutes", "helix_deg", "flute_length_mm", "stick_out_mm",
+         "youngs_modulus_MPa")
+_REQUIRED = ("kind", "diameter_mm", "flutes", "helix_deg", "flute_length_mm", "stick_out_mm")
+
+
+def _number(key: str, value) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ValueError(f"{key} = {value!r}: must be a finite number")
+    return float(value)
+
+
+def cutter_from_dict(d: dict, *, source: str = "cutter") -> Cutter:
+    """A validated Cutter from a dict with the TOML keys (see the module docstring)."""
+    if not isinstance(d, dict):
+        raise ValueError(f"{source}: must be a table of keys, got {type(d).__name__}")
+    for key in d:
+        if key not in _KEYS:
+            raise ValueError(f"{source}: {key} = {d[key]!r}: unknown key (known: {', '.join(_KEYS)})")
+    for key in _REQUIRED:
+        if key not in d:
+            raise ValueError(f"{source}: {key}: missing (required: {', '.join(_REQUIRED)})")
+    kind_name = d["kind"]
+    if not isinstance(kind_name, str):
+        raise ValueError(f"kind = {kind_name!r}: must be \"flat\", \"ball\" or \"bull\"")
+    c = Cutter()
+    c.kind = _cutter.cutter_kind_from_string(kind_name)  # ValueError naming the value
+    c.radius = 0.5 * _number("diameter_mm", d["diameter_mm"])
+    if "corner_radius_mm" in d:
+        c.corner_radius = _number("corner_radius_mm", d["corner_radius_mm"])
+    else:
+        c.corner_radius = c.radius if c.kind == CutterKind.ball else 0.0
+    flutes = d["flutes"]
+    if isinstance(flutes, bool) or not isinstance(flutes, int):
+        raise ValueError(f"flutes = {flutes!r}: must be an integer")
+    if not 1 <= flutes <= 64:
+        raise ValueError(f"flutes = {flutes!r}: must be between 1 and 64")
+    c.flutes = flutes
+    c.helix = math.radians(_number("helix_deg", d["helix_deg"]))
+    c.flute_length = _number("flute_length_mm", d["flute_length_mm"])
+    c.stick_out = _number("stick_out_mm", d["stick_out_mm"])
+    if "youngs_modulus_MPa" in d:
+        c.youngs_modulus = _number("youngs_modulus_MPa", d["youngs_modulus_MPa"])
+    c.validate()  # ValueError "cutter.<field> = value: requirement"
+    return c
+
+
+def cutter_to_dict(c: Cutter) -> dict:
+    """The TOML keys of a cutter (inverse of :func:`cutter_from_dict`)."""
+    c.validate()
+    return {
+        "kind": _cutter_kind_name(c.kind),
+        "diameter_mm": 2.0 * c.radius,
+        "corner_radius_mm": c.corner_radius,
+        "flutes": int(c.flutes),
+        "helix_deg": math.degrees(c.helix),
+        "flute_length_mm": c.flute_length,
+        "stick_out_mm": c.stick_out,
+        "youngs_modulus_MPa": c.youngs_modulus,
+    }
+
+
+def _cutter_kind_name(k) -> str:
+    return {CutterKind.flat: "flat", CutterKind.ball: "ball", CutterKind.bull: "bull"}[k]
+
+
+def load_cutter(path: str | os.PathLike) -> Cutter:
+    """Read a cutter from a TOML file. Unknown keys and bad values raise ValueError naming key and value."""
+    with open(path, "rb") as fh:
+        try:
+            data = tomllib.load(fh)
+        except tomllib.TOMLDecodeError as exc:
+            raise ValueError(f"{os.fspath(path)}: not valid TOML: {exc}") from None
+    try:
+        return cutter_from_dict(data, source=os.fspath(path))
+    except ValueError as exc:
+        msg = str(exc)
+        raise ValueError(msg if msg.startswith(os.fspath(path)) else f"{os.fspath(path)}: {msg}") from None
+
+
+def save_cutter(cutter: Cutter, path: str | os.PathLike) -> None:
+    """Write a cutter as TOML, whole or not at all."""
+    import tomli_w
+
+    text = tomli_w.dumps(cutter_to_dict(cutter))
+    with atomic_write(path, "w") as fh:
+        fh.write(text)
+
+
+__all__ = ["Cutter", "CutterKind", "cutter_from_dict", "cutter_to_dict", "load_cutter", "save_cutter"]
