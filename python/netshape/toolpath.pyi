@@ -1,0 +1,109 @@
+"""Type stubs for netshape.toolpath (positions [mm], feeds [mm/s], times [s])."""
+
+from __future__ import annotations
+
+import enum
+import os
+from typing import Iterator, Literal
+
+import numpy as np
+import numpy.typing as npt
+
+KIND_NAMES: tuple[str, str, str]
+
+class MotionKind(enum.IntEnum):
+    rapid = 0
+    line = 1
+    arc = 2
+
+class Plane(enum.IntEnum):
+    xy = 0
+    zx = 1
+    yz = 2
+
+class Block:
+    kind: MotionKind
+    start: npt.NDArray[np.float64]  # (3,) [mm]
+    end: npt.NDArray[np.float64]  # (3,) [mm]
+    center: npt.NDArray[np.float64]  # (3,) [mm]
+    clockwise: bool
+    plane: Plane
+    turns: int
+    feed: float  # [mm/s]
+    spindle_rpm: float  # [rev/min], negative for M4
+    tool: int
+    line: int
+    def __init__(self) -> None: ...
+    def validate(self) -> None: ...
+    def length(self) -> float: ...
+    def sweep(self) -> float: ...
+    def radius(self) -> float: ...
+    def point_at(self, s: float) -> npt.NDArray[np.float64]: ...
+    def tangent_at(self, s: float) -> npt.NDArray[np.float64]: ...
+    def curvature(self) -> float: ...
+
+class Summary:
+    rapids: int
+    lines: int
+    arcs: int
+    rapid_length: float  # [mm]
+    feed_length: float  # [mm]
+    bbox_min: npt.NDArray[np.float64]  # (3,) [mm]
+    bbox_max: npt.NDArray[np.float64]  # (3,) [mm]
+    feed_time: float  # [s]
+    dwell_time: float  # [s]
+    dwells: int
+    source_lines: int
+    @property
+    def blocks(self) -> int: ...
+    def to_dict(self) -> dict: ...
+
+class Toolpath:
+    blocks: list[Block]
+    source: str
+    dwell_time: float
+    dwells: int
+    def __init__(self) -> None: ...
+    def summary(self) -> Summary: ...
+    def split_arcs(self, chord_tolerance: float) -> Toolpath: ...
+    def __len__(self) -> int: ...
+    def __getitem__(self, i: int) -> Block: ...
+
+class GcodeReader:
+    @staticmethod
+    def open(path: str) -> GcodeReader: ...
+    @staticmethod
+    def from_string(text: str, source: str = "<string>") -> GcodeReader: ...
+    def __iter__(self) -> Iterator[Block]: ...
+    def __next__(self) -> Block: ...
+    @property
+    def lines_read(self) -> int: ...
+    @property
+    def source(self) -> str: ...
+
+class WriterOptions:
+    split_arcs: bool
+    chord_tolerance: float
+    decimals: int
+    absolute_arc_centers: bool
+    header_comment: str
+    def __init__(self) -> None: ...
+
+def chord_count(radius: float, sweep: float, tol: float) -> int: ...
+def block_bounds(block: Block) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
+def read_gcode(path: str | os.PathLike, *, arcs: Literal["keep", "split"] = "keep",
+               chord_tolerance: float = 0.002) -> Toolpath: ...
+def parse_gcode(text: str, *, source: str = "<string>", arcs: Literal["keep", "split"] = "keep",
+                chord_tolerance: float = 0.002) -> Toolpath: ...
+def read_gcode_arrays(path: str | os.PathLike, *, arcs: Literal["keep", "split"] = "keep",
+                      chord_tolerance: float = 0.002) -> dict[str, npt.NDArray]: ...
+def parse_gcode_arrays(text: str, *, source: str = "<string>", arcs: Literal["keep", "split"] = "keep",
+                       chord_tolerance: float = 0.002) -> dict[str, npt.NDArray]: ...
+def summary(path: str | os.PathLike) -> Summary: ...
+def summary_of_text(text: str, *, source: str = "<string>") -> Summary: ...
+def iter_gcode(path: str | os.PathLike) -> GcodeReader: ...
+def format_gcode(toolpath: Toolpath, *, split_arcs: bool = False, chord_tolerance: float = 0.002,
+                 decimals: int = -1, absolute_arc_centers: bool = False, header_comment: str = "") -> str: ...
+def write_gcode(toolpath: Toolpath, path: str | os.PathLike, *, split_arcs: bool = False,
+                chord_tolerance: float = 0.002, decimals: int = -1, absolute_arc_centers: bool = False,
+                header_comment: str = "") -> None: ...
