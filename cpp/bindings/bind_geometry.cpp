@@ -148,4 +148,10 @@ void bind_geometry(py::module_& m) {
       .def("iso_curve_v", &NurbsSurface::iso_curve_v, py::arg("v"))
       .def("closest_point", &NurbsSurface::closest_point, py::arg("point"), py::arg("tolerance") = 1e-10,
            py::arg("max_iterations") = 50);
+
+  m.def("circular_arc", &circular_arc, py::arg("center"), py::arg("x_axis"), py::arg("y_axis"), py::arg("radius"),
+        py::arg("start"), py::arg("end"));
+  m.def("revolve", &revolve, py::arg("profile"), py::arg("axis_point"), py::arg("axis_direction"),
+        py::arg("angle"));
+  m.def("bilinear", &bilinear, py::arg("p00"), py::arg("p10"), py::arg("p01"), py::arg("p11"));
 }
