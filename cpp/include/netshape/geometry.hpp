@@ -4,3 +4,6 @@
 #include "netshape/geometry/nurbs_curve.hpp"
 #include "netshape/geometry/nurbs_surface.hpp"
 #include "netshape/geometry/primitives.hpp"
+#include "netshape/geometry/offset.hpp"
+#include "netshape/geometry/cutter_location.hpp"
+#include "netshape/geometry/raster.hpp"
