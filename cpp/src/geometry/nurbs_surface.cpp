@@ -50,6 +50,9 @@ NurbsSurface::NurbsSurface(int degree_u, int degree_v, VectorXd knots_u, VectorX
   const Vec3 lo = control_points_.colwise().minCoeff().transpose();
   const Vec3 hi = control_points_.colwise().maxCoeff().transpose();
   size_ = std::max((hi - lo).norm(), 1e-300);
+  // first derivatives below these are "vanishing" (collapsed edge / pole) [mm per parameter unit]
+  tiny_u_ = 1e-9 * size_ / (knots_u_[count_u_] - knots_u_[degree_u_]);
+  tiny_v_ = 1e-9 * size_ / (knots_v_[count_v_] - knots_v_[degree_v_]);
 }
 
 bool NurbsSurface::is_rational() const noexcept { return (weights_.array() != weights_[0]).any(); }
@@ -123,7 +126,7 @@ Vec3 NurbsSurface::normal(double u, double v) const {
   const Vec3 su = d.row(2).transpose(), sv = d.row(1).transpose();  // D = 2: row k·2 + l
   const Vec3 n = su.cross(sv);
   const double nn = n.norm();
-  if (nn > kDegenerateRel * su.norm() * sv.norm() && nn > 1e-300) return n / nn;
+  if (su.norm() > tiny_u_ && sv.norm() > tiny_v_ && nn > kDegenerateRel * su.norm() * sv.norm()) return n / nn;
   return degenerate_normal(u, v);
 }
 
@@ -134,7 +137,7 @@ Vec3 NurbsSurface::degenerate_normal(double u, double v) const {
   const int D = K + 1;
   const MatrixXdR d = derivatives(u, v, K);
   auto S = [&](int k, int l) -> Vec3 { return d.row(k * D + l).transpose(); };
-  const double tiny_u = 1e-9 * size_ / (ub - ua), tiny_v = 1e-9 * size_ / (vb - va);
+  const double tiny_u = tiny_u_, tiny_v = tiny_v_;
   const Vec3 su = S(1, 0), sv = S(0, 1);
   // S_v vanishes on an edge u = u0: S_v(u0 + δ, v) ≈ δ^k/k! ∂^k_u S_v, normal → sgn(δ)^k unit(S_u × ∂^k_u S_v).
   if (sv.norm() <= tiny_v && su.norm() > tiny_u) {
@@ -163,7 +166,9 @@ Vec3 NurbsSurface::degenerate_normal(double u, double v) const {
       const MatrixXdR e = derivatives(uu, vv, 1);
       const Vec3 n = Vec3(e.row(2).transpose()).cross(Vec3(e.row(1).transpose()));
       const double nn = n.norm();
-      if (nn > 1e-300 && nn > kDegenerateRel * e.row(2).norm() * e.row(1).norm()) sum += n / nn;
+      if (e.row(2).norm() > tiny_u_ && e.row(1).norm() > tiny_v_ &&
+          nn > kDegenerateRel * e.row(2).norm() * e.row(1).norm())
+        sum += n / nn;
     }
     if (sum.norm() > 1e-6) return sum.normalized();
   }
@@ -193,7 +198,8 @@ void check_workspace(const SurfaceWorkspace& ws, int p, int q, int nv) {
 }
 
 // Point and unit normal from homogeneous A, A_u, A_v; returns false if S_u × S_v is degenerate.
-inline bool finish_point_normal(const double* A, const double* Au, const double* Av, double* P, double* N) {
+inline bool finish_point_normal(const double* A, const double* Au, const double* Av, double* P, double* N,
+                                double tiny_u2, double tiny_v2) {
   const double iw = 1.0 / A[3];
   double S[3], Su[3], Sv[3];
   for (int c = 0; c < 3; ++c) S[c] = A[c] * iw;
@@ -211,7 +217,7 @@ inline bool finish_point_normal(const double* A, const double* Au, const double*
   const double nn2 = n0 * n0 + n1 * n1 + n2 * n2;
   const double su2 = Su[0] * Su[0] + Su[1] * Su[1] + Su[2] * Su[2];
   const double sv2 = Sv[0] * Sv[0] + Sv[1] * Sv[1] + Sv[2] * Sv[2];
-  if (!(nn2 > kDegenerateRel * kDegenerateRel * su2 * sv2) || !(nn2 > 1e-300)) return false;
+  if (!(su2 > tiny_u2) || !(sv2 > tiny_v2) || !(nn2 > kDegenerateRel * kDegenerateRel * su2 * sv2)) return false;
   const double inv = 1.0 / std::sqrt(nn2);
   N[0] = n0 * inv;
   N[1] = n1 * inv;
@@ -267,7 +273,7 @@ void NurbsSurface::evaluate(const Eigen::Ref<const Points2>& uv, Eigen::Ref<Poin
     }
     double* P = &points(k, 0);
     double* N = want_n ? &normals(k, 0) : nullptr;
-    if (!finish_point_normal(A, Au, Av, P, N)) {
+    if (!finish_point_normal(A, Au, Av, P, N, tiny_u_ * tiny_u_, tiny_v_ * tiny_v_)) {
       const Vec3 n = degenerate_normal(u, v);
       N[0] = n[0];
       N[1] = n[1];
@@ -333,7 +339,7 @@ void NurbsSurface::evaluate_grid(const Eigen::Ref<const VectorXd>& us, const Eig
       const Eigen::Index k = i * b + j;
       double* P = &points(k, 0);
       double* N = want_n ? &normals(k, 0) : nullptr;
-      if (!finish_point_normal(A, Au, Av, P, N)) {
+      if (!finish_point_normal(A, Au, Av, P, N, tiny_u_ * tiny_u_, tiny_v_ * tiny_v_)) {
         const Vec3 n = degenerate_normal(u, v);
         N[0] = n[0];
         N[1] = n[1];

@@ -117,6 +117,7 @@ class NurbsSurface {
   VectorXd weights_;
   Points4 pw_;
   double size_ = 1.0;
+  double tiny_u_ = 0.0, tiny_v_ = 0.0;
 };
 
 }  // namespace netshape::geometry
