@@ -47,6 +47,41 @@ void basis_functions(int span, double u, int p, const double* U, double* N, doub
   }
 }
 
+void basis_functions_d1(int span, double u, int p, const double* U, double* N, double* dN,
+                        double* scratch) noexcept {
+  double* left = scratch;
+  double* right = scratch + (p + 1);
+  double* low = scratch + 2 * (p + 1);  // degree p − 1 functions N_{span-p+1 .. span, p-1}
+  N[0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    if (j == p)
+      for (int r = 0; r < p; ++r) low[r] = N[r];
+    left[j] = u - U[span + 1 - j];
+    right[j] = U[span + j] - u;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double temp = N[r] / (right[r + 1] + left[j - r]);
+      N[r] = saved + right[r + 1] * temp;
+      saved = left[j - r] * temp;
+    }
+    N[j] = saved;
+  }
+  // i = span − p + r; N_{i,p−1} = low[r − 1], N_{i+1,p−1} = low[r]
+  for (int r = 0; r <= p; ++r) {
+    const int i = span - p + r;
+    double d = 0.0;
+    if (r >= 1) {
+      const double den = U[i + p] - U[i];
+      if (den > 0) d += low[r - 1] / den;
+    }
+    if (r <= p - 1) {
+      const double den = U[i + p + 1] - U[i + 1];
+      if (den > 0) d -= low[r] / den;
+    }
+    dN[r] = p * d;
+  }
+}
+
 std::size_t ders_scratch_size(int p) noexcept {
   const std::size_t q = static_cast<std::size_t>(p) + 1;
   return 2 * q + q * q + 2 * q;  // left, right, ndu (q x q), a (2 x q)

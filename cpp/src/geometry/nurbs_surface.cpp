@@ -224,6 +224,93 @@ inline bool finish_point_normal(const double* A, const double* Au, const double*
   N[2] = n2 * inv;
   return true;
 }
+
+// Degree-specialised kernel of the scattered evaluation (P, Q known at compile time: loops unroll,
+// arrays live in registers). Returns false where the normal is degenerate (caller falls back).
+template <int P>
+inline void basis_d1_fixed(int span, double u, const double* U, double* N, double* dN) noexcept {
+  double left[P + 1], right[P + 1], low[P + 1];
+  N[0] = 1.0;
+  for (int j = 1; j <= P; ++j) {
+    if (j == P)
+      for (int r = 0; r < P; ++r) low[r] = N[r];
+    left[j] = u - U[span + 1 - j];
+    right[j] = U[span + j] - u;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double temp = N[r] / (right[r + 1] + left[j - r]);
+      N[r] = saved + right[r + 1] * temp;
+      saved = left[j - r] * temp;
+    }
+    N[j] = saved;
+  }
+  for (int r = 0; r <= P; ++r) {
+    const int i = span - P + r;
+    double d = 0.0;
+    if (r >= 1) {
+      const double den = U[i + P] - U[i];
+      if (den > 0) d += low[r - 1] / den;
+    }
+    if (r <= P - 1) {
+      const double den = U[i + P + 1] - U[i + 1];
+      if (den > 0) d -= low[r] / den;
+    }
+    dN[r] = P * d;
+  }
+}
+
+template <int P, int Q>
+inline void homogeneous_d1_fixed(const double* pw, int nv, int count_u, int count_v, const double* U, const double* V,
+                                 double u, double v, double* A, double* Au, double* Av) noexcept {
+  const int su = find_span(count_u, P, u, U);
+  const int sv = find_span(count_v, Q, v, V);
+  double Nu[P + 1], dNu[P + 1], Nv[Q + 1], dNv[Q + 1];
+  basis_d1_fixed<P>(su, u, U, Nu, dNu);
+  basis_d1_fixed<Q>(sv, v, V, Nv, dNv);
+  for (int c = 0; c < 4; ++c) A[c] = Au[c] = Av[c] = 0.0;
+  for (int i = 0; i <= P; ++i) {
+    const double* row = pw + (static_cast<std::size_t>(su - P + i) * nv + (sv - Q)) * 4;
+    double t0[4] = {0, 0, 0, 0}, t1[4] = {0, 0, 0, 0};
+    for (int j = 0; j <= Q; ++j) {
+      const double* Pj = row + 4 * j;
+      for (int c = 0; c < 4; ++c) {
+        t0[c] += Nv[j] * Pj[c];
+        t1[c] += dNv[j] * Pj[c];
+      }
+    }
+    for (int c = 0; c < 4; ++c) {
+      A[c] += Nu[i] * t0[c];
+      Au[c] += dNu[i] * t0[c];
+      Av[c] += Nu[i] * t1[c];
+    }
+  }
+}
+
+using HomKernel = void (*)(const double*, int, int, int, const double*, const double*, double, double, double*,
+                           double*, double*);
+
+template <int P>
+HomKernel pick_q(int q) {
+  switch (q) {
+    case 1: return &homogeneous_d1_fixed<P, 1>;
+    case 2: return &homogeneous_d1_fixed<P, 2>;
+    case 3: return &homogeneous_d1_fixed<P, 3>;
+    case 4: return &homogeneous_d1_fixed<P, 4>;
+    case 5: return &homogeneous_d1_fixed<P, 5>;
+    default: return nullptr;
+  }
+}
+
+HomKernel pick_kernel(int p, int q) {
+  switch (p) {
+    case 1: return pick_q<1>(q);
+    case 2: return pick_q<2>(q);
+    case 3: return pick_q<3>(q);
+    case 4: return pick_q<4>(q);
+    case 5: return pick_q<5>(q);
+    default: return nullptr;
+  }
+}
 }  // namespace
 
 void NurbsSurface::evaluate(const Eigen::Ref<const Points2>& uv, Eigen::Ref<Points3> points,
@@ -242,26 +329,22 @@ void NurbsSurface::evaluate(const Eigen::Ref<const Points2>& uv, Eigen::Ref<Poin
   const double* pw = pw_.data();
   double* Nu = ws.nu.data();
   double* Nv = ws.nv.data();
-  for (Eigen::Index k = 0; k < m; ++k) {
-    double u = uv(k, 0), v = uv(k, 1);
-    if (!(u >= ua - tu && u <= ub + tu)) check_parameters(u, v);  // throws (also NaN)
-    if (!(v >= va - tv && v <= vb + tv)) check_parameters(u, v);
-    u = std::clamp(u, ua, ub);
-    v = std::clamp(v, va, vb);
+  const HomKernel kernel = pick_kernel(p, q);
+  auto generic = [&](double u, double v, double* A, double* Au, double* Av) {
     const int su = find_span(count_u_, p, u, U);
     const int sv = find_span(count_v_, q, v, V);
-    basis_function_derivatives(su, u, p, 1, U, Nu, ws.scratch_u.data());
-    basis_function_derivatives(sv, v, q, 1, V, Nv, ws.scratch_v.data());
-    double A[4] = {0, 0, 0, 0}, Au[4] = {0, 0, 0, 0}, Av[4] = {0, 0, 0, 0};
+    basis_functions_d1(su, u, p, U, Nu, Nu + p + 1, ws.scratch_u.data());
+    basis_functions_d1(sv, v, q, V, Nv, Nv + q + 1, ws.scratch_v.data());
+    for (int c = 0; c < 4; ++c) A[c] = Au[c] = Av[c] = 0.0;
     for (int i = 0; i <= p; ++i) {
       const double* row = pw + (static_cast<std::size_t>(su - p + i) * nv + (sv - q)) * 4;
       double t0[4] = {0, 0, 0, 0}, t1[4] = {0, 0, 0, 0};
       for (int j = 0; j <= q; ++j) {
         const double a = Nv[j], b = Nv[q + 1 + j];
-        const double* P = row + 4 * j;
+        const double* Pj = row + 4 * j;
         for (int c = 0; c < 4; ++c) {
-          t0[c] += a * P[c];
-          t1[c] += b * P[c];
+          t0[c] += a * Pj[c];
+          t1[c] += b * Pj[c];
         }
       }
       const double a = Nu[i], b = Nu[p + 1 + i];
@@ -270,6 +353,19 @@ void NurbsSurface::evaluate(const Eigen::Ref<const Points2>& uv, Eigen::Ref<Poin
         Au[c] += b * t0[c];
         Av[c] += a * t1[c];
       }
+    }
+  };
+  for (Eigen::Index k = 0; k < m; ++k) {
+    double u = uv(k, 0), v = uv(k, 1);
+    if (!(u >= ua - tu && u <= ub + tu)) check_parameters(u, v);  // throws (also NaN)
+    if (!(v >= va - tv && v <= vb + tv)) check_parameters(u, v);
+    u = std::clamp(u, ua, ub);
+    v = std::clamp(v, va, vb);
+    double A[4], Au[4], Av[4];
+    if (kernel) {
+      kernel(pw, nv, count_u_, count_v_, U, V, u, v, A, Au, Av);
+    } else {
+      generic(u, v, A, Au, Av);
     }
     double* P = &points(k, 0);
     double* N = want_n ? &normals(k, 0) : nullptr;
@@ -303,10 +399,21 @@ void NurbsSurface::evaluate_grid(const Eigen::Ref<const VectorXd>& us, const Eig
   double* Nv = ws.nv.data();
   double* r0 = ws.row0.data();
   double* r1 = ws.row1.data();
+  (void)Nv;
+  // v-basis once per column
+  if (ws.col_span.size() < static_cast<std::size_t>(b)) ws.col_span.resize(b);
+  if (ws.col_basis.size() < static_cast<std::size_t>(b * 2 * (q + 1))) ws.col_basis.resize(b * 2 * (q + 1));
+  for (Eigen::Index j = 0; j < b; ++j) {
+    const double v = std::clamp(vs[j], va, vb);
+    const int sv = find_span(count_v_, q, v, V);
+    ws.col_span[j] = sv;
+    double* B = ws.col_basis.data() + j * 2 * (q + 1);
+    basis_functions_d1(sv, v, q, V, B, B + q + 1, ws.scratch_v.data());
+  }
   for (Eigen::Index i = 0; i < a; ++i) {
     const double u = std::clamp(us[i], ua, ub);
     const int su = find_span(count_u_, p, u, U);
-    basis_function_derivatives(su, u, p, 1, U, Nu, ws.scratch_u.data());
+    basis_functions_d1(su, u, p, U, Nu, Nu + p + 1, ws.scratch_u.data());
     // iso-curve (in v) control points at this u and their u-derivative, homogeneous
     std::fill(r0, r0 + 4 * nv, 0.0);
     std::fill(r1, r1 + 4 * nv, 0.0);
@@ -318,13 +425,10 @@ void NurbsSurface::evaluate_grid(const Eigen::Ref<const VectorXd>& us, const Eig
         r1[t] += c1 * row[t];
       }
     }
-    int sv = -1;
     for (Eigen::Index j = 0; j < b; ++j) {
       const double v = std::clamp(vs[j], va, vb);
-      // spans of consecutive v often repeat: try the previous one first
-      if (!(sv >= 0 && v >= V[sv] && (v < V[sv + 1] || (sv == count_v_ - 1 && v <= V[sv + 1]))))
-        sv = find_span(count_v_, q, v, V);
-      basis_function_derivatives(sv, v, q, 1, V, Nv, ws.scratch_v.data());
+      const int sv = ws.col_span[j];
+      const double* Nv = ws.col_basis.data() + j * 2 * (q + 1);
       double A[4] = {0, 0, 0, 0}, Au[4] = {0, 0, 0, 0}, Av[4] = {0, 0, 0, 0};
       for (int s = 0; s <= q; ++s) {
         const double* P0 = r0 + 4 * (sv - q + s);

@@ -183,3 +183,23 @@ TEST_CASE("bad input is refused with the field named") {
   CHECK(z.point(0.5).norm() == 0.0);
   CHECK_THROWS_AS(z.tangent(0.5), netshape::Error);
 }
+
+TEST_CASE("basis_functions_d1 equals the general derivative algorithm") {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> P(0.0, 1.0);
+  for (int p = 1; p <= 6; ++p) {
+    const VectorXd k = random_knots(rng, p + 5, p, true);
+    const int count = p + 5;
+    std::vector<double> N(p + 1), dN(p + 1), scratch(ders_scratch_size(p)), ref(2 * (p + 1));
+    for (int t = 0; t < 20; ++t) {
+      const double u = P(rng);
+      const int span = find_span(count, p, u, k.data());
+      basis_functions_d1(span, u, p, k.data(), N.data(), dN.data(), scratch.data());
+      basis_function_derivatives(span, u, p, 1, k.data(), ref.data(), scratch.data());
+      for (int j = 0; j <= p; ++j) {
+        CHECK(N[j] == doctest::Approx(ref[j]).epsilon(1e-13));
+        CHECK(dN[j] == doctest::Approx(ref[p + 1 + j]).epsilon(1e-12).scale(1.0));
+      }
+    }
+  }
+}

@@ -26,6 +26,12 @@ void basis_functions(int span, double u, int degree, const double* knots, double
 void basis_function_derivatives(int span, double u, int degree, int order, const double* knots, double* out,
                                 double* scratch) noexcept;
 
+/// Basis functions N (p + 1) and their first derivatives dN (p + 1) at u in one pass: the degree p − 1
+/// functions from A2.2 give dN_{i,p} = p (N_{i,p−1}/(U_{i+p} − U_i) − N_{i+1,p−1}/(U_{i+p+1} − U_{i+1})).
+/// Faster than basis_function_derivatives for order 1. `scratch` needs 3 (p + 1) doubles. No allocation.
+void basis_functions_d1(int span, double u, int degree, const double* knots, double* N, double* dN,
+                        double* scratch) noexcept;
+
 /// Scratch size (doubles) basis_function_derivatives needs for degree p.
 std::size_t ders_scratch_size(int degree) noexcept;
 

@@ -37,6 +37,8 @@ struct SurfaceWorkspace {
   std::vector<double> nu, nv;          ///< (2, p + 1), (2, q + 1): basis functions and 1st derivatives
   std::vector<double> scratch_u, scratch_v;
   std::vector<double> row0, row1;      ///< (n_v, 4): iso-curve control points and their u-derivative
+  std::vector<double> col_basis;       ///< grid: (b, 2 (q + 1)) v-basis per column (grown on demand)
+  std::vector<int> col_span;           ///< grid: (b) v-span per column (grown on demand)
 };
 
 /// A NURBS surface. Immutable once built (validated in the constructor).
