@@ -120,6 +120,7 @@ class NurbsSurface {
   Points4 pw_;
   double size_ = 1.0;
   double tiny_u_ = 0.0, tiny_v_ = 0.0;
+  std::vector<double> inv_u_, inv_v_;  // per-span reciprocal knot differences (fast kernels)
 };
 
 }  // namespace netshape::geometry
