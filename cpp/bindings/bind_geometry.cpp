@@ -236,6 +236,7 @@ void bind_geometry(py::module_& m) {
           d["start"] = start;
           d["end"] = end;
           d["feed"] = feeds;
+          d["toolpath"] = py::cast(std::move(tp));
           return d;
         });
 
@@ -350,4 +351,12 @@ void bind_geometry(py::module_& m) {
           return out;
         }, py::arg("outer"), py::arg("islands"), py::arg("tool_radius"), py::arg("step_over"),
         py::arg("tolerance") = 1e-6);
+
+  m.def("_pocket_toolpath", [](const Points2& outer, const std::vector<Points2>& islands, double R, double step,
+                               double z, double clearance, double feed, double rpm, int tool, double tol) {
+          Region reg{outer, islands};
+          py::gil_scoped_release rel;
+          return rings_toolpath(pocket_rings(reg, R, step, tol), z, clearance, feed, rpm, tool);
+        }, py::arg("outer"), py::arg("islands"), py::arg("tool_radius"), py::arg("step_over"), py::arg("z"),
+        py::arg("clearance"), py::arg("feed"), py::arg("spindle_rpm"), py::arg("tool"), py::arg("tolerance"));
 }

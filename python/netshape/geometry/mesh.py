@@ -91,6 +91,17 @@ def pocket_rings(outer, islands=(), tool_radius: float = 1.0, step_over: float =
     return [[OffsetRing._from(d) for d in lv] for lv in levels]
 
 
+def pocket_toolpath(outer, islands=(), *, tool_radius: float, step_over: float, z: float,
+                    clearance: float = 2.0, feed: float = 10.0, spindle_rpm: float = 10000.0, tool: int = 1,
+                    tolerance: float = 1e-6):
+    """Pocket rings as a ``netshape.toolpath.Toolpath`` of lines and XY arcs at height ``z`` [mm]
+    (innermost ring first; rapid to ``z + clearance``, plunge, ring, retract). Feed in mm/s. Write it
+    with ``netshape.toolpath.write_gcode``."""
+    isl = [_contour(x, f"islands[{k}]") for k, x in enumerate(islands)]
+    return _g._pocket_toolpath(_contour(outer, "outer"), isl, float(tool_radius), float(step_over), float(z),
+                               float(clearance), float(feed), float(spindle_rpm), int(tool), float(tolerance))
+
+
 def rings_gcode(levels: list[list[OffsetRing]], *, z: float, clearance: float = 2.0, feed: float = 10.0,
                 spindle_rpm: float = 10000.0, tool: int = 1, decimals: int = 4) -> str:
     """Pocket rings as RS274 text (G17 XY arcs with I J incremental centres), innermost level first;

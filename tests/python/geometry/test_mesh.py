@@ -154,6 +154,17 @@ def test_inward_offset_with_island_and_pocket_rings():
     text = g.rings_gcode(levels, z=-1.0, feed=10.0)
     assert "G2" in text or "G3" in text
     assert "F600.0" in text
+    tp = g.pocket_toolpath(SQUARE, [island], tool_radius=1.0, step_over=0.8, z=-1.0, feed=10.0)
+    kinds = [int(b.kind) for b in tp.blocks]
+    assert 2 in kinds and 1 in kinds
+    cut = [b for b in tp.blocks if int(b.kind) == 2]
+    assert all(abs(b.start[2] + 1.0) < 1e-12 for b in cut)
+    # the same rings read back through the shared G-code writer and reader
+    import netshape.toolpath as ntp
+
+    again = ntp.parse_gcode(ntp.format_gcode(tp)) if hasattr(ntp, "parse_gcode") else None
+    if again is not None:
+        assert sum(int(b.kind) == 2 for b in again.blocks) == len(cut)
 
 
 def test_concave_corner_gets_arc_when_growing():
