@@ -31,6 +31,10 @@ def _cutter_args(cutter: Any) -> tuple[str, float, float]:
         raise ValueError(f"cutter.kind = {kind!r}: must be one of flat, ball, bull")
     if radius is None:
         raise ValueError("cutter.radius = None: must be a positive number [mm]")
+    if kind == "ball":
+        corner = radius
+    elif kind == "flat":
+        corner = 0.0
     return kind, float(radius), float(corner or 0.0)
 
 
