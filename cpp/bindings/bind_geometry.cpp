@@ -158,7 +158,36 @@ void bind_geometry(py::module_& m) {
       .def("iso_curve_u", &NurbsSurface::iso_curve_u, py::arg("u"))
       .def("iso_curve_v", &NurbsSurface::iso_curve_v, py::arg("v"))
       .def("closest_point", &NurbsSurface::closest_point, py::arg("point"), py::arg("tolerance") = 1e-10,
-           py::arg("max_iterations") = 50);
+           py::arg("max_iterations") = 50)
+      .def("closest_points", [](const NurbsSurface& s, RefPoints3 pts, double tol, int iters) {
+             std::vector<SurfaceProjection> r;
+             {
+               py::gil_scoped_release rel;
+               r = s.closest_points(pts, tol, iters);
+             }
+             const auto n = static_cast<py::ssize_t>(r.size());
+             py::array_t<double> uv({n, py::ssize_t(2)}), d(n);
+             auto P = new_points(n), N = new_points(n);
+             py::array_t<bool> conv(n);
+             for (py::ssize_t k = 0; k < n; ++k) {
+               uv.mutable_at(k, 0) = r[k].u;
+               uv.mutable_at(k, 1) = r[k].v;
+               d.mutable_at(k) = r[k].distance;
+               conv.mutable_at(k) = r[k].converged;
+               for (int c = 0; c < 3; ++c) {
+                 P.mutable_at(k, c) = r[k].point[c];
+                 N.mutable_at(k, c) = r[k].normal[c];
+               }
+             }
+             py::dict out;
+             out["uv"] = uv;
+             out["point"] = P;
+             out["normal"] = N;
+             out["distance"] = d;
+             out["converged"] = conv;
+             return out;
+           }, py::arg("points"), py::arg("tolerance") = 1e-10, py::arg("max_iterations") = 50,
+           "Batched projection: dict of uv (n, 2), point (n, 3), normal (n, 3), distance (n,), converged (n,).");
 
   m.def("circular_arc", &circular_arc, py::arg("center"), py::arg("x_axis"), py::arg("y_axis"), py::arg("radius"),
         py::arg("start"), py::arg("end"));

@@ -563,17 +563,54 @@ NurbsCurve NurbsSurface::iso_curve_v(double v0) const {
   return NurbsCurve(degree_u_, knots_u_, std::move(cp), std::move(w));
 }
 
+namespace {
+struct ProjectionGrid {
+  VectorXd us, vs;
+  Points3 pts;
+};
+}  // namespace
+
+static ProjectionGrid projection_grid(const NurbsSurface& s) {
+  const auto [ua, ub] = s.domain_u();
+  const auto [va, vb] = s.domain_v();
+  const int na = std::max(12, 3 * s.count_u() * s.degree_u()), nb = std::max(12, 3 * s.count_v() * s.degree_v());
+  ProjectionGrid g;
+  g.us = VectorXd::LinSpaced(na, ua, ub);
+  g.vs = VectorXd::LinSpaced(nb, va, vb);
+  SurfaceWorkspace ws = s.make_workspace();
+  g.pts.resize(static_cast<Eigen::Index>(na) * nb, 3);
+  Points3 none(0, 3);
+  s.evaluate_grid(g.us, g.vs, g.pts, none, ws);
+  return g;
+}
+
 SurfaceProjection NurbsSurface::closest_point(const Vec3& p, double tolerance, int max_iterations) const {
-  for (int c = 0; c < 3; ++c) NETSHAPE_CHECK_FINITE("point", p[c]);
+  return closest_points(p.transpose(), tolerance, max_iterations).front();
+}
+
+std::vector<SurfaceProjection> NurbsSurface::closest_points(const Eigen::Ref<const Points3>& points, double tolerance,
+                                                            int max_iterations) const {
   NETSHAPE_CHECK(tolerance > 0.0, "tolerance", tolerance, "must be positive [mm]");
+  NETSHAPE_CHECK(max_iterations >= 1, "max_iterations", max_iterations, "must be at least 1");
+  for (Eigen::Index k = 0; k < points.rows(); ++k)
+    for (int c = 0; c < 3; ++c) NETSHAPE_CHECK_FINITE("point", points(k, c));
+  const ProjectionGrid grid = projection_grid(*this);
+  std::vector<SurfaceProjection> out;
+  out.reserve(points.rows());
+  std::vector<std::pair<double, Eigen::Index>> order(grid.pts.rows());
+  for (Eigen::Index q = 0; q < points.rows(); ++q)
+    out.push_back(project_from_grid(points.row(q).transpose(), grid.us, grid.vs, grid.pts, order, tolerance,
+                                    max_iterations));
+  return out;
+}
+
+SurfaceProjection NurbsSurface::project_from_grid(const Vec3& p, const VectorXd& us, const VectorXd& vs,
+                                                  const Points3& pts,
+                                                  std::vector<std::pair<double, Eigen::Index>>& order,
+                                                  double tolerance, int max_iterations) const {
   const auto [ua, ub] = domain_u();
   const auto [va, vb] = domain_v();
-  const int na = std::max(12, 3 * count_u_ * degree_u_), nb = std::max(12, 3 * count_v_ * degree_v_);
-  const VectorXd us = VectorXd::LinSpaced(na, ua, ub), vs = VectorXd::LinSpaced(nb, va, vb);
-  SurfaceWorkspace ws = make_workspace();
-  Points3 pts(static_cast<Eigen::Index>(na) * nb, 3), none(0, 3);
-  evaluate_grid(us, vs, pts, none, ws);
-  std::vector<std::pair<double, Eigen::Index>> order(pts.rows());
+  const Eigen::Index nb = vs.size();
   for (Eigen::Index k = 0; k < pts.rows(); ++k) order[k] = {(pts.row(k).transpose() - p).squaredNorm(), k};
   const int starts = static_cast<int>(std::min<std::size_t>(4, order.size()));
   std::partial_sort(order.begin(), order.begin() + starts, order.end());

@@ -102,6 +102,9 @@ class NurbsSurface:
     def iso_curve_v(self, v: float) -> NurbsCurve: ...
     def closest_point(self, point: ArrayLike, tolerance: float = 1e-10,
                       max_iterations: int = 50) -> SurfaceProjection: ...
+    def closest_points(self, points: ArrayLike, tolerance: float = 1e-10,
+                       max_iterations: int = 50) -> dict[str, NDArray[Any]]:
+        """Batched: uv (n, 2), point (n, 3), normal (n, 3), distance (n,), converged (n,)."""
 
 def circular_arc(center: ArrayLike, x_axis: ArrayLike, y_axis: ArrayLike, radius: float, start: float,
                  end: float) -> NurbsCurve: ...

@@ -231,6 +231,15 @@ def test_closest_point_and_iso_curves(surf):
     r = surf.closest_point(q)
     assert r.converged and abs(r.distance - 0.8) < 1e-9
     assert abs(r.u - 0.41) < 1e-8 and abs(r.v - 0.57) < 1e-8
+    rng = np.random.default_rng(4)
+    uv = rng.uniform(0.05, 0.95, (20, 2))
+    pts, nrm = surf.evaluate_with_normals(uv)
+    batch = surf.closest_points(pts + 0.5 * nrm)
+    assert np.allclose(batch["distance"], 0.5, atol=1e-9)
+    assert np.allclose(batch["uv"], uv, atol=1e-7)
+    assert batch["converged"].all()
+    single = surf.closest_point(pts[3] + 0.5 * nrm[3])
+    assert np.allclose(batch["point"][3], single.point, atol=1e-12)
     c = surf.iso_curve_u(0.41)
     assert np.allclose(c.point(0.57), surf.point(0.41, 0.57), atol=1e-13)
     rc = c.closest_point(c.point(0.2) + [0, 0, 1e-3])
