@@ -155,6 +155,7 @@ void bind_geometry(py::module_& m) {
            }, py::arg("us"), py::arg("vs"), py::arg("normals") = true)
       .def("insert_knot_u", &NurbsSurface::insert_knot_u, py::arg("u"), py::arg("times") = 1)
       .def("insert_knot_v", &NurbsSurface::insert_knot_v, py::arg("v"), py::arg("times") = 1)
+      .def("swap_uv", &NurbsSurface::swap_uv, "S'(v, u) = S(u, v): same shape, normals flipped.")
       .def("iso_curve_u", &NurbsSurface::iso_curve_u, py::arg("u"))
       .def("iso_curve_v", &NurbsSurface::iso_curve_v, py::arg("v"))
       .def("closest_point", &NurbsSurface::closest_point, py::arg("point"), py::arg("tolerance") = 1e-10,

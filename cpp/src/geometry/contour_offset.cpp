@@ -117,12 +117,6 @@ void collect(const GSet& set, std::vector<OffsetRing>& out) {
   }
 }
 
-GPolygon linear_polygon(const CGAL::Polygon_2<EK>& poly) {
-  std::vector<XCurve> curves;
-  const auto n = poly.size();
-  for (std::size_t i = 0; i < n; ++i) curves.emplace_back(poly.vertex(i), poly.vertex((i + 1) % n));
-  return GPolygon(curves.begin(), curves.end());
-}
 }  // namespace
 
 void Region::validate() const {

@@ -255,7 +255,7 @@ inline bool finish_point_normal(const double* A, const double* Au, const double*
 // inv[0 .. P(P+1)/2) for the A2.2 steps, then 1/(U_{i+P} − U_i) and 1/(U_{i+P+1} − U_{i+1}) per r.
 template <int P>
 inline void basis_d1_table(int span, double u, const double* U, const double* inv, double* N, double* dN) noexcept {
-  double left[P + 1], right[P + 1], low[P + 1];
+  double left[P + 1], right[P + 1], low[P + 1] = {};
   N[0] = 1.0;
   int t = 0;
   for (int j = 1; j <= P; ++j) {
@@ -527,6 +527,17 @@ NurbsSurface NurbsSurface::insert_knot_v(double v, int times) const {
       cp.row(i * nv + j) = h.head<3>() / h[3];
     }
   return NurbsSurface(degree_u_, degree_v_, knots_u_, std::move(VQ), std::move(cp), std::move(w));
+}
+
+NurbsSurface NurbsSurface::swap_uv() const {
+  Points3 cp(control_points_.rows(), 3);
+  VectorXd w(weights_.size());
+  for (int i = 0; i < count_u_; ++i)
+    for (int j = 0; j < count_v_; ++j) {
+      cp.row(j * count_u_ + i) = control_points_.row(i * count_v_ + j);
+      w[j * count_u_ + i] = weights_[i * count_v_ + j];
+    }
+  return NurbsSurface(degree_v_, degree_u_, knots_v_, knots_u_, std::move(cp), std::move(w));
 }
 
 NurbsCurve NurbsSurface::iso_curve_u(double u0) const {

@@ -217,6 +217,13 @@ def test_geomdl_and_dict_round_trip(tmp_path):
         g.from_dict({"type": "blob"})
 
 
+def test_swap_uv_flips_normals(surf):
+    t = surf.swap_uv()
+    for u, v in [(0.2, 0.7), (0.5, 0.5), (0.9, 0.1)]:
+        assert np.allclose(t.point(v, u), surf.point(u, v), atol=1e-13)
+        assert np.allclose(t.normal(v, u), -surf.normal(u, v), atol=1e-12)
+
+
 def test_grid_and_scattered_agree(surf):
     us, vs = np.linspace(0, 1, 17), np.linspace(0, 1, 9)
     gp, gn = surf.evaluate_grid(us, vs)

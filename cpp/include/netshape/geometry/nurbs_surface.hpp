@@ -96,6 +96,10 @@ class NurbsSurface {
   NurbsSurface insert_knot_u(double u, int times = 1) const;
   NurbsSurface insert_knot_v(double v, int times = 1) const;
 
+  /// The same surface with u and v exchanged: S'(v, u) = S(u, v); its normal S'_u × S'_v = −n, so this is
+  /// how to turn a design surface's normals to the other side (e.g. towards the tool for CC→CL).
+  NurbsSurface swap_uv() const;
+
   /// Iso-parametric curve at fixed u = u0 (a curve in v, exact: degree q, knots_v).
   NurbsCurve iso_curve_u(double u0) const;
   /// Iso-parametric curve at fixed v = v0 (a curve in u, exact: degree p, knots_u).
