@@ -1,0 +1,72 @@
+#pragma once
+/// \file synthesis.hpp
+/// Error synthesis: the tool-tip position error relative to the workpiece, from the product of
+/// homogeneous transforms along the two chains of a `Machine`.
+///
+/// Frames and conventions (docs/machine.md has the derivation):
+///  - Program point p = (x, y, z) [mm]: nominal tool tip relative to the workpiece; axis k sits at
+///    q_k = p_k.
+///  - Axis k's error motion M_k(q) = [R(EAk, EBk, ECk) | q·u'_k + (EXk, EYk, EZk)], with
+///    R(a, b, c) = Rz(c)·Ry(b)·Rx(a) (exact, no small-angle approximation) and u'_k the axis
+///    direction turned by the squareness errors (Y: Rz(EC0Y)·ŷ; Z: Rx(EA0Z)·Ry(EB0Z)·ẑ; X: x̂).
+///  - Tool side: carriage k relative to the frame below = Trans(origin_k)·M_k.
+///    Workpiece side: carriage k relative to the frame below = Trans(origin_k)·M_k⁻¹ (the
+///    components describe the tool's motion relative to the workpiece, ISO 230-1 sense).
+///  - Tool tip in the last tool-side frame: spindle_nose + L·Rx(tilt_a)·Ry(tilt_b)·tool_direction.
+///  - Actual point W(p): the tool tip expressed in the workpiece frame; error e(p) = W(p) − W_nominal(p),
+///    so the tip lands at p + e(p) in program coordinates. eq. (3) of seeds/003, ΔW_B.
+///  - First order: e₁(p) = Σ_k [δ_k + q_k·(u'_k − u_k)₁ + ε_k × r_k] + L·(θ_s × d), r_k the nominal arm
+///    from carriage k's frame origin to the tip (tool side) or to the workpiece point (workpiece
+///    side) — seeds/003 eq. (9)–(11) for any chain. exact − first order = O(error²).
+
+#include <array>
+
+#include "netshape/core/types.hpp"
+#include "netshape/machine/machine.hpp"
+
+namespace netshape::machine {
+
+/// Which synthesis to use.
+enum class Order : std::uint8_t { exact = 0, first = 1 };
+
+/// Workspace for evaluating a `Machine` (Model/Data split, pinocchio style): constants derived from
+/// the machine once (directions with squareness, tilted tip), and per-point scratch. Build one per
+/// thread; the evaluation functions never allocate.
+struct MachineData {
+  explicit MachineData(const Machine& machine);
+
+  std::array<Vec3, 3> direction;          ///< u'_k: axis directions with squareness (exact), unit
+  std::array<Vec3, 3> direction_linear;   ///< u_k + first-order squareness deviation
+  Vec3 tip_local;                         ///< tip in the last tool-side frame with spindle tilt (exact) [mm]
+  Vec3 tip_local_linear;                  ///< same, tilt to first order [mm]
+  Vec3 tip_nominal;                       ///< tip without tilt [mm]
+  // per-point scratch
+  std::array<Vec3, 3> delta;              ///< (EXk, EYk, EZk) at the current point [mm]
+  std::array<Vec3, 3> epsilon;            ///< (EAk, EBk, ECk) at the current point [rad]
+  std::array<Mat3, 3> rotation;           ///< exact R(ε_k)
+};
+
+/// Evaluate the six components of each axis at program point p into `data.delta`/`data.epsilon`.
+/// Throws std::invalid_argument when a table's out-of-range policy is `error` and p is outside.
+void evaluate_components(const Machine& machine, MachineData& data, const Vec3& p);
+
+/// Tip error e(p) [mm] relative to the workpiece at program point p [mm] (one point, no allocation).
+Vec3 tip_error(const Machine& machine, MachineData& data, const Vec3& p, Order order = Order::exact);
+
+/// Tip errors at many points: (n, 3) [mm] in, (n, 3) [mm] out.
+Points3 tip_error(const Machine& machine, const Eigen::Ref<const Points3>& points,
+                  Order order = Order::exact);
+
+/// Where the tip actually lands for commanded points (p + e(p)): (n, 3) [mm].
+Points3 actual_points(const Machine& machine, const Eigen::Ref<const Points3>& commanded,
+                      Order order = Order::exact);
+
+/// Volumetric error VE = |e(p)| (seeds/003 eq. 16) at many points: (n,) [mm].
+Eigen::VectorXd volumetric_error(const Machine& machine, const Eigen::Ref<const Points3>& points,
+                                 Order order = Order::exact);
+
+/// Exact rotation R(a, b, c) = Rz(c)·Ry(b)·Rx(a) [rad], sin/cos exact to rounding (short Taylor
+/// series below 0.05 rad, std::sin/cos above).
+Mat3 rotation_zyx(double a, double b, double c) noexcept;
+
+}  // namespace netshape::machine

@@ -1,0 +1,158 @@
+// Error synthesis along the two chains of a machine: exact product of homogeneous transforms and
+// its first-order expansion (seeds/003 eq. 9-11 generalised). The exact path tracks the deviation
+// d = W - W_nominal directly, using R - I computed without cancellation, so small errors keep full
+// relative precision.
+#include "netshape/machine/synthesis.hpp"
+
+#include <cmath>
+
+#include "netshape/core/error.hpp"
+
+namespace netshape::machine {
+
+namespace {
+
+/// sin x and cos x - 1, exact to rounding, without cancellation for small x.
+inline void sincos_m1(double x, double& s, double& cm) noexcept {
+  if (std::abs(x) < 0.05) {
+    const double x2 = x * x;
+    s = x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0))));
+    cm = -0.5 * x2 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0 * (1.0 - x2 / 90.0))));
+  } else {
+    s = std::sin(x);
+    const double h = std::sin(0.5 * x);
+    cm = -2.0 * h * h;
+  }
+}
+
+/// R(a, b, c) - I with R = Rz(c) Ry(b) Rx(a).
+inline Mat3 rotation_minus_identity(double a, double b, double c) noexcept {
+  double sa, cma, sb, cmb, sc, cmc;
+  sincos_m1(a, sa, cma);
+  sincos_m1(b, sb, cmb);
+  sincos_m1(c, sc, cmc);
+  const double ca = 1.0 + cma, cb = 1.0 + cmb, cc = 1.0 + cmc;
+  Mat3 m;
+  m(0, 0) = cmb + cmc + cmb * cmc;
+  m(0, 1) = sa * sb * cc - ca * sc;
+  m(0, 2) = ca * sb * cc + sa * sc;
+  m(1, 0) = cb * sc;
+  m(1, 1) = sa * sb * sc + cma + cmc + cma * cmc;
+  m(1, 2) = ca * sb * sc - sa * cc;
+  m(2, 0) = -sb;
+  m(2, 1) = sa * cb;
+  m(2, 2) = cma + cmb + cma * cmb;
+  return m;
+}
+
+/// Rx(a) Ry(b) - I (spindle tilt).
+inline Mat3 tilt_minus_identity(double a, double b) noexcept {
+  double sa, cma, sb, cmb;
+  sincos_m1(a, sa, cma);
+  sincos_m1(b, sb, cmb);
+  const double ca = 1.0 + cma, cb = 1.0 + cmb;
+  // Rx(a) Ry(b) = [[cb, 0, sb], [sa sb, ca, -sa cb], [-ca sb, sa, ca cb]]
+  Mat3 m;
+  m << cmb, 0.0, sb, sa * sb, cma, -sa * cb, -ca * sb, sa, cma + cmb + cma * cmb;
+  return m;
+}
+
+inline Vec3 unit(int k) { return Vec3::Unit(k); }
+
+}  // namespace
+
+Mat3 rotation_zyx(double a, double b, double c) noexcept {
+  return Mat3::Identity() + rotation_minus_identity(a, b, c);
+}
+
+MachineData::MachineData(const Machine& machine) {
+  machine.validate();
+  // Squareness: X is the reference; Y = Rz(EC0Y) ŷ; Z = Rx(EA0Z) Ry(EB0Z) ẑ. Stored as deviations
+  // from the nominal unit vector (exact), direction_linear as first-order deviations.
+  double s, cm;
+  direction[0] = Vec3::Zero();
+  direction_linear[0] = Vec3::Zero();
+  sincos_m1(machine.ec0y, s, cm);
+  direction[1] = Vec3(-s, cm, 0.0);
+  direction_linear[1] = Vec3(-machine.ec0y, 0.0, 0.0);
+  direction[2] = tilt_minus_identity(machine.ea0z, machine.eb0z).col(2);  // Rx(a) Ry(b) ẑ - ẑ
+  direction_linear[2] = Vec3(machine.eb0z, -machine.ea0z, 0.0);
+  tip_nominal = machine.nominal_tip();
+  const Vec3 tilt_dev =
+      machine.tool_length * (tilt_minus_identity(machine.spindle_tilt_a, machine.spindle_tilt_b) *
+                             machine.tool_direction);
+  tip_local = tilt_dev;  // deviation of the tilted tip from the nominal tip [mm]
+  tip_local_linear =
+      machine.tool_length * Vec3(machine.spindle_tilt_a, machine.spindle_tilt_b, 0.0).cross(machine.tool_direction);
+  for (int k = 0; k < 3; ++k) {
+    delta[k].setZero();
+    epsilon[k].setZero();
+    rotation[k].setZero();
+  }
+}
+
+void evaluate_components(const Machine& machine, MachineData& data, const Vec3& p) {
+  for (int k = 0; k < 3; ++k) {
+    const auto& e = machine.axes[k].errors;
+    const double q = p[k];
+    data.delta[k] = Vec3(e[0](q), e[1](q), e[2](q));
+    data.epsilon[k] = Vec3(e[3](q), e[4](q), e[5](q));
+  }
+}
+
+Vec3 tip_error(const Machine& machine, MachineData& data, const Vec3& p, Order order) {
+  evaluate_components(machine, data, p);
+  // v: nominal position of the point in the current frame; d: its deviation (actual - nominal).
+  Vec3 v = data.tip_nominal;
+  Vec3 d = order == Order::exact ? data.tip_local : data.tip_local_linear;
+  const auto& tc = machine.tool_chain;
+  for (auto it = tc.rbegin(); it != tc.rend(); ++it) {
+    const int k = *it;
+    const double q = p[k];
+    const Vec3& o = machine.axes[k].origin;
+    // v_frame = o + R (v + d) + q u' + δ ; nominal o + v + q u
+    if (order == Order::exact) {
+      const Mat3 rm = rotation_minus_identity(data.epsilon[k][0], data.epsilon[k][1], data.epsilon[k][2]);
+      d = d + rm * (v + d) + q * data.direction[k] + data.delta[k];
+    } else {
+      d = d + data.epsilon[k].cross(v) + q * data.direction_linear[k] + data.delta[k];
+    }
+    v = o + v + q * unit(k);
+  }
+  for (int k : machine.workpiece_chain) {
+    const double q = p[k];
+    const Vec3& o = machine.axes[k].origin;
+    // W = M_k (v - o): R (v + d - o) + q u' + δ ; nominal v - o + q u
+    if (order == Order::exact) {
+      const Mat3 rm = rotation_minus_identity(data.epsilon[k][0], data.epsilon[k][1], data.epsilon[k][2]);
+      d = d + rm * (v + d - o) + q * data.direction[k] + data.delta[k];
+    } else {
+      d = d + data.epsilon[k].cross(v - o) + q * data.direction_linear[k] + data.delta[k];
+    }
+    v = v - o + q * unit(k);
+  }
+  return d;
+}
+
+Points3 tip_error(const Machine& machine, const Eigen::Ref<const Points3>& points, Order order) {
+  MachineData data(machine);
+  Points3 out(points.rows(), 3);
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const Vec3 p = points.row(i).transpose();
+    for (int c = 0; c < 3; ++c) NETSHAPE_CHECK_FINITE("points", p[c]);
+    out.row(i) = tip_error(machine, data, p, order).transpose();
+  }
+  return out;
+}
+
+Points3 actual_points(const Machine& machine, const Eigen::Ref<const Points3>& commanded, Order order) {
+  Points3 e = tip_error(machine, commanded, order);
+  return commanded + e;
+}
+
+Eigen::VectorXd volumetric_error(const Machine& machine, const Eigen::Ref<const Points3>& points, Order order) {
+  const Points3 e = tip_error(machine, points, order);
+  return e.rowwise().norm();
+}
+
+}  // namespace netshape::machine
