@@ -28,12 +28,13 @@ long VolumetricResult::first_failure() const {
   return -1;
 }
 
-VolumetricStatus compensate_point(const Machine& machine, MachineData& data, const Vec3& nominal,
-                                  const VolumetricOptions& options, Vec3& commanded, double& residual,
-                                  int& iterations, int& axis) {
+namespace {
+VolumetricStatus solve_point(const Machine& machine, MachineData& data, const Vec3& nominal, const Vec3& start,
+                             const VolumetricOptions& options, Vec3& commanded, double& residual,
+                             int& iterations, int& axis) {
   axis = -1;
   iterations = 0;
-  Vec3 p = nominal;
+  Vec3 p = start;
   residual = INFINITY;
   bool newton = false;
   try {
@@ -85,6 +86,13 @@ VolumetricStatus compensate_point(const Machine& machine, MachineData& data, con
   }
   return VolumetricStatus::ok;
 }
+}  // namespace
+
+VolumetricStatus compensate_point(const Machine& machine, MachineData& data, const Vec3& nominal,
+                                  const VolumetricOptions& options, Vec3& commanded, double& residual,
+                                  int& iterations, int& axis) {
+  return solve_point(machine, data, nominal, nominal, options, commanded, residual, iterations, axis);
+}
 
 VolumetricResult compensate_points_status(const Machine& machine, const Eigen::Ref<const Points3>& nominal,
                                           const VolumetricOptions& options) {
@@ -97,13 +105,20 @@ VolumetricResult compensate_points_status(const Machine& machine, const Eigen::R
   res.iterations.resize(n);
   res.axis.resize(n);
   res.status.resize(static_cast<std::size_t>(n));
+  bool have_prev = false;
+  Vec3 prev_correction = Vec3::Zero();
   for (Eigen::Index i = 0; i < n; ++i) {
     const Vec3 p = nominal.row(i).transpose();
     for (int c = 0; c < 3; ++c) NETSHAPE_CHECK_FINITE("nominal points", p[c]);
     Vec3 cmd;
     double r;
     int it, ax;
-    res.status[i] = compensate_point(machine, data, p, options, cmd, r, it, ax);
+    // Warm start: neighbouring CL points need nearly the same correction, so start from the
+    // previous point's correction (one evaluation fewer along a path; same fixed point).
+    const Vec3 start = have_prev ? Vec3(p + prev_correction) : p;
+    res.status[i] = solve_point(machine, data, p, start, options, cmd, r, it, ax);
+    have_prev = res.status[i] == VolumetricStatus::ok;
+    if (have_prev) prev_correction = cmd - p;
     res.commanded.row(i) = cmd.transpose();
     res.residual[i] = r;
     res.iterations[i] = it;

@@ -4,6 +4,7 @@
 // relative precision.
 #include "netshape/machine/synthesis.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "netshape/core/error.hpp"
@@ -16,8 +17,11 @@ namespace {
 inline void sincos_m1(double x, double& s, double& cm) noexcept {
   if (std::abs(x) < 0.05) {
     const double x2 = x * x;
-    s = x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0))));
-    cm = -0.5 * x2 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0 * (1.0 - x2 / 90.0))));
+    // Taylor series to x^9 / x^10: the next terms are below 1e-21 relative for |x| < 0.05
+    constexpr double k6 = 1.0 / 6.0, k20 = 1.0 / 20.0, k42 = 1.0 / 42.0, k72 = 1.0 / 72.0;
+    constexpr double k12 = 1.0 / 12.0, k30 = 1.0 / 30.0, k56 = 1.0 / 56.0, k90 = 1.0 / 90.0;
+    s = x * (1.0 - x2 * k6 * (1.0 - x2 * k20 * (1.0 - x2 * k42 * (1.0 - x2 * k72))));
+    cm = -0.5 * x2 * (1.0 - x2 * k12 * (1.0 - x2 * k30 * (1.0 - x2 * k56 * (1.0 - x2 * k90))));
   } else {
     s = std::sin(x);
     const double h = std::sin(0.5 * x);
@@ -65,8 +69,80 @@ Mat3 rotation_zyx(double a, double b, double c) noexcept {
   return Mat3::Identity() + rotation_minus_identity(a, b, c);
 }
 
+namespace {
+// Evaluation of a prepared error function, kept in this translation unit so it inlines into the
+// synthesis loop (a call through the PLT of the shared module costs more than the arithmetic).
+inline double eval_prepared(const detail::PreparedFunction& f, double q) {
+  const auto kind = f.kind;
+  const int n = f.n;
+  const double* c = f.c;
+  const double* x = f.x;
+  const double lo = f.lo, hi = f.hi;
+  switch (kind) {
+    case ErrorFunction::Kind::zero:
+      return 0.0;
+    case ErrorFunction::Kind::polynomial: {
+      double r = c[n - 1];
+      for (int j = n - 2; j >= 0; --j) r = r * q + c[j];
+      return r;
+    }
+    case ErrorFunction::Kind::table: {
+      int i;
+      if (!(q >= lo && q <= hi)) {
+        if (f.out_of_range == OutOfRange::error || !std::isfinite(q)) return (*f.source)(q);  // throws
+        if (f.out_of_range == OutOfRange::clamp) return q < lo ? c[0] : c[n - 1];
+        i = q < lo ? 0 : n - 2;
+      } else if (f.uniform) {
+        const double u = (q - lo) * f.inv_step;  // no division on the fast path
+        i = static_cast<int>(u);
+        if (i > n - 2) i = n - 2;
+        const double t = u - i;
+        return c[i] + t * (c[i + 1] - c[i]);
+      } else {
+        i = static_cast<int>(std::upper_bound(x, x + n, q) - x) - 1;
+        if (i > n - 2) i = n - 2;
+        if (i < 0) i = 0;
+      }
+      const double t = (q - x[i]) / (x[i + 1] - x[i]);
+      return c[i] + t * (c[i + 1] - c[i]);
+    }
+  }
+  return 0.0;
+}
+}  // namespace
+
+double detail::PreparedFunction::operator()(double q) const { return eval_prepared(*this, q); }
+
 MachineData::MachineData(const Machine& machine) {
   machine.validate();
+  for (int k = 0; k < 3; ++k) {
+    for (int j = 0; j < 6; ++j) {
+      const ErrorFunction& f = machine.axes[k].errors[j];
+      detail::PreparedFunction& pf = functions[k * 6 + j];
+      pf.source = &f;
+      pf.kind = f.kind;
+      pf.out_of_range = f.out_of_range;
+      if (f.kind == ErrorFunction::Kind::polynomial) {
+        if (f.coefficients.empty()) {
+          pf.kind = ErrorFunction::Kind::zero;
+        } else {
+          pf.n = static_cast<int>(f.coefficients.size());
+          pf.c = f.coefficients.data();
+        }
+      } else if (f.kind == ErrorFunction::Kind::table) {
+        pf.n = static_cast<int>(f.positions.size());
+        pf.c = f.values.data();
+        pf.x = f.positions.data();
+        pf.lo = f.positions.front();
+        pf.hi = f.positions.back();
+        const double step = (pf.hi - pf.lo) / (pf.n - 1);
+        pf.inv_step = 1.0 / step;
+        pf.uniform = true;
+        for (int i = 0; i < pf.n; ++i)
+          if (std::abs(f.positions[i] - (pf.lo + i * step)) > 1e-9 * (1.0 + std::abs(pf.hi - pf.lo))) pf.uniform = false;
+      }
+    }
+  }
   // Squareness: X is the reference; Y = Rz(EC0Y) ŷ; Z = Rx(EA0Z) Ry(EB0Z) ẑ. Stored as deviations
   // from the nominal unit vector (exact), direction_linear as first-order deviations.
   double s, cm;
@@ -87,21 +163,28 @@ MachineData::MachineData(const Machine& machine) {
   for (int k = 0; k < 3; ++k) {
     delta[k].setZero();
     epsilon[k].setZero();
-    rotation[k].setZero();
   }
 }
 
-void evaluate_components(const Machine& machine, MachineData& data, const Vec3& p) {
+namespace {
+inline void evaluate_components_inline(MachineData& data, const Vec3& p) {
   for (int k = 0; k < 3; ++k) {
-    const auto& e = machine.axes[k].errors;
+    const detail::PreparedFunction* f = &data.functions[k * 6];
     const double q = p[k];
-    data.delta[k] = Vec3(e[0](q), e[1](q), e[2](q));
-    data.epsilon[k] = Vec3(e[3](q), e[4](q), e[5](q));
+    data.delta[k] = Vec3(eval_prepared(f[0], q), eval_prepared(f[1], q), eval_prepared(f[2], q));
+    data.epsilon[k] = Vec3(eval_prepared(f[3], q), eval_prepared(f[4], q), eval_prepared(f[5], q));
   }
+}
+
+}  // namespace
+
+void evaluate_components(const Machine& machine, MachineData& data, const Vec3& p) {
+  (void)machine;
+  evaluate_components_inline(data, p);
 }
 
 Vec3 tip_error(const Machine& machine, MachineData& data, const Vec3& p, Order order) {
-  evaluate_components(machine, data, p);
+  evaluate_components_inline(data, p);
   // v: nominal position of the point in the current frame; d: its deviation (actual - nominal).
   Vec3 v = data.tip_nominal;
   Vec3 d = order == Order::exact ? data.tip_local : data.tip_local_linear;

@@ -29,11 +29,30 @@ namespace netshape::machine {
 /// Which synthesis to use.
 enum class Order : std::uint8_t { exact = 0, first = 1 };
 
+namespace detail {
+/// An error function prepared for fast evaluation (points into the machine's vectors).
+struct PreparedFunction {
+  ErrorFunction::Kind kind = ErrorFunction::Kind::zero;
+  OutOfRange out_of_range = OutOfRange::error;
+  bool uniform = false;            ///< table with equally spaced positions
+  int n = 0;                       ///< coefficients or table points
+  const double* c = nullptr;       ///< coefficients, or table values
+  const double* x = nullptr;       ///< table positions
+  double lo = 0, hi = 0, inv_step = 0;
+  const ErrorFunction* source = nullptr;  ///< for the out-of-range message
+  double operator()(double q) const;
+};
+}  // namespace detail
+
 /// Workspace for evaluating a `Machine` (Model/Data split, pinocchio style): constants derived from
-/// the machine once (directions with squareness, tilted tip), and per-point scratch. Build one per
-/// thread; the evaluation functions never allocate.
+/// the machine once (directions with squareness, tilted tip, error functions prepared for fast
+/// evaluation), and per-point scratch. Build one per thread; the evaluation functions never
+/// allocate. A MachineData refers to its machine's error tables: keep the machine alive and
+/// unchanged while the data is in use (build a new MachineData after changing the machine).
 struct MachineData {
   explicit MachineData(const Machine& machine);
+
+  std::array<detail::PreparedFunction, 18> functions;  ///< [axis * 6 + component]
 
   std::array<Vec3, 3> direction;          ///< u'_k: axis directions with squareness (exact), unit
   std::array<Vec3, 3> direction_linear;   ///< u_k + first-order squareness deviation
@@ -43,7 +62,6 @@ struct MachineData {
   // per-point scratch
   std::array<Vec3, 3> delta;              ///< (EXk, EYk, EZk) at the current point [mm]
   std::array<Vec3, 3> epsilon;            ///< (EAk, EBk, ECk) at the current point [rad]
-  std::array<Mat3, 3> rotation;           ///< exact R(ε_k)
 };
 
 /// Evaluate the six components of each axis at program point p into `data.delta`/`data.epsilon`.
