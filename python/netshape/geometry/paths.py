@@ -1,0 +1,179 @@
+"""Offsets, CC→CL and raster tool paths over NURBS design surfaces (Python side of
+``netshape::geometry`` offset.hpp, cutter_location.hpp, raster.hpp)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .._atomic import atomic_write
+from .._core import geometry as _g
+
+_KINDS = ("flat", "ball", "bull")
+
+
+def _cutter_args(cutter: Any) -> tuple[str, float, float]:
+    """(kind, radius, corner_radius) from a netshape Cutter, a mapping or a (kind, radius[, corner]) tuple."""
+    if isinstance(cutter, dict):
+        kind, radius, corner = cutter.get("kind"), cutter.get("radius"), cutter.get("corner_radius", 0.0)
+    elif isinstance(cutter, (tuple, list)):
+        kind, radius = cutter[0], cutter[1]
+        corner = cutter[2] if len(cutter) > 2 else 0.0
+    else:
+        kind = getattr(cutter, "kind", None)
+        radius = getattr(cutter, "radius", None)
+        corner = getattr(cutter, "corner_radius", 0.0)
+    kind = getattr(kind, "name", kind)
+    kind = str(kind).split(".")[-1].lower()
+    if kind not in _KINDS and kind not in ("bullnose", "bull-nose"):
+        raise ValueError(f"cutter.kind = {kind!r}: must be one of flat, ball, bull")
+    if radius is None:
+        raise ValueError("cutter.radius = None: must be a positive number [mm]")
+    return kind, float(radius), float(corner or 0.0)
+
+
+def _axis(axis) -> np.ndarray:
+    a = np.asarray(axis, dtype=float).reshape(3)
+    return a
+
+
+def cc_to_cl(cutter: Any, cc, normals, axis=(0.0, 0.0, 1.0)) -> np.ndarray:
+    """CL (tool-tip) points for CC points with unit surface normals (pointing out of the material).
+
+    Parameters
+    ----------
+    cutter : netshape Cutter, dict or tuple (kind, radius [mm], corner_radius [mm])
+    cc, normals : float64 (m, 3) [mm], (m, 3)
+    axis : (3,) tool axis from the tip into the spindle (any length)
+
+    Returns
+    -------
+    float64 (m, 3) tool-tip positions [mm]: ``tip = cc + r n + (R - r) e - r a`` (docs/geometry.md).
+    """
+    kind, R, r = _cutter_args(cutter)
+    cc = np.ascontiguousarray(np.atleast_2d(cc), dtype=float)
+    normals = np.ascontiguousarray(np.atleast_2d(normals), dtype=float)
+    return _g._cc_to_cl(kind, R, r, cc, normals, _axis(axis))
+
+
+def cutter_signed_distance(cutter: Any, tip, axis, points) -> np.ndarray:
+    """Signed distance [mm] from points (m, 3) to the cutter solid with its tip at ``tip``: < 0 inside."""
+    kind, R, r = _cutter_args(cutter)
+    pts = np.ascontiguousarray(np.atleast_2d(points), dtype=float)
+    return _g._cutter_signed_distance(kind, R, r, np.asarray(tip, dtype=float), _axis(axis), pts)
+
+
+@dataclass
+class RasterPath:
+    """A raster tool path as block arrays: kind (n,) uint8 (0 rapid, 1 line), start/end (n, 3) tool-tip
+    positions [mm], feed (n,) [mm/s]. ``spindle_rpm`` and ``tool`` apply to every block."""
+
+    kind: np.ndarray
+    start: np.ndarray
+    end: np.ndarray
+    feed: np.ndarray
+    spindle_rpm: float = 10000.0
+    tool: int = 1
+    meta: dict[str, Any] = field(default_factory=dict)
+
+    def __len__(self) -> int:
+        return int(self.kind.shape[0])
+
+    def cl_points(self) -> np.ndarray:
+        """(n + 1, 3) polyline of tool-tip positions."""
+        return np.vstack([self.start[:1], self.end])
+
+    def feed_length(self) -> float:
+        m = self.kind == 1
+        return float(np.linalg.norm(self.end[m] - self.start[m], axis=1).sum())
+
+    def to_gcode(self, *, decimals: int = 4, program_number: int | None = None) -> str:
+        """RS274 text: G21 G90 G17, T/M6, S/M3, then G0/G1 X Y Z with F in mm/min, M5 M30."""
+        fmt = f"{{:.{decimals}f}}"
+        out: list[str] = []
+        if program_number is not None:
+            out.append(f"O{int(program_number)}")
+        out.append("(netshape.geometry raster tool path: tool-tip positions)")
+        out.append("G21 G90 G17")
+        out.append(f"T{int(self.tool)} M6")
+        out.append(f"S{abs(self.spindle_rpm):.0f} {'M3' if self.spindle_rpm >= 0 else 'M4'}")
+        last_f = None
+        if len(self):
+            p = self.start[0]
+            out.append(f"G0 X{fmt.format(p[0])} Y{fmt.format(p[1])} Z{fmt.format(p[2])}")
+        for k in range(len(self)):
+            p = self.end[k]
+            xyz = f"X{fmt.format(p[0])} Y{fmt.format(p[1])} Z{fmt.format(p[2])}"
+            if self.kind[k] == 0:
+                out.append(f"G0 {xyz}")
+            else:
+                f = self.feed[k] * 60.0
+                if last_f is None or abs(f - last_f) > 1e-9:
+                    out.append(f"G1 {xyz} F{f:.1f}")
+                    last_f = f
+                else:
+                    out.append(f"G1 {xyz}")
+        out.append("M5")
+        out.append("M30")
+        return "\n".join(out) + "\n"
+
+    def write_gcode(self, path: str | Path, **kwargs) -> None:
+        """Write :meth:`to_gcode` to ``path`` atomically."""
+        with atomic_write(path, "w") as f:
+            f.write(self.to_gcode(**kwargs))
+
+    def to_toolpath(self):
+        """A ``netshape.toolpath.Toolpath`` (needs the toolpath area's bindings)."""
+        from .. import toolpath as tp  # noqa: PLC0415
+
+        if not hasattr(tp, "Toolpath") or not hasattr(tp, "Block"):
+            raise NotImplementedError("netshape.toolpath does not bind Toolpath/Block yet")
+        blocks = []
+        for k in range(len(self)):
+            b = tp.Block()
+            b.kind = tp.MotionKind(int(self.kind[k])) if hasattr(tp, "MotionKind") else int(self.kind[k])
+            b.start = self.start[k]
+            b.end = self.end[k]
+            b.feed = float(self.feed[k])
+            b.spindle_rpm = float(self.spindle_rpm)
+            b.tool = int(self.tool)
+            blocks.append(b)
+        t = tp.Toolpath()
+        t.blocks = blocks
+        t.source = "raster"
+        return t
+
+
+def raster_toolpath(
+    surface,
+    cutter: Any,
+    *,
+    axis=(0.0, 0.0, 1.0),
+    scallop_height: float = 0.01,
+    step_over: float = 0.0,
+    chord_tolerance: float = 0.005,
+    stock_allowance: float = 0.0,
+    along_u: bool = True,
+    zigzag: bool = True,
+    feed: float = 20.0,
+    plunge_feed: float = 0.0,
+    clearance: float = 5.0,
+    spindle_rpm: float = 10000.0,
+    tool: int = 1,
+) -> RasterPath:
+    """Iso-parametric raster over ``surface`` (see raster.hpp): passes along u (or v), step-over from the
+    scallop height (ball radius / bull corner radius, curvature-adjusted) or a fixed ``step_over`` [mm],
+    CC points offset by ``stock_allowance`` [mm] along the normal, CL = tool tip. Feeds in mm/s."""
+    kind, R, r = _cutter_args(cutter)
+    d = _g._raster_toolpath(
+        surface, kind, R, r, _axis(axis), float(scallop_height), float(step_over), float(chord_tolerance),
+        float(stock_allowance), bool(along_u), bool(zigzag), float(feed), float(plunge_feed), float(clearance),
+        float(spindle_rpm), int(tool),
+    )
+    return RasterPath(
+        d["kind"], d["start"], d["end"], d["feed"], float(spindle_rpm), int(tool),
+        {"cutter": (kind, R, r), "scallop_height": scallop_height, "step_over": step_over},
+    )
