@@ -205,12 +205,16 @@ Vec3 tip_error(const Machine& machine, MachineData& data, const Vec3& p, Order o
   for (int k : machine.workpiece_chain) {
     const double q = p[k];
     const Vec3& o = machine.axes[k].origin;
-    // W = M_k (v - o): R (v + d - o) + q u' + δ ; nominal v - o + q u
+    // The table moves by -t = -(q u' + δ) and turns by R^-1 about its own origin:
+    // W = R (v + d - o + t) ; nominal v - o + q u. The arm of the rotation is the point relative to
+    // the carriage's current origin (seeds/003 eq. 9: T_z + L + Ozx_z + Oxy_z - z).
+    const Vec3 t_dev = q * data.direction[k] + data.delta[k];  // t - q u
     if (order == Order::exact) {
       const Mat3 rm = rotation_minus_identity(data.epsilon[k][0], data.epsilon[k][1], data.epsilon[k][2]);
-      d = d + rm * (v + d - o) + q * data.direction[k] + data.delta[k];
+      const Vec3 arm = v - o + q * unit(k);
+      d = d + t_dev + rm * (arm + d + t_dev);
     } else {
-      d = d + data.epsilon[k].cross(v - o) + q * data.direction_linear[k] + data.delta[k];
+      d = d + data.epsilon[k].cross(v - o + q * unit(k)) + q * data.direction_linear[k] + data.delta[k];
     }
     v = v - o + q * unit(k);
   }

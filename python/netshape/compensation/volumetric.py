@@ -208,8 +208,15 @@ def compensate_program(machine: _m.Machine, program: Any, chord_tolerance: float
     lines = np.array([b.line for b in blocks], dtype=np.int64)
     starts = np.array([b.start for b in blocks], dtype=float)
     ends = np.array([b.end for b in blocks], dtype=float)
-    s_cmd = comp(starts, lines)
     e_cmd = comp(ends, lines)
+    # a block starts where the previous one ended; the first block starts at the reader's initial
+    # position, which is not a programmed point: it is left as it is (not compensated, not checked)
+    s_cmd = np.empty_like(starts)
+    s_cmd[0] = starts[0]
+    s_cmd[1:] = e_cmd[:-1]
+    jump = np.flatnonzero(np.any(starts[1:] != ends[:-1], axis=1)) + 1
+    if len(jump):
+        s_cmd[jump] = comp(starts[jump], lines[jump])
     line_ids = [i for i, b in enumerate(blocks) if b.kind == tpm.MotionKind.line]
     new_lists: dict[int, list] = {}
     # arcs: try to keep as moved arcs, else chords (nominal chord error ≤ tol/2, the rest for compensation)

@@ -41,7 +41,12 @@ Vec3 reference_error(const Machine& m, const Vec3& p) {
     Eigen::Matrix4d ht = Eigen::Matrix4d::Identity();
     for (int k : m.tool_chain) ht = ht * hom(Mat3::Identity(), m.axes[k].origin) * M(k, actual);
     Eigen::Matrix4d hw = Eigen::Matrix4d::Identity();
-    for (int k : m.workpiece_chain) hw = hw * hom(Mat3::Identity(), m.axes[k].origin) * M(k, actual).inverse();
+    for (int k : m.workpiece_chain) {
+      const Eigen::Matrix4d mk = M(k, actual);  // Trans(t) R
+      const Mat3 r = mk.topLeftCorner<3, 3>();
+      const Vec3 t = mk.topRightCorner<3, 1>();
+      hw = hw * hom(Mat3::Identity(), m.axes[k].origin) * hom(r.transpose(), -t);  // table: Trans(-t) R^T
+    }
     Vec3 d = m.tool_direction;
     if (actual)
       d = Eigen::AngleAxisd(m.spindle_tilt_a, Vec3::UnitX()) * (Eigen::AngleAxisd(m.spindle_tilt_b, Vec3::UnitY()) * d);

@@ -6,12 +6,15 @@
 /// Frames and conventions (docs/machine.md has the derivation):
 ///  - Program point p = (x, y, z) [mm]: nominal tool tip relative to the workpiece; axis k sits at
 ///    q_k = p_k.
-///  - Axis k's error motion M_k(q) = [R(EAk, EBk, ECk) | q·u'_k + (EXk, EYk, EZk)], with
+///  - Axis k's error motion: rotation R_k = R(EAk, EBk, ECk) and translation t_k (below), with
 ///    R(a, b, c) = Rz(c)·Ry(b)·Rx(a) (exact, no small-angle approximation) and u'_k the axis
 ///    direction turned by the squareness errors (Y: Rz(EC0Y)·ŷ; Z: Rx(EA0Z)·Ry(EB0Z)·ẑ; X: x̂).
-///  - Tool side: carriage k relative to the frame below = Trans(origin_k)·M_k.
-///    Workpiece side: carriage k relative to the frame below = Trans(origin_k)·M_k⁻¹ (the
-///    components describe the tool's motion relative to the workpiece, ISO 230-1 sense).
+///  - Tool side: carriage k relative to the frame below = Trans(origin_k)·Trans(t_k)·R_k, with
+///    t_k = q·u'_k + (EXk, EYk, EZk): the carriage moves by t_k and turns by R_k about its own origin.
+///    Workpiece side: carriage k relative to the frame below = Trans(origin_k)·Trans(−t_k)·R_kᵀ: the
+///    table moves by −t_k and turns by R_kᵀ about its own origin, so the components describe the
+///    tool's motion relative to the workpiece (ISO 230-1 sense) and the Abbe arm is the point
+///    relative to the table's current origin.
 ///  - Tool tip in the last tool-side frame: spindle_nose + L·Rx(tilt_a)·Ry(tilt_b)·tool_direction.
 ///  - Actual point W(p): the tool tip expressed in the workpiece frame; error e(p) = W(p) − W_nominal(p),
 ///    so the tip lands at p + e(p) in program coordinates. eq. (3) of seeds/003, ΔW_B.
