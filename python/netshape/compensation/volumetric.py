@@ -224,8 +224,7 @@ def compensate_program(machine: _m.Machine, program: Any, chord_tolerance: float
     for i, b in enumerate(blocks):
         if b.kind != tpm.MotionKind.arc:
             continue
-        pa = tpm.plane_axes(b.plane) if hasattr(tpm, "plane_axes") else None
-        n_ax = {0: 2, 1: 1, 2: 0}[int(b.plane)] if pa is None else pa.n
+        n_ax = (2, 1, 0)[int(b.plane)]  # normal axis of G17 (xy), G18 (zx), G19 (yz)
         c_s = s_cmd[i] - starts[i]
         c_e = e_cmd[i] - ends[i]
         nb = _copy_block(tpm, b)
@@ -266,9 +265,8 @@ def compensate_program(machine: _m.Machine, program: Any, chord_tolerance: float
             seg_owner.append((i, j))
             A.append(nom[j]), B.append(nom[j + 1]), AC.append(cmd[j]), BC.append(cmd[j + 1]), L.append(lines[i])
     if seg_owner:
-        tols = tol
         interior, worst = _subdivide(machine, comp, np.array(A), np.array(B), np.array(AC), np.array(BC),
-                                     np.array(L), tols)
+                                     np.array(L), tol)
         report.max_path_deviation_mm = max(report.max_path_deviation_mm, worst)
         for (i, j), inner, end in zip(seg_owner, interior, BC):
             lst = new_lists.setdefault(i, [])

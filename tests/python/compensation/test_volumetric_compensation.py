@@ -164,3 +164,26 @@ def test_non_convergence_is_reported():
     assert res.status[0] == int(ns.compensation.VolumetricStatus.not_converged)
     with pytest.raises(ValueError, match="tolerance"):
         ns.compensation.compensate_points(m, [[1.0, 0.0, 0.0]], tolerance=0.0)
+
+
+@pytest.mark.parametrize("plane, arc", [("G18", "G2 X20 Z0 I10 K0"), ("G19", "G3 Y20 Z0 J10 K0")])
+def test_arcs_in_other_planes(tmp_path, plane, arc):
+    m = ns.machine.load_machine(HMC)
+    src = tmp_path / "p.ngc"
+    src.write_text(f"G0 X300 Y200 Z100\nG1 X300 Y200 Z100 F500\n{plane} G91 G1 X0\nG90\n"
+                   f"G0 X300 Y200 Z100\n{arc.replace('X20', 'X320').replace('Y20', 'Y220').replace('Z0', 'Z100')}\nM30\n")
+    out = tmp_path / "o.ngc"
+    ns.compensation.compensate_gcode(m, src, out, chord_tolerance=0.001)
+    nominal = ns.toolpath.read_gcode(src)
+    comp = ns.toolpath.read_gcode(out)
+    a = ns.machine.actual_points(m, np.array([comp.blocks[-1].end]))[0]
+    np.testing.assert_allclose(a, nominal.blocks[-1].end, atol=1e-9)
+    mid = np.array([b.point_at(0.5) for b in comp.blocks[-3:]])
+    act = ns.machine.actual_points(m, mid)
+    arcb = nominal.blocks[-1]
+    r = arcb.radius()
+    c = np.asarray(arcb.center)
+    n_ax = (2, 1, 0)[int(arcb.plane)]
+    inplane = [i for i in range(3) if i != n_ax]
+    d = np.abs(np.linalg.norm((act - c)[:, inplane], axis=1) - r)
+    assert d.max() <= 0.001 + 1e-9
