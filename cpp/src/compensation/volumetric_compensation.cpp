@@ -107,6 +107,7 @@ VolumetricResult compensate_points_status(const Machine& machine, const Eigen::R
   res.status.resize(static_cast<std::size_t>(n));
   bool have_prev = false;
   Vec3 prev_correction = Vec3::Zero();
+  Vec3 prev_nominal = Vec3::Zero();
   for (Eigen::Index i = 0; i < n; ++i) {
     const Vec3 p = nominal.row(i).transpose();
     for (int c = 0; c < 3; ++c) NETSHAPE_CHECK_FINITE("nominal points", p[c]);
@@ -115,10 +116,15 @@ VolumetricResult compensate_points_status(const Machine& machine, const Eigen::R
     int it, ax;
     // Warm start: neighbouring CL points need nearly the same correction, so start from the
     // previous point's correction (one evaluation fewer along a path; same fixed point).
-    const Vec3 start = have_prev ? Vec3(p + prev_correction) : p;
+    // Only for a neighbour within 10 mm: the correction of a far point is no better a guess than 0.
+    const bool warm = have_prev && (p - prev_nominal).squaredNorm() < 100.0;
+    const Vec3 start = warm ? Vec3(p + prev_correction) : p;
     res.status[i] = solve_point(machine, data, p, start, options, cmd, r, it, ax);
     have_prev = res.status[i] == VolumetricStatus::ok;
-    if (have_prev) prev_correction = cmd - p;
+    if (have_prev) {
+      prev_correction = cmd - p;
+      prev_nominal = p;
+    }
     res.commanded.row(i) = cmd.transpose();
     res.residual[i] = r;
     res.iterations[i] = it;
