@@ -117,6 +117,46 @@ inline double eval_prepared(const detail::PreparedFunction& f, double q) {
   }
   return 0.0;
 }
+// Value and slope de/dq (tables: slope of the segment; clamped outside: 0).
+inline double eval_prepared_slope(const detail::PreparedFunction& f, double q, double& slope) {
+  switch (f.kind) {
+    case ErrorFunction::Kind::zero:
+      slope = 0.0;
+      return 0.0;
+    case ErrorFunction::Kind::polynomial: {
+      const double* c = f.c;
+      double r = c[f.n - 1], d = 0.0;
+      for (int j = f.n - 2; j >= 0; --j) {
+        d = d * q + r;
+        r = r * q + c[j];
+      }
+      slope = d;
+      return r;
+    }
+    case ErrorFunction::Kind::table: {
+      const int n = f.n;
+      const double* x = f.x;
+      const double* c = f.c;
+      int i;
+      if (!(q >= f.lo && q <= f.hi)) {
+        if (f.out_of_range == OutOfRange::clamp && std::isfinite(q)) {
+          slope = 0.0;
+          return q < f.lo ? c[0] : c[n - 1];
+        }
+        if (f.out_of_range == OutOfRange::error || !std::isfinite(q)) return (*f.source)(q);  // throws
+        i = q < f.lo ? 0 : n - 2;
+      } else {
+        i = static_cast<int>(std::upper_bound(x, x + n, q) - x) - 1;
+        if (i > n - 2) i = n - 2;
+        if (i < 0) i = 0;
+      }
+      slope = (c[i + 1] - c[i]) / (x[i + 1] - x[i]);
+      return c[i] + (q - x[i]) * slope;
+    }
+  }
+  slope = 0.0;
+  return 0.0;
+}
 }  // namespace
 
 double detail::PreparedFunction::operator()(double q) const { return eval_prepared(*this, q); }
@@ -225,6 +265,53 @@ Vec3 tip_error(const Machine& machine, MachineData& data, const Vec3& p, Order o
       d = d + data.epsilon[k].cross(v - o + q * unit(k)) + q * data.direction_linear[k] + data.delta[k];
     }
     v = v - o + q * unit(k);
+  }
+  return d;
+}
+
+Vec3 tip_error_and_jacobian(const Machine& machine, MachineData& data, const Vec3& p, Mat3& jacobian) {
+  for (int k = 0; k < 3; ++k) {
+    const detail::PreparedFunction* f = &data.functions[k * 6];
+    const double q = p[k];
+    for (int c = 0; c < 3; ++c) {
+      data.delta[k][c] = eval_prepared_slope(f[c], q, data.delta_slope[k][c]);
+      data.epsilon[k][c] = eval_prepared_slope(f[3 + c], q, data.epsilon_slope[k][c]);
+    }
+  }
+  // Exact error with the components just evaluated (same steps as tip_error).
+  Vec3 v = data.tip_nominal;
+  Vec3 d = data.tip_local;
+  std::array<Vec3, 3> arm;  // nominal Abbe arm of each axis
+  const auto& tc = machine.tool_chain;
+  for (auto it = tc.rbegin(); it != tc.rend(); ++it) {
+    const int k = *it;
+    const double q = p[k];
+    arm[k] = v;
+    const Mat3 rm = rotation_minus_identity(data.epsilon[k][0], data.epsilon[k][1], data.epsilon[k][2]);
+    d = d + rm * (v + d) + q * data.direction[k] + data.delta[k];
+    v = machine.axes[k].origin + v + q * unit(k);
+  }
+  for (int k : machine.workpiece_chain) {
+    const double q = p[k];
+    const Vec3 t_dev = q * data.direction[k] + data.delta[k];
+    const Mat3 rm = rotation_minus_identity(data.epsilon[k][0], data.epsilon[k][1], data.epsilon[k][2]);
+    arm[k] = v - machine.axes[k].origin + q * unit(k);
+    d = d + t_dev + rm * (arm[k] + d + t_dev);
+    v = arm[k];
+  }
+  // First-order Jacobian: column k = δ'_k + s_k + ε'_k × r_k + (Σ_{j whose arm grows with q_k} ε_j) × u_k.
+  std::array<int, 3> tool_pos{-1, -1, -1}, work_pos{-1, -1, -1};
+  for (std::size_t i = 0; i < tc.size(); ++i) tool_pos[tc[i]] = static_cast<int>(i);
+  for (std::size_t i = 0; i < machine.workpiece_chain.size(); ++i) work_pos[machine.workpiece_chain[i]] = static_cast<int>(i);
+  for (int k = 0; k < 3; ++k) {
+    Vec3 eps_sum = Vec3::Zero();
+    for (int j = 0; j < 3; ++j) {
+      const bool grows = tool_pos[k] >= 0 ? (tool_pos[j] >= 0 ? tool_pos[j] < tool_pos[k] : true)
+                                          : (work_pos[j] >= 0 && work_pos[j] >= work_pos[k]);
+      if (grows) eps_sum += data.epsilon[j];
+    }
+    jacobian.col(k) = data.delta_slope[k] + data.direction_linear[k] + data.epsilon_slope[k].cross(arm[k]) +
+                      eps_sum.cross(unit(k));
   }
   return d;
 }

@@ -65,6 +65,8 @@ struct MachineData {
   // per-point scratch
   std::array<Vec3, 3> delta;              ///< (EXk, EYk, EZk) at the current point [mm]
   std::array<Vec3, 3> epsilon;            ///< (EAk, EBk, ECk) at the current point [rad]
+  std::array<Vec3, 3> delta_slope;        ///< d(EXk, EYk, EZk)/dq_k [mm/mm] (Jacobian only)
+  std::array<Vec3, 3> epsilon_slope;      ///< d(EAk, EBk, ECk)/dq_k [rad/mm] (Jacobian only)
 };
 
 /// Evaluate the six components of each axis at program point p into `data.delta`/`data.epsilon`.
@@ -73,6 +75,12 @@ void evaluate_components(const Machine& machine, MachineData& data, const Vec3& 
 
 /// Tip error e(p) [mm] relative to the workpiece at program point p [mm] (one point, no allocation).
 Vec3 tip_error(const Machine& machine, MachineData& data, const Vec3& p, Order order = Order::exact);
+
+/// Exact tip error e(p) [mm] and the Jacobian ∂e₁/∂p of the first-order model at p (3×3,
+/// dimensionless; column k = derivative along program axis k). The compensation's Newton step uses it:
+/// the Jacobian differs from the exact one by O(error²), which only slows convergence, never changes the
+/// fixed point.
+Vec3 tip_error_and_jacobian(const Machine& machine, MachineData& data, const Vec3& p, Mat3& jacobian);
 
 /// Tip errors at many points: (n, 3) [mm] in, (n, 3) [mm] out.
 Points3 tip_error(const Machine& machine, const Eigen::Ref<const Points3>& points,
