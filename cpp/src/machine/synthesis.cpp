@@ -145,6 +145,12 @@ inline double eval_prepared_slope(const detail::PreparedFunction& f, double q, d
         }
         if (f.out_of_range == OutOfRange::error || !std::isfinite(q)) return (*f.source)(q);  // throws
         i = q < f.lo ? 0 : n - 2;
+      } else if (f.uniform) {
+        const double u = (q - f.lo) * f.inv_step;
+        i = static_cast<int>(u);
+        if (i > n - 2) i = n - 2;
+        slope = (c[i + 1] - c[i]) * f.inv_step;
+        return c[i] + (u - i) * (c[i + 1] - c[i]);
       } else {
         i = static_cast<int>(std::upper_bound(x, x + n, q) - x) - 1;
         if (i > n - 2) i = n - 2;
