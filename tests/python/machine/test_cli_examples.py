@@ -27,6 +27,16 @@ def test_cli_map(tmp_path, capsys):
     assert "volumetric error" in capsys.readouterr().out
 
 
+def test_cli_map_along_program(tmp_path):
+    src = tmp_path / "p.ngc"
+    src.write_text("G0 X-100 Y-100 Z-50\nG1 X100 F600\nG2 X100 Y100 I0 J100\nM30\n")
+    assert main(["volumetric", "map", str(VMC), "--program", str(src), "--json", str(tmp_path / "m.json")]) == 0
+    d = json.loads((tmp_path / "m.json").read_text())
+    assert d["summary"]["points"] > 10
+    m = ns.machine.load_machine(VMC)
+    np.testing.assert_allclose(d["errors_mm"][1], ns.machine.tip_error(m, [[-100.0, -100.0, -50.0]])[0], atol=1e-15)
+
+
 def test_cli_compensate(tmp_path):
     src = tmp_path / "p.ngc"
     src.write_text("G21 G90\nG0 X-100 Y-100 Z-50\nG1 Z-100 F600\nG1 X200 Y100\nG2 X200 Y-100 I0 J-100\nM30\n")
