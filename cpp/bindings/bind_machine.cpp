@@ -64,7 +64,8 @@ void bind_machine(py::module_& m) {
           [](Axis& a, const std::vector<ErrorFunction>& v) {
             if (v.size() != 6) throw std::invalid_argument("errors: need 6 error functions (EX, EY, EZ, EA, EB, EC)");
             for (int i = 0; i < 6; ++i) a.errors[i] = v[i];
-          })
+          },
+          "EXk, EYk, EZk, EAk, EBk, ECk (a copy: change an element, then assign the list back)")
       .def("error", [](const Axis& a, Component c) { return a.error(c); }, py::arg("component"))
       .def("set_error", [](Axis& a, Component c, const ErrorFunction& f) { a.error(c) = f; },
            py::arg("component"), py::arg("function"));
@@ -73,11 +74,12 @@ void bind_machine(py::module_& m) {
       .def(py::init<>())
       .def_readwrite("name", &Machine::name)
       .def_property(
-          "axes", [](const Machine& mm) { return std::vector<Axis>(mm.axes.begin(), mm.axes.end()); },
+          "axes", [](const Machine& mm) { return std::vector<Axis>(mm.axes.begin(), mm.axes.end()); },  // copies: assign back
           [](Machine& mm, const std::vector<Axis>& v) {
             if (v.size() != 3) throw std::invalid_argument("axes: need 3 axes (X, Y, Z)");
             for (int i = 0; i < 3; ++i) mm.axes[i] = v[i];
-          })
+          },
+          "X, Y, Z axes (a copy: change an element, then assign the list back)")
       .def("axis", [](const Machine& mm, int k) { return mm.axes.at(k); }, py::arg("index"))
       .def("set_axis", [](Machine& mm, int k, const Axis& a) { mm.axes.at(k) = a; }, py::arg("index"),
            py::arg("axis"))
