@@ -19,8 +19,8 @@
 /// Signs: the paper writes the motion of each carriage; netshape writes every component in the
 /// sense of ISO 230-1 measurements — the motion of the tool relative to the workpiece caused by
 /// that axis. On the tool side the two agree; for a workpiece-side axis (the paper's Z table) the
-/// paper's δ_iz, ε_iz equal −E·Z to first order (exactly: the paper's carriage transform is the
-/// inverse of netshape's). See docs/machine.md.
+/// paper's δ_iz = −E{I}Z exactly and ε_iz = −E{A,B,C}Z to first order (the paper's table turns by
+/// R(ε), netshape's by R(E)ᵀ), with the table position z_table = −q_Z. See docs/machine.md.
 
 #include <array>
 #include <cstdint>
