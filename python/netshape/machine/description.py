@@ -38,11 +38,15 @@ from __future__ import annotations
 import csv
 import math
 import os
-import tomllib
 from pathlib import Path
 from typing import Any, Mapping
 
 from .._core import machine as _m
+
+try:  # Python ≥ 3.11
+    import tomllib
+except ModuleNotFoundError:  # pragma: no cover - Python 3.10 needs the tomli package
+    import tomli as tomllib
 
 AXES = ("X", "Y", "Z")
 _COMPONENT_LETTERS = "XYZABC"
