@@ -167,7 +167,7 @@ def plot_error_map(emap: ErrorMap, scale: float | None = None, title: str | None
         q, d = p[::step], e[::step] * s
         ax.quiver(q[:, 0], q[:, 1], q[:, 2], d[:, 0], d[:, 1], d[:, 2], color="0.3", linewidth=0.6,
                   arrow_length_ratio=0.2)
-        fig.colorbar(sc, ax=ax, shrink=0.7, label="volumetric error [µm]")
+        fig.colorbar(sc, ax=ax, shrink=0.7, pad=0.12, label="volumetric error [µm]")
         ax.set_title(title or f"Volumetric error map: {ve.min():.1f} – {ve.max():.1f} µm "
                      f"(arrows ×{s:.3g})", fontsize=10)
     ax.set_xlabel("X [mm]")
