@@ -132,6 +132,30 @@ int precedence(int op) {
   }
 }
 
+// Character classes for normalize(): letters map to lower case, other printable characters to
+// themselves, the rest to the codes below (all under 32).
+constexpr unsigned char kSkip = 1;
+constexpr unsigned char kParen = 2;
+constexpr unsigned char kSemicolon = 3;
+constexpr unsigned char kBad = 4;
+
+struct CharClass {
+  unsigned char t[256];
+  constexpr CharClass() : t() {
+    for (int c = 0; c < 256; ++c) {
+      unsigned char v = kBad;
+      if (c >= 'A' && c <= 'Z') v = static_cast<unsigned char>(c + 32);
+      else if (c >= 32 && c < 127) v = static_cast<unsigned char>(c);
+      if (c == ' ' || c == '\t') v = kSkip;
+      if (c == '(') v = kParen;
+      if (c == ';') v = kSemicolon;
+      t[c] = v;
+    }
+  }
+  unsigned char operator[](unsigned char c) const { return t[c]; }
+};
+constexpr CharClass kCharClass{};
+
 struct Assignment {
   int number = 0;        // numbered parameter, or 0 for a named one
   std::string name;      // named parameter
@@ -154,7 +178,9 @@ struct GcodeReader::Impl {
 
   // ---- current line -----------------------------------------------------------------------------
   std::string norm;          // line without blanks/comments, lower case
-  std::vector<int> col;      // source column (1-based) of each char of norm
+  std::size_t nlen = 0;      // length of norm (norm[nlen] == '\0')
+  const char* line_b = nullptr;  // the source line (valid until the next fetch)
+  const char* line_e = nullptr;
   std::size_t pos = 0;       // cursor into norm
   int depth = 0;
 
@@ -191,12 +217,11 @@ struct GcodeReader::Impl {
   }
 
   // ---- errors -----------------------------------------------------------------------------------
-  [[noreturn]] void fail_at(int column, const std::string& why) const {
-    throw ParseError(source, line_no, column, why);
+  // `mark` is 1 + the index into the normalised line; the source column is worked out only here.
+  [[noreturn]] void fail_at(int mark, const std::string& why) const {
+    throw ParseError(source, line_no, column_of(static_cast<std::size_t>(mark > 0 ? mark - 1 : 0)), why);
   }
-  [[noreturn]] void fail(const std::string& why) const {
-    fail_at(pos < col.size() ? col[pos] : (col.empty() ? 1 : col.back() + 1), why);
-  }
+  [[noreturn]] void fail(const std::string& why) const { fail_at(static_cast<int>(pos) + 1, why); }
 
   // ---- line input -------------------------------------------------------------------------------
   // Sets [b, e) to the next line (without its line break). False at the end of input.
@@ -250,40 +275,67 @@ struct GcodeReader::Impl {
     return true;
   }
 
-  // Copy the line into `norm` (lower case, no blanks, no comments).
+  // Copy the line into `norm` (lower case, no blanks, no comments). Source columns are not stored:
+  // column_of() recomputes one when an error needs it.
   void normalize(const char* b, const char* e) {
-    norm.clear();
-    col.clear();
-    const long n = e - b;
-    for (long i = 0; i < n; ++i) {
+    line_b = b;
+    line_e = e;
+    const std::size_t n = static_cast<std::size_t>(e - b);
+    if (nlen < n + 1) norm.resize(n + 1);
+    char* out = &norm[0];
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < n; ++i) {
       const unsigned char c = static_cast<unsigned char>(b[i]);
-      if (c == ' ' || c == '\t') continue;
-      if (c == '(') {
-        const void* close = std::memchr(b + i + 1, ')', static_cast<std::size_t>(n - i - 1));
-        if (!close) throw ParseError(source, line_no, i + 1, "comment '(' is not closed on its line");
-        i = static_cast<const char*>(close) - b;
+      const unsigned char t = kCharClass[c];
+      if (t >= 32) {  // ordinary character (lower-cased by the table)
+        out[k++] = static_cast<char>(t);
         continue;
       }
-      if (c == ';') break;
-      if (c < 32 || c >= 127) {
-        char tmp[48];
-        std::snprintf(tmp, sizeof tmp, "unexpected character (byte 0x%02X)", c);
-        throw ParseError(source, line_no, i + 1, tmp);
+      if (t == kSkip) continue;
+      if (t == kParen) {
+        const void* close = std::memchr(b + i + 1, ')', n - i - 1);
+        if (!close) throw ParseError(source, line_no, static_cast<long>(i) + 1, "comment '(' is not closed on its line");
+        i = static_cast<std::size_t>(static_cast<const char*>(close) - b);
+        continue;
       }
-      norm.push_back(static_cast<char>(c >= 'A' && c <= 'Z' ? c + 32 : c));
-      col.push_back(static_cast<int>(i + 1));
+      if (t == kSemicolon) break;
+      char tmp[48];
+      std::snprintf(tmp, sizeof tmp, "unexpected character (byte 0x%02X)", c);
+      throw ParseError(source, line_no, static_cast<long>(i) + 1, tmp);
     }
+    nlen = k;
+    norm[k] = '\0';
+  }
+
+  // Source column (1-based) of character `idx` of the normalised line.
+  int column_of(std::size_t idx) const {
+    const std::size_t n = static_cast<std::size_t>(line_e - line_b);
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const unsigned char t = kCharClass[static_cast<unsigned char>(line_b[i])];
+      if (t == kSkip) continue;
+      if (t == kParen) {
+        const void* close = std::memchr(line_b + i + 1, ')', n - i - 1);
+        if (!close) break;
+        i = static_cast<std::size_t>(static_cast<const char*>(close) - line_b);
+        continue;
+      }
+      if (t == kSemicolon) break;
+      if (k == idx) return static_cast<int>(i + 1);
+      ++k;
+    }
+    return static_cast<int>(n + 1);
   }
 
   // ---- values -----------------------------------------------------------------------------------
-  char peek() const { return pos < norm.size() ? norm[pos] : '\0'; }
+  char peek() const { return norm[pos]; }
 
   double number() {
     const std::size_t st = pos;
     std::uint64_t mant = 0;
     int digits = 0, frac = 0;
     bool dot = false;
-    while (pos < norm.size()) {
+    while (pos < nlen) {
       const char c = norm[pos];
       if (c >= '0' && c <= '9') {
         if (digits < 19) mant = mant * 10 + static_cast<unsigned>(c - '0');
@@ -317,12 +369,12 @@ struct GcodeReader::Impl {
 
   // `#…` read (pos at '#'). Returns the value of the parameter.
   double parameter_value() {
-    const int c0 = col[pos];
+    const int c0 = static_cast<int>(pos) + 1;
     ++pos;
     if (peek() == '<') {
       const std::size_t st = ++pos;
-      while (pos < norm.size() && norm[pos] != '>') ++pos;
-      if (pos >= norm.size()) fail_at(c0, "parameter name '#<' is not closed by '>'");
+      while (pos < nlen && norm[pos] != '>') ++pos;
+      if (pos >= nlen) fail_at(c0, "parameter name '#<' is not closed by '>'");
       const std::size_t len = pos - st;
       ++pos;
       if (len == 0) fail_at(c0, "empty parameter name '#<>'");
@@ -370,12 +422,11 @@ struct GcodeReader::Impl {
   }
 
   bool match(const char* word) {
-    const std::size_t n = std::strlen(word);
-    if (norm.compare(pos, n, word) == 0) {
-      pos += n;
-      return true;
-    }
-    return false;
+    std::size_t k = 0;
+    while (word[k] && norm[pos + k] == word[k]) ++k;  // norm is NUL-terminated
+    if (word[k]) return false;
+    pos += k;
+    return true;
   }
 
   double bracketed() {
@@ -395,14 +446,14 @@ struct GcodeReader::Impl {
   }
 
   double function() {
-    const int c0 = col[pos];
+    const int c0 = static_cast<int>(pos) + 1;
     if (match("exists")) {
       if (peek() != '[') fail("expected '[' after EXISTS");
       ++pos;
       if (!match("#<")) fail("EXISTS takes a named parameter, EXISTS[#<name>]");
       const std::size_t st = pos;
-      while (pos < norm.size() && norm[pos] != '>') ++pos;
-      if (pos >= norm.size()) fail_at(c0, "parameter name '#<' is not closed by '>'");
+      while (pos < nlen && norm[pos] != '>') ++pos;
+      if (pos >= nlen) fail_at(c0, "parameter name '#<' is not closed by '>'");
       const bool found = named.find(norm.data() + st, pos - st) != nullptr;
       ++pos;
       if (peek() != ']') fail("expected ']' to close EXISTS[…]");
@@ -446,7 +497,7 @@ struct GcodeReader::Impl {
       return std::sqrt(a);
     }
     std::size_t e = pos;
-    while (e < norm.size() && norm[e] >= 'a' && norm[e] <= 'z') ++e;
+    while (e < nlen && norm[e] >= 'a' && norm[e] <= 'z') ++e;
     fail("unknown function or misplaced word '" + norm.substr(pos, e - pos) + "'");
   }
 
@@ -454,24 +505,24 @@ struct GcodeReader::Impl {
     const char c = peek();
     switch (c) {
       case '*':
-        if (pos + 1 < norm.size() && norm[pos + 1] == '*') { pos += 2; return op_pow; }
+        if (pos + 1 < nlen && norm[pos + 1] == '*') { pos += 2; return op_pow; }
         ++pos; return op_mul;
       case '/': ++pos; return op_div;
       case '+': ++pos; return op_add;
       case '-': ++pos; return op_sub;
       default: break;
     }
-    if (match("mod")) return op_mod;
-    if (match("eq")) return op_eq;
-    if (match("ne")) return op_ne;
-    if (match("gt")) return op_gt;
-    if (match("ge")) return op_ge;
-    if (match("lt")) return op_lt;
-    if (match("le")) return op_le;
-    if (match("and")) return op_and;
-    if (match("or")) return op_or;
-    if (match("xor")) return op_xor;
-    return op_none;
+    switch (c) {
+      case 'm': return match("mod") ? op_mod : op_none;
+      case 'e': return match("eq") ? op_eq : op_none;
+      case 'n': return match("ne") ? op_ne : op_none;
+      case 'g': return match("gt") ? op_gt : match("ge") ? op_ge : op_none;
+      case 'l': return match("lt") ? op_lt : match("le") ? op_le : op_none;
+      case 'a': return match("and") ? op_and : op_none;
+      case 'o': return match("or") ? op_or : op_none;
+      case 'x': return match("xor") ? op_xor : op_none;
+      default: return op_none;
+    }
   }
 
   double apply(int op, double a, double b, int column) const {
@@ -515,7 +566,7 @@ struct GcodeReader::Impl {
     double lhs = real_value();
     for (;;) {
       const std::size_t save = pos;
-      const int column = pos < col.size() ? col[pos] : 0;
+      const std::size_t op_pos = pos;
       const int op = binary_op();
       if (op == op_none) return lhs;
       const int p = precedence(op);
@@ -526,7 +577,7 @@ struct GcodeReader::Impl {
       enter();
       const double rhs = expression_level(p + 1);
       --depth;
-      lhs = apply(op, lhs, rhs, column);
+      lhs = apply(op, lhs, rhs, static_cast<int>(op_pos) + 1);
     }
   }
 
@@ -537,9 +588,9 @@ struct GcodeReader::Impl {
     assigns.clear();
     pos = 0;
     depth = 0;
-    while (pos < norm.size()) {
+    while (pos < nlen) {
       const char c = norm[pos];
-      const int column = col[pos];
+      const int column = static_cast<int>(pos) + 1;
       if (c == '#') {
         read_assignment();
         continue;
@@ -566,13 +617,13 @@ struct GcodeReader::Impl {
   }
 
   void read_assignment() {
-    const int c0 = col[pos];
+    const int c0 = static_cast<int>(pos) + 1;
     ++pos;
     Assignment a;
     if (peek() == '<') {
       const std::size_t st = ++pos;
-      while (pos < norm.size() && norm[pos] != '>') ++pos;
-      if (pos >= norm.size()) fail_at(c0, "parameter name '#<' is not closed by '>'");
+      while (pos < nlen && norm[pos] != '>') ++pos;
+      if (pos >= nlen) fail_at(c0, "parameter name '#<' is not closed by '>'");
       if (pos == st) fail_at(c0, "empty parameter name '#<>'");
       a.name = norm.substr(st, pos - st);
       ++pos;
@@ -919,12 +970,12 @@ struct GcodeReader::Impl {
         break;
       }
       normalize(b, e);
-      if (norm.empty()) continue;
+      if (nlen == 0) continue;
       if (norm[0] == '%') {
-        if (norm.size() == 1) continue;
-        throw ParseError(source, line_no, col[1], "unexpected text after '%'");
+        if (nlen == 1) continue;
+        throw ParseError(source, line_no, column_of(1), "unexpected text after '%'");
       }
-      if (norm[0] == '/') throw ParseError(source, line_no, col[0], "block delete '/' is not supported");
+      if (norm[0] == '/') throw ParseError(source, line_no, column_of(0), "block delete '/' is not supported");
       read_words();
       const bool produced = execute(out);
       apply_assignments();
