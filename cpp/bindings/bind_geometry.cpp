@@ -158,7 +158,36 @@ void bind_geometry(py::module_& m) {
       .def("iso_curve_u", &NurbsSurface::iso_curve_u, py::arg("u"))
       .def("iso_curve_v", &NurbsSurface::iso_curve_v, py::arg("v"))
       .def("closest_point", &NurbsSurface::closest_point, py::arg("point"), py::arg("tolerance") = 1e-10,
-           py::arg("max_iterations") = 50);
+           py::arg("max_iterations") = 50)
+      .def("closest_points", [](const NurbsSurface& s, RefPoints3 pts, double tol, int iters) {
+             std::vector<SurfaceProjection> r;
+             {
+               py::gil_scoped_release rel;
+               r = s.closest_points(pts, tol, iters);
+             }
+             const auto n = static_cast<py::ssize_t>(r.size());
+             py::array_t<double> uv({n, py::ssize_t(2)}), d(n);
+             auto P = new_points(n), N = new_points(n);
+             py::array_t<bool> conv(n);
+             for (py::ssize_t k = 0; k < n; ++k) {
+               uv.mutable_at(k, 0) = r[k].u;
+               uv.mutable_at(k, 1) = r[k].v;
+               d.mutable_at(k) = r[k].distance;
+               conv.mutable_at(k) = r[k].converged;
+               for (int c = 0; c < 3; ++c) {
+                 P.mutable_at(k, c) = r[k].point[c];
+                 N.mutable_at(k, c) = r[k].normal[c];
+               }
+             }
+             py::dict out;
+             out["uv"] = uv;
+             out["point"] = P;
+             out["normal"] = N;
+             out["distance"] = d;
+             out["converged"] = conv;
+             return out;
+           }, py::arg("points"), py::arg("tolerance") = 1e-10, py::arg("max_iterations") = 50,
+           "Batched projection: dict of uv (n, 2), point (n, 3), normal (n, 3), distance (n,), converged (n,).");
 
   m.def("circular_arc", &circular_arc, py::arg("center"), py::arg("x_axis"), py::arg("y_axis"), py::arg("radius"),
         py::arg("start"), py::arg("end"));
@@ -236,6 +265,127 @@ void bind_geometry(py::module_& m) {
           d["start"] = start;
           d["end"] = end;
           d["feed"] = feeds;
+          d["toolpath"] = py::cast(std::move(tp));
           return d;
         });
+
+  // ---- triangle meshes (CGAL AABB tree behind a pimpl) ---------------------------------------------
+  py::class_<TriangleMesh>(m, "TriangleMesh")
+      .def(py::init<Points3, Faces>(), py::arg("vertices"), py::arg("faces"))
+      .def_static("from_triangles", &TriangleMesh::from_triangles, py::arg("corners"))
+      .def_property_readonly("vertices", &TriangleMesh::vertices)
+      .def_property_readonly("faces", &TriangleMesh::faces)
+      .def_property_readonly("face_count", &TriangleMesh::face_count)
+      .def_property_readonly("area", &TriangleMesh::area)
+      .def_property_readonly("bbox_min", &TriangleMesh::bbox_min)
+      .def_property_readonly("bbox_max", &TriangleMesh::bbox_max)
+      .def("face_normals", &TriangleMesh::face_normals)
+      .def("distance", [](const TriangleMesh& mesh, RefPoints3 pts) {
+             py::array_t<double> out(pts.rows());
+             Eigen::Map<VectorXd> o(out.mutable_data(), pts.rows());
+             {
+               py::gil_scoped_release rel;
+               mesh.distance(pts, o);
+             }
+             return out;
+           }, py::arg("points"))
+      .def("closest_points", [](const TriangleMesh& mesh, RefPoints3 pts) {
+             ClosestPoints r;
+             {
+               py::gil_scoped_release rel;
+               r = mesh.closest_points(pts);
+             }
+             return py::make_tuple(r.points, r.distances, r.faces);
+           }, py::arg("points"), "(points (n, 3), distances (n,), faces (n,))")
+      .def("ray_hits", [](const TriangleMesh& mesh, RefPoints3 o, RefPoints3 d) {
+             RayHits r;
+             {
+               py::gil_scoped_release rel;
+               r = mesh.ray_hits(o, d);
+             }
+             return py::make_tuple(r.t, r.points, r.faces);
+           }, py::arg("origins"), py::arg("directions"), "(t (n,) [mm] or NaN, points (n, 3), faces (n,) or -1)")
+      .def("segment_hits", [](const TriangleMesh& mesh, RefPoints3 a, RefPoints3 b) {
+             RayHits r;
+             {
+               py::gil_scoped_release rel;
+               r = mesh.segment_hits(a, b);
+             }
+             return py::make_tuple(r.t, r.points, r.faces);
+           }, py::arg("a"), py::arg("b"), "(t (n,) in [0, 1] or NaN, points (n, 3), faces (n,) or -1)")
+      .def("segments_intersect", &TriangleMesh::segments_intersect, py::arg("a"), py::arg("b"),
+           py::call_guard<py::gil_scoped_release>());
+
+  m.def("read_stl", [](const std::string& path) {
+          StlData d = read_stl(path);
+          return py::make_tuple(d.vertices, d.faces, d.name);
+        }, py::arg("path"), "(vertices (v, 3), faces (m, 3), name)");
+  m.def("load_stl", &load_stl, py::arg("path"));
+  m.def("write_stl", &write_stl, py::arg("path"), py::arg("vertices"), py::arg("faces"), py::arg("binary") = true,
+        py::arg("name") = "netshape");
+
+  // ---- 2-D contour offsets (CGAL circle-segment offsets) -------------------------------------------
+  auto ring_dict = [](const OffsetRing& r) {
+    const auto n = static_cast<py::ssize_t>(r.blocks.size());
+    py::array_t<std::uint8_t> kind(n);
+    py::array_t<double> start({n, py::ssize_t(2)}), end({n, py::ssize_t(2)}), center({n, py::ssize_t(2)});
+    py::array_t<bool> cw(n);
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const auto& b = r.blocks[i];
+      kind.mutable_at(i) = static_cast<std::uint8_t>(b.kind);
+      for (int c = 0; c < 2; ++c) {
+        start.mutable_at(i, c) = b.start[c];
+        end.mutable_at(i, c) = b.end[c];
+        center.mutable_at(i, c) = b.center[c];
+      }
+      cw.mutable_at(i) = b.clockwise;
+    }
+    py::dict d;
+    d["kind"] = kind;
+    d["start"] = start;
+    d["end"] = end;
+    d["center"] = center;
+    d["clockwise"] = cw;
+    d["hole"] = r.hole;
+    d["area"] = r.area();
+    d["polyline"] = r.polyline(1e-3);
+    return d;
+  };
+  m.def("_offset_region", [ring_dict](const Points2& outer, const std::vector<Points2>& islands, double d,
+                                      double tol) {
+          Region reg{outer, islands};
+          std::vector<OffsetRing> rings;
+          {
+            py::gil_scoped_release rel;
+            rings = offset_region(reg, d, tol);
+          }
+          py::list out;
+          for (const auto& r : rings) out.append(ring_dict(r));
+          return out;
+        }, py::arg("outer"), py::arg("islands"), py::arg("distance"), py::arg("tolerance") = 1e-6);
+  m.def("_pocket_rings", [ring_dict](const Points2& outer, const std::vector<Points2>& islands, double R,
+                                     double step, double tol) {
+          Region reg{outer, islands};
+          std::vector<std::vector<OffsetRing>> levels;
+          {
+            py::gil_scoped_release rel;
+            levels = pocket_rings(reg, R, step, tol);
+          }
+          py::list out;
+          for (const auto& lv : levels) {
+            py::list l;
+            for (const auto& r : lv) l.append(ring_dict(r));
+            out.append(l);
+          }
+          return out;
+        }, py::arg("outer"), py::arg("islands"), py::arg("tool_radius"), py::arg("step_over"),
+        py::arg("tolerance") = 1e-6);
+
+  m.def("_pocket_toolpath", [](const Points2& outer, const std::vector<Points2>& islands, double R, double step,
+                               double z, double clearance, double feed, double rpm, int tool, double tol) {
+          Region reg{outer, islands};
+          py::gil_scoped_release rel;
+          return rings_toolpath(pocket_rings(reg, R, step, tol), z, clearance, feed, rpm, tool);
+        }, py::arg("outer"), py::arg("islands"), py::arg("tool_radius"), py::arg("step_over"), py::arg("z"),
+        py::arg("clearance"), py::arg("feed"), py::arg("spindle_rpm"), py::arg("tool"), py::arg("tolerance"));
 }

@@ -7,3 +7,6 @@
 #include "netshape/geometry/offset.hpp"
 #include "netshape/geometry/cutter_location.hpp"
 #include "netshape/geometry/raster.hpp"
+#include "netshape/geometry/triangle_mesh.hpp"
+#include "netshape/geometry/stl.hpp"
+#include "netshape/geometry/contour_offset.hpp"

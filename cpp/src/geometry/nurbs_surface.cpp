@@ -15,6 +15,27 @@ namespace {
 constexpr double kDegenerateRel = 1e-10;
 }  // namespace
 
+namespace {
+// Per span s = p … n − 1: reciprocals of the knot differences the basis recursion divides by.
+std::vector<double> detail_inverse_knot_table(const VectorXd& U, int p, int n) {
+  const int stride = p * (p + 1) / 2 + 2 * (p + 1);
+  std::vector<double> t(static_cast<std::size_t>(n - p) * stride, 0.0);
+  auto inv = [](double d) { return d > 0 ? 1.0 / d : 0.0; };
+  for (int s = p; s < n; ++s) {
+    double* row = t.data() + static_cast<std::size_t>(s - p) * stride;
+    int k = 0;
+    for (int j = 1; j <= p; ++j)
+      for (int r = 0; r < j; ++r) row[k++] = inv(U[s + r + 1] - U[s + 1 - j + r]);
+    for (int r = 0; r <= p; ++r) {
+      const int i = s - p + r;
+      row[k + r] = inv(U[i + p] - U[i]);
+      row[k + p + 1 + r] = inv(U[i + p + 1] - U[i + 1]);
+    }
+  }
+  return t;
+}
+}  // namespace
+
 NurbsSurface::NurbsSurface(int degree_u, int degree_v, VectorXd knots_u, VectorXd knots_v, Points3 control_points,
                            VectorXd weights)
     : degree_u_(degree_u), degree_v_(degree_v), knots_u_(std::move(knots_u)), knots_v_(std::move(knots_v)),
@@ -53,6 +74,8 @@ NurbsSurface::NurbsSurface(int degree_u, int degree_v, VectorXd knots_u, VectorX
   // first derivatives below these are "vanishing" (collapsed edge / pole) [mm per parameter unit]
   tiny_u_ = 1e-9 * size_ / (knots_u_[count_u_] - knots_u_[degree_u_]);
   tiny_v_ = 1e-9 * size_ / (knots_v_[count_v_] - knots_v_[degree_v_]);
+  inv_u_ = detail_inverse_knot_table(knots_u_, degree_u_, count_u_);
+  inv_v_ = detail_inverse_knot_table(knots_v_, degree_v_, count_v_);
 }
 
 bool NurbsSurface::is_rational() const noexcept { return (weights_.array() != weights_[0]).any(); }
@@ -227,10 +250,14 @@ inline bool finish_point_normal(const double* A, const double* Au, const double*
 
 // Degree-specialised kernel of the scattered evaluation (P, Q known at compile time: loops unroll,
 // arrays live in registers). Returns false where the normal is degenerate (caller falls back).
+// Basis functions and first derivatives (as basis_functions_d1) for a compile-time degree, with the
+// knot-difference reciprocals read from a per-span table (no divisions):
+// inv[0 .. P(P+1)/2) for the A2.2 steps, then 1/(U_{i+P} − U_i) and 1/(U_{i+P+1} − U_{i+1}) per r.
 template <int P>
-inline void basis_d1_fixed(int span, double u, const double* U, double* N, double* dN) noexcept {
+inline void basis_d1_table(int span, double u, const double* U, const double* inv, double* N, double* dN) noexcept {
   double left[P + 1], right[P + 1], low[P + 1];
   N[0] = 1.0;
+  int t = 0;
   for (int j = 1; j <= P; ++j) {
     if (j == P)
       for (int r = 0; r < P; ++r) low[r] = N[r];
@@ -238,35 +265,32 @@ inline void basis_d1_fixed(int span, double u, const double* U, double* N, doubl
     right[j] = U[span + j] - u;
     double saved = 0.0;
     for (int r = 0; r < j; ++r) {
-      const double temp = N[r] / (right[r + 1] + left[j - r]);
+      const double temp = N[r] * inv[t++];
       N[r] = saved + right[r + 1] * temp;
       saved = left[j - r] * temp;
     }
     N[j] = saved;
   }
+  const double* a = inv + P * (P + 1) / 2;
+  const double* b = a + (P + 1);
   for (int r = 0; r <= P; ++r) {
-    const int i = span - P + r;
     double d = 0.0;
-    if (r >= 1) {
-      const double den = U[i + P] - U[i];
-      if (den > 0) d += low[r - 1] / den;
-    }
-    if (r <= P - 1) {
-      const double den = U[i + P + 1] - U[i + 1];
-      if (den > 0) d -= low[r] / den;
-    }
+    if (r >= 1) d += low[r - 1] * a[r];
+    if (r <= P - 1) d -= low[r] * b[r];
     dN[r] = P * d;
   }
 }
 
 template <int P, int Q>
 inline void homogeneous_d1_fixed(const double* pw, int nv, int count_u, int count_v, const double* U, const double* V,
-                                 double u, double v, double* A, double* Au, double* Av) noexcept {
+                                 const double* inv_u, const double* inv_v, double u, double v, double* A,
+                                 double* Au, double* Av) noexcept {
   const int su = find_span(count_u, P, u, U);
   const int sv = find_span(count_v, Q, v, V);
   double Nu[P + 1], dNu[P + 1], Nv[Q + 1], dNv[Q + 1];
-  basis_d1_fixed<P>(su, u, U, Nu, dNu);
-  basis_d1_fixed<Q>(sv, v, V, Nv, dNv);
+  constexpr int su_stride = P * (P + 1) / 2 + 2 * (P + 1), sv_stride = Q * (Q + 1) / 2 + 2 * (Q + 1);
+  basis_d1_table<P>(su, u, U, inv_u + (su - P) * su_stride, Nu, dNu);
+  basis_d1_table<Q>(sv, v, V, inv_v + (sv - Q) * sv_stride, Nv, dNv);
   for (int c = 0; c < 4; ++c) A[c] = Au[c] = Av[c] = 0.0;
   for (int i = 0; i <= P; ++i) {
     const double* row = pw + (static_cast<std::size_t>(su - P + i) * nv + (sv - Q)) * 4;
@@ -286,8 +310,8 @@ inline void homogeneous_d1_fixed(const double* pw, int nv, int count_u, int coun
   }
 }
 
-using HomKernel = void (*)(const double*, int, int, int, const double*, const double*, double, double, double*,
-                           double*, double*);
+using HomKernel = void (*)(const double*, int, int, int, const double*, const double*, const double*,
+                           const double*, double, double, double*, double*, double*);
 
 template <int P>
 HomKernel pick_q(int q) {
@@ -363,7 +387,7 @@ void NurbsSurface::evaluate(const Eigen::Ref<const Points2>& uv, Eigen::Ref<Poin
     v = std::clamp(v, va, vb);
     double A[4], Au[4], Av[4];
     if (kernel) {
-      kernel(pw, nv, count_u_, count_v_, U, V, u, v, A, Au, Av);
+      kernel(pw, nv, count_u_, count_v_, U, V, inv_u_.data(), inv_v_.data(), u, v, A, Au, Av);
     } else {
       generic(u, v, A, Au, Av);
     }
@@ -539,17 +563,54 @@ NurbsCurve NurbsSurface::iso_curve_v(double v0) const {
   return NurbsCurve(degree_u_, knots_u_, std::move(cp), std::move(w));
 }
 
+namespace {
+struct ProjectionGrid {
+  VectorXd us, vs;
+  Points3 pts;
+};
+}  // namespace
+
+static ProjectionGrid projection_grid(const NurbsSurface& s) {
+  const auto [ua, ub] = s.domain_u();
+  const auto [va, vb] = s.domain_v();
+  const int na = std::max(12, 3 * s.count_u() * s.degree_u()), nb = std::max(12, 3 * s.count_v() * s.degree_v());
+  ProjectionGrid g;
+  g.us = VectorXd::LinSpaced(na, ua, ub);
+  g.vs = VectorXd::LinSpaced(nb, va, vb);
+  SurfaceWorkspace ws = s.make_workspace();
+  g.pts.resize(static_cast<Eigen::Index>(na) * nb, 3);
+  Points3 none(0, 3);
+  s.evaluate_grid(g.us, g.vs, g.pts, none, ws);
+  return g;
+}
+
 SurfaceProjection NurbsSurface::closest_point(const Vec3& p, double tolerance, int max_iterations) const {
-  for (int c = 0; c < 3; ++c) NETSHAPE_CHECK_FINITE("point", p[c]);
+  return closest_points(p.transpose(), tolerance, max_iterations).front();
+}
+
+std::vector<SurfaceProjection> NurbsSurface::closest_points(const Eigen::Ref<const Points3>& points, double tolerance,
+                                                            int max_iterations) const {
   NETSHAPE_CHECK(tolerance > 0.0, "tolerance", tolerance, "must be positive [mm]");
+  NETSHAPE_CHECK(max_iterations >= 1, "max_iterations", max_iterations, "must be at least 1");
+  for (Eigen::Index k = 0; k < points.rows(); ++k)
+    for (int c = 0; c < 3; ++c) NETSHAPE_CHECK_FINITE("point", points(k, c));
+  const ProjectionGrid grid = projection_grid(*this);
+  std::vector<SurfaceProjection> out;
+  out.reserve(points.rows());
+  std::vector<std::pair<double, Eigen::Index>> order(grid.pts.rows());
+  for (Eigen::Index q = 0; q < points.rows(); ++q)
+    out.push_back(project_from_grid(points.row(q).transpose(), grid.us, grid.vs, grid.pts, order, tolerance,
+                                    max_iterations));
+  return out;
+}
+
+SurfaceProjection NurbsSurface::project_from_grid(const Vec3& p, const VectorXd& us, const VectorXd& vs,
+                                                  const Points3& pts,
+                                                  std::vector<std::pair<double, Eigen::Index>>& order,
+                                                  double tolerance, int max_iterations) const {
   const auto [ua, ub] = domain_u();
   const auto [va, vb] = domain_v();
-  const int na = std::max(12, 3 * count_u_ * degree_u_), nb = std::max(12, 3 * count_v_ * degree_v_);
-  const VectorXd us = VectorXd::LinSpaced(na, ua, ub), vs = VectorXd::LinSpaced(nb, va, vb);
-  SurfaceWorkspace ws = make_workspace();
-  Points3 pts(static_cast<Eigen::Index>(na) * nb, 3), none(0, 3);
-  evaluate_grid(us, vs, pts, none, ws);
-  std::vector<std::pair<double, Eigen::Index>> order(pts.rows());
+  const Eigen::Index nb = vs.size();
   for (Eigen::Index k = 0; k < pts.rows(); ++k) order[k] = {(pts.row(k).transpose() - p).squaredNorm(), k};
   const int starts = static_cast<int>(std::min<std::size_t>(4, order.size()));
   std::partial_sort(order.begin(), order.begin() + starts, order.end());

@@ -8,6 +8,18 @@ from __future__ import annotations
 
 from .._core import geometry as _g
 from .paths import RasterPath, cc_to_cl, cutter_signed_distance, raster_toolpath
+from .mesh import (
+    OffsetRing,
+    TriangleMesh,
+    load_stl,
+    offset_region,
+    pocket_rings,
+    pocket_toolpath,
+    read_stl,
+    rings_gcode,
+    surface_mesh,
+    write_stl,
+)
 from .interop import from_dict, from_geomdl, load_json, load_toml, save_json, save_toml, to_dict, to_geomdl
 
 CurveProjection = _g.CurveProjection
@@ -24,6 +36,16 @@ offset_grid = _g.offset_grid
 scallop_step = _g.scallop_step
 
 __all__ = [
+    "OffsetRing",
+    "TriangleMesh",
+    "load_stl",
+    "offset_region",
+    "pocket_rings",
+    "pocket_toolpath",
+    "read_stl",
+    "rings_gcode",
+    "surface_mesh",
+    "write_stl",
     "CurveProjection",
     "SurfaceProjection",
     "NurbsCurve",

@@ -9,7 +9,6 @@ from typing import Any
 
 import numpy as np
 
-from .._atomic import atomic_write
 from .._core import geometry as _g
 
 _KINDS = ("flat", "ball", "bull")
@@ -32,6 +31,10 @@ def _cutter_args(cutter: Any) -> tuple[str, float, float]:
         raise ValueError(f"cutter.kind = {kind!r}: must be one of flat, ball, bull")
     if radius is None:
         raise ValueError("cutter.radius = None: must be a positive number [mm]")
+    if kind == "ball":
+        corner = radius
+    elif kind == "flat":
+        corner = 0.0
     return kind, float(radius), float(corner or 0.0)
 
 
@@ -78,6 +81,7 @@ class RasterPath:
     spindle_rpm: float = 10000.0
     tool: int = 1
     meta: dict[str, Any] = field(default_factory=dict)
+    toolpath: Any = None  #: the same path as a netshape.toolpath.Toolpath
 
     def __len__(self) -> int:
         return int(self.kind.shape[0])
@@ -90,61 +94,26 @@ class RasterPath:
         m = self.kind == 1
         return float(np.linalg.norm(self.end[m] - self.start[m], axis=1).sum())
 
-    def to_gcode(self, *, decimals: int = 4, program_number: int | None = None) -> str:
-        """RS274 text: G21 G90 G17, T/M6, S/M3, then G0/G1 X Y Z with F in mm/min, M5 M30."""
-        fmt = f"{{:.{decimals}f}}"
-        out: list[str] = []
-        if program_number is not None:
-            out.append(f"O{int(program_number)}")
-        out.append("(netshape.geometry raster tool path: tool-tip positions)")
-        out.append("G21 G90 G17")
-        out.append(f"T{int(self.tool)} M6")
-        out.append(f"S{abs(self.spindle_rpm):.0f} {'M3' if self.spindle_rpm >= 0 else 'M4'}")
-        last_f = None
-        if len(self):
-            p = self.start[0]
-            out.append(f"G0 X{fmt.format(p[0])} Y{fmt.format(p[1])} Z{fmt.format(p[2])}")
-        for k in range(len(self)):
-            p = self.end[k]
-            xyz = f"X{fmt.format(p[0])} Y{fmt.format(p[1])} Z{fmt.format(p[2])}"
-            if self.kind[k] == 0:
-                out.append(f"G0 {xyz}")
-            else:
-                f = self.feed[k] * 60.0
-                if last_f is None or abs(f - last_f) > 1e-9:
-                    out.append(f"G1 {xyz} F{f:.1f}")
-                    last_f = f
-                else:
-                    out.append(f"G1 {xyz}")
-        out.append("M5")
-        out.append("M30")
-        return "\n".join(out) + "\n"
+    def to_gcode(self, **kwargs) -> str:
+        """G-code text through the toolpath area's writer (``netshape.toolpath.format_gcode``; F in
+        mm/min, only changed words per line). Keyword arguments go to the writer."""
+        from .. import toolpath as tp
+
+        kwargs.setdefault("header_comment", "netshape.geometry raster tool path: tool-tip positions")
+        return tp.format_gcode(self.to_toolpath(), **kwargs)
 
     def write_gcode(self, path: str | Path, **kwargs) -> None:
-        """Write :meth:`to_gcode` to ``path`` atomically."""
-        with atomic_write(path, "w") as f:
-            f.write(self.to_gcode(**kwargs))
+        """Write the G-code to ``path`` whole or not at all (``netshape.toolpath.write_gcode``)."""
+        from .. import toolpath as tp
+
+        kwargs.setdefault("header_comment", "netshape.geometry raster tool path: tool-tip positions")
+        tp.write_gcode(self.to_toolpath(), path, **kwargs)
 
     def to_toolpath(self):
-        """A ``netshape.toolpath.Toolpath`` (needs the toolpath area's bindings)."""
-        from .. import toolpath as tp  # noqa: PLC0415
-
-        if not hasattr(tp, "Toolpath") or not hasattr(tp, "Block"):
-            raise NotImplementedError("netshape.toolpath does not bind Toolpath/Block yet")
-        blocks = []
-        for k in range(len(self)):
-            b = tp.Block()
-            b.kind = tp.MotionKind(int(self.kind[k])) if hasattr(tp, "MotionKind") else int(self.kind[k])
-            b.start = self.start[k]
-            b.end = self.end[k]
-            b.feed = float(self.feed[k])
-            b.spindle_rpm = float(self.spindle_rpm)
-            b.tool = int(self.tool)
-            blocks.append(b)
-        t = tp.Toolpath()
-        t.blocks = blocks
-        t.source = "raster"
-        return t
+        """The path as a ``netshape.toolpath.Toolpath`` (blocks with kind, start, end, feed, rpm, tool)."""
+        if self.toolpath is None:
+            raise ValueError("toolpath = None: this RasterPath was not made by raster_toolpath")
+        return self.toolpath
 
 
 def raster_toolpath(
@@ -175,5 +144,5 @@ def raster_toolpath(
     )
     return RasterPath(
         d["kind"], d["start"], d["end"], d["feed"], float(spindle_rpm), int(tool),
-        {"cutter": (kind, R, r), "scallop_height": scallop_height, "step_over": step_over},
+        {"cutter": (kind, R, r), "scallop_height": scallop_height, "step_over": step_over}, d["toolpath"],
     )

@@ -231,6 +231,15 @@ def test_closest_point_and_iso_curves(surf):
     r = surf.closest_point(q)
     assert r.converged and abs(r.distance - 0.8) < 1e-9
     assert abs(r.u - 0.41) < 1e-8 and abs(r.v - 0.57) < 1e-8
+    rng = np.random.default_rng(4)
+    uv = rng.uniform(0.05, 0.95, (20, 2))
+    pts, nrm = surf.evaluate_with_normals(uv)
+    batch = surf.closest_points(pts + 0.5 * nrm)
+    assert np.allclose(batch["distance"], 0.5, atol=1e-9)
+    assert np.allclose(batch["uv"], uv, atol=1e-7)
+    assert batch["converged"].all()
+    single = surf.closest_point(pts[3] + 0.5 * nrm[3])
+    assert np.allclose(batch["point"][3], single.point, atol=1e-12)
     c = surf.iso_curve_u(0.41)
     assert np.allclose(c.point(0.57), surf.point(0.41, 0.57), atol=1e-13)
     rc = c.closest_point(c.point(0.2) + [0, 0, 1e-3])
@@ -257,3 +266,15 @@ def test_bad_input_is_named(surf):
     n = s.normal(0.0, 0.5)
     assert np.isfinite(n).all() and abs(np.linalg.norm(n) - 1) < 1e-12
     assert n @ s.normal(1e-6, 0.5) > 0.99
+
+
+def test_high_degree_generic_path_matches_reference():
+    """Degrees above the specialised kernels (≤ 5) take the generic loop: same answers."""
+    rng = np.random.default_rng(8)
+    ours, gs = _random_geomdl_pair(rng, 6, 2, 9, 5)
+    uv = rng.random((30, 2))
+    p, n = ours.evaluate_with_normals(uv)
+    for k in range(len(uv)):
+        assert np.allclose(p[k], ours.point(*uv[k]), atol=1e-13)
+        assert np.allclose(n[k], ours.normal(*uv[k]), atol=1e-12)
+    assert np.abs(p - np.array(gs.evaluate_list([tuple(x) for x in uv]))).max() < 1e-12

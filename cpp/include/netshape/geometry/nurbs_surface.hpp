@@ -104,12 +104,18 @@ class NurbsSurface {
   /// Closest point to p: the nearest points of a coarse grid, then Newton on
   /// (S_u·(S − p), S_v·(S − p)) = 0 with the full Hessian, clamped to the domain; best result kept.
   SurfaceProjection closest_point(const Vec3& p, double tolerance = 1e-10, int max_iterations = 50) const;
+  /// closest_point for many points (n, 3), the coarse grid evaluated once for all of them.
+  std::vector<SurfaceProjection> closest_points(const Eigen::Ref<const Points3>& points, double tolerance = 1e-10,
+                                                int max_iterations = 50) const;
 
   /// Check (u, v) in the domain (within 1e-12 relative) and return it clamped. Throws otherwise.
   std::pair<double, double> check_parameters(double u, double v) const;
 
  private:
   Vec3 degenerate_normal(double u, double v) const;
+  SurfaceProjection project_from_grid(const Vec3& p, const VectorXd& us, const VectorXd& vs, const Points3& pts,
+                                      std::vector<std::pair<double, Eigen::Index>>& order, double tolerance,
+                                      int max_iterations) const;
   void point_normal_fast(int su, int sv, const double* Nu, const double* Nv, double u, double v, double* P,
                          double* N) const;
 
@@ -120,6 +126,7 @@ class NurbsSurface {
   Points4 pw_;
   double size_ = 1.0;
   double tiny_u_ = 0.0, tiny_v_ = 0.0;
+  std::vector<double> inv_u_, inv_v_;  // per-span reciprocal knot differences (fast kernels)
 };
 
 }  // namespace netshape::geometry
