@@ -1,2 +1,3 @@
 #pragma once
 /// \file compensation.hpp  Area umbrella of netshape::compensation (one include per concept header of the area).
+#include "netshape/compensation/volumetric_compensation.hpp"

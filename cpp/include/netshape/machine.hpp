@@ -1,2 +1,5 @@
 #pragma once
 /// \file machine.hpp  Area umbrella of netshape::machine (one include per concept header of the area).
+#include "netshape/machine/error_function.hpp"
+#include "netshape/machine/machine.hpp"
+#include "netshape/machine/synthesis.hpp"

@@ -1,0 +1,87 @@
+#pragma once
+/// \file machine.hpp
+/// A 3-axis machine tool with linear axes X, Y, Z as two kinematic chains from the bed: the tool
+/// side (bed → … → spindle → tool tip) and the workpiece side (bed → … → table → workpiece), each
+/// axis carrying its six ISO 230-1 error components as functions of its own position, three
+/// squareness errors and the spindle tilt. This is the immutable *model*; evaluation scratch lives
+/// in `MachineData` (synthesis.hpp).
+///
+/// ISO 230-1 names (axis k ∈ {X, Y, Z}): EXk, EYk, EZk translation error motions along X, Y, Z
+/// [mm] (EKk: positioning, the two others: straightness); EAk, EBk, ECk rotation error motions
+/// about X, Y, Z [rad] (roll, pitch, yaw depending on k). Squareness: EC0Y (Y about Z, reference
+/// axis X), EB0Z (Z about Y, reference axis X), EA0Z (Z about X, reference axis Y) [rad].
+///
+/// seeds/003 (Yang & Kweon) symbols, one to one (first subscript = direction, second = axis):
+///   δ_xx δ_yx δ_zx δ_xy δ_yy δ_zy δ_xz δ_yz δ_zz  →  EXX EYX EZX EXY EYY EZY EXZ EYZ EZZ
+///   ε_xx ε_yx ε_zx ε_xy ε_yy ε_zy ε_xz ε_yz ε_zz  →  EAX EBX ECX EAY EBY ECY EAZ EBZ ECZ
+///   S_xy → EC0Y, S_yz (= S_zy in eq. 7) → EA0Z, S_zx → −EB0Z, ε_xs → spindle_tilt_a, ε_ys → spindle_tilt_b,
+///   L → tool_length, (T_x, T_y, T_z) → spindle_nose, Oxy / Ozx → Axis::origin.
+/// Signs: the paper writes the motion of each carriage; netshape writes every component in the
+/// sense of ISO 230-1 measurements — the motion of the tool relative to the workpiece caused by
+/// that axis. On the tool side the two agree; for a workpiece-side axis (the paper's Z table) the
+/// paper's δ_iz = −E{I}Z exactly and ε_iz = −E{A,B,C}Z to first order (the paper's table turns by
+/// R(ε), netshape's by R(E)ᵀ), with the table position z_table = −q_Z. See docs/machine.md.
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "netshape/core/types.hpp"
+#include "netshape/machine/error_function.hpp"
+
+namespace netshape::machine {
+
+/// Index of an error component within an axis: translations along X, Y, Z, rotations about X, Y, Z.
+enum class Component : std::uint8_t { ex = 0, ey = 1, ez = 2, ea = 3, eb = 4, ec = 5 };
+
+/// Which chain an axis belongs to.
+enum class Side : std::uint8_t { tool = 0, workpiece = 1 };
+
+/// ISO 230-1 name of component `c` of axis `axis` (0 = X, 1 = Y, 2 = Z), e.g. (ea, 0) → "EAX".
+std::string component_name(Component c, int axis);
+
+/// One linear axis. Its position q [mm] is the program coordinate along its direction (ISO 841:
+/// the motion of the tool relative to the workpiece), whichever chain carries it.
+struct Axis {
+  double travel_min = -1e9;                ///< lowest allowed position [mm]
+  double travel_max = 1e9;                 ///< highest allowed position [mm]
+  Vec3 origin = Vec3::Zero();              ///< offset of this carriage's frame from the previous frame in the
+                                           ///< chain (bed or the axis below) [mm]; the paper's Oxy, Ozx
+  std::array<ErrorFunction, 6> errors{};   ///< indexed by Component: EXk, EYk, EZk [mm]; EAk, EBk, ECk [rad]
+
+  const ErrorFunction& error(Component c) const { return errors[static_cast<int>(c)]; }
+  ErrorFunction& error(Component c) { return errors[static_cast<int>(c)]; }
+};
+
+/// The machine model. Plain value type; `validate()` checks it.
+struct Machine {
+  std::string name;
+  std::array<Axis, 3> axes{};        ///< X, Y, Z
+  std::vector<int> tool_chain;       ///< axis indices (0 = X, 1 = Y, 2 = Z) from the bed outward to the spindle
+  std::vector<int> workpiece_chain;  ///< axis indices from the bed outward to the workpiece
+  double ec0y = 0.0;                 ///< squareness of Y about Z, reference X [rad]
+  double eb0z = 0.0;                 ///< squareness of Z about Y, reference X [rad]
+  double ea0z = 0.0;                 ///< squareness of Z about X, reference Y [rad]
+  double spindle_tilt_a = 0.0;       ///< tilt of the spindle axis about X [rad] (seeds/003 ε_xs)
+  double spindle_tilt_b = 0.0;       ///< tilt of the spindle axis about Y [rad] (seeds/003 ε_ys)
+  Vec3 spindle_nose = Vec3::Zero();  ///< gauge point of the spindle in the last tool-side frame [mm] (T)
+  double tool_length = 0.0;          ///< tool length from the gauge point to the tip [mm] (L), ≥ 0
+  Vec3 tool_direction = Vec3(0, 0, -1);  ///< unit vector from gauge point to tip, last tool-side frame
+
+  /// Throws std::invalid_argument naming the field: every axis exactly once in the two chains,
+  /// travel_min < travel_max, finite numbers, unit tool direction, valid error functions.
+  void validate() const;
+
+  /// Side of axis `axis` (0..2).
+  Side side(int axis) const;
+
+  /// Nominal tool tip in the last tool-side frame (no spindle tilt) [mm].
+  Vec3 nominal_tip() const { return spindle_nose + tool_length * tool_direction; }
+};
+
+/// A machine with the given chains and no errors, unlimited travel (handy in tests and examples).
+Machine ideal_machine(std::vector<int> tool_chain, std::vector<int> workpiece_chain,
+                      double tool_length = 0.0);
+
+}  // namespace netshape::machine

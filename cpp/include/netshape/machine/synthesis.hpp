@@ -1,0 +1,101 @@
+#pragma once
+/// \file synthesis.hpp
+/// Error synthesis: the tool-tip position error relative to the workpiece, from the product of
+/// homogeneous transforms along the two chains of a `Machine`.
+///
+/// Frames and conventions (docs/machine.md has the derivation):
+///  - Program point p = (x, y, z) [mm]: nominal tool tip relative to the workpiece; axis k sits at
+///    q_k = p_k.
+///  - Axis k's error motion: rotation R_k = R(EAk, EBk, ECk) and translation t_k (below), with
+///    R(a, b, c) = Rz(c)·Ry(b)·Rx(a) (exact, no small-angle approximation) and u'_k the axis
+///    direction turned by the squareness errors (Y: Rz(EC0Y)·ŷ; Z: Rx(EA0Z)·Ry(EB0Z)·ẑ; X: x̂).
+///  - Tool side: carriage k relative to the frame below = Trans(origin_k)·Trans(t_k)·R_k, with
+///    t_k = q·u'_k + (EXk, EYk, EZk): the carriage moves by t_k and turns by R_k about its own origin.
+///    Workpiece side: carriage k relative to the frame below = Trans(origin_k)·Trans(−t_k)·R_kᵀ: the
+///    table moves by −t_k and turns by R_kᵀ about its own origin, so the components describe the
+///    tool's motion relative to the workpiece (ISO 230-1 sense) and the Abbe arm is the point
+///    relative to the table's current origin.
+///  - Tool tip in the last tool-side frame: spindle_nose + L·Rx(tilt_a)·Ry(tilt_b)·tool_direction.
+///  - Actual point W(p): the tool tip expressed in the workpiece frame; error e(p) = W(p) − W_nominal(p),
+///    so the tip lands at p + e(p) in program coordinates. eq. (3) of seeds/003, ΔW_B.
+///  - First order: e₁(p) = Σ_k [δ_k + q_k·(u'_k − u_k)₁ + ε_k × r_k] + L·(θ_s × d), r_k the nominal arm
+///    from carriage k's frame origin to the tip (tool side) or to the workpiece point (workpiece
+///    side) — seeds/003 eq. (9)–(11) for any chain. exact − first order = O(error²).
+
+#include <array>
+
+#include "netshape/core/types.hpp"
+#include "netshape/machine/machine.hpp"
+
+namespace netshape::machine {
+
+/// Which synthesis to use.
+enum class Order : std::uint8_t { exact = 0, first = 1 };
+
+namespace detail {
+/// An error function prepared for fast evaluation (points into the machine's vectors).
+struct PreparedFunction {
+  ErrorFunction::Kind kind = ErrorFunction::Kind::zero;
+  OutOfRange out_of_range = OutOfRange::error;
+  bool uniform = false;            ///< table with equally spaced positions
+  int n = 0;                       ///< coefficients or table points
+  const double* c = nullptr;       ///< coefficients, or table values
+  const double* x = nullptr;       ///< table positions
+  double lo = 0, hi = 0, inv_step = 0;
+  const ErrorFunction* source = nullptr;  ///< for the out-of-range message
+  double operator()(double q) const;
+};
+}  // namespace detail
+
+/// Workspace for evaluating a `Machine` (Model/Data split, pinocchio style): constants derived from
+/// the machine once (directions with squareness, tilted tip, error functions prepared for fast
+/// evaluation), and per-point scratch. Build one per thread; the evaluation functions never
+/// allocate. A MachineData refers to its machine's error tables: keep the machine alive and
+/// unchanged while the data is in use (build a new MachineData after changing the machine).
+struct MachineData {
+  explicit MachineData(const Machine& machine);
+
+  std::array<detail::PreparedFunction, 18> functions;  ///< [axis * 6 + component]
+
+  std::array<Vec3, 3> direction;          ///< u'_k: axis directions with squareness (exact), unit
+  std::array<Vec3, 3> direction_linear;   ///< u_k + first-order squareness deviation
+  Vec3 tip_local;                         ///< tip in the last tool-side frame with spindle tilt (exact) [mm]
+  Vec3 tip_local_linear;                  ///< same, tilt to first order [mm]
+  Vec3 tip_nominal;                       ///< tip without tilt [mm]
+  // per-point scratch
+  std::array<Vec3, 3> delta;              ///< (EXk, EYk, EZk) at the current point [mm]
+  std::array<Vec3, 3> epsilon;            ///< (EAk, EBk, ECk) at the current point [rad]
+  std::array<Vec3, 3> delta_slope;        ///< d(EXk, EYk, EZk)/dq_k [mm/mm] (Jacobian only)
+  std::array<Vec3, 3> epsilon_slope;      ///< d(EAk, EBk, ECk)/dq_k [rad/mm] (Jacobian only)
+};
+
+/// Evaluate the six components of each axis at program point p into `data.delta`/`data.epsilon`.
+/// Throws std::invalid_argument when a table's out-of-range policy is `error` and p is outside.
+void evaluate_components(const Machine& machine, MachineData& data, const Vec3& p);
+
+/// Tip error e(p) [mm] relative to the workpiece at program point p [mm] (one point, no allocation).
+Vec3 tip_error(const Machine& machine, MachineData& data, const Vec3& p, Order order = Order::exact);
+
+/// Exact tip error e(p) [mm] and the Jacobian ∂e₁/∂p of the first-order model at p (3×3,
+/// dimensionless; column k = derivative along program axis k). The compensation's Newton step uses it:
+/// the Jacobian differs from the exact one by O(error²), which only slows convergence, never changes the
+/// fixed point.
+Vec3 tip_error_and_jacobian(const Machine& machine, MachineData& data, const Vec3& p, Mat3& jacobian);
+
+/// Tip errors at many points: (n, 3) [mm] in, (n, 3) [mm] out.
+Points3 tip_error(const Machine& machine, const Eigen::Ref<const Points3>& points,
+                  Order order = Order::exact);
+
+/// Where the tip actually lands for commanded points (p + e(p)): (n, 3) [mm].
+Points3 actual_points(const Machine& machine, const Eigen::Ref<const Points3>& commanded,
+                      Order order = Order::exact);
+
+/// Volumetric error VE = |e(p)| (seeds/003 eq. 16) at many points: (n,) [mm].
+Eigen::VectorXd volumetric_error(const Machine& machine, const Eigen::Ref<const Points3>& points,
+                                 Order order = Order::exact);
+
+/// Exact rotation R(a, b, c) = Rz(c)·Ry(b)·Rx(a) [rad], sin/cos exact to rounding (short Taylor
+/// series below 0.05 rad, std::sin/cos above).
+Mat3 rotation_zyx(double a, double b, double c) noexcept;
+
+}  // namespace netshape::machine

@@ -1,0 +1,66 @@
+"""netshape.machine — a 3-axis machine's geometric errors (ISO 230-1) and their synthesis into the
+tool-tip error relative to the workpiece (seeds/003 §2, §4; C++ netshape::machine).
+
+    import netshape as ns
+    m = ns.machine.load_machine("examples/machines/seeds003_hmc.toml")
+    e = ns.machine.tip_error(m, points)              # (n, 3) mm, exact product of transforms
+    emap = ns.machine.grid_error_map(m, (9, 9, 5))    # seeds/003 eq. 16 over the workspace
+    fig = ns.machine.plot_error_map(emap)             # seeds/003 Fig. 6
+
+seeds/003 symbols → ISO 230-1 names (docs/machine.md): δ_ij → E{I}{J} (δ_xx → EXX, δ_yx → EYX …),
+ε_ij → E{A,B,C for i = x,y,z}{J} (ε_xx → EAX, ε_yx → EBX, ε_zx → ECX …), S_xy → EC0Y,
+S_yz → EA0Z, S_zx → −EB0Z, ε_xs/ε_ys → spindle_tilt_a/b, L → tool_length, T → spindle_nose.
+"""
+
+from __future__ import annotations
+
+from .._core import machine as _m
+from .description import AXES, iso_names, load_machine, machine_from_dict, read_error_table
+from .volumetric_map import (
+    ErrorMap,
+    actual_points,
+    compare_orders,
+    error_map,
+    grid_error_map,
+    grid_points,
+    plot_error_map,
+    plot_surface_error,
+    program_error_map,
+    program_points,
+    tip_error,
+    volumetric_error,
+)
+
+Machine = _m.Machine
+Axis = _m.Axis
+ErrorFunction = _m.ErrorFunction
+OutOfRange = _m.OutOfRange
+Component = _m.Component
+Side = _m.Side
+Order = _m.Order
+ideal_machine = _m.ideal_machine
+component_name = _m.component_name
+rotation_zyx = _m.rotation_zyx
+
+#: seeds/003 symbol → (ISO 230-1 name, sign) for the paper's HMC. Its Z axis is on the workpiece
+#: side, where the paper writes the table's own motion and netshape the tool's motion relative to the
+#: workpiece (ISO 230-1 sense): δ_iz(z_table) = −E·Z(q) and ε_iz = −E·Z to first order, with the
+#: table position z_table = −q (docs/machine.md).
+SEEDS003_SYMBOLS = {
+    **{f"δ_{d}{a}": (f"E{d.upper()}{a.upper()}", -1 if a == "z" else +1) for a in "xyz" for d in "xyz"},
+    **{f"ε_{d}{a}": (f"E{'ABC'['xyz'.index(d)]}{a.upper()}", -1 if a == "z" else +1)
+       for a in "xyz" for d in "xyz"},
+    "S_xy": ("EC0Y", +1),
+    "S_yz": ("EA0Z", +1),
+    "S_zx": ("EB0Z", -1),
+    "ε_xs": ("spindle_tilt_a", +1),
+    "ε_ys": ("spindle_tilt_b", +1),
+}
+
+__all__ = [
+    "AXES", "Axis", "Component", "ErrorFunction", "ErrorMap", "Machine", "Order", "OutOfRange",
+    "SEEDS003_SYMBOLS", "Side", "actual_points", "compare_orders", "component_name", "error_map",
+    "grid_error_map", "grid_points", "ideal_machine", "iso_names", "load_machine", "machine_from_dict",
+    "plot_error_map", "plot_surface_error", "program_error_map", "program_points", "read_error_table",
+    "rotation_zyx", "tip_error", "volumetric_error",
+]

@@ -1,0 +1,75 @@
+// Volumetric compensation: residual, travel refusal, non-convergence reported.
+#include <doctest/doctest.h>
+
+#include <random>
+
+#include "netshape/compensation.hpp"
+#include "netshape/machine.hpp"
+
+using namespace netshape;
+using namespace netshape::machine;
+using namespace netshape::compensation;
+
+namespace {
+Machine test_machine() {
+  Machine m = ideal_machine({0, 1}, {2}, 150.0);
+  m.tool_direction = Vec3(0, 0, 1);
+  for (int k = 0; k < 3; ++k) {
+    m.axes[k].travel_min = -500;
+    m.axes[k].travel_max = 500;
+    m.axes[k].origin = Vec3(10.0 * k, -20.0, 30.0);
+    for (int c = 0; c < 6; ++c) {
+      const double s = c < 3 ? 1e-4 : 2e-7;
+      m.axes[k].errors[c] = ErrorFunction::polynomial({s * (c - 2.5), s * 0.3 * (k + 1), -1e-4 * s * c});
+    }
+  }
+  m.ec0y = 3e-5, m.eb0z = -2e-5, m.ea0z = 1e-5;
+  m.spindle_tilt_a = 1e-5, m.spindle_tilt_b = -2e-5;
+  m.validate();
+  return m;
+}
+}  // namespace
+
+TEST_CASE("compensated points land on the nominal ones") {
+  const Machine m = test_machine();
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> U(-400.0, 400.0);
+  Points3 nominal(500, 3);
+  for (int i = 0; i < 500; ++i) nominal.row(i) << U(rng), U(rng), U(rng);
+  const Points3 cmd = compensate_points(m, nominal);
+  const Points3 actual = actual_points(m, cmd);
+  CHECK((actual - nominal).rowwise().norm().maxCoeff() <= 1e-9);
+  CHECK((cmd - nominal).rowwise().norm().maxCoeff() > 1e-3);  // the compensation did something
+}
+
+TEST_CASE("points pushed outside travel are refused, naming the axis") {
+  Machine m = test_machine();
+  m.axes[0].errors[0] = ErrorFunction::polynomial({0.5});  // X reads 0.5 mm long everywhere
+  Points3 nominal(2, 3);
+  nominal << 0, 0, 0, -499.8, 0, 0;  // needs X = -500.3
+  auto res = compensate_points_status(m, nominal);
+  CHECK(res.status[0] == VolumetricStatus::ok);
+  CHECK(res.status[1] == VolumetricStatus::outside_travel);
+  CHECK(res.axis[1] == 0);
+  try {
+    compensate_points(m, nominal);
+    FAIL("no throw");
+  } catch (const std::invalid_argument& e) {
+    CHECK(std::string(e.what()).find("axis X") != std::string::npos);
+  }
+}
+
+TEST_CASE("a machine the iteration cannot invert is reported, not returned") {
+  Machine m = ideal_machine({0, 1, 2}, {}, 0.0);
+  // e(x) = -x: p + e(p) = 0 everywhere, no commanded point reaches x = 1
+  m.axes[0].errors[0] = ErrorFunction::polynomial({0.0, -1.0});
+  Points3 nominal(1, 3);
+  nominal << 1.0, 0.0, 0.0;
+  VolumetricOptions o;
+  o.check_travel = false;
+  auto res = compensate_points_status(m, nominal, o);
+  CHECK(res.status[0] == VolumetricStatus::not_converged);
+  CHECK_THROWS_AS(compensate_points(m, nominal, o), netshape::Error);
+  o.tolerance = -1;
+  CHECK_THROWS_AS(compensate_points(m, nominal, o), std::invalid_argument);
+}
