@@ -17,6 +17,9 @@ constexpr double vertical_eps = 1e-9;
 /// Tolerance of the 1-D minimisations: [mm] along lines, [rad] along arcs.
 constexpr double line_tol = 1e-10;
 constexpr double angle_tol = 1e-10;
+/// Newton steps shorter than this end the bull-nose ramp search [mm]; the next step would be far
+/// shorter still (quadratic convergence), and F is flat at its minimum.
+constexpr double newton_tol = 1e-9;
 
 enum ProfileKind { kFlat = 0, kBall = 1, kBull = 2 };
 
@@ -65,27 +68,51 @@ LineSetup make_line(const Vec3& a, const Vec3& b) {
   return s;
 }
 
-// Bull-nose ramp: minimise F(σ) = m·σ + g(sqrt(sp² + (σ − tq)²)) on [lo, hi]; F is convex, so
-// bisect on its non-decreasing derivative.
+// Bull-nose ramp: minimise F(σ) = m·σ + g(sqrt(sp² + (σ − tq)²)) on [lo, hi]. F is convex, so its
+// derivative is non-decreasing: find its root by Newton's method kept inside a shrinking bracket
+// (bisection whenever a Newton step would leave it), to 1e-10 mm.
 double bull_ramp_min(const TipProfile& p, double m, double sp2, double tq, double lo, double hi) noexcept {
-  auto dfdx = [&](double sig) {
+  const double a0 = p.flat_radius, rc = p.corner_radius;
+  auto dfdx = [&](double sig, double* d2f) {
     const double u = sig - tq;
     const double d = std::sqrt(sp2 + u * u);
-    const double gs = p.slope(d);
-    if (gs == 0.0) return m;
-    if (std::isinf(gs)) return u > 0 ? inf : (u < 0 ? -inf : m);
-    return m + gs * u / d;
+    const double e = d - a0;
+    if (e <= 0.0) {  // flat zone
+      if (d2f) *d2f = 0.0;
+      return m;
+    }
+    const double w = rc * rc - e * e;
+    if (w <= 0.0) return u > 0 ? inf : (u < 0 ? -inf : m);
+    const double sw = std::sqrt(w);
+    const double g1 = e / sw;                    // g'(d)
+    if (d2f) {
+      const double g2 = rc * rc / (w * sw);      // g''(d)
+      *d2f = g2 * u * u / (d * d) + g1 * sp2 / (d * d * d);
+    }
+    return m + g1 * u / d;
   };
   double sig;
-  if (dfdx(lo) >= 0.0) {
+  const double flo = dfdx(lo, nullptr), fhi = dfdx(hi, nullptr);
+  if (flo >= 0.0) {
     sig = lo;
-  } else if (dfdx(hi) <= 0.0) {
+  } else if (fhi <= 0.0) {
     sig = hi;
   } else {
     double a = lo, b = hi;
-    for (int it = 0; it < 200 && b - a > line_tol; ++it) {
-      const double c = 0.5 * (a + b);
-      if (dfdx(c) < 0.0) a = c; else b = c;
+    // start where the torus begins on the side the slope pushes to (F' = m < 0 in the flat zone
+    // means the root lies ahead, u > 0)
+    const double ua = std::sqrt(std::max(a0 * a0 - sp2, 0.0));
+    double x = std::clamp(tq + (m < 0.0 ? ua : -ua), a, b);
+    for (int it = 0; it < 100; ++it) {
+      double d2f = 0.0;
+      const double fx = dfdx(x, &d2f);
+      if (fx == 0.0) { a = b = x; break; }
+      if (fx < 0.0) a = x; else b = x;
+      if (b - a <= line_tol) break;
+      double xn = d2f > 0.0 ? x - fx / d2f : 0.5 * (a + b);
+      if (!(xn > a && xn < b)) xn = 0.5 * (a + b);
+      if (std::abs(xn - x) <= newton_tol) { a = b = xn; break; }
+      x = xn;
     }
     sig = 0.5 * (a + b);
   }
@@ -186,6 +213,63 @@ inline void lower(double& h, double z, double bottom, SweepStats& st) noexcept {
   }
 }
 
+// Row kernel over a chunk of at most kChunk consecutive nodes, written as Eigen array expressions so
+// that it runs on SIMD packets (sqrt, min, max, select) without branches; the chunk arrays live on
+// the stack (fixed maximum size): no allocation.
+constexpr int kChunk = 256;
+using Chunk = Eigen::Array<double, Eigen::Dynamic, 1, Eigen::ColMajor, kChunk, 1>;
+
+// Nodes the cutter does not cover get +1e30·(how far outside) added instead of a branch or a select,
+// so that each expression below stays one fused loop over SIMD packets.
+constexpr double kOutside = 1e30;
+
+template <int Kind>
+void row_chunk(const LineSetup& s, const TipProfile& p, double r2, double qx0, double dxn, double qy, int n,
+               double* h, double bottom, SweepStats& st) {
+  // node k of the chunk sits at qx0 + k·dx relative to the start of the move
+  const Chunk qx = Chunk::LinSpaced(n, qx0, qx0 + (n - 1) * dxn);
+  const auto tq = qx * s.ex + qy * s.ey;   // foot point along the move [mm]
+  const auto sp = qy * s.ex - qx * s.ey;   // signed distance from the line [mm]
+  Eigen::Map<Chunk> hv(h, n);
+  Chunk nh;
+  if (s.m == 0.0) {
+    // horizontal move: the lowest reach is at the point of the segment nearest to the node
+    const auto u = tq - tq.max(0.0).min(s.len);
+    const Chunk d2 = sp.square() + u.square();
+    const auto out = (d2 - r2).max(0.0) * kOutside;
+    if (Kind == kFlat) {
+      nh = hv.min((s.az + out).max(bottom));
+    } else if (Kind == kBall) {
+      nh = hv.min((s.az + p.radius - (r2 - d2).max(0.0).sqrt() + out).max(bottom));
+    } else {
+      const auto e = (d2.sqrt().min(p.radius) - p.flat_radius).max(0.0);
+      nh = hv.min((s.az + p.corner_radius - (p.corner_radius * p.corner_radius - e.square()).max(0.0).sqrt() + out)
+                      .max(bottom));
+    }
+  } else {
+    const Chunk rho2 = r2 - sp.square();
+    const Chunk rho = rho2.max(0.0).sqrt();
+    const Chunk lo = (tq - rho).max(0.0);
+    const Chunk hi = (tq + rho).min(s.len);
+    const auto out = ((-rho2).max(0.0) + (lo - hi).max(0.0)) * kOutside;
+    if (Kind == kBall) {
+      const Chunk sig = (tq - s.kball * rho).max(lo).min(hi);
+      nh = hv.min((s.az + s.m * sig + p.radius - (rho2 - (sig - tq).square()).max(0.0).sqrt() + out).max(bottom));
+    } else if (s.m >= 0.0) {  // flat (bull ramps take the scalar path)
+      nh = hv.min((s.az + s.m * lo + out).max(bottom));
+    } else {
+      nh = hv.min((s.az + s.m * hi + out).max(bottom));
+    }
+  }
+  st.removed_volume += (hv - nh).sum();
+  std::int64_t lowered = 0;  // an integer reduction: vectorised by the compiler
+  for (int k = 0; k < n; ++k) {
+    lowered += nh[k] < h[k];
+    h[k] = nh[k];
+  }
+  st.nodes_lowered += lowered;
+}
+
 template <int Kind>
 void sweep_line_k(ZMap& zm, const TipProfile& p, const LineSetup& s, double ylo, double yhi, SweepStats& st) {
   const double r = p.radius, r2 = r * r;
@@ -193,6 +277,9 @@ void sweep_line_k(ZMap& zm, const TipProfile& p, const LineSetup& s, double ylo,
   if (!node_range(ylo - r, yhi + r, zm.y0(), zm.dy(), zm.ny(), i0, i1)) return;
   MatrixXdR& H = zm.heights_mut();
   const double bottom = zm.bottom();
+  // packet path: flat and ball always, bull for horizontal moves; vertical moves and bull ramps
+  // go node by node
+  const bool packets = !s.vertical && (Kind != kBull || s.m == 0.0);
   for (int i = i0; i <= i1; ++i) {
     const double y = zm.node_y(i);
     double xlo, xhi;
@@ -201,6 +288,13 @@ void sweep_line_k(ZMap& zm, const TipProfile& p, const LineSetup& s, double ylo,
     if (!node_range(xlo, xhi, zm.x0(), zm.dx(), zm.nx(), j0, j1)) continue;
     double* row = H.data() + static_cast<Eigen::Index>(i) * zm.nx();
     st.nodes_visited += j1 - j0 + 1;
+    if (packets) {
+      for (int j = j0; j <= j1; j += kChunk) {
+        const int n = std::min(kChunk, j1 - j + 1);
+        row_chunk<Kind>(s, p, r2, zm.node_x(j) - s.ax, zm.dx(), y - s.ay, n, row + j, bottom, st);
+      }
+      continue;
+    }
     for (int j = j0; j <= j1; ++j) {
       const double z = reach_line<Kind>(s, p, r2, zm.node_x(j), y);
       lower(row[j], z, bottom, st);

@@ -4,7 +4,8 @@ feasible travel σ ∈ [max(0, τ_q − ρ), min(L, τ_q + ρ)] with ρ = sqrt(R
 
 - flat: z = A_z + m·(lo if m ≥ 0 else hi)
 - ball: σ* = clamp(τ_q − m·ρ/sqrt(1 + m²)), z = A_z + m·σ* + R − sqrt(ρ² − (σ* − τ_q)²)
-- bull: horizontal moves: σ* = clamp(τ_q); ramps: bisection on the derivative (vectorised).
+- bull: ramps: bisection on the derivative (vectorised).
+- horizontal moves (all cutters): the point of the segment nearest to the node, d² = s² + (τ_q − clamp(τ_q, 0, L))².
 
 It exists to cross-check the C++ kernel and to measure its speed-up (bench/stock_sweep.py); use the
 C++ functions in netshape.stock for work.
@@ -57,6 +58,20 @@ def sweep_line_numpy(heights: np.ndarray, x0: float, y0: float, dx: float, dy: f
         m = (b[2] - a[2]) / L
         tq = qx * ex + qy * ey
         sp = qy * ex - qx * ey
+        if m == 0.0:
+            # horizontal move: the lowest reach is at the point of the segment nearest to the node
+            u = tq - np.clip(tq, 0.0, L)
+            d2 = sp * sp + u * u
+            if kind == "flat":
+                z = np.full(d2.shape, a[2])
+            elif kind == "ball":
+                z = a[2] + R - np.sqrt(np.maximum(R * R - d2, 0.0))
+            else:
+                z = a[2] + _lift(np.sqrt(d2), R, rc, fr)
+            z = np.where(d2 <= R * R, z, np.inf)
+            block = heights[i0 : i1 + 1, j0 : j1 + 1]
+            np.minimum(block, np.maximum(z, bottom), out=block)
+            return block.size
         rho2 = R * R - sp * sp
         ok = rho2 >= 0.0
         rho = np.sqrt(np.maximum(rho2, 0.0))

@@ -326,3 +326,26 @@ TEST_CASE("sweep: moves outside the footprint touch nothing; bad input is reject
                        std::invalid_argument);
   CHECK((z.heights().array() == 10.0).all());
 }
+
+TEST_CASE("sweep: the packet row kernel equals the per-node kernel") {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  for (const Cutter& c : {Cutter::flat_end(6.0, 2, 0.5), Cutter::ball_end(6.0, 2, 0.5),
+                          Cutter::bull_nose(6.0, 1.0, 2, 0.5)}) {
+    const TipProfile prof = TipProfile::of(c);
+    for (int t = 0; t < 12; ++t) {
+      const Vec3 a(25 * U(rng), 25 * U(rng), 5 + 5 * U(rng));
+      Vec3 b(25 * U(rng), 25 * U(rng), 5 + 5 * U(rng));
+      if (t % 3 == 0) b.z() = a.z();  // horizontal
+      ZMap z(0.0, 25.0, 0.0, 25.0, 0.1, 12.0, 0.0);
+      netshape::stock::sweep_line(z, c, a, b);
+      double worst = 0.0;
+      for (int i = 0; i < z.ny(); ++i)
+        for (int j = 0; j < z.nx(); ++j) {
+          const double e = std::max(0.0, std::min(12.0, netshape::stock::lowest_reach_line(prof, a, b, z.node_x(j), z.node_y(i))));
+          worst = std::max(worst, std::abs(z.heights()(i, j) - e));
+        }
+      CHECK(worst < 1e-9);
+    }
+  }
+}
