@@ -182,12 +182,12 @@ TEST_CASE("sweep: arcs in the XY plane, planar and helical") {
       ZMap z(0.0, 30.0, 0.0, 30.0, 0.25, 12.0, 0.0);
       netshape::stock::sweep_block(z, c, b);
       double worst_above = 0.0, worst_below = 0.0;
-      const int n = 20000;
+      const int n = 8000;
       const double step = b.length() / n;
       std::vector<Vec3> samples(n + 1);
       for (int k = 0; k <= n; ++k) samples[k] = b.point_at(static_cast<double>(k) / n);
-      for (int i = 0; i < z.ny(); i += 5)
-        for (int j = 0; j < z.nx(); j += 5) {
+      for (int i = 0; i < z.ny(); i += 6)
+        for (int j = 0; j < z.nx(); j += 6) {
           const double s = std::min(12.0, sampled_reach(c, [&](double u) { return samples[std::lround(u * n)]; }, z.node_x(j),
                                                         z.node_y(i), n));
           const double e = z.heights()(i, j);
@@ -216,7 +216,7 @@ TEST_CASE("sweep: random lines, exact envelope against dense sampling") {
       if (t % 8 == 0) b = Vec3(a.x(), a.y(), b.z());                   // plunge
       if (t % 8 == 1) b = Vec3(b.x(), b.y(), a.z());                   // horizontal
       if (t % 8 == 2) b = Vec3(a.x() + 0.3 * U(rng), a.y(), b.z());   // steep ramp
-      const int n = 20000;
+      const int n = 8000;
       for (int k = 0; k < 50; ++k) {
         const double x = a.x() + (b.x() - a.x()) * U(rng) + 8 * (U(rng) - 0.5);
         const double y = a.y() + (b.y() - a.y()) * U(rng) + 8 * (U(rng) - 0.5);
