@@ -114,8 +114,8 @@ def main() -> None:
     n = 40 if args.quick else 300
     moves = random_moves(n, rng, 20.0)
     print("Z-map exact sweep, 0.1 mm grid, random 3-D lines of 5-20 mm (C++ vs NumPy, same algorithm)")
-    for name, cutter in [("flat D10", ns.stock.Cutter.flat_end(10.0)), ("ball D10", ns.stock.Cutter.ball_end(10.0)),
-                         ("bull D10 r2", ns.stock.Cutter.bull_nose(10.0, 2.0))]:
+    for name, cutter in [("flat D10", ns.stock.Cutter.flat_end(10.0, 2, 0.5236)), ("ball D10", ns.stock.Cutter.ball_end(10.0, 2, 0.5236)),
+                         ("bull D10 r2", ns.stock.Cutter.bull_nose(10.0, 2.0, 2, 0.5236))]:
         r = throughput(cutter, moves, 0.1)
         print(f"  {name:12s} C++ {r['cpp_node_updates_per_s'] / 1e6:7.1f} M node updates/s  "
               f"NumPy {r['numpy_node_updates_per_s'] / 1e6:6.1f} M/s  ratio {r['ratio']:6.1f}x  "
@@ -123,7 +123,7 @@ def main() -> None:
     if args.quick:
         return
     print("10 000-block raster surfacing program (G1 0.5 mm blocks, 50 rows, stepover 2 mm), 100 x 100 mm, 0.1 mm grid")
-    for name, cutter in [("ball D10", ns.stock.Cutter.ball_end(10.0)), ("flat D10", ns.stock.Cutter.flat_end(10.0))]:
+    for name, cutter in [("ball D10", ns.stock.Cutter.ball_end(10.0, 2, 0.5236)), ("flat D10", ns.stock.Cutter.flat_end(10.0, 2, 0.5236))]:
         r = surfacing(cutter, numpy_reference=not args.no_numpy_program)
         print(f"  {name:9s} grid {r['grid']}, {r['feed_blocks']} feed blocks: per block {r['per_block_s']:.3f} s "
               f"({r['per_block_node_updates_per_s'] / 1e6:.0f} M node updates/s); collinear runs merged "

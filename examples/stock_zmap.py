@@ -35,8 +35,8 @@ def main(argv: list[str] | None = None) -> dict:
     args = p.parse_args(argv)
 
     z = ns.stock.ZMap(0.0, 80.0, 0.0, 70.0, args.spacing, 20.0, 0.0)
-    flat = ns.stock.Cutter.flat_end(10.0)
-    ball = ns.stock.Cutter.ball_end(8.0)
+    flat = ns.stock.Cutter.flat_end(10.0, 2, 0.5236)
+    ball = ns.stock.Cutter.ball_end(8.0, 2, 0.5236)
     prog = ns.toolpath.parse_gcode(PROGRAM, source="example")
     s1 = ns.stock.sweep(z, flat, prog)
     # a ball-end ramp from z = 20 down to z = 14 across the block

@@ -9,7 +9,7 @@ material at a cutter position, in the cutting frame of DESIGN §2.
     import numpy as np
     import netshape as ns
     z = ns.stock.ZMap(0, 100, 0, 60, spacing=0.1, top=20, bottom=0)
-    tool = ns.stock.Cutter.ball_end(10.0)
+    tool = ns.stock.Cutter.ball_end(10.0, 2, 0.5236)
     ns.stock.sweep_line(z, tool, (-10, 30, 17), (110, 30, 17))
     h = z.heights                      # (ny, nx) live read-only view [mm]
     z.to_stl("part.stl")               # closed solid, written atomically

@@ -17,10 +17,12 @@ import numpy as np
 
 
 def _profile(cutter):
-    R = float(cutter.radius)
-    kind = str(cutter.kind).split(".")[-1]
-    rc = 0.0 if kind == "flat" else float(cutter.corner_radius)
-    return R, rc, R - rc, kind
+    from . import TipProfile
+
+    p = TipProfile.of(cutter)
+    R, rc, a = float(p.radius), float(p.corner_radius), float(p.flat_radius)
+    kind = "flat" if rc == 0.0 else ("ball" if a <= 0.0 else "bull")
+    return R, rc, a, kind
 
 
 def _lift(d, R, rc, a):

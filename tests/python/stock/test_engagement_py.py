@@ -53,7 +53,7 @@ def cut_band(mode: str, feed, step: float = STEP):
     y_c <= -(R - a_e): earlier, deeper passes clear the other side."""
     f = np.array([feed[0], feed[1], 0.0]) / math.hypot(*feed)
     left = np.array([-f[1], f[0], 0.0])
-    tool = Cutter.flat_end(2 * R)
+    tool = Cutter.flat_end(2 * R, 2, 0.5236)
     z = ns.stock.ZMap(0.0, 60.0, 0.0, 60.0, H, TOP, 0.0)
     tip = np.array([30.0, 30.0, TOP - AP])
     if mode != "slot":
@@ -93,7 +93,7 @@ def test_engaged_elements_mask_matches_analytic_band():
 
 
 def test_cutting_frame_and_element_point_follow_design_section_2():
-    tool = Cutter.flat_end(10.0)
+    tool = Cutter.flat_end(10.0, 2, 0.5236)
     xc, yc = ns.stock.cutting_frame((0.0, 3.0, 0.0))
     np.testing.assert_allclose(xc, [0, 1, 0])
     np.testing.assert_allclose(yc, [-1, 0, 0])  # Z x X

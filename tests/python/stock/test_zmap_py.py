@@ -27,7 +27,7 @@ def test_heights_round_trip_and_live_view():
         v[0, 0] = 1.0
     # zero copy: two views share the ZMap's memory, and a view follows later sweeps
     assert np.shares_memory(v, z.heights)
-    ns.stock.sweep_line(z, Cutter.flat_end(2.0), (-1, 2.5, 4.0), (10, 2.5, 4.0))
+    ns.stock.sweep_line(z, Cutter.flat_end(2.0, 2, 0.5236), (-1, 2.5, 4.0), (10, 2.5, 4.0))
     assert v.min() == 4.0
     snap = z.heights.copy()
     z2 = ns.stock.from_heights(snap, 0.0, 9.0, -1.0, 6.0, bottom=0.0)
@@ -48,9 +48,9 @@ def test_heights_round_trip_and_live_view():
         (lambda: ns.stock.ZMap(0, 10, 0, 10, 0.1, 1, 2), "zmap.bottom"),
         (lambda: ns.stock.from_heights(np.full((3, 3), np.inf), 0, 1, 0, 1, 0), "zmap.heights"),
         (lambda: ns.stock.from_heights(np.ones(3), 0, 1, 0, 1, 0), "heights.ndim"),
-        (lambda: ns.stock.sweep_line(ns.stock.ZMap(0, 1, 0, 1, 0.1, 1, 0), Cutter.flat_end(2.0),
+        (lambda: ns.stock.sweep_line(ns.stock.ZMap(0, 1, 0, 1, 0.1, 1, 0), Cutter.flat_end(2.0, 2, 0.5236),
                                      (0, 0, float("nan")), (1, 1, 1)), "line.start"),
-        (lambda: ns.stock.engaged_elements(ns.stock.ZMap(0, 1, 0, 1, 0.1, 1, 0), Cutter.flat_end(2.0),
+        (lambda: ns.stock.engaged_elements(ns.stock.ZMap(0, 1, 0, 1, 0.1, 1, 0), Cutter.flat_end(2.0, 2, 0.5236),
                                            (0, 0, 0), (0, 0, 1), np.zeros(2), np.zeros(2)), "feed_direction"),
     ],
 )
@@ -59,8 +59,8 @@ def test_bad_input_names_the_field(call, field):
         call()
 
 
-@pytest.mark.parametrize("make", [lambda: Cutter.flat_end(6.0), lambda: Cutter.ball_end(6.0),
-                                  lambda: Cutter.bull_nose(6.0, 1.0)])
+@pytest.mark.parametrize("make", [lambda: Cutter.flat_end(6.0, 2, 0.5236), lambda: Cutter.ball_end(6.0, 2, 0.5236),
+                                  lambda: Cutter.bull_nose(6.0, 1.0, 2, 0.5236)])
 def test_cpp_sweep_equals_numpy_reference(make):
     cutter = make()
     rng = np.random.default_rng(3)
@@ -94,7 +94,7 @@ def test_program_sweep_from_gcode_and_stl_export(tmp_path):
     prog = ns.toolpath.parse_gcode(GCODE)
     # the reader starts at the origin: keep the block clear of the first rapid from (0, 0, 0)
     z = ns.stock.ZMap(5, 45, 0, 20, 0.1, 10.0, 2.0)
-    tool = Cutter.ball_end(6.0)
+    tool = Cutter.ball_end(6.0, 2, 0.5236)
     st = ns.stock.sweep(z, tool, prog)
     assert st.rapids_cutting == 0 and st.nodes_lowered > 0
     v0 = 40 * 20 * 8.0
@@ -138,7 +138,7 @@ def test_program_sweep_from_gcode_and_stl_export(tmp_path):
 
 def test_plot_returns_a_figure():
     z = ns.stock.ZMap(0, 20, 0, 10, 0.2, 5.0, 0.0)
-    ns.stock.sweep_line(z, Cutter.ball_end(4.0), (-3, 5, 3.5), (23, 5, 3.5))
+    ns.stock.sweep_line(z, Cutter.ball_end(4.0, 2, 0.5236), (-3, 5, 3.5), (23, 5, 3.5))
     fig = z.plot(title="slot")
     assert fig.axes[0].get_title() == "slot"
     assert math.isclose(fig.axes[0].images[0].get_array().min(), z.min_height())
