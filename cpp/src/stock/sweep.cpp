@@ -70,7 +70,8 @@ LineSetup make_line(const Vec3& a, const Vec3& b) {
 
 // Bull-nose ramp: minimise F(σ) = m·σ + g(sqrt(sp² + (σ − tq)²)) on [lo, hi]. F is convex, so its
 // derivative is non-decreasing: find its root by Newton's method kept inside a shrinking bracket
-// (bisection whenever a Newton step would leave it), to 1e-10 mm.
+// (bisection whenever a Newton step would leave it); ends when the bracket is below 1e-10 mm or a
+// Newton step below 1e-9 mm (F is flat at its minimum, so the height error is far smaller).
 double bull_ramp_min(const TipProfile& p, double m, double sp2, double tq, double lo, double hi) noexcept {
   const double a0 = p.flat_radius, rc = p.corner_radius;
   auto dfdx = [&](double sig, double* d2f) {

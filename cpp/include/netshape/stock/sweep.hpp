@@ -13,7 +13,8 @@
 ///              flat  → an end of the feasible interval (z linear in σ), closed form;
 ///              ball  → σ* = τ_q − m·ρ/sqrt(1 + m²), ρ = sqrt(R² − s²), clamped; closed form;
 ///              bull  → closed form for horizontal moves; ramps: root of the (monotone)
-///                      derivative by bracketed Illinois regula falsi to 1e-10 mm.
+///                      derivative by Newton steps kept inside a bisection bracket (steps
+///                      below 1e-9 mm end it).
 ///              horizontal moves (all cutters) use the nearest point of the segment directly:
 ///              d² = s² + (τ_q − clamp(τ_q, 0, L))² (one square root, none for flat).
 ///              Vertical moves (plunges, |Δxy| ≤ 1e-9 mm): min(A_z, B_z) + g(d).
