@@ -34,10 +34,10 @@ TEST_CASE("engagement: the cutting frame of DESIGN §2") {
 }
 
 namespace {
-// flat block x ∈ [0, 60], y ∈ [0, 40], top 10; the cutter enters from x < 0 along +X at y = y_axis
-// and stops one feed step before x = 30: the state before the move to the query position.
+// flat block x ∈ [20, 40], y ∈ [10, 30], top 10; the cutter enters from x < 20 along +X at
+// y = y_axis and stops one feed step before x = 30: the state before the move to the query position.
 netshape::stock::Immersion straight_cut(double y_axis, double ap, double h) {
-  ZMap z(0.0, 60.0, 0.0, 40.0, h, 10.0, 0.0);
+  ZMap z(20.0, 40.0, 10.0, 30.0, h, 10.0, 0.0);
   const Cutter c = Cutter::flat_end(10.0, 2, 0.5);
   netshape::stock::sweep_line(z, c, Vec3(-10.0, y_axis, 10.0 - ap), Vec3(29.95, y_axis, 10.0 - ap));
   return netshape::stock::immersion(z, c, Vec3(30.0, y_axis, 10.0 - ap), Vec3(1, 0, 0));
@@ -52,14 +52,14 @@ TEST_CASE("engagement: immersion from the Z-map equals the analytic one for a st
   const double tol_tangent = 1.1 * std::sqrt(h / R) + 0.05 / (2 * R);
   const double tol_cross = h / (R * std::sin(std::acos(1 - ae / R))) + 1e-3;
   // up milling: material on the +Y_c side, y ≥ y_axis + R − a_e
-  const auto up = straight_cut(ae - R, ap, h);
+  const auto up = straight_cut(10.0 + ae - R, ap, h);
   CHECK(up.engaged);
   CHECK(std::abs(up.phi_st) < tol_tangent);
   CHECK(std::abs(up.phi_ex - std::acos(1 - ae / R)) < tol_cross);
   CHECK(up.axial_depth == doctest::Approx(ap));
   CHECK(up.radial_depth == doctest::Approx(ae).epsilon(0.02));
   // down milling: material on the −Y_c side
-  const auto down = straight_cut(40.0 + R - ae, ap, h);
+  const auto down = straight_cut(30.0 + R - ae, ap, h);
   CHECK(std::abs(down.phi_st - (pi - std::acos(1 - ae / R))) < tol_cross);
   CHECK(std::abs(down.phi_ex - pi) < tol_tangent);
   CHECK(down.axial_depth == doctest::Approx(ap));
@@ -69,7 +69,7 @@ TEST_CASE("engagement: immersion from the Z-map equals the analytic one for a st
   CHECK(std::abs(slot.phi_ex - pi) < tol_tangent);
   CHECK(slot.radial_depth == doctest::Approx(2 * R).epsilon(0.01));
   // in the air
-  const auto air = straight_cut(-20.0, ap, h);
+  const auto air = straight_cut(-20.0, ap, h);  // beside the block
   CHECK_FALSE(air.engaged);
 }
 

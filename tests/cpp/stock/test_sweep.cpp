@@ -182,12 +182,12 @@ TEST_CASE("sweep: arcs in the XY plane, planar and helical") {
       ZMap z(0.0, 30.0, 0.0, 30.0, 0.25, 12.0, 0.0);
       netshape::stock::sweep_block(z, c, b);
       double worst_above = 0.0, worst_below = 0.0;
-      const int n = 8000;
+      const int n = 4000;
       const double step = b.length() / n;
       std::vector<Vec3> samples(n + 1);
       for (int k = 0; k <= n; ++k) samples[k] = b.point_at(static_cast<double>(k) / n);
-      for (int i = 0; i < z.ny(); i += 6)
-        for (int j = 0; j < z.nx(); j += 6) {
+      for (int i = 0; i < z.ny(); i += 8)
+        for (int j = 0; j < z.nx(); j += 8) {
           const double s = std::min(12.0, sampled_reach(c, [&](double u) { return samples[std::lround(u * n)]; }, z.node_x(j),
                                                         z.node_y(i), n));
           const double e = z.heights()(i, j);
@@ -210,18 +210,20 @@ TEST_CASE("sweep: random lines, exact envelope against dense sampling") {
     const TipProfile prof = TipProfile::of(c);
     double sum_err = 0.0;
     int count = 0;
-    for (int t = 0; t < 40; ++t) {
+    for (int t = 0; t < 24; ++t) {
       Vec3 a(30 * U(rng), 30 * U(rng), 10 * U(rng));
       Vec3 b(30 * U(rng), 30 * U(rng), 10 * U(rng));
       if (t % 8 == 0) b = Vec3(a.x(), a.y(), b.z());                   // plunge
       if (t % 8 == 1) b = Vec3(b.x(), b.y(), a.z());                   // horizontal
       if (t % 8 == 2) b = Vec3(a.x() + 0.3 * U(rng), a.y(), b.z());   // steep ramp
-      const int n = 8000;
-      for (int k = 0; k < 50; ++k) {
+      const int n = 4000;
+      std::vector<Vec3> samples(n + 1);
+      for (int k = 0; k <= n; ++k) samples[k] = a + (static_cast<double>(k) / n) * (b - a);
+      for (int k = 0; k < 40; ++k) {
         const double x = a.x() + (b.x() - a.x()) * U(rng) + 8 * (U(rng) - 0.5);
         const double y = a.y() + (b.y() - a.y()) * U(rng) + 8 * (U(rng) - 0.5);
         const double e = netshape::stock::lowest_reach_line(prof, a, b, x, y);
-        const double s = sampled_reach(c, [&](double u) { return Vec3(a + u * (b - a)); }, x, y, n);
+        const double s = sampled_reach(c, [&](double u) { return samples[std::lround(u * n)]; }, x, y, n);
         if (std::isinf(s)) {
           // never under the cutter at a sample: exact may only reach it between samples, near the edge
           if (!std::isinf(e)) {
@@ -239,7 +241,7 @@ TEST_CASE("sweep: random lines, exact envelope against dense sampling") {
         ++count;
       }
     }
-    CHECK(count > 500);
+    CHECK(count > 300);
     CHECK(sum_err / count < 1e-3);
   }
 }
@@ -333,11 +335,11 @@ TEST_CASE("sweep: the packet row kernel equals the per-node kernel") {
   for (const Cutter& c : {Cutter::flat_end(6.0, 2, 0.5), Cutter::ball_end(6.0, 2, 0.5),
                           Cutter::bull_nose(6.0, 1.0, 2, 0.5)}) {
     const TipProfile prof = TipProfile::of(c);
-    for (int t = 0; t < 12; ++t) {
+    for (int t = 0; t < 6; ++t) {
       const Vec3 a(25 * U(rng), 25 * U(rng), 5 + 5 * U(rng));
       Vec3 b(25 * U(rng), 25 * U(rng), 5 + 5 * U(rng));
       if (t % 3 == 0) b.z() = a.z();  // horizontal
-      ZMap z(0.0, 25.0, 0.0, 25.0, 0.1, 12.0, 0.0);
+      ZMap z(0.0, 25.0, 0.0, 25.0, 0.15, 12.0, 0.0);
       netshape::stock::sweep_line(z, c, a, b);
       double worst = 0.0;
       for (int i = 0; i < z.ny(); ++i)
