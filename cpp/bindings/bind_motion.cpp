@@ -210,4 +210,50 @@ void bind_motion(py::module_& m) {
       },
       py::arg("points"), py::arg("feed"), py::arg("limits"), py::arg("options"), py::arg("repeat") = 1,
       py::call_guard<py::gil_scoped_release>());
+  m.def(
+      "_path_points",
+      [](const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,
+         py_types::RefPoints3 center, const Eigen::Ref<const Eigen::VectorXi>& clockwise,
+         const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
+         py_types::RefVector feed, const AxisLimits& limits, const PlanOptions& options, double ds) {
+        // The planned (for the blend rule: blended) path, sampled every ds [mm] of arc length and at every
+        // segment end: (m, 3) points and their (m,) arc lengths; plus the planned cycle time [s].
+        NETSHAPE_CHECK(ds > 0, "ds", ds, "must be positive [mm]");
+        const auto blocks = blocks_from_arrays(kind, start, end, center, clockwise, plane, turns, feed);
+        Planner p(limits, options);
+        PlannedSegment seg;
+        std::vector<Vec3> pts;
+        std::vector<double> arc;
+        double s0 = 0, t_end = 0;
+        std::size_t i = 0;
+        for (;;) {
+          const Status st = p.next_segment(seg);
+          if (st == Status::ok) {
+            const double L = seg.segment.length();
+            t_end = seg.t0 + seg.profile.duration;
+            if (L <= 0) continue;
+            const int n = std::max(1, static_cast<int>(std::ceil(L / ds)));
+            for (int k = pts.empty() ? 0 : 1; k <= n; ++k) {
+              pts.push_back(seg.segment.point_at(L * k / n));
+              arc.push_back(s0 + L * k / n);
+            }
+            s0 += L;
+            continue;
+          }
+          if (st == Status::finished) break;
+          while (i < blocks.size()) {
+            const Status ps = p.push(blocks[i]);
+            if (ps == Status::buffer_full) break;
+            if (ps == Status::invalid_input) throw std::invalid_argument(p.last_error());
+            ++i;
+          }
+          if (i == blocks.size()) p.finish();
+        }
+        Points3 out(static_cast<Eigen::Index>(pts.size()), 3);
+        for (std::size_t k = 0; k < pts.size(); ++k) out.row(static_cast<Eigen::Index>(k)) = pts[k].transpose();
+        Eigen::VectorXd s = Eigen::Map<Eigen::VectorXd>(arc.data(), static_cast<Eigen::Index>(arc.size()));
+        return py::make_tuple(out, s, t_end);
+      },
+      py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
+      py::arg("turns"), py::arg("feed"), py::arg("limits"), py::arg("options"), py::arg("ds"));
 }

@@ -33,11 +33,25 @@ double distance_to_block(const Vec3& p, const toolpath::Block& b) {
   } else {
     while (d > 0) d -= two_pi;
   }
-  for (int k = 0; k <= b.turns; ++k) {
+  const double len = b.length();
+  for (int k = -1; k <= b.turns; ++k) {
     const double ang = d + (sweep > 0 ? 1 : -1) * two_pi * k;
-    const double f = ang / sweep;
-    if (f < 0 || f > 1) continue;
-    best = std::min(best, (p - b.point_at(f)).norm());
+    const double f0 = std::clamp(ang / sweep, 0.0, 1.0);
+    if (std::abs(ang / sweep - f0) * len > best + 1e-9 && k != 0) continue;
+    // the planar angle is exact for planar arcs; refine along the arc for helices (golden section)
+    const double w = std::min(0.5, (best + 1e-6) / std::max(len, 1e-12));
+    double lo = std::max(0.0, f0 - w), hi = std::min(1.0, f0 + w);
+    const double g = 0.6180339887498949;
+    double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+    double d1 = (p - b.point_at(x1)).norm(), d2 = (p - b.point_at(x2)).norm();
+    for (int it = 0; it < 40; ++it) {
+      if (d1 < d2) {
+        hi = x2; x2 = x1; d2 = d1; x1 = hi - g * (hi - lo); d1 = (p - b.point_at(x1)).norm();
+      } else {
+        lo = x1; x1 = x2; d1 = d2; x2 = lo + g * (hi - lo); d2 = (p - b.point_at(x2)).norm();
+      }
+    }
+    best = std::min({best, d1, d2, (p - b.point_at(f0)).norm()});
   }
   return best;
 }

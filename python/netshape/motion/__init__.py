@@ -38,7 +38,7 @@ RULES = ("paper", "vector", "per-axis", "junction-deviation", "blend")
 
 __all__ = [
     "AxisLimits", "PlanOptions", "CornerRule", "Planner", "Sample", "Status", "Trajectory", "plan",
-    "make_options", "blocks_to_arrays", "polyline_arrays", "rule_name", "parse_rule", "turn_angle",
+    "make_options", "path_points", "blocks_to_arrays", "polyline_arrays", "rule_name", "parse_rule", "turn_angle",
     "paper_corner_speed", "vector_corner_speed", "per_axis_corner_speed", "junction_deviation_speed",
     "klipper_junction_deviation", "reach_speed", "RULES",
 ]
@@ -119,6 +119,31 @@ def blocks_to_arrays(blocks) -> dict:
     return out
 
 
+def _arrays(program, feed):
+    if isinstance(program, dict):
+        return program
+    if isinstance(program, np.ndarray) or (isinstance(program, (list, tuple)) and program
+                                           and not hasattr(program[0], "kind")):
+        if feed is None:
+            raise ValueError("feed = None: a polyline needs a feed [mm/s]")
+        return polyline_arrays(program, feed)
+    return blocks_to_arrays(program)
+
+
+def _call_args(arr):
+    return (np.ascontiguousarray(arr["kind"], np.int32), np.ascontiguousarray(arr["start"], np.float64),
+            np.ascontiguousarray(arr["end"], np.float64), np.ascontiguousarray(arr["center"], np.float64),
+            np.ascontiguousarray(arr["clockwise"], np.int32), np.ascontiguousarray(arr["plane"], np.int32),
+            np.ascontiguousarray(arr["turns"], np.int32), np.ascontiguousarray(arr["feed"], np.float64))
+
+
+def path_points(program, limits: AxisLimits, options: PlanOptions, ds: float, *, feed=None):
+    """The path the planner runs (blend rule: with its corner blends), sampled every `ds` [mm] of arc
+    length: (m, 3) points [mm], (m,) arc lengths [mm], and the planned cycle time [s]."""
+    pts, s, t = _m._path_points(*_call_args(_arrays(program, feed)), limits, options, float(ds))
+    return np.asarray(pts), np.asarray(s), float(t)
+
+
 def plan(program, limits: AxisLimits, options: PlanOptions | None = None, *, feed=None,
          with_deviation: bool = True, **option_keywords) -> Trajectory:
     """Plan and interpolate a program.
@@ -132,21 +157,8 @@ def plan(program, limits: AxisLimits, options: PlanOptions | None = None, *, fee
         options = make_options(**option_keywords)
     elif option_keywords:
         raise ValueError(f"options given twice: {sorted(option_keywords)}")
-    if isinstance(program, dict):
-        arr = program
-    elif isinstance(program, np.ndarray) or (isinstance(program, (list, tuple)) and program
-                                             and not hasattr(program[0], "kind")):
-        if feed is None:
-            raise ValueError("feed = None: a polyline needs a feed [mm/s]")
-        arr = polyline_arrays(program, feed)
-    else:
-        arr = blocks_to_arrays(program)
-    t, pos, vel, fd, blk, stats = _m._plan_arrays(
-        np.ascontiguousarray(arr["kind"], np.int32), np.ascontiguousarray(arr["start"], np.float64),
-        np.ascontiguousarray(arr["end"], np.float64), np.ascontiguousarray(arr["center"], np.float64),
-        np.ascontiguousarray(arr["clockwise"], np.int32), np.ascontiguousarray(arr["plane"], np.int32),
-        np.ascontiguousarray(arr["turns"], np.int32), np.ascontiguousarray(arr["feed"], np.float64),
-        limits, options, with_deviation)
+    t, pos, vel, fd, blk, stats = _m._plan_arrays(*_call_args(_arrays(program, feed)), limits, options,
+                                                  with_deviation)
     stats = dict(stats)
     stats["rule"] = rule_name(options.rule)
     stats["ts1_s"], stats["ts2_s"], stats["lookahead"] = options.ts1, options.ts2, options.lookahead
