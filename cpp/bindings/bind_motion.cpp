@@ -183,6 +183,7 @@ void bind_motion(py::module_& m) {
         long segments = 0;
         double t_end = 0;
         const Eigen::Index n = points.rows();
+        py::gil_scoped_release release;
         for (int r = 0; r < repeat; ++r) {
           p.reset();
           toolpath::Block b;
@@ -206,10 +207,10 @@ void bind_motion(py::module_& m) {
             if (i >= n) p.finish();
           }
         }
+        py::gil_scoped_acquire acquire;
         return py::make_tuple(segments, t_end);
       },
-      py::arg("points"), py::arg("feed"), py::arg("limits"), py::arg("options"), py::arg("repeat") = 1,
-      py::call_guard<py::gil_scoped_release>());
+      py::arg("points"), py::arg("feed"), py::arg("limits"), py::arg("options"), py::arg("repeat") = 1);
   m.def(
       "_path_points",
       [](const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,

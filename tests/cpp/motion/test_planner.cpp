@@ -73,7 +73,9 @@ TEST_CASE("streaming: push/next never throws, reports buffer_full and need_block
   o.rule = CornerRule::vector;
   o.lookahead = 2;
   Planner p(AxisLimits::uniform(100, 1000), o);
-  const auto blocks = square(50.0);
+  std::vector<toolpath::Block> blocks;
+  for (int r = 0; r < 3; ++r)
+    for (const auto& b : square(50.0)) blocks.push_back(b);  // 12 blocks through a buffer of ~5
   std::size_t i = 0;
   Sample s;
   int full = 0, need = 0;
