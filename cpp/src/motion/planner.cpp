@@ -39,9 +39,19 @@ Vec3 piece_tangent(const Segment& s, double at) { return s.block.tangent_at(std:
 Planner::Planner(const AxisLimits& limits, const PlanOptions& options) : limits_(limits), opt_(options) {
   limits_.validate();
   opt_.validate();
-  const long per = opt_.rule == CornerRule::blend ? 2 : 1;
+  const long per = opt_.rule == CornerRule::blend ? 5 : 1;
   cap_ = per * opt_.lookahead + 3;
   ring_.resize(static_cast<std::size_t>(cap_));
+  quick_.resize(static_cast<std::size_t>(cap_));
+}
+
+void Planner::sync(long k) noexcept {
+  const Node& n = at(k);
+  Quick& x = q(k);
+  x.v_lim = n.v_lim;
+  x.len = plan_length(n);
+  x.a = n.a;
+  x.j = n.j;
 }
 
 void Planner::reset() noexcept {
@@ -56,7 +66,7 @@ void Planner::reset() noexcept {
 }
 
 int Planner::free_blocks() const noexcept {
-  const long per = opt_.rule == CornerRule::blend ? 2 : 1;
+  const long per = opt_.rule == CornerRule::blend ? 5 : 1;
   return static_cast<int>(std::max(0L, (cap_ - (tail_ - head_)) / per));
 }
 
@@ -70,7 +80,7 @@ Status Planner::fail(const char* msg) noexcept {
 }
 
 bool Planner::buffer_ready() const noexcept {
-  const long per = opt_.rule == CornerRule::blend ? 2 : 1;
+  const long per = opt_.rule == CornerRule::blend ? 5 : 1;
   return finished_ || cap_ - (tail_ - head_) < per;
 }
 
@@ -113,7 +123,7 @@ Status Planner::push(const toolpath::Block& b) noexcept {
   if (finished_) return fail("push() after finish()");
   if (!finite3(b.start) || !finite3(b.end) || !finite3(b.center) || !std::isfinite(b.feed) || b.feed < 0)
     return fail("block has a non-finite coordinate or a negative feed");
-  const long per = opt_.rule == CornerRule::blend ? 2 : 1;
+  const long per = opt_.rule == CornerRule::blend ? 5 : 1;
   if (cap_ - (tail_ - head_) < per) return Status::buffer_full;
   const bool arc = b.kind == toolpath::MotionKind::arc;
   if (arc && !(b.radius() > 0)) return fail("arc radius must be positive");
@@ -145,6 +155,8 @@ Status Planner::push(const toolpath::Block& b) noexcept {
   if (!has_prev) {
     nn.v_lim = 0.0;  // start from rest
     at(tail_) = nn;
+    sync(tail_);
+    q(tail_).vb = 0.0;
     ++tail_;
     back_pass(tail_ - 1);
     return Status::ok;
@@ -180,16 +192,41 @@ Status Planner::push(const toolpath::Block& b) noexcept {
     p.seg.trim_end = d;
     p.tail_trim = false;
     nn.seg.trim_start = d;
-    Node bn;
-    bn.seg = bl;
-    bn.vmax = std::min(p.vmax, nn.vmax);
-    set_params(bn);
-    bn.v_lim = std::min(p.vmax, bn.vmax);
-    nn.v_lim = std::min(bn.vmax, nn.vmax);
-    at(tail_) = bn;
-    ++tail_;
+    // four pieces (de Casteljau at u = 1/4, 1/2, 3/4), each driven at the speed of its own largest
+    // curvature: the speed dips only where the curvature peaks
+    std::array<std::array<Vec3, 4>, 4> pieces;
+    {
+      auto split = [](const std::array<Vec3, 4>& c, std::array<Vec3, 4>& l, std::array<Vec3, 4>& r) {
+        const Vec3 a = 0.5 * (c[0] + c[1]), b = 0.5 * (c[1] + c[2]), e = 0.5 * (c[2] + c[3]);
+        const Vec3 ab = 0.5 * (a + b), be = 0.5 * (b + e), m = 0.5 * (ab + be);
+        l = {c[0], a, ab, m};
+        r = {m, be, e, c[3]};
+      };
+      std::array<Vec3, 4> h0, h1;
+      split(bl.ctrl, h0, h1);
+      split(h0, pieces[0], pieces[1]);
+      split(h1, pieces[2], pieces[3]);
+    }
+    const double vfeed = std::min(p.vmax, nn.vmax);
+    double v_prev = p.vmax;
+    for (const auto& c : pieces) {
+      Node bn;
+      bn.seg = Segment::blend(c[0], c[1], c[2], c[3], p.seg.source);
+      bn.vmax = vfeed;
+      set_params(bn);
+      bn.v_lim = std::min(v_prev, bn.vmax);
+      v_prev = bn.vmax;
+      at(tail_) = bn;
+      sync(tail_);
+      q(tail_).vb = 0.0;
+      ++tail_;
+    }
+    nn.v_lim = std::min(v_prev, nn.vmax);
     at(tail_) = nn;
+    sync(tail_);
+    q(tail_).vb = 0.0;
     ++tail_;
+    sync(prev_index);
     back_pass(prev_index);
     return Status::ok;
   }
@@ -233,7 +270,10 @@ Status Planner::push(const toolpath::Block& b) noexcept {
   }
   nn.v_lim = v;
   at(tail_) = nn;
+  sync(tail_);
+  q(tail_).vb = 0.0;
   ++tail_;
+  sync(prev_index);
   back_pass(prev_index);
   return Status::ok;
 }
@@ -247,6 +287,7 @@ void Planner::finish() noexcept {
     t.seg.trim_end = 0.0;
     t.res_e = 0.0;
     t.jump_e = false;
+    sync(tail_ - 1);
     back_pass(tail_ - 1);
   }
 }
@@ -254,8 +295,11 @@ void Planner::finish() noexcept {
 void Planner::back_pass(long dirty_from) noexcept {
   double v_next = 0.0;  // the buffer always ends at rest
   for (long k = tail_ - 1; k >= frozen_; --k) {
-    Node& n = at(k);
-    const double v = std::min(n.v_lim, reach_speed(v_next, plan_length(n), n.a, n.j));
+    Quick& n = q(k);
+    // seeds/002 eq. 3 (trapezoid) or its S-curve counterpart, capped by the junction limit
+    const double reach = std::isfinite(n.j) ? reach_speed(v_next, n.len, n.a, n.j)
+                                            : std::sqrt(v_next * v_next + 2.0 * n.a * n.len);
+    const double v = std::min(n.v_lim, reach);
     if (k < dirty_from && v == n.vb) break;  // nothing changes further back
     n.vb = v;
     v_next = v;
@@ -269,7 +313,7 @@ bool Planner::freeze_next() noexcept {
   if (!buffer_ready()) return false;
   Node& n = at(frozen_);
   const double vs = v_frozen_end_;
-  const double target = is_tail ? 0.0 : at(frozen_ + 1).vb;
+  const double target = is_tail ? 0.0 : q(frozen_ + 1).vb;
   const double ve = std::min(target, reach_speed(vs, plan_length(n), n.a, n.j));
   n.prof = Profile::make(n.seg.length(), vs, ve, std::max(n.vmax, std::max(vs, ve)), n.a, n.j,
                          n.jump_s ? 2.0 * opt_.ts2 * vs : 0.0, n.jump_e ? 2.0 * opt_.ts2 * ve : 0.0);

@@ -63,24 +63,22 @@ Segment Segment::blend(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec
   s.kind = SegmentKind::blend;
   s.ctrl = {p0, p1, p2, p3};
   s.source = source;
+  // arc-length table at u = i/16 (5-point Gauss-Legendre per interval) and curvature at the same
+  // nodes; |dκ/ds| from neighbouring nodes
   s.table[0] = 0;
-  for (int i = 0; i < 16; ++i) s.table[i + 1] = s.table[i] + bezier_length(s.ctrl, i / 16.0, (i + 1) / 16.0);
-  s.full_length = s.table[16];
-  // curvature and its rate on a fine grid
-  constexpr int n = 64;
-  double kprev = 0, sprev = 0;
-  for (int i = 0; i <= n; ++i) {
-    const double u = static_cast<double>(i) / n;
+  double kprev = 0;
+  for (int i = 0; i <= 16; ++i) {
+    const double u = i / 16.0;
+    if (i > 0) s.table[i] = s.table[i - 1] + bezier_length(s.ctrl, (i - 1) / 16.0, u);
     const Vec3 d1 = bezier_d1(s.ctrl, u), d2 = bezier_d2(s.ctrl, u);
     const double sp = d1.norm();
     const double k = sp > 0 ? d1.cross(d2).norm() / (sp * sp * sp) : 0.0;
-    const int seg = std::min(i, 15);
-    const double sl = s.table[seg] + bezier_length(s.ctrl, seg / 16.0, u);
     s.curvature = std::max(s.curvature, k);
-    if (i > 0 && sl > sprev) s.curvature_rate = std::max(s.curvature_rate, std::abs(k - kprev) / (sl - sprev));
+    if (i > 0 && s.table[i] > s.table[i - 1])
+      s.curvature_rate = std::max(s.curvature_rate, std::abs(k - kprev) / (s.table[i] - s.table[i - 1]));
     kprev = k;
-    sprev = sl;
   }
+  s.full_length = s.table[16];
   return s;
 }
 

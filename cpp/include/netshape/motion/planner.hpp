@@ -99,6 +99,12 @@ class Planner {
     Profile prof;
     double t0 = 0;
   };
+  // compact copy of what the backward pass reads and writes, so it walks 40-byte records, not Nodes
+  struct Quick {
+    double v_lim = 0, vb = 0, len = 0, a = 1, j = 0;
+  };
+  Quick& q(long k) noexcept { return quick_[static_cast<std::size_t>(k % cap_)]; }
+  void sync(long k) noexcept;
   Node& at(long k) noexcept { return ring_[static_cast<std::size_t>(k % cap_)]; }
   const Node& at(long k) const noexcept { return ring_[static_cast<std::size_t>(k % cap_)]; }
   double plan_length(const Node& n) const noexcept;
@@ -113,6 +119,7 @@ class Planner {
   AxisLimits limits_;
   PlanOptions opt_;
   std::vector<Node> ring_;
+  std::vector<Quick> quick_;
   long cap_ = 0;
   long head_ = 0;      // first segment in the buffer
   long frozen_ = 0;    // segments [head_, frozen_) are frozen
