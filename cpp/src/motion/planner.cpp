@@ -173,16 +173,16 @@ Status Planner::push(const toolpath::Block& b) noexcept {
     // corner blend: P0 on the previous piece, P3 on the next, both at distance d from the vertex
     const double dmax = 0.45 * std::min(p.seg.full_length, seg.full_length);
     double d = std::min(dmax, 4.0 * opt_.tolerance / std::sin(0.5 * theta));
-    Segment bl;
+    std::array<Vec3, 4> bl;
     for (int it = 0; it < 40; ++it) {
       const double sp = p.seg.full_length - d;
       const Vec3 p0 = piece_point(p.seg, sp), t0 = piece_tangent(p.seg, sp);
       const Vec3 p3 = piece_point(seg, d), t3 = piece_tangent(seg, d);
-      bl = Segment::blend(p0, p0 + d * t0, p3 - d * t3, p3, p.seg.source);
+      bl = {p0, p0 + d * t0, p3 - d * t3, p3};
       if (p.seg.kind == SegmentKind::line && seg.kind == SegmentKind::line) break;  // bound is exact
       double dev = 0;
       for (int i = 1; i < 16; ++i) {
-        const Vec3 q = bezier_point(bl.ctrl, i / 16.0);
+        const Vec3 q = bezier_point(bl, i / 16.0);
         dev = std::max(dev, std::min(p.seg.distance_to_piece(q, sp, p.seg.full_length),
                                      seg.distance_to_piece(q, 0.0, d)));
       }
@@ -203,7 +203,7 @@ Status Planner::push(const toolpath::Block& b) noexcept {
         r = {m, be, e, c[3]};
       };
       std::array<Vec3, 4> h0, h1;
-      split(bl.ctrl, h0, h1);
+      split(bl, h0, h1);
       split(h0, pieces[0], pieces[1]);
       split(h1, pieces[2], pieces[3]);
     }

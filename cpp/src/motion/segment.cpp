@@ -63,16 +63,24 @@ Segment Segment::blend(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec
   s.kind = SegmentKind::blend;
   s.ctrl = {p0, p1, p2, p3};
   s.source = source;
-  // arc-length table at u = i/16 (5-point Gauss-Legendre per interval) and curvature at the same
-  // nodes; |dκ/ds| from neighbouring nodes
+  // hodograph as a polynomial: B'(u) = c0 + c1·u + c2·u², B''(u) = c1 + 2·c2·u
+  const Vec3 d0 = p1 - p0, d1 = p2 - p1, d2 = p3 - p2;
+  const Vec3 c0 = 3.0 * d0, c1 = 6.0 * (d1 - d0), c2 = 3.0 * (d0 - 2.0 * d1 + d2);
+  auto speed = [&](double u) { return (c0 + u * (c1 + u * c2)).norm(); };
+  // arc-length table at u = i/16 (3-point Gauss-Legendre per interval, exact to ~1e-9 relative for
+  // these smooth speeds) and curvature at the same nodes; |dκ/ds| from neighbouring nodes
+  static const double gx = 0.7745966692414834, w0 = 8.0 / 9.0, w1 = 5.0 / 9.0;
   s.table[0] = 0;
   double kprev = 0;
   for (int i = 0; i <= 16; ++i) {
     const double u = i / 16.0;
-    if (i > 0) s.table[i] = s.table[i - 1] + bezier_length(s.ctrl, (i - 1) / 16.0, u);
-    const Vec3 d1 = bezier_d1(s.ctrl, u), d2 = bezier_d2(s.ctrl, u);
-    const double sp = d1.norm();
-    const double k = sp > 0 ? d1.cross(d2).norm() / (sp * sp * sp) : 0.0;
+    if (i > 0) {
+      const double m = (i - 0.5) / 16.0, h = 0.5 / 16.0;
+      s.table[i] = s.table[i - 1] + h * (w0 * speed(m) + w1 * (speed(m - h * gx) + speed(m + h * gx)));
+    }
+    const Vec3 v1 = c0 + u * (c1 + u * c2), v2 = c1 + 2.0 * u * c2;
+    const double sp = v1.norm();
+    const double k = sp > 0 ? v1.cross(v2).norm() / (sp * sp * sp) : 0.0;
     s.curvature = std::max(s.curvature, k);
     if (i > 0 && s.table[i] > s.table[i - 1])
       s.curvature_rate = std::max(s.curvature_rate, std::abs(k - kprev) / (s.table[i] - s.table[i - 1]));
