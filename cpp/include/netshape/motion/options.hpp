@@ -1,0 +1,46 @@
+#pragma once
+/// \file options.hpp
+/// How the planner treats corners, its look-ahead depth and the two loop periods.
+
+#include <cstdint>
+#include <string>
+
+namespace netshape::motion {
+
+/// Corner (junction) rule between two blocks whose tangents differ.
+///  - paper:   seeds/002 eq. 4, F = Acc·Ts1/(1 − cos θ), floored by the allowable speed difference
+///             (θ = turn angle). Velocity jumps at the vertex; the normal part is ignored.
+///  - vector:  the whole velocity vector may jump by at most Acc·Ts2: 2F·sin(θ/2) ≤ Acc·Ts2.
+///  - per_axis: each axis' velocity may jump by at most its own A_i·Ts2: F·|u2_i − u1_i| ≤ A_i·Ts2.
+///  - junction_deviation: grbl / Klipper, v² = a·δ·sin(θ/2)/(1 − sin(θ/2)); δ from
+///             `junction_deviation` or, when `square_corner_velocity` > 0, Klipper's mapping
+///             δ = scv²·(√2 − 1)/a.
+///  - blend:   a G2 cubic Bézier blend replaces each corner within the contour tolerance; no jump.
+enum class CornerRule : std::uint8_t { paper = 0, vector = 1, per_axis = 2, junction_deviation = 3, blend = 4 };
+
+/// "paper", "vector", "per-axis", "junction-deviation", "blend" (the CLI spelling).
+const char* rule_name(CornerRule rule) noexcept;
+/// Inverse of rule_name; also accepts underscores. Throws std::invalid_argument on unknown names.
+CornerRule parse_rule(const std::string& name);
+
+/// Planner options. Plain value type; `validate()` checks it.
+struct PlanOptions {
+  CornerRule rule = CornerRule::vector;
+  double ts1 = 1e-3;   ///< rough loop period [s] (look-ahead and per-period displacement)
+  double ts2 = 1e-4;   ///< fine loop period [s]; ts1 must be an integer multiple of ts2
+  int lookahead = 64;  ///< look-ahead depth: segments held in the planner's ring buffer (>= 2)
+  /// paper rule: allowable speed difference, the floor of the eq. 4 corner speed [mm/s]
+  double allowable_speed_difference = 100.0 / 60.0;
+  double tolerance = 0.01;              ///< blend rule: contour tolerance ε [mm]
+  double junction_deviation = 0.0;      ///< junction-deviation rule: δ [mm] (used when scv = 0)
+  double square_corner_velocity = 5.0;  ///< Klipper's square corner velocity [mm/s] (0: use δ)
+  /// On arcs and blends, the share of the acceleration budget given to the centripetal part
+  /// (v²κ ≤ c·A); the tangential part gets √(1 − c²)·A so that the vector sum stays ≤ A.
+  double centripetal_fraction = 0.8;
+
+  void validate() const;
+  /// Number of fine periods per rough period, round(ts1/ts2).
+  int fine_steps() const noexcept;
+};
+
+}  // namespace netshape::motion

@@ -1,0 +1,142 @@
+#pragma once
+/// \file planner.hpp
+/// Streaming look-ahead planner and 2-step interpolator for controllers (seeds/002 §2–3).
+///
+/// Push blocks, pull samples. All memory (the ring buffer of segments) is allocated in the
+/// constructor; push(), next() and next_segment() never allocate and never throw: they return a
+/// Status (like ruckig's non-throwing update with throw_error = false).
+///
+///     netshape::motion::Planner planner(limits, options);
+///     netshape::motion::Sample sample;
+///     for (;;) {
+///       auto st = planner.next(sample);               // one fine period (ts2)
+///       if (st == Status::need_blocks) {              // look-ahead buffer wants more
+///         if (have_block) planner.push(block); else planner.finish();
+///       } else if (st == Status::finished) break;
+///       else drive(sample.position, sample.velocity);
+///     }
+///
+/// Look-ahead (seeds/002 §3.2): each new segment gets the largest entry speed it can stop from
+/// (eq. 3 with the end speed 0), the corner speed of the junction (eq. 4 or another rule) and the
+/// previous block's reachable end speed (eq. 5); the smallest wins, and the backward pass carries the
+/// change back through the buffer until nothing changes. A segment's profile is frozen when the
+/// rough loop (period ts1) reaches it; the fine loop (period ts2) evaluates the frozen profiles on
+/// the path geometry, so every sample lies on the (blended) path.
+
+#include <cstdint>
+#include <vector>
+
+#include "netshape/motion/limits.hpp"
+#include "netshape/motion/options.hpp"
+#include "netshape/motion/profile.hpp"
+#include "netshape/motion/segment.hpp"
+#include "netshape/toolpath/block.hpp"
+
+namespace netshape::motion {
+
+/// Result of a non-throwing planner call.
+enum class Status : std::int8_t {
+  ok = 0,            ///< done; for next(): `sample` holds the next fine sample
+  buffer_full = 1,   ///< push(): no room; pull samples first
+  need_blocks = 2,   ///< next(): the look-ahead buffer must be refilled (push or finish)
+  finished = 3,      ///< next(): the program has ended (the last sample was the end point)
+  invalid_input = -1 ///< push(): the block is not valid (see last_error()); nothing was added
+};
+
+/// One fine-loop sample.
+struct Sample {
+  double t = 0;                     ///< time since start [s]
+  Vec3 position = Vec3::Zero();     ///< [mm]
+  Vec3 velocity = Vec3::Zero();     ///< per-axis velocity [mm/s]
+  double feed = 0;                  ///< path speed [mm/s]
+  double path_acceleration = 0;     ///< tangential acceleration [mm/s^2]
+  long block = -1;                  ///< index of the program block being run (blend: the one before)
+};
+
+/// A frozen segment with its speed profile (for controllers that interpolate themselves).
+struct PlannedSegment {
+  Segment segment;
+  Profile profile;
+  double t0 = 0;  ///< start time [s]
+};
+
+class Planner {
+ public:
+  /// Validates limits and options (throws std::invalid_argument) and allocates the ring buffer.
+  Planner(const AxisLimits& limits, const PlanOptions& options);
+
+  /// Append a block (rapids run at the axis limits; zero-length blocks are skipped).
+  Status push(const toolpath::Block& block) noexcept;
+  /// No more blocks will come: the last block stops at its end.
+  void finish() noexcept;
+  /// Next fine sample (period ts2).
+  Status next(Sample& out) noexcept;
+  /// Alternative to next(): freeze and hand out the next segment with its profile.
+  Status next_segment(PlannedSegment& out) noexcept;
+
+  /// Back to the empty state (limits, options and memory kept).
+  void reset() noexcept;
+  /// Free slots in the ring buffer, counted in blocks that can still be pushed now.
+  int free_blocks() const noexcept;
+  /// Program end time once known (after finish() and the last segment is frozen), else −1 [s].
+  double end_time() const noexcept;
+  /// Number of blocks accepted so far.
+  long blocks_pushed() const noexcept { return pushed_; }
+  /// Message of the last invalid_input.
+  const char* last_error() const noexcept { return error_; }
+  const AxisLimits& limits() const noexcept { return limits_; }
+  const PlanOptions& options() const noexcept { return opt_; }
+
+ private:
+  struct Node {
+    Segment seg;
+    double vmax = 0, a = 1, j = 0;  // cruise cap [mm/s], path acceleration, path jerk
+    double v_lim = 0;               // junction limit at the start [mm/s]
+    double vb = 0;                  // back-pass speed at the start [mm/s]
+    double res_s = 0, res_e = 0;    // distance reserved for constant-speed windows [mm]
+    bool jump_s = false, jump_e = false;
+    bool tail_trim = false;         // blend mode: end trim is still the tentative maximum
+    Profile prof;
+    double t0 = 0;
+  };
+  // compact copy of what the backward pass reads and writes, so it walks 40-byte records, not Nodes
+  struct Quick {
+    double v_lim = 0, vb = 0, len = 0, a = 1, j = 0;
+  };
+  Quick& q(long k) noexcept { return quick_[static_cast<std::size_t>(k % cap_)]; }
+  void sync(long k) noexcept;
+  Node& at(long k) noexcept { return ring_[static_cast<std::size_t>(k % cap_)]; }
+  const Node& at(long k) const noexcept { return ring_[static_cast<std::size_t>(k % cap_)]; }
+  double plan_length(const Node& n) const noexcept;
+  void set_params(Node& n) const noexcept;
+  Status add_segment(const Segment& s, double feed, bool rapid) noexcept;
+  void back_pass(long dirty_from) noexcept;
+  bool buffer_ready() const noexcept;
+  bool freeze_next() noexcept;
+  Status ensure_frozen_until(double t) noexcept;
+  Status fail(const char* msg) noexcept;
+
+  AxisLimits limits_;
+  PlanOptions opt_;
+  std::vector<Node> ring_;
+  std::vector<Quick> quick_;
+  long cap_ = 0;
+  long head_ = 0;      // first segment in the buffer
+  long frozen_ = 0;    // segments [head_, frozen_) are frozen
+  long tail_ = 0;      // one past the last
+  bool finished_ = false;
+  bool done_ = false;
+  long pushed_ = 0;
+  long sample_ = 0;    // index of the next fine sample
+  double t_frozen_end_ = 0;  // end time of the frozen prefix [s]
+  double v_frozen_end_ = 0;  // speed at the end of the frozen prefix [mm/s]
+  Vec3 last_point_ = Vec3::Zero();
+  bool have_last_ = false;
+  Vec3 last_dir_ = Vec3::Zero();
+  double last_feed_ = 0;
+  bool last_rapid_ = false;
+  long last_source_ = -1;
+  const char* error_ = "";
+};
+
+}  // namespace netshape::motion

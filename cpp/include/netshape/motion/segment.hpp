@@ -1,0 +1,55 @@
+#pragma once
+/// \file segment.hpp
+/// A piece of path as the planner sees it: a (trimmed) line, a (trimmed) arc, or a cubic Bézier
+/// corner blend, parameterised by arc length s ∈ [0, length()].
+
+#include <array>
+#include <cstdint>
+
+#include "netshape/core/types.hpp"
+#include "netshape/toolpath/block.hpp"
+
+namespace netshape::motion {
+
+enum class SegmentKind : std::uint8_t { line = 0, arc = 1, blend = 2 };
+
+/// Path segment. Lines and arcs keep the programmed block and a trimmed window
+/// [trim_start, full_length − trim_end] of it (blends eat into their ends); blends are cubic Béziers.
+struct Segment {
+  SegmentKind kind = SegmentKind::line;
+  toolpath::Block block;           ///< line / arc: the programmed block
+  std::array<Vec3, 4> ctrl{};      ///< blend: Bézier control points P0..P3 [mm]
+  std::array<double, 17> table{};  ///< blend: arc length at u = i/16 [mm]
+  double full_length = 0.0;        ///< line / arc: untrimmed length; blend: length [mm]
+  double trim_start = 0.0;         ///< [mm] removed at the start (lines / arcs)
+  double trim_end = 0.0;           ///< [mm] removed at the end (lines / arcs)
+  double curvature = 0.0;          ///< largest curvature on the segment [1/mm]
+  double curvature_rate = 0.0;     ///< largest |dκ/ds| [1/mm^2] (blends; 0 for lines and arcs)
+  long source = -1;                ///< index of the program block (blend: the block before it)
+
+  static Segment line(const toolpath::Block& b, long source);
+  static Segment arc(const toolpath::Block& b, long source);
+  /// Cubic Bézier with control points p0..p3 [mm].
+  static Segment blend(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3, long source);
+
+  /// Length after trimming [mm].
+  double length() const noexcept { return full_length - trim_start - trim_end; }
+  /// Point at arc length s from the (trimmed) start [mm].
+  Vec3 point_at(double s) const noexcept;
+  /// Unit tangent at arc length s.
+  Vec3 tangent_at(double s) const noexcept;
+  /// Axes that move on this segment (|component| > 1e-12 anywhere): used for "Acc" of seeds/002.
+  Vec3 moving_axes() const noexcept;
+  /// Distance from p to the untrimmed programmed piece between arc lengths [s0, s1] [mm].
+  double distance_to_piece(const Vec3& p, double s0, double s1) const noexcept;
+
+ private:
+  double bezier_u(double s) const noexcept;
+};
+
+/// Bézier point and first two derivatives with respect to u.
+Vec3 bezier_point(const std::array<Vec3, 4>& c, double u) noexcept;
+Vec3 bezier_d1(const std::array<Vec3, 4>& c, double u) noexcept;
+Vec3 bezier_d2(const std::array<Vec3, 4>& c, double u) noexcept;
+
+}  // namespace netshape::motion

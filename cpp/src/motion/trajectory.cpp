@@ -1,0 +1,172 @@
+#include "netshape/motion/trajectory.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "netshape/core/error.hpp"
+#include "netshape/motion/planner.hpp"
+
+namespace netshape::motion {
+
+namespace {
+double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 d = b - a;
+  const double l2 = d.squaredNorm();
+  const double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * d)).norm();
+}
+
+// Distance from p to a programmed block [mm] (arcs: through the angle of p about the centre).
+double distance_to_block(const Vec3& p, const toolpath::Block& b) {
+  if (b.kind != toolpath::MotionKind::arc) return point_segment_distance(p, b.start, b.end);
+  const auto ax = toolpath::plane_axes(b.plane);
+  const double sweep = b.sweep();
+  const double a0 = std::atan2(b.start[ax.b] - b.center[ax.b], b.start[ax.a] - b.center[ax.a]);
+  const double ap = std::atan2(p[ax.b] - b.center[ax.b], p[ax.a] - b.center[ax.a]);
+  double d = ap - a0;
+  // unwrap into the sweep direction; try the turns of a multi-turn arc
+  double best = std::min((p - b.start).norm(), (p - b.end).norm());
+  const double two_pi = 2.0 * pi;
+  if (sweep > 0) {
+    while (d < 0) d += two_pi;
+  } else {
+    while (d > 0) d -= two_pi;
+  }
+  const double len = b.length();
+  for (int k = -1; k <= b.turns; ++k) {
+    const double ang = d + (sweep > 0 ? 1 : -1) * two_pi * k;
+    const double f0 = std::clamp(ang / sweep, 0.0, 1.0);
+    if (std::abs(ang / sweep - f0) * len > best + 1e-9 && k != 0) continue;
+    // the planar angle is exact for planar arcs; refine along the arc for helices (golden section)
+    const double w = std::min(0.5, (best + 1e-6) / std::max(len, 1e-12));
+    double lo = std::max(0.0, f0 - w), hi = std::min(1.0, f0 + w);
+    const double g = 0.6180339887498949;
+    double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+    double d1 = (p - b.point_at(x1)).norm(), d2 = (p - b.point_at(x2)).norm();
+    for (int it = 0; it < 40; ++it) {
+      if (d1 < d2) {
+        hi = x2; x2 = x1; d2 = d1; x1 = hi - g * (hi - lo); d1 = (p - b.point_at(x1)).norm();
+      } else {
+        lo = x1; x1 = x2; d1 = d2; x2 = lo + g * (hi - lo); d2 = (p - b.point_at(x2)).norm();
+      }
+    }
+    best = std::min({best, d1, d2, (p - b.point_at(f0)).norm()});
+  }
+  return best;
+}
+}  // namespace
+
+void measure_samples(const Points3& x, double ts, TrajectoryStats& st) {
+  const Eigen::Index n = x.rows();
+  st.axis_velocity.setZero();
+  st.axis_acceleration.setZero();
+  st.axis_jerk.setZero();
+  for (Eigen::Index k = 0; k + 1 < n; ++k) {
+    const Vec3 v = (x.row(k + 1) - x.row(k)).transpose() / ts;
+    st.axis_velocity = st.axis_velocity.cwiseMax(v.cwiseAbs());
+    if (k + 2 < n) {
+      const Vec3 a = (x.row(k + 2) - 2.0 * x.row(k + 1) + x.row(k)).transpose() / (ts * ts);
+      st.axis_acceleration = st.axis_acceleration.cwiseMax(a.cwiseAbs());
+    }
+    if (k + 3 < n) {
+      const Vec3 j = (x.row(k + 3) - 3.0 * x.row(k + 2) + 3.0 * x.row(k + 1) - x.row(k)).transpose() / (ts * ts * ts);
+      st.axis_jerk = st.axis_jerk.cwiseMax(j.cwiseAbs());
+    }
+  }
+  st.max_axis_velocity = st.axis_velocity.maxCoeff();
+  st.max_axis_acceleration = st.axis_acceleration.maxCoeff();
+  st.max_axis_jerk = st.axis_jerk.maxCoeff();
+}
+
+Trajectory plan(const std::vector<toolpath::Block>& blocks, const AxisLimits& limits, const PlanOptions& options,
+                bool with_deviation) {
+  Planner planner(limits, options);
+  // validate first so that the error names the block
+  std::vector<long> index;  // input index of every block the planner accepts (zero-length skipped)
+  index.reserve(blocks.size());
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    try {
+      blocks[i].validate();
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("blocks[" + std::to_string(i) + "]: " + e.what());
+    }
+    if (blocks[i].length() > 1e-9) index.push_back(static_cast<long>(i));
+  }
+  NETSHAPE_CHECK(!index.empty(), "blocks", blocks.size(), "must contain at least one block that moves");
+
+  std::vector<double> t, feed;
+  std::vector<Vec3> pos, vel;
+  std::vector<int> blk;
+  std::size_t next_block = 0;
+  Sample s;
+  for (;;) {
+    const Status st = planner.next(s);
+    if (st == Status::ok) {
+      t.push_back(s.t);
+      pos.push_back(s.position);
+      vel.push_back(s.velocity);
+      feed.push_back(s.feed);
+      blk.push_back(s.block >= 0 ? static_cast<int>(index[static_cast<std::size_t>(s.block)]) : -1);
+      continue;
+    }
+    if (st == Status::finished) break;
+    if (st != Status::need_blocks) throw Error(std::string("motion planner: ") + planner.last_error());
+    if (next_block >= index.size()) {
+      planner.finish();
+      continue;
+    }
+    bool pushed = false;
+    while (next_block < index.size()) {
+      const Status ps = planner.push(blocks[static_cast<std::size_t>(index[next_block])]);
+      if (ps == Status::buffer_full) break;
+      if (ps == Status::invalid_input)
+        throw std::invalid_argument("blocks[" + std::to_string(index[next_block]) + "]: " + planner.last_error());
+      ++next_block;
+      pushed = true;
+    }
+    if (next_block >= index.size()) planner.finish();
+    else if (!pushed) throw Error("motion planner stalled: the look-ahead buffer is too small for this program");
+  }
+
+  Trajectory tr;
+  const Eigen::Index n = static_cast<Eigen::Index>(t.size());
+  tr.t.resize(n);
+  tr.feed.resize(n);
+  tr.position.resize(n, 3);
+  tr.velocity.resize(n, 3);
+  tr.block.resize(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    tr.t[k] = t[static_cast<std::size_t>(k)];
+    tr.feed[k] = feed[static_cast<std::size_t>(k)];
+    tr.position.row(k) = pos[static_cast<std::size_t>(k)].transpose();
+    tr.velocity.row(k) = vel[static_cast<std::size_t>(k)].transpose();
+    tr.block[k] = blk[static_cast<std::size_t>(k)];
+  }
+  TrajectoryStats& st = tr.stats;
+  st.blocks = static_cast<long>(index.size());
+  st.samples = static_cast<long>(n);
+  st.cycle_time = planner.end_time();
+  measure_samples(tr.position, options.ts2, st);
+  const Vec3 end = blocks[static_cast<std::size_t>(index.back())].end;
+  st.end_error = n > 0 ? (tr.position.row(n - 1).transpose() - end).norm() : 0.0;
+  if (with_deviation) {
+    double dev = 0;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const int b = tr.block[k];
+      if (b < 0) continue;
+      const Vec3 p = tr.position.row(k).transpose();
+      double d = distance_to_block(p, blocks[static_cast<std::size_t>(b)]);
+      // a blend sample belongs to the corner between this block and the next moving one
+      if (d > 1e-9) {
+        const auto it = std::upper_bound(index.begin(), index.end(), static_cast<long>(b));
+        if (it != index.end()) d = std::min(d, distance_to_block(p, blocks[static_cast<std::size_t>(*it)]));
+      }
+      dev = std::max(dev, d);
+    }
+    st.max_path_deviation = dev;
+  }
+  return tr;
+}
+
+}  // namespace netshape::motion

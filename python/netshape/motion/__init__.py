@@ -1,0 +1,165 @@
+"""netshape.motion — look-ahead feedrate planning and 2-step interpolation (seeds/002, DESIGN §4.8).
+
+Batch use::
+
+    import netshape.motion as nm
+    traj = nm.plan(blocks_or_points, nm.AxisLimits.uniform(250, 3000), rule="blend", tolerance=0.01)
+    traj.t, traj.position, traj.velocity, traj.feed, traj.stats
+
+Streaming use (controllers) is the C++ ``netshape::motion::Planner``; it is bound as
+:class:`Planner` for experiments. Units: mm, s; feeds mm/s.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .._core import motion as _m
+
+AxisLimits = _m.AxisLimits
+PlanOptions = _m.PlanOptions
+CornerRule = _m.CornerRule
+Planner = _m.Planner
+Sample = _m.Sample
+Status = _m.Status
+rule_name = _m.rule_name
+parse_rule = _m.parse_rule
+turn_angle = _m.turn_angle
+paper_corner_speed = _m.paper_corner_speed
+vector_corner_speed = _m.vector_corner_speed
+per_axis_corner_speed = _m.per_axis_corner_speed
+junction_deviation_speed = _m.junction_deviation_speed
+klipper_junction_deviation = _m.klipper_junction_deviation
+reach_speed = _m.reach_speed
+
+RULES = ("paper", "vector", "per-axis", "junction-deviation", "blend")
+
+__all__ = [
+    "AxisLimits", "PlanOptions", "CornerRule", "Planner", "Sample", "Status", "Trajectory", "plan",
+    "make_options", "path_points", "blocks_to_arrays", "polyline_arrays", "rule_name", "parse_rule", "turn_angle",
+    "paper_corner_speed", "vector_corner_speed", "per_axis_corner_speed", "junction_deviation_speed",
+    "klipper_junction_deviation", "reach_speed", "RULES",
+]
+
+
+@dataclass
+class Trajectory:
+    """Fine samples of a planned program.
+
+    t : (n,) float64 [s]; position, velocity : (n, 3) float64 [mm], [mm/s]; feed : (n,) path speed
+    [mm/s]; block : (n,) int index of the program block; stats : dict of figures (cycle_time_s,
+    max_axis_velocity_mm_s, max_axis_accel_mm_s2, max_axis_jerk_mm_s3, max_path_deviation_mm, ...).
+    """
+
+    t: np.ndarray
+    position: np.ndarray
+    velocity: np.ndarray
+    feed: np.ndarray
+    block: np.ndarray
+    stats: dict = field(default_factory=dict)
+
+    def to_dict(self) -> dict:
+        return dict(self.stats)
+
+
+def make_options(rule: str | CornerRule = "vector", *, ts1: float = 1e-3, ts2: float = 1e-4,
+                 lookahead: int = 64, tolerance: float = 0.01,
+                 allowable_speed_difference: float = 100.0 / 60.0,
+                 junction_deviation: float = 0.0, square_corner_velocity: float = 5.0,
+                 centripetal_fraction: float = 0.8) -> PlanOptions:
+    """PlanOptions from keywords (periods [s], tolerance [mm], speeds [mm/s]); validated."""
+    o = PlanOptions()
+    o.rule = rule if isinstance(rule, CornerRule) else parse_rule(str(rule))
+    o.ts1, o.ts2, o.lookahead = float(ts1), float(ts2), int(lookahead)
+    o.tolerance = float(tolerance)
+    o.allowable_speed_difference = float(allowable_speed_difference)
+    o.junction_deviation = float(junction_deviation)
+    o.square_corner_velocity = float(square_corner_velocity)
+    o.centripetal_fraction = float(centripetal_fraction)
+    o.validate()
+    return o
+
+
+def polyline_arrays(points, feed) -> dict:
+    """Block arrays for a polyline through (n, 3) points [mm] at feed [mm/s] (scalar or (n-1,))."""
+    p = np.ascontiguousarray(points, dtype=np.float64)
+    if p.ndim != 2 or p.shape[1] != 3 or len(p) < 2:
+        raise ValueError(f"points.shape = {p.shape}: must be (n, 3) with n >= 2")
+    m = len(p) - 1
+    f = np.broadcast_to(np.asarray(feed, dtype=np.float64), (m,)).copy()
+    return dict(kind=np.ones(m, np.int32), start=p[:-1].copy(), end=p[1:].copy(), center=np.zeros((m, 3)),
+                clockwise=np.zeros(m, np.int32), plane=np.zeros(m, np.int32), turns=np.ones(m, np.int32), feed=f)
+
+
+def _enum_int(v) -> int:
+    return int(getattr(v, "value", v))
+
+
+def blocks_to_arrays(blocks) -> dict:
+    """Block arrays from a toolpath (anything with `.blocks`) or a sequence of blocks with the
+    attributes of netshape.toolpath.Block (kind, start, end, center, clockwise, plane, turns, feed)."""
+    blocks = list(getattr(blocks, "blocks", blocks))
+    n = len(blocks)
+    if n == 0:
+        raise ValueError("blocks = []: the program has no motion blocks")
+    out = dict(kind=np.empty(n, np.int32), start=np.empty((n, 3)), end=np.empty((n, 3)), center=np.empty((n, 3)),
+               clockwise=np.empty(n, np.int32), plane=np.empty(n, np.int32), turns=np.empty(n, np.int32),
+               feed=np.empty(n))
+    for i, b in enumerate(blocks):
+        out["kind"][i] = _enum_int(b.kind)
+        out["start"][i] = b.start
+        out["end"][i] = b.end
+        out["center"][i] = getattr(b, "center", (0.0, 0.0, 0.0))
+        out["clockwise"][i] = int(bool(getattr(b, "clockwise", False)))
+        out["plane"][i] = _enum_int(getattr(b, "plane", 0))
+        out["turns"][i] = int(getattr(b, "turns", 1))
+        out["feed"][i] = float(b.feed)
+    return out
+
+
+def _arrays(program, feed):
+    if isinstance(program, dict):
+        return program
+    if isinstance(program, np.ndarray) or (isinstance(program, (list, tuple)) and program
+                                           and not hasattr(program[0], "kind")):
+        if feed is None:
+            raise ValueError("feed = None: a polyline needs a feed [mm/s]")
+        return polyline_arrays(program, feed)
+    return blocks_to_arrays(program)
+
+
+def _call_args(arr):
+    return (np.ascontiguousarray(arr["kind"], np.int32), np.ascontiguousarray(arr["start"], np.float64),
+            np.ascontiguousarray(arr["end"], np.float64), np.ascontiguousarray(arr["center"], np.float64),
+            np.ascontiguousarray(arr["clockwise"], np.int32), np.ascontiguousarray(arr["plane"], np.int32),
+            np.ascontiguousarray(arr["turns"], np.int32), np.ascontiguousarray(arr["feed"], np.float64))
+
+
+def path_points(program, limits: AxisLimits, options: PlanOptions, ds: float, *, feed=None):
+    """The path the planner runs (blend rule: with its corner blends), sampled every `ds` [mm] of arc
+    length: (m, 3) points [mm], (m,) arc lengths [mm], and the planned cycle time [s]."""
+    pts, s, t = _m._path_points(*_call_args(_arrays(program, feed)), limits, options, float(ds))
+    return np.asarray(pts), np.asarray(s), float(t)
+
+
+def plan(program, limits: AxisLimits, options: PlanOptions | None = None, *, feed=None,
+         with_deviation: bool = True, **option_keywords) -> Trajectory:
+    """Plan and interpolate a program.
+
+    program : a toolpath / sequence of blocks, a dict of block arrays, or (n, 3) points of a polyline
+        (then `feed` [mm/s] is required).
+    limits : AxisLimits. options : PlanOptions, or keywords of :func:`make_options`.
+    Returns a :class:`Trajectory` whose samples are at options.ts2 and end at the program end point.
+    """
+    if options is None:
+        options = make_options(**option_keywords)
+    elif option_keywords:
+        raise ValueError(f"options given twice: {sorted(option_keywords)}")
+    t, pos, vel, fd, blk, stats = _m._plan_arrays(*_call_args(_arrays(program, feed)), limits, options,
+                                                  with_deviation)
+    stats = dict(stats)
+    stats["rule"] = rule_name(options.rule)
+    stats["ts1_s"], stats["ts2_s"], stats["lookahead"] = options.ts1, options.ts2, options.lookahead
+    return Trajectory(np.asarray(t), np.asarray(pos), np.asarray(vel), np.asarray(fd), np.asarray(blk), stats)

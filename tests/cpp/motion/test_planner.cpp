@@ -1,0 +1,147 @@
+// netshape::motion: corner rules, profiles, the streaming planner and the seeds/002 square test.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "netshape/motion.hpp"
+
+using namespace netshape;
+using namespace netshape::motion;
+
+namespace {
+toolpath::Block line(const Vec3& a, const Vec3& b, double feed) {
+  toolpath::Block blk;
+  blk.kind = toolpath::MotionKind::line;
+  blk.start = a;
+  blk.end = b;
+  blk.feed = feed;
+  return blk;
+}
+std::vector<toolpath::Block> square(double feed) {
+  const Vec3 p[5] = {{0, 0, 0}, {20, 0, 0}, {20, 20, 0}, {0, 20, 0}, {0, 0, 0}};
+  std::vector<toolpath::Block> out;
+  for (int i = 0; i < 4; ++i) out.push_back(line(p[i], p[i + 1], feed));
+  return out;
+}
+}  // namespace
+
+TEST_CASE("eq. 3 and 5: reach speed is sqrt(v^2 + 2 a L) for trapezoids") {
+  CHECK(reach_speed(0.0, 20.0, 450.0, INFINITY) == doctest::Approx(std::sqrt(2 * 450.0 * 20.0)));
+  CHECK(reach_speed(10.0, 1.0, 100.0, INFINITY) == doctest::Approx(std::sqrt(100.0 + 200.0)));
+  // S-curves need more room: slower than the trapezoid, faster than the start
+  const double s = reach_speed(0.0, 1.0, 1000.0, 1e5);
+  CHECK(s < std::sqrt(2000.0));
+  CHECK(s > 0.0);
+  CHECK(ramp_distance(0.0, s, 1000.0, 1e5) == doctest::Approx(1.0).epsilon(1e-6));
+}
+
+TEST_CASE("corner rules: eq. 4 against the velocity-jump bound (issue's 23x at 5 degrees)") {
+  const double th = deg2rad(5.0);
+  const Vec3 u1(1, 0, 0), u2(std::cos(th), std::sin(th), 0);
+  CHECK(turn_angle(u1, u2) == doctest::Approx(th));
+  const double paper = paper_corner_speed(1000.0, 1e-3, th);
+  const double vec = vector_corner_speed(u1, u2, 1000.0, 1e-3);
+  CHECK(paper / vec == doctest::Approx(2 * std::sin(th / 2) / (1 - std::cos(th))).epsilon(1e-9));
+  CHECK(paper / vec == doctest::Approx(22.9).epsilon(0.01));
+  // per-axis is never below the vector rule with equal limits
+  CHECK(per_axis_corner_speed(u1, u2, Vec3::Constant(1000.0), 1e-3) >= vec);
+  // Klipper: a 90° corner runs at the square corner velocity
+  const double d = klipper_junction_deviation(5.0, 3000.0);
+  CHECK(junction_deviation_speed(3000.0, d, pi / 2) == doctest::Approx(5.0));
+}
+
+TEST_CASE("seeds/002 Fig. 12: four 20 mm blocks at right angles, corner feed = allowable difference") {
+  PlanOptions o;
+  o.rule = CornerRule::paper;
+  o.ts1 = 4e-4;
+  o.ts2 = 1e-4;
+  o.allowable_speed_difference = 100.0 / 60.0;
+  const auto tr = plan(square(5000.0 / 60.0), AxisLimits::uniform(5000.0 / 60.0, 450.0), o);
+  // at each corner the feed falls to 100 mm/min
+  for (const Vec3 c : {Vec3(20, 0, 0), Vec3(20, 20, 0), Vec3(0, 20, 0)}) {
+    Eigen::Index k;
+    (tr.position.rowwise() - c.transpose()).rowwise().norm().minCoeff(&k);
+    CHECK(tr.feed[k] * 60.0 == doctest::Approx(100.0).epsilon(0.01));
+  }
+  CHECK(tr.feed.maxCoeff() == doctest::Approx(5000.0 / 60.0));
+  CHECK(tr.stats.end_error == doctest::Approx(0.0));
+}
+
+TEST_CASE("streaming: push/next never throws, reports buffer_full and need_blocks, ends at the end point") {
+  PlanOptions o;
+  o.rule = CornerRule::vector;
+  o.lookahead = 2;
+  Planner p(AxisLimits::uniform(100, 1000), o);
+  std::vector<toolpath::Block> blocks;
+  for (int r = 0; r < 3; ++r)
+    for (const auto& b : square(50.0)) blocks.push_back(b);  // 12 blocks through a buffer of ~5
+  std::size_t i = 0;
+  Sample s;
+  int full = 0, need = 0;
+  long n = 0;
+  for (;;) {
+    const Status st = p.next(s);
+    if (st == Status::ok) {
+      ++n;
+      continue;
+    }
+    if (st == Status::finished) break;
+    REQUIRE(st == Status::need_blocks);
+    ++need;
+    for (;;) {
+      if (i == blocks.size()) {
+        p.finish();
+        break;
+      }
+      const Status ps = p.push(blocks[i]);
+      if (ps == Status::buffer_full) {
+        ++full;
+        break;
+      }
+      REQUIRE(ps == Status::ok);
+      ++i;
+    }
+  }
+  CHECK(full > 0);
+  CHECK(need > 0);
+  CHECK((s.position - Vec3::Zero()).norm() < 1e-12);
+  CHECK(p.end_time() > 0);
+  toolpath::Block bad = line(Vec3(0, 0, 0), Vec3(NAN, 0, 0), 10);
+  Planner q(AxisLimits::uniform(100, 1000), o);
+  CHECK(q.push(bad) == Status::invalid_input);
+}
+
+TEST_CASE("vector, per-axis and blend rules respect axis limits by finite differences") {
+  for (CornerRule r : {CornerRule::vector, CornerRule::per_axis, CornerRule::blend}) {
+    PlanOptions o;
+    o.rule = r;
+    AxisLimits lim;
+    lim.velocity = Vec3(100, 80, 50);
+    lim.acceleration = Vec3(2000, 1500, 1000);
+    std::vector<toolpath::Block> b;
+    Vec3 p(0, 0, 0);
+    for (int i = 0; i < 30; ++i) {
+      const Vec3 q = p + Vec3(std::cos(1.3 * i) * (0.3 + 0.1 * (i % 7)), std::sin(2.1 * i) * 0.5, 0.05 * ((i % 3) - 1));
+      b.push_back(line(p, q, 200));
+      p = q;
+    }
+    const auto tr = plan(b, lim, o);
+    for (int i = 0; i < 3; ++i) {
+      CHECK(tr.stats.axis_velocity[i] <= lim.velocity[i] * (1 + 1e-6));
+      CHECK(tr.stats.axis_acceleration[i] <= lim.acceleration[i] * (1 + 1e-3));
+    }
+    CHECK(tr.stats.end_error < 1e-12);
+    CHECK(tr.stats.max_path_deviation <= o.tolerance * (1 + 1e-6));
+  }
+}
+
+TEST_CASE("bad options and limits throw invalid_argument naming the field") {
+  PlanOptions o;
+  o.ts1 = 1.5e-4;  // not a multiple of ts2 = 1e-4
+  CHECK_THROWS_AS(o.validate(), std::invalid_argument);
+  AxisLimits l = AxisLimits::uniform(-1, 100);
+  CHECK_THROWS_WITH_AS(l.validate(), doctest::Contains("limits.velocity.x"), std::invalid_argument);
+  CHECK_THROWS_AS(parse_rule("fast"), std::invalid_argument);
+  CHECK(parse_rule("per_axis") == CornerRule::per_axis);
+}

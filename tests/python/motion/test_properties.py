@@ -1,0 +1,105 @@
+"""Done-when properties of the motion planner (issue 6).
+
+Feasible-by-construction rules (vector, per-axis, blend): every axis' velocity and acceleration,
+measured by finite differences of the samples at ts2, stays within its limit; tolerance: 1e-6
+relative on velocity and 0.5 % on acceleration (the second difference of a path sampled across a
+corner window or a curvature change differs from the continuous acceleration by O(ts2)). Jerk is
+checked for the blend rule with jerk limits on polylines (5 % tolerance on the third difference).
+Every rule: samples stay on the programmed path (1e-9 mm; blend: the tolerance ε) and end exactly at
+the program's end point.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import netshape.motion as nm
+from netshape import toolpath
+
+LIM = nm.AxisLimits([250.0, 200.0, 120.0], [3000.0, 2500.0, 1500.0])
+FEASIBLE = ("vector", "per-axis", "blend")
+
+
+def _random_polyline(seed, n=40):
+    rng = np.random.default_rng(seed)
+    steps = rng.normal(size=(n, 3)) * rng.uniform(0.05, 4.0, size=(n, 1))
+    steps[:, 2] *= 0.3
+    return np.vstack([np.zeros(3), np.cumsum(steps, axis=0)])
+
+
+def _check(tr, lim, rule, tol=0.01, jerk=False):
+    st = tr.stats
+    if rule in FEASIBLE:
+        assert np.all(np.array(st["axis_velocity_mm_s"]) <= np.asarray(lim.velocity) * (1 + 1e-6))
+        assert np.all(np.array(st["axis_accel_mm_s2"]) <= np.asarray(lim.acceleration) * 1.005)
+        if jerk:
+            assert np.all(np.array(st["axis_jerk_mm_s3"]) <= np.asarray(lim.jerk) * 1.05)
+    assert st["max_path_deviation_mm"] <= (tol * (1 + 1e-9) if rule == "blend" else 1e-9)
+    assert st["end_error_mm"] == 0.0
+    for key in ("cycle_time_s", "max_axis_velocity_mm_s", "max_axis_accel_mm_s2", "max_axis_jerk_mm_s3",
+                "max_path_deviation_mm", "blocks"):
+        assert key in st
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+@pytest.mark.parametrize("rule", nm.RULES)
+def test_random_polylines(seed, rule):
+    pts = _random_polyline(seed)
+    tr = nm.plan(pts, LIM, feed=400.0, rule=rule, ts1=1e-3, ts2=1e-4, lookahead=16)
+    _check(tr, LIM, rule)
+    np.testing.assert_array_equal(tr.position[-1], pts[-1])
+
+
+@pytest.mark.parametrize("seed", [3, 4])
+def test_blend_with_jerk_limit(seed):
+    lim = nm.AxisLimits([250.0, 200.0, 120.0], [3000.0, 2500.0, 1500.0], [2e6, 2e6, 1e6])
+    pts = _random_polyline(seed, n=12) * 3.0
+    tr = nm.plan(pts, lim, feed=200.0, rule="blend", tolerance=0.05, ts1=1e-3, ts2=1e-4)
+    _check(tr, lim, "blend", tol=0.05, jerk=True)
+
+
+def test_jerk_limited_profile_on_a_line_is_smooth():
+    lim = nm.AxisLimits.uniform(100.0, 1000.0, 2e4)
+    tr = nm.plan(np.array([[0, 0, 0], [30, 0, 0]], float), lim, feed=100.0, rule="vector")
+    assert tr.stats["max_axis_jerk_mm_s3"] <= 2e4 * 1.01
+    assert tr.stats["max_axis_accel_mm_s2"] <= 1000.0 * 1.001
+    trap = nm.plan(np.array([[0, 0, 0], [30, 0, 0]], float), nm.AxisLimits.uniform(100.0, 1000.0),
+                   feed=100.0, rule="vector")
+    assert tr.stats["cycle_time_s"] > trap.stats["cycle_time_s"]
+
+
+def test_arcs_planned_as_arcs_centripetal_limit():
+    """A full circle r = 5 mm at F far above the limit: the speed on the arc is √(c·A·r) (c = 0.8)."""
+    r, a = 5.0, 1000.0
+    arr = dict(kind=np.array([2]), start=np.array([[r, 0, 0.0]]), end=np.array([[r, 0, 0.0]]),
+               center=np.zeros((1, 3)), clockwise=np.array([0]), plane=np.array([0]), turns=np.array([2]),
+               feed=np.array([500.0]))
+    lim = nm.AxisLimits.uniform(500.0, a)
+    for rule in nm.RULES:
+        tr = nm.plan(arr, lim, rule=rule)
+        assert tr.feed.max() == pytest.approx(np.sqrt(0.8 * a * r), rel=1e-9)
+        _check(tr, lim, rule)
+
+
+def _shared_program(shared_data, name, n, feed_scale=1.0):
+    path = shared_data / "gcode" / name
+    if not path.exists():
+        pytest.skip(f"{path} is absent")
+    arr = {k: np.asarray(v) for k, v in toolpath.read_gcode_arrays(path).items()}
+    moving = np.flatnonzero(arr["kind"] != 0)
+    first = moving[0]
+    sl = slice(first, first + n)
+    out = {k: v[sl] for k, v in arr.items()}
+    out["feed"] = out["feed"] * feed_scale
+    return out
+
+
+@pytest.mark.parametrize("rule", nm.RULES)
+@pytest.mark.parametrize("name,n,scale", [("3D_Chips.ngc", 400, 1.0), ("arcspiral.ngc", 60, 100.0),
+                                          ("tort.ngc", 80, 100.0)])
+def test_shared_programs(shared_data, rule, name, n, scale):
+    arr = _shared_program(shared_data, name, n, scale)
+    tr = nm.plan(arr, LIM, rule=rule, ts1=1e-3, ts2=1e-4, lookahead=32)
+    _check(tr, LIM, rule)
+    np.testing.assert_allclose(tr.position[-1], arr["end"][-1], rtol=0, atol=0)
