@@ -115,28 +115,31 @@ void ball_end_forces(const BallEndModel& model, BallEndWorkspace& ws, const Eige
   const double ap = model.axial_depth * (1.0 + 1e-12);
   const int N = ws.flutes_;
   const int bins = map ? map->bins() : 0;
+  const bool tilted = model.inclination != 0.0;
   for (Eigen::Index a = 0; a < angles.size(); ++a) {
     double fx = 0.0, fy = 0.0;
     for (int i = 0; i < rows; ++i) {
       const double r = ws.r_[i], zc = ws.z_[i] - R;
       for (int j = 0; j < N; ++j) {
         const double ph = wrap(angles[a] + j * two_pi / N - kb * ws.z_[i]);
-        bool in;
-        if (map) {
-          int b = static_cast<int>(ph * bins / two_pi);
-          b = b >= bins ? bins - 1 : b;
-          in = map->mask(i, b) != 0;
-        } else {
-          double u = ph - st;
-          u = u < 0.0 ? u + two_pi : u;
-          in = u <= span;
-        }
-        if (!in) continue;
         const double sp = std::sin(ph), cp = std::cos(ph);
         const double X = r * sp, Y = r * cp;
         const double Xp = X * cx + zc * sx;          // along the inclined feed
         const double Zp = -X * sx + zc * cx;         // along the inclined axis, from the ball centre
         if (Xp <= 0.0 || Zp + R > ap) continue;      // behind the cutter or above the cut
+        bool in;
+        if (map) {  // material map in the cutter plane: tool-frame immersion
+          int b = static_cast<int>(ph * bins / two_pi);
+          b = b >= bins ? bins - 1 : b;
+          in = map->mask(i, b) != 0;
+        } else {  // window on the immersion in the inclined (AA) plane, eq. 4 (= φ when ξ = 0)
+          double az = tilted ? std::atan2(Xp, Y) : ph;
+          az = az < 0.0 ? az + two_pi : az;
+          double u = az - st;
+          u = u < 0.0 ? u + two_pi : u;
+          in = u <= span;
+        }
+        if (!in) continue;
         const double rho = std::sqrt(Xp * Xp + Y * Y);  // R cos φ'
         const double t = f * Xp / rho;                  // chip f sin ϕ [mm]
         if (t <= 0.0) continue;

@@ -30,7 +30,8 @@ struct BallEndModel {
   double axial_depth = 3.0;            ///< a_p [mm], measured from the tip along the feed-normal axis
   double feed_per_tooth = 0.05;        ///< f [mm/tooth]
   double inclination = 0.0;            ///< ramp angle ξ [rad], in (−80°, 80°); > 0 climbs
-  AngularEngagement engagement{};      ///< window on the tool-frame immersion (ignored with a map)
+  AngularEngagement engagement{};      ///< window on the immersion ϕ in the inclined plane (eq. 4;
+                                       ///< = tool-frame φ for ξ = 0); ignored with a map
   BallEndCoefficients coefficients{};
   double element_angle = 0.0174532925199432957;  ///< target Δψ [rad] (default 1°)
   double disk_height = 0.05;           ///< target dz of the cylindrical part [mm]
