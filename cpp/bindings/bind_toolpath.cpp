@@ -1,8 +1,262 @@
-// Bindings of the `toolpath` area (netshape._core.toolpath). Thin: lambdas only turn out-parameters into returns.
+// Bindings of the `toolpath` area (netshape._core.toolpath). Thin: lambdas only turn out-parameters
+// into returns and move C++ vectors into NumPy arrays without copies.
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
 #include "default_types.hpp"
+#include "netshape/toolpath/gcode_reader.hpp"
+#include "netshape/toolpath/gcode_writer.hpp"
 
 namespace py = pybind11;
+using namespace netshape;
+using namespace netshape::toolpath;
+
+namespace {
+
+// Hand a std::vector's storage to NumPy (no copy): the capsule owns the vector.
+template <class T>
+py::array to_numpy(std::vector<T>&& v, std::vector<py::ssize_t> shape) {
+  auto* owner = new std::vector<T>(std::move(v));
+  py::capsule cap(owner, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>(shape, owner->data(), cap);
+}
+
+std::string vec_str(const Vec3& v) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "(%.6g, %.6g, %.6g)", v[0], v[1], v[2]);
+  return buf;
+}
+
+const char* kind_name(MotionKind k) {
+  switch (k) {
+    case MotionKind::rapid: return "rapid";
+    case MotionKind::line: return "line";
+    case MotionKind::arc: return "arc";
+  }
+  return "?";
+}
+
+std::string block_repr(const Block& b) {
+  std::ostringstream os;
+  os << "Block(" << kind_name(b.kind) << ", start=" << vec_str(b.start) << ", end=" << vec_str(b.end);
+  if (b.kind == MotionKind::arc) {
+    os << ", center=" << vec_str(b.center) << (b.clockwise ? ", G2" : ", G3")
+       << (b.plane == Plane::xy ? " G17" : b.plane == Plane::zx ? " G18" : " G19");
+    if (b.turns != 1) os << ", turns=" << b.turns;
+  }
+  char buf[96];
+  std::snprintf(buf, sizeof buf, ", feed=%.6g mm/s, line=%ld)", b.feed, b.line);
+  os << buf;
+  return os.str();
+}
+
+py::dict summary_dict(const Summary& s) {
+  py::dict d;
+  d["blocks"] = s.blocks();
+  d["rapids"] = s.rapids;
+  d["lines"] = s.lines;
+  d["arcs"] = s.arcs;
+  d["rapid_length_mm"] = s.rapid_length;
+  d["feed_length_mm"] = s.feed_length;
+  d["bbox_min_mm"] = py::make_tuple(s.bbox_min[0], s.bbox_min[1], s.bbox_min[2]);
+  d["bbox_max_mm"] = py::make_tuple(s.bbox_max[0], s.bbox_max[1], s.bbox_max[2]);
+  d["feed_time_s"] = s.feed_time;
+  d["dwell_time_s"] = s.dwell_time;
+  d["dwells"] = s.dwells;
+  d["source_lines"] = s.source_lines;
+  return d;
+}
+
+// Read every block into column arrays (no per-block Python objects).
+py::dict read_arrays(GcodeReader& reader, bool split, double tol) {
+  std::vector<std::uint8_t> kind, cw, plane;
+  std::vector<double> start, end, center, feed, rpm;
+  std::vector<std::int32_t> tool, turns;
+  std::vector<std::int64_t> line;
+  std::vector<Block> pieces;
+  long n = 0;
+  {
+    py::gil_scoped_release nogil;
+    Block b;
+    auto push = [&](const Block& x) {
+      kind.push_back(static_cast<std::uint8_t>(x.kind));
+      for (int i = 0; i < 3; ++i) start.push_back(x.start[i]);
+      for (int i = 0; i < 3; ++i) end.push_back(x.end[i]);
+      for (int i = 0; i < 3; ++i) center.push_back(x.center[i]);
+      cw.push_back(x.clockwise ? 1 : 0);
+      plane.push_back(static_cast<std::uint8_t>(x.plane));
+      turns.push_back(x.turns);
+      feed.push_back(x.feed);
+      rpm.push_back(x.spindle_rpm);
+      tool.push_back(x.tool);
+      line.push_back(x.line);
+      ++n;
+    };
+    while (reader.next(b)) {
+      if (split && b.kind == MotionKind::arc) {
+        pieces.clear();
+        split_block(b, tol, pieces);
+        for (const Block& p : pieces) push(p);
+      } else {
+        push(b);
+      }
+    }
+  }
+  py::dict d;
+  const py::ssize_t m = n;
+  d["kind"] = to_numpy(std::move(kind), {m});
+  d["start"] = to_numpy(std::move(start), {m, 3});
+  d["end"] = to_numpy(std::move(end), {m, 3});
+  d["center"] = to_numpy(std::move(center), {m, 3});
+  d["clockwise"] = to_numpy(std::move(cw), {m}).attr("astype")("bool");
+  d["plane"] = to_numpy(std::move(plane), {m});
+  d["turns"] = to_numpy(std::move(turns), {m});
+  d["feed"] = to_numpy(std::move(feed), {m});
+  d["spindle_rpm"] = to_numpy(std::move(rpm), {m});
+  d["tool"] = to_numpy(std::move(tool), {m});
+  d["line"] = to_numpy(std::move(line), {m});
+  return d;
+}
+
+}  // namespace
 
 void bind_toolpath(py::module_& m) {
-  (void)m;
+  m.doc() = "Motion blocks, the RS274/NGC reader and writer (C++ netshape::toolpath).";
+
+  py::enum_<MotionKind>(m, "MotionKind", "Kind of motion block (values are the `kind` array codes).")
+      .value("rapid", MotionKind::rapid)
+      .value("line", MotionKind::line)
+      .value("arc", MotionKind::arc);
+  py::enum_<Plane>(m, "Plane", "Arc plane: xy (G17), zx (G18), yz (G19).")
+      .value("xy", Plane::xy)
+      .value("zx", Plane::zx)
+      .value("yz", Plane::yz);
+
+  py::class_<Block>(m, "Block", "One motion block in program coordinates [mm]; feed in mm/s.")
+      .def(py::init<>())
+      .def_readwrite("kind", &Block::kind)
+      .def_readwrite("start", &Block::start, "start point [mm], shape (3,)")
+      .def_readwrite("end", &Block::end, "end point [mm], shape (3,)")
+      .def_readwrite("center", &Block::center, "arc centre [mm], shape (3,)")
+      .def_readwrite("clockwise", &Block::clockwise, "arcs: G2 (True) or G3 (False)")
+      .def_readwrite("plane", &Block::plane)
+      .def_readwrite("turns", &Block::turns, "arcs: number of turns (P word)")
+      .def_readwrite("feed", &Block::feed, "programmed feed [mm/s]")
+      .def_readwrite("spindle_rpm", &Block::spindle_rpm, "spindle speed [rev/min]; negative for M4, 0 off")
+      .def_readwrite("tool", &Block::tool)
+      .def_readwrite("line", &Block::line, "1-based source line (0 = not from a file)")
+      .def("validate", &Block::validate)
+      .def("length", &Block::length, "path length [mm]")
+      .def("sweep", &Block::sweep, "signed sweep angle [rad] (negative clockwise)")
+      .def("radius", &Block::radius, "arc radius at the start [mm]")
+      .def("point_at", &Block::point_at, py::arg("s"), "point at fraction s in [0, 1] [mm]")
+      .def("tangent_at", &Block::tangent_at, py::arg("s"), "unit tangent at fraction s")
+      .def("curvature", &Block::curvature, "curvature [1/mm]")
+      .def("__repr__", &block_repr);
+
+  py::class_<Summary>(m, "Summary", "Whole-program figures: counts, lengths [mm], bounding box [mm], times [s].")
+      .def(py::init<>())
+      .def_readonly("rapids", &Summary::rapids)
+      .def_readonly("lines", &Summary::lines)
+      .def_readonly("arcs", &Summary::arcs)
+      .def_readonly("rapid_length", &Summary::rapid_length, "[mm]")
+      .def_readonly("feed_length", &Summary::feed_length, "[mm]")
+      .def_readonly("bbox_min", &Summary::bbox_min, "[mm], shape (3,)")
+      .def_readonly("bbox_max", &Summary::bbox_max, "[mm], shape (3,)")
+      .def_readonly("feed_time", &Summary::feed_time, "time of feed moves at programmed feed [s]")
+      .def_readonly("dwell_time", &Summary::dwell_time, "G4 dwell time [s]")
+      .def_readonly("dwells", &Summary::dwells)
+      .def_readonly("source_lines", &Summary::source_lines)
+      .def_property_readonly("blocks", &Summary::blocks)
+      .def("to_dict", &summary_dict, "Plain dict with unit-suffixed keys (JSON-ready).")
+      .def("__repr__", [](const Summary& s) {
+        char buf[400];
+        std::snprintf(buf, sizeof buf,
+                      "Summary(rapids=%ld, lines=%ld, arcs=%ld, rapid_length=%.6g mm, feed_length=%.6g mm, "
+                      "bbox_min=%s, bbox_max=%s, feed_time=%.6g s)",
+                      s.rapids, s.lines, s.arcs, s.rapid_length, s.feed_length, vec_str(s.bbox_min).c_str(),
+                      vec_str(s.bbox_max).c_str(), s.feed_time);
+        return std::string(buf);
+      });
+
+  py::class_<Toolpath>(m, "Toolpath", "A program: its motion blocks in order and the name of its source.")
+      .def(py::init<>())
+      .def_readwrite("blocks", &Toolpath::blocks, "list of Block (a copy on each access)")
+      .def_readwrite("source", &Toolpath::source)
+      .def_readwrite("dwell_time", &Toolpath::dwell_time, "G4 dwell time [s]")
+      .def_readwrite("dwells", &Toolpath::dwells)
+      .def("summary", &Toolpath::summary)
+      .def("split_arcs", &Toolpath::split_arcs, py::arg("chord_tolerance"),
+           "A copy with every arc replaced by chords within chord_tolerance [mm].")
+      .def("__len__", [](const Toolpath& t) { return t.blocks.size(); })
+      .def("__getitem__", [](const Toolpath& t, py::ssize_t i) {
+        const auto n = static_cast<py::ssize_t>(t.blocks.size());
+        if (i < 0) i += n;
+        if (i < 0 || i >= n) throw py::index_error("block index out of range");
+        return t.blocks[static_cast<std::size_t>(i)];
+      })
+      .def("__repr__", [](const Toolpath& t) {
+        return "Toolpath(" + std::to_string(t.blocks.size()) + " blocks, source='" + t.source + "')";
+      });
+
+  py::class_<GcodeReader>(m, "GcodeReader", "Streaming reader: iterate to get Blocks one at a time.")
+      .def_static("open", [](const std::string& path) { return GcodeReader::open(path); }, py::arg("path"))
+      .def_static("from_string", [](const std::string& text, const std::string& source) {
+        return GcodeReader::from_string(text, source);
+      }, py::arg("text"), py::arg("source") = "<string>")
+      .def("__iter__", [](GcodeReader& r) -> GcodeReader& { return r; })
+      .def("__next__", [](GcodeReader& r) {
+        Block b;
+        if (!r.next(b)) throw py::stop_iteration();
+        return b;
+      })
+      .def_property_readonly("lines_read", &GcodeReader::lines_read)
+      .def_property_readonly("source", &GcodeReader::source);
+
+  py::class_<WriterOptions>(m, "WriterOptions", "Options of the G-code writer.")
+      .def(py::init<>())
+      .def_readwrite("split_arcs", &WriterOptions::split_arcs)
+      .def_readwrite("chord_tolerance", &WriterOptions::chord_tolerance, "[mm]")
+      .def_readwrite("decimals", &WriterOptions::decimals, "-1: shortest exact form; else fixed decimals")
+      .def_readwrite("absolute_arc_centers", &WriterOptions::absolute_arc_centers)
+      .def_readwrite("header_comment", &WriterOptions::header_comment);
+
+  m.def("read_gcode", [](const std::string& path) {
+    py::gil_scoped_release nogil;
+    return read_gcode(path);
+  }, py::arg("path"));
+  m.def("parse_gcode", [](const std::string& text, const std::string& source) {
+    py::gil_scoped_release nogil;
+    return parse_gcode(text, source);
+  }, py::arg("text"), py::arg("source") = "<string>");
+  m.def("summarize_gcode", [](const std::string& path) {
+    py::gil_scoped_release nogil;
+    return summarize_gcode(path);
+  }, py::arg("path"));
+  m.def("summarize_gcode_text", [](const std::string& text, const std::string& source) {
+    py::gil_scoped_release nogil;
+    return summarize_gcode_text(text, source);
+  }, py::arg("text"), py::arg("source") = "<string>");
+  m.def("read_gcode_arrays", [](const std::string& path, bool split, double tol) {
+    GcodeReader r = GcodeReader::open(path);
+    return read_arrays(r, split, tol);
+  }, py::arg("path"), py::arg("split_arcs") = false, py::arg("chord_tolerance") = 0.002);
+  m.def("parse_gcode_arrays", [](const std::string& text, const std::string& source, bool split, double tol) {
+    GcodeReader r = GcodeReader::from_string(text, source);
+    return read_arrays(r, split, tol);
+  }, py::arg("text"), py::arg("source") = "<string>", py::arg("split_arcs") = false,
+     py::arg("chord_tolerance") = 0.002);
+  m.def("format_gcode", [](const Toolpath& t, const WriterOptions& o) {
+    std::ostringstream os;
+    write_gcode(t, os, o);
+    return os.str();
+  }, py::arg("toolpath"), py::arg("options") = WriterOptions{});
+  m.def("chord_count", &chord_count, py::arg("radius"), py::arg("sweep"), py::arg("tol"));
+  m.def("block_bounds", [](const Block& b) {
+    Vec3 lo, hi;
+    block_bounds(b, lo, hi);
+    return py::make_tuple(lo, hi);
+  }, py::arg("block"));
 }

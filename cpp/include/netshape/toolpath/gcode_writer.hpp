@@ -1,0 +1,32 @@
+#pragma once
+/// \file gcode_writer.hpp
+/// RS274/NGC writer: a Toolpath back to G-code (mm, absolute, modal). What it writes reads back
+/// (GcodeReader) into the same blocks: coordinates exactly (shortest round-trip number form), arc
+/// centres and feeds to a few units in the last place.
+
+#include <ostream>
+#include <string>
+
+#include "netshape/toolpath/toolpath.hpp"
+
+namespace netshape::toolpath {
+
+/// Options of the writer.
+struct WriterOptions {
+  bool split_arcs = false;         ///< write arcs as G1 chords instead of G2/G3
+  double chord_tolerance = 0.002;  ///< chord error when splitting arcs [mm]
+  int decimals = -1;               ///< -1: shortest form that reads back exactly; 0…12: fixed decimals
+  bool absolute_arc_centers = false;  ///< G90.1 absolute I/J/K (exact centres) instead of G91.1 offsets
+  std::string header_comment;      ///< written as a "( … )" comment on the first line when not empty
+  void validate() const;
+};
+
+/// Write `toolpath` as G-code to `out`: a "G21 G90 G17 G94 G91.1" header, one line per block with only
+/// the words that change (modal G, F in mm/min, S/M3/M4/M5, T…M6), and M2 at the end. A block whose
+/// start is not where the previous one ended is preceded by a G0 to its start. Dwells are not written.
+void write_gcode(const Toolpath& toolpath, std::ostream& out, const WriterOptions& options = {});
+
+/// The G-code text of `toolpath` (see write_gcode).
+std::string format_gcode(const Toolpath& toolpath, const WriterOptions& options = {});
+
+}  // namespace netshape::toolpath
