@@ -2,6 +2,9 @@
 // returns and supply keyword constructors.
 #include "default_types.hpp"
 #include "netshape/force.hpp"
+#include "netshape/stock/zmap.hpp"
+#include "netshape/toolpath/toolpath.hpp"
+#include "netshape/cutter/cutter.hpp"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -285,4 +288,38 @@ void bind_force(py::module_& m) {
       .def_readonly("rms_total", &nf::TimeSeriesFit::rms_total);
   m.def("fit_linear_edge_time_series", &nf::fit_linear_edge_time_series, "model"_a, "angles"_a, "forces"_a,
         "phase_steps"_a = 90, py::call_guard<py::gil_scoped_release>());
+
+  py::class_<nf::ProgramForceOptions>(m, "ProgramForceOptions", "Options of simulate_program (sizes [mm], angles [rad]).")
+      .def(py::init([](double step, int spr, int bins, double dz, double dpsi, double c, double rpm) {
+             return validated(nf::ProgramForceOptions{step, spr, bins, dz, dpsi, c, rpm});
+           }),
+           "step"_a = 0.5, "samples_per_revolution"_a = 72, "bins"_a = 360, "disk_height"_a = 0.1,
+           "element_angle"_a = 0.0349065850398866, "feed_per_tooth"_a = 0.0, "spindle_rpm"_a = 0.0)
+      .def_readwrite("step", &nf::ProgramForceOptions::step)
+      .def_readwrite("samples_per_revolution", &nf::ProgramForceOptions::samples_per_revolution)
+      .def_readwrite("bins", &nf::ProgramForceOptions::bins)
+      .def_readwrite("disk_height", &nf::ProgramForceOptions::disk_height)
+      .def_readwrite("element_angle", &nf::ProgramForceOptions::element_angle)
+      .def_readwrite("feed_per_tooth", &nf::ProgramForceOptions::feed_per_tooth)
+      .def_readwrite("spindle_rpm", &nf::ProgramForceOptions::spindle_rpm);
+  m.def(
+      "simulate_program_core",
+      [](netshape::stock::ZMap& stock, const netshape::cutter::Cutter& cutter,
+         const netshape::toolpath::Toolpath& program, const nf::LinearEdgeCoefficients* linear_edge,
+         const nf::BallEndCoefficients* ball_end, const nf::ProgramForceOptions& options) {
+        nf::ProgramCoefficients k;
+        if (linear_edge) k.linear_edge = *linear_edge;
+        if (ball_end) k.ball_end = *ball_end;
+        nf::ProgramForces r;
+        {
+          py::gil_scoped_release rel;
+          r = nf::simulate_program(stock, cutter, program, k, options);
+        }
+        return py::dict("positions"_a = r.positions, "block"_a = r.block, "feed_direction"_a = r.feed_direction,
+                        "mean"_a = r.mean, "peak"_a = r.peak, "peak_resultant"_a = r.peak_resultant,
+                        "mean_resultant"_a = r.mean_resultant, "engaged_fraction"_a = r.engaged_fraction,
+                        "removed_volume"_a = r.removed_volume);
+      },
+      "stock"_a, "cutter"_a, "program"_a, "linear_edge"_a = nullptr, "ball_end"_a = nullptr,
+      "options"_a = nf::ProgramForceOptions{});
 }

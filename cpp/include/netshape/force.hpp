@@ -6,3 +6,4 @@
 #include "netshape/force/ball_end_model.hpp"
 #include "netshape/force/force_summary.hpp"
 #include "netshape/force/calibration.hpp"
+#include "netshape/force/program.hpp"

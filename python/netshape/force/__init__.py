@@ -28,6 +28,7 @@ from netshape._core.force import (  # noqa: F401
     LinearEdgeCoefficientSet,
     LinearEdgeFit,
     MillingMode,
+    ProgramForceOptions,
     TimeSeriesFit,
     ball_end_coefficient_set,
     ball_end_coefficient_set_names,
@@ -60,6 +61,7 @@ from .dynoware import (  # noqa: F401
     DynoWareRecording,
     read_dynoware,
 )
+from .program import ProgramForceResult, simulate_program  # noqa: F401
 from .simulate import cutter_forces, parse_coefficients  # noqa: F401
 
 __all__ = [
@@ -80,6 +82,7 @@ __all__ = [
     "LinearEdgeCoefficientSet",
     "LinearEdgeFit",
     "MillingMode",
+    "ProgramForceOptions",
     "TimeSeriesFit",
     "ball_end_coefficient_set",
     "ball_end_coefficient_set_names",
@@ -100,6 +103,8 @@ __all__ = [
     "mean_force_matrix",
     "milling_mode_from_string",
     "parse_coefficients",
+    "ProgramForceResult",
+    "simulate_program",
     "read_dynoware",
     "recording_mean_force",
     "resultant",
