@@ -5,11 +5,98 @@
 
 #include "netshape/core/error.hpp"
 
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC optimize("O3")  // the element loop is the hot path: let GCC vectorise it
+#endif
+
 namespace netshape::force {
 
 namespace {
 constexpr double two_pi = 2.0 * pi;
 inline double wrap(double a) { return a - two_pi * std::floor(a / two_pi); }
+
+struct ElementArrays {
+  const double* off;
+  const double* co;
+  const double* so;
+  const int* disk;
+  double* gx;
+  double* gy;
+  double* gz;
+};
+struct LoopConstants {
+  int n;
+  double c, dz, st, span;
+  LinearEdgeCoefficients k;
+  double KT, KR;
+  const EngagementMap* map;
+  int bins;
+  double bin_scale;
+};
+
+/// The angle loop, specialised so that the element loop has no branches on the options and the
+/// compiler can vectorise it (selects instead of jumps).
+template <bool UseMap, bool KlineDevor>
+void angle_loop(const LoopConstants& L, const ElementArrays& A, const Eigen::Ref<const VectorXd>& angles,
+                Eigen::Ref<Points3> out) {
+  const double* __restrict off = A.off;
+  const double* __restrict co = A.co;
+  const double* __restrict so = A.so;
+  double* __restrict gx = A.gx;
+  double* __restrict gy = A.gy;
+  double* __restrict gz = A.gz;
+  const int n = L.n;
+  for (Eigen::Index a = 0; a < angles.size(); ++a) {
+    const double th = angles[a];
+    const double thw = wrap(th);
+    const double s0 = std::sin(th), c0 = std::cos(th);
+    for (int e = 0; e < n; ++e) {
+      double ph = thw + off[e];
+      ph -= two_pi * static_cast<double>(ph >= two_pi);
+      const double sp = s0 * co[e] + c0 * so[e];  // sin φ
+      const double cp = c0 * co[e] - s0 * so[e];  // cos φ
+      double w;
+      if constexpr (UseMap) {
+        int b = static_cast<int>(ph * L.bin_scale);
+        b = b >= L.bins ? L.bins - 1 : b;
+        w = L.map->mask(A.disk[e], b) ? L.dz : 0.0;
+      } else {
+        double u = ph - L.st;
+        u += two_pi * static_cast<double>(u < 0.0);
+        w = L.dz * static_cast<double>(u <= L.span);
+      }
+      if constexpr (!KlineDevor) {
+        double h = L.c * sp;  // chip thickness [mm]
+        h = h > 0.0 ? h : 0.0;
+        const double ft = (L.k.ktc * h + L.k.kte) * w;
+        const double fr = (L.k.krc * h + L.k.kre) * w;
+        gx[e] = -ft * cp - fr * sp;
+        gy[e] = ft * sp - fr * cp;
+        gz[e] = (L.k.kac * h + L.k.kae) * w;
+      } else {
+        // seeds/000 eq. 1-5 in its own angle α = π − φ: t_c = f sin α, dF_T = K_T t_c D_z,
+        // dF_R = K_R dF_T, Fx = Σ(−dF_R sin α + dF_T cos α), Fy = Σ(dF_R cos α + dF_T sin α).
+        const double sa = sp, ca = -cp;
+        double tc = L.c * sa;
+        tc = tc > 0.0 ? tc : 0.0;
+        const double dFT = L.KT * tc * w;
+        const double dFR = L.KR * dFT;
+        gx[e] = -dFR * sa + dFT * ca;
+        gy[e] = dFR * ca + dFT * sa;
+        gz[e] = 0.0;
+      }
+    }
+    double sx = 0.0, sy = 0.0, sz = 0.0;
+    for (int e = 0; e < n; ++e) {
+      sx += gx[e];
+      sy += gy[e];
+      sz += gz[e];
+    }
+    out(a, 0) = sx;
+    out(a, 1) = sy;
+    out(a, 2) = sz;
+  }
+}
 }  // namespace
 
 void FlatEndModel::validate() const {
@@ -105,54 +192,13 @@ void flat_end_forces(const FlatEndModel& model, FlatEndWorkspace& ws, const Eige
   const int bins = map ? map->bins() : 0;
   const double bin_scale = map ? bins / two_pi : 0.0;
 
-  const double* off = ws.off_.data();
-  const double* co = ws.cos_off_.data();
-  const double* so = ws.sin_off_.data();
-  double* gx = ws.gx_.data();
-  double* gy = ws.gy_.data();
-  double* gz = ws.gz_.data();
-
-  for (Eigen::Index a = 0; a < angles.size(); ++a) {
-    const double th = angles[a];
-    const double thw = wrap(th);
-    const double s0 = std::sin(th), c0 = std::cos(th);
-    for (int e = 0; e < n; ++e) {
-      double ph = thw + off[e];
-      ph = ph >= two_pi ? ph - two_pi : ph;
-      const double sp = s0 * co[e] + c0 * so[e];  // sin φ
-      const double cp = c0 * co[e] - s0 * so[e];  // cos φ
-      double w;
-      if (map) {
-        int b = static_cast<int>(ph * bin_scale);
-        b = b >= bins ? bins - 1 : b;
-        w = map->mask(ws.disk_of_[e], b) ? dz : 0.0;
-      } else {
-        double u = ph - st;
-        u = u < 0.0 ? u + two_pi : u;
-        w = u <= span ? dz : 0.0;
-      }
-      if (!kd) {
-        const double h = std::max(c * sp, 0.0);  // chip thickness [mm]
-        const double ft = (k.ktc * h + k.kte) * w;
-        const double fr = (k.krc * h + k.kre) * w;
-        gx[e] = -ft * cp - fr * sp;
-        gy[e] = ft * sp - fr * cp;
-        gz[e] = (k.kac * h + k.kae) * w;
-      } else {
-        // seeds/000 eq. 1-5 in its own angle α = π − φ: t_c = f sin α, dF_T = K_T t_c D_z,
-        // dF_R = K_R dF_T, Fx = Σ(−dF_R sin α + dF_T cos α), Fy = Σ(dF_R cos α + dF_T sin α).
-        const double sa = sp, ca = -cp;
-        const double tc = std::max(c * sa, 0.0);
-        const double dFT = KT * tc * w;
-        const double dFR = KR * dFT;
-        gx[e] = -dFR * sa + dFT * ca;
-        gy[e] = dFR * ca + dFT * sa;
-        gz[e] = 0.0;
-      }
-    }
-    out(a, 0) = ws.gx_.sum();
-    out(a, 1) = ws.gy_.sum();
-    out(a, 2) = ws.gz_.sum();
+  const ElementArrays arr{ws.off_.data(), ws.cos_off_.data(), ws.sin_off_.data(), ws.disk_of_.data(),
+                          ws.gx_.data(), ws.gy_.data(), ws.gz_.data()};
+  const LoopConstants lc{n, c, dz, st, span, k, KT, KR, map, bins, bin_scale};
+  if (map) {
+    if (kd) angle_loop<true, true>(lc, arr, angles, out); else angle_loop<true, false>(lc, arr, angles, out);
+  } else {
+    if (kd) angle_loop<false, true>(lc, arr, angles, out); else angle_loop<false, false>(lc, arr, angles, out);
   }
 }
 
