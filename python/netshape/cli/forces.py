@@ -1,14 +1,136 @@
-"""`netshape forces`."""
+"""`netshape forces`: cutting forces on the cutter over one or more revolutions (DESIGN §2 frame)."""
 
 from __future__ import annotations
 
+import argparse
+import math
+
+_DESCRIPTION = """\
+Simulate the cutting forces ON THE CUTTER of a flat or ball end mill over whole revolutions and
+write them as CSV (angle_deg,fx_N,fy_N,fz_N). Frame (DESIGN §2): X along the feed, Z along the tool
+axis from the tip into the spindle, Y = Z x X; the cutter turns clockwise seen from the spindle; the
+angle is the immersion of flute 1 at the tool tip, clockwise from +Y.
+"""
+
+_EPILOG = """\
+examples:
+  netshape forces --tool flat --diameter 10 --flutes 2 --helix 30 --rpm 6000 --feed-per-tooth 0.1 \\
+      --ap 3 --ae 10 --mode slot \\
+      --coefficients Ktc=958.8,Krc=251.1,Kac=146.4,Kte=15.8,Kre=19.4,Kae=18.2 --csv slot.csv --plot slot.png
+  netshape forces --tool ball --diameter 12 --flutes 2 --helix 30 --rpm 600 --feed-per-tooth 0.05 \\
+      --ap 3 --ae 12 --mode slot --coefficient-set kim_zas_ball12 --csv ball.csv
+named coefficient sets: flat: leekunhwee_flat_slot; ball: kim_zas_ball12 (seeds/001).
+"""
+
+
+def _positive(name):
+    def conv(text):
+        try:
+            v = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{name} = {text!r}: not a number") from None
+        if not math.isfinite(v) or v <= 0:
+            raise argparse.ArgumentTypeError(f"{name} = {text!r}: must be a positive number")
+        return v
+
+    return conv
+
+
+def _finite(name):
+    def conv(text):
+        try:
+            v = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{name} = {text!r}: not a number") from None
+        if not math.isfinite(v):
+            raise argparse.ArgumentTypeError(f"{name} = {text!r}: must be finite")
+        return v
+
+    return conv
+
 
 def register(sub) -> None:
-    p = sub.add_parser("forces", help="(not yet available)", description="(not yet available)")
+    p = sub.add_parser("forces", help="cutting forces of a flat or ball end mill over a revolution",
+                       description=_DESCRIPTION, epilog=_EPILOG,
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--tool", choices=("flat", "ball"), default="flat", help="end mill kind (default flat)")
+    p.add_argument("--diameter", type=_positive("--diameter"), required=True, metavar="MM", help="tool diameter [mm]")
+    p.add_argument("--flutes", type=int, required=True, metavar="N", help="number of flutes")
+    p.add_argument("--helix", type=_finite("--helix"), default=30.0, metavar="DEG", help="helix angle [deg] (default 30)")
+    p.add_argument("--rpm", type=_positive("--rpm"), required=True, metavar="RPM",
+                   help="spindle speed [rev/min] (sets the time axis of the plot)")
+    p.add_argument("--feed-per-tooth", type=_positive("--feed-per-tooth"), required=True, metavar="MM",
+                   help="feed per tooth c [mm]")
+    p.add_argument("--ap", type=_positive("--ap"), required=True, metavar="MM", help="axial depth of cut [mm]")
+    p.add_argument("--ae", type=_positive("--ae"), metavar="MM", help="radial depth of cut [mm] (up/down milling)")
+    p.add_argument("--mode", choices=("up", "down", "slot"), default="slot", help="milling mode (default slot)")
+    g = p.add_mutually_exclusive_group(required=True)
+    g.add_argument("--coefficients", metavar="K=V,...",
+                   help="linear edge coefficients Ktc,Krc,Kac [N/mm^2], Kte,Kre,Kae [N/mm] (flat tool)")
+    g.add_argument("--coefficient-set", metavar="NAME", help="a named coefficient set (see below)")
+    p.add_argument("--inclination", type=_finite("--inclination"), default=0.0, metavar="DEG",
+                   help="ball end mill: ramp angle xi of the feed [deg], > 0 climbing (default 0)")
+    p.add_argument("--revolutions", type=_positive("--revolutions"), default=1.0, help="revolutions (>= 1, default 1)")
+    p.add_argument("--samples", type=int, default=360, metavar="N", help="samples per revolution (default 360)")
+    p.add_argument("--csv", required=True, metavar="OUT.csv", help="output CSV: angle_deg,fx_N,fy_N,fz_N")
+    p.add_argument("--plot", metavar="OUT.png", help="also write a PNG of Fx, Fy, Fz against the angle")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    from netshape.cli import CliError
+    import numpy as np
 
-    raise CliError("'forces' is not implemented yet")
+    from netshape._atomic import atomic_write
+    from netshape.cli import CliError
+    from netshape.force import cutter_forces, parse_coefficients
+
+    if args.flutes < 1 or args.flutes > 64:
+        raise CliError(f"--flutes = {args.flutes}: must be an integer in 1..64")
+    if not (0.0 <= args.helix < 85.0):
+        raise CliError(f"--helix = {args.helix}: must be in [0, 85) degrees")
+    if args.samples < 8 or args.samples > 1_000_000:
+        raise CliError(f"--samples = {args.samples}: must be in 8..1000000")
+    if args.revolutions < 1:
+        raise CliError(f"--revolutions = {args.revolutions}: must be at least 1")
+    if args.mode != "slot" and args.ae is None:
+        raise CliError(f"--ae is required for --mode {args.mode}")
+    if args.ae is not None and args.ae > args.diameter:
+        raise CliError(f"--ae = {args.ae}: must not exceed --diameter ({args.diameter}) [mm]")
+    if abs(args.inclination) >= 80:
+        raise CliError(f"--inclination = {args.inclination}: must be in (-80, 80) degrees")
+    coefficients = None
+    if args.coefficients is not None:
+        if args.tool == "ball":
+            raise CliError("--coefficients: a ball end mill takes --coefficient-set (e.g. kim_zas_ball12)")
+        try:
+            coefficients = parse_coefficients(args.coefficients)
+        except ValueError as exc:
+            raise CliError(f"--coefficients = {args.coefficients!r}: {exc}") from None
+    else:
+        from netshape.force import ball_end_coefficient_set_names, linear_edge_coefficient_set_names
+
+        names = linear_edge_coefficient_set_names() if args.tool == "flat" else ball_end_coefficient_set_names()
+        if args.coefficient_set not in names:
+            raise CliError(f"--coefficient-set = {args.coefficient_set!r}: unknown for a {args.tool} tool "
+                           f"(known: {', '.join(names)})")
+    if args.tool == "flat" and args.inclination != 0:
+        raise CliError(f"--inclination = {args.inclination}: ramp cuts are modelled for --tool ball only")
+    angles, forces = cutter_forces(
+        tool=args.tool, diameter=args.diameter, flutes=args.flutes, helix_deg=args.helix,
+        feed_per_tooth=args.feed_per_tooth, ap=args.ap, ae=args.ae, mode=args.mode,
+        coefficients=coefficients, coefficient_set=args.coefficient_set, inclination_deg=args.inclination,
+        samples_per_revolution=args.samples, revolutions=args.revolutions)
+    deg = np.degrees(angles)
+    table = np.column_stack([deg, forces])
+    with atomic_write(args.csv, "w") as fh:
+        fh.write("angle_deg,fx_N,fy_N,fz_N\n")
+        np.savetxt(fh, table, delimiter=",", fmt="%.10g")
+    if args.plot:
+        from netshape._atomic import atomic_save_figure
+        from netshape.force.plots import plot_forces
+
+        title = (f"{args.tool} D{args.diameter:g} N{args.flutes} β{args.helix:g}° {args.mode} "
+                 f"ap {args.ap:g} c {args.feed_per_tooth:g} mm, {args.rpm:g} rpm")
+        fig = plot_forces(angles, forces, title=title, rpm=args.rpm)
+        atomic_save_figure(fig, args.plot, dpi=110)
+    return 0

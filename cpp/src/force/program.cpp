@@ -1,0 +1,146 @@
+#include "netshape/force/program.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "netshape/core/error.hpp"
+#include "netshape/force/ball_end_model.hpp"
+#include "netshape/force/engagement.hpp"
+#include "netshape/force/flat_end_model.hpp"
+#include "netshape/force/force_summary.hpp"
+#include "netshape/stock/engagement.hpp"
+#include "netshape/stock/sweep.hpp"
+
+namespace netshape::force {
+
+void ProgramForceOptions::validate() const {
+  NETSHAPE_CHECK_FINITE("step", step);
+  NETSHAPE_CHECK(step > 0.0, "step", step, "must be positive [mm]");
+  NETSHAPE_CHECK(samples_per_revolution >= 8, "samples_per_revolution", samples_per_revolution, "must be ≥ 8");
+  NETSHAPE_CHECK(bins >= 8, "bins", bins, "must be ≥ 8");
+  NETSHAPE_CHECK(disk_height > 0.0 && std::isfinite(disk_height), "disk_height", disk_height, "must be positive [mm]");
+  NETSHAPE_CHECK(element_angle > 0.0 && element_angle <= 0.5, "element_angle", element_angle, "must be in (0, 0.5] [rad]");
+  NETSHAPE_CHECK(feed_per_tooth >= 0.0 && std::isfinite(feed_per_tooth), "feed_per_tooth", feed_per_tooth,
+                 "must be ≥ 0 (0: from the blocks) [mm]");
+  NETSHAPE_CHECK(spindle_rpm >= 0.0 && std::isfinite(spindle_rpm), "spindle_rpm", spindle_rpm,
+                 "must be ≥ 0 (0: from the blocks) [rev/min]");
+}
+
+ProgramForces simulate_program(stock::ZMap& stock, const cutter::Cutter& cutter, const toolpath::Toolpath& program,
+                               const ProgramCoefficients& k, const ProgramForceOptions& opt) {
+  opt.validate();
+  cutter.validate();
+  NETSHAPE_CHECK(cutter.kind != cutter::CutterKind::bull, "cutter.kind", "bull",
+                 "force along a program models flat and ball end mills");
+  const bool ball = cutter.kind == cutter::CutterKind::ball;
+  if (ball) k.ball_end.validate(); else k.linear_edge.validate();
+  const double top = stock.max_height();
+  const int bins = opt.bins;
+  VectorXd phi(bins);
+  for (int b = 0; b < bins; ++b) phi[b] = (b + 0.5) * 2.0 * pi / bins;
+  const VectorXd angles = rotation_angles(opt.samples_per_revolution);
+  Points3 F(angles.size(), 3);
+  stock::MaskR mask;
+  EngagementMap map;
+
+  FlatEndModel fm;
+  fm.radius = cutter.radius;
+  fm.flutes = cutter.flutes;
+  fm.helix = cutter.helix;
+  fm.engagement = AngularEngagement{0.0, 2.0 * pi};
+  fm.linear_edge = k.linear_edge;
+  fm.disk_height = opt.disk_height;
+  BallEndModel bm;
+  bm.radius = cutter.radius;
+  bm.flutes = cutter.flutes;
+  bm.helix = cutter.helix;
+  bm.engagement = AngularEngagement{0.0, 2.0 * pi};
+  bm.coefficients = k.ball_end;
+  bm.element_angle = opt.element_angle;
+  bm.disk_height = opt.disk_height;
+  FlatEndWorkspace fws;
+  BallEndWorkspace bws;
+
+  std::vector<Vec3> pos, dir, mean, peak;
+  std::vector<int> blk;
+  std::vector<double> pr, mr, frac;
+  ProgramForces out;
+  for (std::size_t bi = 0; bi < program.blocks.size(); ++bi) {
+    const toolpath::Block& b = program.blocks[bi];
+    const double len = b.length();
+    if (len <= 0.0) continue;
+    if (b.kind == toolpath::MotionKind::rapid) {
+      out.removed_volume += stock::sweep_line(stock, cutter, b.start, b.end).removed_volume;
+      continue;
+    }
+    const int n = std::max(1, static_cast<int>(std::ceil(len / opt.step - 1e-9)));
+    Vec3 prev = b.start;
+    for (int s = 1; s <= n; ++s) {
+      const double sd = static_cast<double>(s) / n;  // fraction of the block
+      const Vec3 p = b.point_at(sd);
+      const Vec3 t = b.tangent_at(sd);
+      const Vec3 th(t.x(), t.y(), 0.0);
+      const double rpm = opt.spindle_rpm > 0 ? opt.spindle_rpm : std::abs(b.spindle_rpm);
+      const double c = opt.feed_per_tooth > 0 ? opt.feed_per_tooth
+                                              : (rpm > 0 ? b.feed * 60.0 / (rpm * cutter.flutes) : 0.0);
+      const double depth = std::min(cutter.flute_length, top - p.z());
+      if (th.norm() > 1e-9 && depth > 0.0 && c > 0.0) {
+        const Vec3 fd = th.normalized();
+        const VectorXd* z = nullptr;
+        if (ball) {
+          bm.axial_depth = std::max(depth, 1e-3);
+          bm.feed_per_tooth = c;
+          bm.inclination = std::atan2(t.z(), th.norm());
+          bm.inclination = std::clamp(bm.inclination, -deg2rad(79.0), deg2rad(79.0));
+          bws.reset(bm);
+          z = &bws.heights();
+        } else {
+          fm.axial_depth = std::max(depth, 1e-3);
+          fm.feed_per_tooth = c;
+          if (fws.disks() != fm.disks() || std::abs(fws.disk_height() * fws.disks() - fm.axial_depth) > 1e-12)
+            fws.reset(fm);
+          z = &fws.heights();
+        }
+        stock::engaged_elements_into(stock, cutter, p, fd, phi, *z, mask);
+        map.mask = mask.cast<std::uint8_t>();
+        if (ball)
+          ball_end_forces(bm, bws, angles, F, &map);
+        else
+          flat_end_forces(fm, fws, angles, F, &map);
+        const ForceSummary sm = summarize(F);
+        pos.push_back(p);
+        dir.push_back(fd);
+        blk.push_back(static_cast<int>(bi));
+        mean.push_back(sm.mean);
+        peak.push_back(sm.peak);
+        pr.push_back(sm.peak_resultant);
+        mr.push_back(sm.mean_resultant);
+        frac.push_back(map.mask.size() ? map.mask.cast<double>().mean() : 0.0);
+      }
+      out.removed_volume += stock::sweep_line(stock, cutter, prev, p).removed_volume;
+      prev = p;
+    }
+  }
+  const Eigen::Index m = static_cast<Eigen::Index>(pos.size());
+  out.positions.resize(m, 3);
+  out.feed_direction.resize(m, 3);
+  out.mean.resize(m, 3);
+  out.peak.resize(m, 3);
+  out.block.resize(m);
+  out.peak_resultant.resize(m);
+  out.mean_resultant.resize(m);
+  out.engaged_fraction.resize(m);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    out.positions.row(i) = pos[i].transpose();
+    out.feed_direction.row(i) = dir[i].transpose();
+    out.mean.row(i) = mean[i].transpose();
+    out.peak.row(i) = peak[i].transpose();
+    out.block[i] = blk[i];
+    out.peak_resultant[i] = pr[i];
+    out.mean_resultant[i] = mr[i];
+    out.engaged_fraction[i] = frac[i];
+  }
+  return out;
+}
+
+}  // namespace netshape::force

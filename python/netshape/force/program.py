@@ -1,0 +1,54 @@
+"""Force along a program on a Z-map stock (DESIGN §4.2 "per path position")."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from netshape._core import force as _f
+
+
+@dataclass
+class ProgramForceResult:
+    """Per force sample along the program (m samples): positions (m, 3) [mm], block (m,) index,
+    feed_direction (m, 3), mean and peak (m, 3) [N] per revolution (forces on the cutter in the
+    local cutting frame: X along the feed), peak_resultant and mean_resultant (m,) [N],
+    engaged_fraction (m,), removed_volume [mm³]."""
+
+    positions: np.ndarray
+    block: np.ndarray
+    feed_direction: np.ndarray
+    mean: np.ndarray
+    peak: np.ndarray
+    peak_resultant: np.ndarray
+    mean_resultant: np.ndarray
+    engaged_fraction: np.ndarray
+    removed_volume: float
+
+    def to_dict(self) -> dict:
+        return {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in self.__dict__.items()}
+
+
+def simulate_program(stock, cutter, program, coefficients, *, step: float = 0.5, samples_per_revolution: int = 72,
+                     bins: int = 360, disk_height: float = 0.1, element_angle_deg: float = 2.0,
+                     feed_per_tooth: float = 0.0, spindle_rpm: float = 0.0, copy_stock: bool = True
+                     ) -> ProgramForceResult:
+    """Cut ``program`` (netshape.toolpath Toolpath, feeds in mm/s) through ``stock``
+    (netshape.stock.ZMap) with ``cutter`` and return the per-revolution forces at sample positions
+    every ``step`` mm. ``coefficients``: LinearEdgeCoefficients (flat) or BallEndCoefficients (ball).
+    The stock is updated as the cutter moves; with ``copy_stock`` (default) a copy is cut and the
+    argument is left as it was. ``feed_per_tooth`` / ``spindle_rpm`` > 0 override the program's."""
+    import math
+
+    z = stock.copy() if copy_stock else stock
+    opts = _f.ProgramForceOptions(step=step, samples_per_revolution=samples_per_revolution, bins=bins,
+                                  disk_height=disk_height, element_angle=math.radians(element_angle_deg),
+                                  feed_per_tooth=feed_per_tooth, spindle_rpm=spindle_rpm)
+    if isinstance(coefficients, _f.LinearEdgeCoefficients):
+        r = _f.simulate_program_core(z, cutter, program, linear_edge=coefficients, options=opts)
+    elif isinstance(coefficients, _f.BallEndCoefficients):
+        r = _f.simulate_program_core(z, cutter, program, ball_end=coefficients, options=opts)
+    else:
+        raise ValueError(f"coefficients = {coefficients!r}: must be LinearEdgeCoefficients or BallEndCoefficients")
+    return ProgramForceResult(**r)
