@@ -13,35 +13,6 @@ using netshape::cutter::CutterKind;
 
 namespace {
 
-// The cutter area binds Cutter in bind_cutter (called before bind_stock). Until it does, bind a
-// minimal Cutter here so that the stock API is usable from Python; netshape.stock picks whichever
-// class exists.
-void ensure_cutter_bound(py::module_& m) {
-  if (py::detail::get_type_info(typeid(Cutter))) return;
-  if (!py::detail::get_type_info(typeid(CutterKind))) {
-    py::enum_<CutterKind>(m, "CutterKind").value("flat", CutterKind::flat).value("ball", CutterKind::ball)
-        .value("bull", CutterKind::bull);
-  }
-  py::class_<Cutter>(m, "Cutter", "End mill (flat, ball, bull-nose); lengths [mm], helix [rad], E [MPa].")
-      .def(py::init<>())
-      .def_readwrite("kind", &Cutter::kind)
-      .def_readwrite("radius", &Cutter::radius, "R [mm]")
-      .def_readwrite("corner_radius", &Cutter::corner_radius, "[mm]")
-      .def_readwrite("flutes", &Cutter::flutes)
-      .def_readwrite("helix", &Cutter::helix, "[rad]")
-      .def_readwrite("flute_length", &Cutter::flute_length, "[mm]")
-      .def_readwrite("stick_out", &Cutter::stick_out, "[mm]")
-      .def_readwrite("youngs_modulus", &Cutter::youngs_modulus, "[MPa]")
-      .def("validate", &Cutter::validate)
-      .def("radius_at", &Cutter::radius_at, py::arg("z"))
-      .def_static("flat_end", &Cutter::flat_end, py::arg("diameter"), py::arg("flutes") = 2,
-                  py::arg("helix") = 0.5235987755982988)
-      .def_static("ball_end", &Cutter::ball_end, py::arg("diameter"), py::arg("flutes") = 2,
-                  py::arg("helix") = 0.5235987755982988)
-      .def_static("bull_nose", &Cutter::bull_nose, py::arg("diameter"), py::arg("corner_radius"),
-                  py::arg("flutes") = 2, py::arg("helix") = 0.5235987755982988);
-}
-
 py::dict stats_dict(const SweepStats& s) {
   py::dict d;
   d["moves"] = s.moves;
@@ -65,7 +36,6 @@ py::dict immersion_dict(const Immersion& s) {
 }  // namespace
 
 void bind_stock(py::module_& m) {
-  ensure_cutter_bound(m);
 
   py::class_<ZMap>(m, "ZMap",
                    "Z-map workpiece: node heights [mm] on a cell-centred grid over [x0, x1] x [y0, y1] [mm].")

@@ -27,8 +27,8 @@ import numpy as np
 from .._core import cutter as _cutter_mod
 from .._core import stock as _stock
 
-#: The cutter class (netshape.cutter.Cutter once that area binds it; until then the stock area's).
-Cutter = getattr(_cutter_mod, "Cutter", None) or _stock.Cutter
+#: The cutter class, re-exported from netshape.cutter for convenience.
+Cutter = _cutter_mod.Cutter
 
 ZMap = _stock.ZMap
 TipProfile = _stock.TipProfile
