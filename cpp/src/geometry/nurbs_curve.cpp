@@ -18,21 +18,7 @@ NurbsCurve::NurbsCurve(int degree, VectorXd knots, Points3 control_points, Vecto
   const int n = static_cast<int>(control_points_.rows());
   NETSHAPE_CHECK(n >= degree_ + 1, "control_points.rows", n, "need at least degree + 1 control points");
   validate_knots(knots_, degree_, n, "knots");
-  if (weights_.size() == 0) weights_ = VectorXd::Ones(n);
-  NETSHAPE_CHECK(weights_.size() == n, "weights.size", weights_.size(), "must equal the number of control points");
-  pw_.resize(n, 4);
-  for (int i = 0; i < n; ++i) {
-    const double w = weights_[i];
-    NETSHAPE_CHECK(std::isfinite(w) && w > 0.0, ("weights[" + std::to_string(i) + "]").c_str(), w,
-                   "must be positive and finite");
-    for (int c = 0; c < 3; ++c) {
-      const double x = control_points_(i, c);
-      NETSHAPE_CHECK(std::isfinite(x), ("control_points[" + std::to_string(i) + "]").c_str(), x,
-                     "must be finite [mm]");
-      pw_(i, c) = x * w;
-    }
-    pw_(i, 3) = w;
-  }
+  pw_ = detail::homogeneous_control_points(control_points_, weights_);
 }
 
 bool NurbsCurve::is_rational() const noexcept {
@@ -203,5 +189,30 @@ CurveProjection NurbsCurve::closest_point(const Vec3& p, double tolerance, int m
   }
   return best;
 }
+
+
+namespace detail {
+
+Points4 homogeneous_control_points(const Points3& control_points, VectorXd& weights) {
+  const Eigen::Index n = control_points.rows();
+  if (weights.size() == 0) weights = VectorXd::Ones(n);
+  NETSHAPE_CHECK(weights.size() == n, "weights.size", weights.size(), "must equal the number of control points");
+  Points4 pw(n, 4);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double w = weights[i];
+    NETSHAPE_CHECK(std::isfinite(w) && w > 0.0, ("weights[" + std::to_string(i) + "]").c_str(), w,
+                   "must be positive and finite");
+    for (int c = 0; c < 3; ++c) {
+      const double x = control_points(i, c);
+      NETSHAPE_CHECK(std::isfinite(x), ("control_points[" + std::to_string(i) + "]").c_str(), x,
+                     "must be finite [mm]");
+      pw(i, c) = x * w;
+    }
+    pw(i, 3) = w;
+  }
+  return pw;
+}
+
+}  // namespace detail
 
 }  // namespace netshape::geometry

@@ -53,21 +53,7 @@ NurbsSurface::NurbsSurface(int degree_u, int degree_v, VectorXd knots_u, VectorX
   const Eigen::Index n = static_cast<Eigen::Index>(count_u_) * count_v_;
   NETSHAPE_CHECK(control_points_.rows() == n, "control_points.rows", control_points_.rows(),
                  "must equal (len(knots_u) - degree_u - 1) * (len(knots_v) - degree_v - 1)");
-  if (weights_.size() == 0) weights_ = VectorXd::Ones(n);
-  NETSHAPE_CHECK(weights_.size() == n, "weights.size", weights_.size(), "must equal the number of control points");
-  pw_.resize(n, 4);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const double w = weights_[i];
-    NETSHAPE_CHECK(std::isfinite(w) && w > 0.0, ("weights[" + std::to_string(i) + "]").c_str(), w,
-                   "must be positive and finite");
-    for (int c = 0; c < 3; ++c) {
-      const double x = control_points_(i, c);
-      NETSHAPE_CHECK(std::isfinite(x), ("control_points[" + std::to_string(i) + "]").c_str(), x,
-                     "must be finite [mm]");
-      pw_(i, c) = x * w;
-    }
-    pw_(i, 3) = w;
-  }
+  pw_ = detail::homogeneous_control_points(control_points_, weights_);
   const Vec3 lo = control_points_.colwise().minCoeff().transpose();
   const Vec3 hi = control_points_.colwise().maxCoeff().transpose();
   size_ = std::max((hi - lo).norm(), 1e-300);

@@ -73,6 +73,10 @@ class NurbsCurve {
 };
 
 namespace detail {
+/// Checks control points (n, 3) and weights (n,) — empty weights become all ones — and returns the
+/// homogeneous points (x·w, y·w, z·w, w) (n, 4). Shared by curve and surface constructors.
+Points4 homogeneous_control_points(const Points3& control_points, VectorXd& weights);
+
 /// Knot insertion (A5.1) applied to several curves at once: each row of `pw` holds the homogeneous
 /// control points of control-point index i for all curves (columns). Returns the new knots and rows.
 void insert_knot_rows(int degree, const VectorXd& knots, const MatrixXdR& pw, double u, int times,
