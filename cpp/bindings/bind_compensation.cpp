@@ -49,7 +49,7 @@ void bind_volumetric_compensation(py::module_& m) {
         py::gil_scoped_release release;
         return compensate_points(mm, p, o);
       },
-      py::arg("machine"), py::arg("nominal"), py::arg("options") = VolumetricOptions{},
+      py::arg("machine"), py::arg("nominal"), py::arg_v("options", VolumetricOptions{}, "VolumetricOptions()"),
       "Commanded points [mm] so the actual tip lands on the nominal (n, 3) points; raises on failure");
   m.def(
       "compensate_points_status",
@@ -57,7 +57,7 @@ void bind_volumetric_compensation(py::module_& m) {
         py::gil_scoped_release release;
         return compensate_points_status(mm, p, o);
       },
-      py::arg("machine"), py::arg("nominal"), py::arg("options") = VolumetricOptions{},
+      py::arg("machine"), py::arg("nominal"), py::arg_v("options", VolumetricOptions{}, "VolumetricOptions()"),
       "Like compensate_points, with per-point status instead of raising");
 }
 

@@ -137,9 +137,9 @@ void bind_force(py::module_& m) {
                                                coefficient_model, linear_edge, kline_devor, disk_height});
            }),
            "radius"_a = 5.0, "flutes"_a = 2, "helix"_a = 0.5235987755982988, "axial_depth"_a = 1.0,
-           "feed_per_tooth"_a = 0.05, "engagement"_a = nf::AngularEngagement{},
-           "coefficient_model"_a = nf::FlatCoefficientModel::linear_edge,
-           "linear_edge"_a = nf::LinearEdgeCoefficients{}, "kline_devor"_a = nf::KlineDevorCoefficients{1.0, 0.0},
+           "feed_per_tooth"_a = 0.05, py::arg_v("engagement", nf::AngularEngagement{}, "AngularEngagement()"),
+           py::arg_v("coefficient_model", nf::FlatCoefficientModel::linear_edge, "FlatCoefficientModel.linear_edge"),
+           py::arg_v("linear_edge", nf::LinearEdgeCoefficients{}, "LinearEdgeCoefficients()"), py::arg_v("kline_devor", nf::KlineDevorCoefficients{1.0, 0.0}, "KlineDevorCoefficients(1.0, 0.0)"),
            "disk_height"_a = 0.05)
       .def_readwrite("radius", &nf::FlatEndModel::radius)
       .def_readwrite("flutes", &nf::FlatEndModel::flutes)
@@ -198,8 +198,9 @@ void bind_force(py::module_& m) {
                                                engagement, coefficients, element_angle, disk_height});
            }),
            "radius"_a = 6.0, "flutes"_a = 2, "helix"_a = 0.5235987755982988, "axial_depth"_a = 3.0,
-           "feed_per_tooth"_a = 0.05, "inclination"_a = 0.0, "engagement"_a = nf::AngularEngagement{},
-           "coefficients"_a = nf::ball_end_coefficient_set("kim_zas_ball12").coefficients,
+           "feed_per_tooth"_a = 0.05, "inclination"_a = 0.0, py::arg_v("engagement", nf::AngularEngagement{}, "AngularEngagement()"),
+           py::arg_v("coefficients", nf::ball_end_coefficient_set("kim_zas_ball12").coefficients,
+                     "ball_end_coefficient_set('kim_zas_ball12').coefficients"),
            "element_angle"_a = 0.0174532925199432957, "disk_height"_a = 0.05)
       .def_readwrite("radius", &nf::BallEndModel::radius)
       .def_readwrite("flutes", &nf::BallEndModel::flutes)
@@ -321,5 +322,5 @@ void bind_force(py::module_& m) {
                         "removed_volume"_a = r.removed_volume);
       },
       "stock"_a, "cutter"_a, "program"_a, "linear_edge"_a = nullptr, "ball_end"_a = nullptr,
-      "options"_a = nf::ProgramForceOptions{});
+      py::arg_v("options", nf::ProgramForceOptions{}, "ProgramForceOptions()"));
 }

@@ -23,7 +23,7 @@ void bind_machine(py::module_& m) {
       .def_static("zero_function", &ErrorFunction::zero_function, py::arg("name") = "")
       .def_static("polynomial", &ErrorFunction::polynomial, py::arg("coefficients"), py::arg("name") = "")
       .def_static("table", &ErrorFunction::table, py::arg("positions"), py::arg("values"),
-                  py::arg("out_of_range") = OutOfRange::error, py::arg("name") = "")
+                  py::arg_v("out_of_range", OutOfRange::error, "OutOfRange.error"), py::arg("name") = "")
       .def_readwrite("kind", &ErrorFunction::kind)
       .def_readwrite("coefficients", &ErrorFunction::coefficients)
       .def_readwrite("positions", &ErrorFunction::positions)
@@ -101,12 +101,12 @@ void bind_machine(py::module_& m) {
         py::arg("tool_length") = 0.0);
   m.def(
       "tip_error", [](const Machine& mm, const RefPoints3& p, Order o) { return tip_error(mm, p, o); },
-      py::arg("machine"), py::arg("points"), py::arg("order") = Order::exact,
+      py::arg("machine"), py::arg("points"), py::arg_v("order", Order::exact, "Order.exact"),
       "Tool-tip error relative to the workpiece e(p) [mm], (n, 3) float64 → (n, 3)");
   m.def("actual_points", &actual_points, py::arg("machine"), py::arg("commanded"),
-        py::arg("order") = Order::exact, "Where the tip lands, p + e(p) [mm], (n, 3) → (n, 3)");
+        py::arg_v("order", Order::exact, "Order.exact"), "Where the tip lands, p + e(p) [mm], (n, 3) → (n, 3)");
   m.def("volumetric_error", &volumetric_error, py::arg("machine"), py::arg("points"),
-        py::arg("order") = Order::exact, "|e(p)| [mm] (seeds/003 eq. 16), (n, 3) → (n,)");
+        py::arg_v("order", Order::exact, "Order.exact"), "|e(p)| [mm] (seeds/003 eq. 16), (n, 3) → (n,)");
   m.def("rotation_zyx", &rotation_zyx, py::arg("a"), py::arg("b"), py::arg("c"),
         "Rz(c)·Ry(b)·Rx(a) [rad] → (3, 3)");
 }

@@ -124,8 +124,8 @@ void bind_stock(py::module_& m) {
         py::arg("merge_collinear") = true, py::call_guard<py::gil_scoped_release>(),
         "sweep the tip along the polyline through (n, 3) points [mm]");
   m.def("sweep_block", &sweep_block, py::arg("zmap"), py::arg("cutter"), py::arg("block"),
-        py::arg("options") = SweepOptions{}, py::call_guard<py::gil_scoped_release>());
-  m.def("sweep", &sweep, py::arg("zmap"), py::arg("cutter"), py::arg("program"), py::arg("options") = SweepOptions{},
+        py::arg_v("options", SweepOptions{}, "SweepOptions()"), py::call_guard<py::gil_scoped_release>());
+  m.def("sweep", &sweep, py::arg("zmap"), py::arg("cutter"), py::arg("program"), py::arg_v("options", SweepOptions{}, "SweepOptions()"),
         py::call_guard<py::gil_scoped_release>(), "sweep a whole Toolpath in order");
 
   m.def("cutting_frame", [](const Vec3& f) {
@@ -153,7 +153,7 @@ void bind_stock(py::module_& m) {
       .def("to_dict", &immersion_dict)
       .def("__repr__", [](const Immersion& s) { return "Immersion(" + py::str(immersion_dict(s)).cast<std::string>() + ")"; });
   m.def("immersion", &immersion, py::arg("zmap"), py::arg("cutter"), py::arg("tip"), py::arg("feed_direction"),
-        py::arg("options") = ImmersionOptions{});
+        py::arg_v("options", ImmersionOptions{}, "ImmersionOptions()"));
 
   m.def("stl_triangle_count", &stl_triangle_count, py::arg("zmap"));
   m.def("write_stl", &write_stl, py::arg("zmap"), py::arg("path"), py::call_guard<py::gil_scoped_release>(),

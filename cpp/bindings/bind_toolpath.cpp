@@ -252,7 +252,7 @@ void bind_toolpath(py::module_& m) {
     std::ostringstream os;
     write_gcode(t, os, o);
     return os.str();
-  }, py::arg("toolpath"), py::arg("options") = WriterOptions{});
+  }, py::arg("toolpath"), py::arg_v("options", WriterOptions{}, "WriterOptions()"));
   m.def("chord_count", &chord_count, py::arg("radius"), py::arg("sweep"), py::arg("tol"));
   m.def("block_bounds", [](const Block& b) {
     Vec3 lo, hi;

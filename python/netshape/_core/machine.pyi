@@ -1,93 +1,438 @@
-"""Type stub of netshape._core.machine (C++ netshape::machine). Units: mm, rad."""
-
 from __future__ import annotations
-
-import enum
-from typing import Sequence
-
-import numpy as np
-import numpy.typing as npt
-
-class OutOfRange(enum.Enum):
-    error = 0
-    clamp = 1
-    extrapolate = 2
-
+import collections.abc
+import numpy
+import numpy.typing
+import typing
+__all__: list[str] = ['Axis', 'Component', 'ErrorFunction', 'Machine', 'Order', 'OutOfRange', 'Side', 'actual_points', 'component_name', 'ideal_machine', 'rotation_zyx', 'tip_error', 'volumetric_error']
+class OutOfRange:
+    """
+    What a table does outside its positions
+    
+    Members:
+    
+      error
+    
+      clamp
+    
+      extrapolate
+    """
+    __members__: typing.ClassVar[dict[str, OutOfRange]]
+    clamp: typing.ClassVar[OutOfRange]
+    error: typing.ClassVar[OutOfRange]
+    extrapolate: typing.ClassVar[OutOfRange]
+    @typing.overload
+    def __eq__(self, other: OutOfRange) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: OutOfRange) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
 class ErrorFunction:
-    class Kind(enum.Enum):
-        zero = 0
-        polynomial = 1
-        table = 2
+    """
+    One error component e(q) of an axis: zero, polynomial (ascending powers of q [mm]) or table (linear interpolation). Values [mm] or [rad].
+    """
+    class Kind:
+        """
+        Members:
+        
+          zero
+        
+          polynomial
+        
+          table
+        """
+        __members__: typing.ClassVar[dict[str, ErrorFunction.Kind]]
+        polynomial: typing.ClassVar[ErrorFunction.Kind]
+        table: typing.ClassVar[ErrorFunction.Kind]
+        zero: typing.ClassVar[ErrorFunction.Kind]
+        @typing.overload
+        def __eq__(self, other: ErrorFunction.Kind) -> bool:
+            ...
+        @typing.overload
+        def __eq__(self, other: typing.Any) -> bool:
+            ...
+        def __getstate__(self) -> int:
+            ...
+        def __hash__(self) -> int:
+            ...
+        def __index__(self) -> int:
+            ...
+        def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+            ...
+        def __int__(self) -> int:
+            ...
+        @typing.overload
+        def __ne__(self, other: ErrorFunction.Kind) -> bool:
+            ...
+        @typing.overload
+        def __ne__(self, other: typing.Any) -> bool:
+            ...
+        def __repr__(self) -> str:
+            ...
+        def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+            ...
+        def __str__(self) -> str:
+            ...
+        @property
+        def name(self) -> str:
+            ...
+        @property
+        def value(self) -> int:
+            ...
     kind: ErrorFunction.Kind
-    coefficients: list[float]  # ascending powers of q [mm]
-    positions: list[float]  # table positions [mm], strictly increasing
-    values: list[float]  # [mm] or [rad]
+    name: str
     out_of_range: OutOfRange
-    name: str
-    def __init__(self) -> None: ...
     @staticmethod
-    def zero_function(name: str = "") -> ErrorFunction: ...
+    def polynomial(coefficients: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], name: str = '') -> ErrorFunction:
+        ...
     @staticmethod
-    def polynomial(coefficients: Sequence[float], name: str = "") -> ErrorFunction: ...
+    def table(positions: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], values: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], out_of_range: OutOfRange = ..., name: str = '') -> ErrorFunction:
+        ...
     @staticmethod
-    def table(positions: Sequence[float], values: Sequence[float], out_of_range: OutOfRange = ...,
-              name: str = "") -> ErrorFunction: ...
-    def validate(self) -> None: ...
-    def is_zero(self) -> bool: ...
-    def __call__(self, q: float) -> float: ...
-    def evaluate(self, q: npt.ArrayLike) -> npt.NDArray[np.float64]:
-        """e(q) at (n,) positions [mm] → (n,)"""
-
-class Component(enum.Enum):
-    ex = 0
-    ey = 1
-    ez = 2
-    ea = 3
-    eb = 4
-    ec = 5
-
-class Side(enum.Enum):
-    tool = 0
-    workpiece = 1
-
-class Order(enum.Enum):
-    exact = 0
-    first = 1
-
-def component_name(component: Component, axis: int) -> str: ...
-
+    def zero_function(name: str = '') -> ErrorFunction:
+        ...
+    def __call__(self, q: typing.SupportsFloat | typing.SupportsIndex) -> float:
+        ...
+    def __init__(self) -> None:
+        ...
+    def evaluate(self, q: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        e(q) at many positions q [mm], (n,) → (n,)
+        """
+    def is_zero(self) -> bool:
+        ...
+    def validate(self) -> None:
+        ...
+    @property
+    def coefficients(self) -> list[float]:
+        ...
+    @coefficients.setter
+    def coefficients(self, arg0: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+    @property
+    def positions(self) -> list[float]:
+        ...
+    @positions.setter
+    def positions(self, arg0: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+    @property
+    def values(self) -> list[float]:
+        ...
+    @values.setter
+    def values(self, arg0: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+class Component:
+    """
+    Members:
+    
+      ex
+    
+      ey
+    
+      ez
+    
+      ea
+    
+      eb
+    
+      ec
+    """
+    __members__: typing.ClassVar[dict[str, Component]]
+    ea: typing.ClassVar[Component]
+    eb: typing.ClassVar[Component]
+    ec: typing.ClassVar[Component]
+    ex: typing.ClassVar[Component]
+    ey: typing.ClassVar[Component]
+    ez: typing.ClassVar[Component]
+    @typing.overload
+    def __eq__(self, other: Component) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: Component) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class Side:
+    """
+    Members:
+    
+      tool
+    
+      workpiece
+    """
+    __members__: typing.ClassVar[dict[str, Side]]
+    tool: typing.ClassVar[Side]
+    workpiece: typing.ClassVar[Side]
+    @typing.overload
+    def __eq__(self, other: Side) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: Side) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class Order:
+    """
+    Members:
+    
+      exact
+    
+      first
+    """
+    __members__: typing.ClassVar[dict[str, Order]]
+    exact: typing.ClassVar[Order]
+    first: typing.ClassVar[Order]
+    @typing.overload
+    def __eq__(self, other: Order) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: Order) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
 class Axis:
-    travel_min: float  # [mm]
-    travel_max: float  # [mm]
-    origin: npt.NDArray[np.float64]  # (3,) [mm]
-    errors: list[ErrorFunction]  # 6: EXk, EYk, EZk [mm], EAk, EBk, ECk [rad]
-    def __init__(self) -> None: ...
-    def error(self, component: Component) -> ErrorFunction: ...
-    def set_error(self, component: Component, function: ErrorFunction) -> None: ...
-
+    """
+    A linear axis: travel [mm], frame origin [mm], six error components
+    """
+    def __init__(self) -> None:
+        ...
+    def error(self, component: Component) -> ErrorFunction:
+        ...
+    def set_error(self, component: Component, function: ErrorFunction) -> None:
+        ...
+    @property
+    def errors(self) -> list[ErrorFunction]:
+        """
+        EXk, EYk, EZk, EAk, EBk, ECk (a copy: change an element, then assign the list back)
+        """
+    @errors.setter
+    def errors(self, arg1: collections.abc.Sequence[ErrorFunction]) -> None:
+        ...
+    @property
+    def origin(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
+    @origin.setter
+    def origin(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> None:
+        ...
+    @property
+    def travel_max(self) -> float:
+        ...
+    @travel_max.setter
+    def travel_max(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def travel_min(self) -> float:
+        ...
+    @travel_min.setter
+    def travel_min(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
 class Machine:
+    """
+    3-axis machine: two chains of linear axes from the bed with ISO 230-1 errors
+    """
     name: str
-    axes: list[Axis]  # X, Y, Z
-    tool_chain: list[int]  # axis indices, bed outward
-    workpiece_chain: list[int]
-    ec0y: float  # [rad], reference X
-    eb0z: float  # [rad], reference X
-    ea0z: float  # [rad], reference Y
-    spindle_tilt_a: float  # [rad] about X
-    spindle_tilt_b: float  # [rad] about Y
-    spindle_nose: npt.NDArray[np.float64]  # (3,) [mm]
-    tool_length: float  # [mm]
-    tool_direction: npt.NDArray[np.float64]  # (3,) unit
-    def __init__(self) -> None: ...
-    def axis(self, index: int) -> Axis: ...
-    def set_axis(self, index: int, axis: Axis) -> None: ...
-    def validate(self) -> None: ...
-    def side(self, axis: int) -> Side: ...
-    def nominal_tip(self) -> npt.NDArray[np.float64]: ...
-
-def ideal_machine(tool_chain: Sequence[int], workpiece_chain: Sequence[int], tool_length: float = 0.0) -> Machine: ...
-def tip_error(machine: Machine, points: npt.ArrayLike, order: Order = ...) -> npt.NDArray[np.float64]:
-    """(n, 3) float64 [mm] → (n, 3) tip error relative to the workpiece [mm]"""
-def actual_points(machine: Machine, commanded: npt.ArrayLike, order: Order = ...) -> npt.NDArray[np.float64]: ...
-def volumetric_error(machine: Machine, points: npt.ArrayLike, order: Order = ...) -> npt.NDArray[np.float64]: ...
-def rotation_zyx(a: float, b: float, c: float) -> npt.NDArray[np.float64]: ...
+    def __init__(self) -> None:
+        ...
+    def axis(self, index: typing.SupportsInt | typing.SupportsIndex) -> Axis:
+        ...
+    def nominal_tip(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
+    def set_axis(self, index: typing.SupportsInt | typing.SupportsIndex, axis: Axis) -> None:
+        ...
+    def side(self, axis: typing.SupportsInt | typing.SupportsIndex) -> Side:
+        ...
+    def validate(self) -> None:
+        ...
+    @property
+    def axes(self) -> list[Axis]:
+        """
+        X, Y, Z axes (a copy: change an element, then assign the list back)
+        """
+    @axes.setter
+    def axes(self, arg1: collections.abc.Sequence[Axis]) -> None:
+        ...
+    @property
+    def ea0z(self) -> float:
+        ...
+    @ea0z.setter
+    def ea0z(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def eb0z(self) -> float:
+        ...
+    @eb0z.setter
+    def eb0z(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def ec0y(self) -> float:
+        ...
+    @ec0y.setter
+    def ec0y(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def spindle_nose(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
+    @spindle_nose.setter
+    def spindle_nose(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> None:
+        ...
+    @property
+    def spindle_tilt_a(self) -> float:
+        ...
+    @spindle_tilt_a.setter
+    def spindle_tilt_a(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def spindle_tilt_b(self) -> float:
+        ...
+    @spindle_tilt_b.setter
+    def spindle_tilt_b(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def tool_chain(self) -> list[int]:
+        ...
+    @tool_chain.setter
+    def tool_chain(self, arg0: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex]) -> None:
+        ...
+    @property
+    def tool_direction(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
+    @tool_direction.setter
+    def tool_direction(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> None:
+        ...
+    @property
+    def tool_length(self) -> float:
+        ...
+    @tool_length.setter
+    def tool_length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def workpiece_chain(self) -> list[int]:
+        ...
+    @workpiece_chain.setter
+    def workpiece_chain(self, arg0: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex]) -> None:
+        ...
+def actual_points(machine: Machine, commanded: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], order: Order = ...) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+    """
+    Where the tip lands, p + e(p) [mm], (n, 3) → (n, 3)
+    """
+def component_name(component: Component, axis: typing.SupportsInt | typing.SupportsIndex) -> str:
+    ...
+def ideal_machine(tool_chain: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex], workpiece_chain: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex], tool_length: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> Machine:
+    ...
+def rotation_zyx(a: typing.SupportsFloat | typing.SupportsIndex, b: typing.SupportsFloat | typing.SupportsIndex, c: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
+    """
+    Rz(c)·Ry(b)·Rx(a) [rad] → (3, 3)
+    """
+def tip_error(machine: Machine, points: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], order: Order = ...) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+    """
+    Tool-tip error relative to the workpiece e(p) [mm], (n, 3) float64 → (n, 3)
+    """
+def volumetric_error(machine: Machine, points: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], order: Order = ...) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+    """
+    |e(p)| [mm] (seeds/003 eq. 16), (n, 3) → (n,)
+    """
