@@ -381,24 +381,6 @@ inline void evaluate_axis(const MachineData& data, int k, double q, double* e, d
   }
 }
 
-/// R − I for R = Rz(c)·Ry(b)·Rx(a) from sin and cos − 1 of (a, b, c) (no cancellation).
-inline Mat3 rotation_deviation(const double* s, const double* cm) noexcept {
-  const double sa = s[0], sb = s[1], sc = s[2], cma = cm[0], cmb = cm[1], cmc = cm[2];
-  const double ca = 1.0 + cma, cb = 1.0 + cmb, cc = 1.0 + cmc;
-  const double sasb = sa * sb, casb = ca * sb;
-  Mat3 m;
-  m(0, 0) = cmb + cmc + cmb * cmc;
-  m(0, 1) = sasb * cc - ca * sc;
-  m(0, 2) = casb * cc + sa * sc;
-  m(1, 0) = cb * sc;
-  m(1, 1) = sasb * sc + cma + cmc + cma * cmc;
-  m(1, 2) = casb * sc - sa * cc;
-  m(2, 0) = -sb;
-  m(2, 1) = sa * cb;
-  m(2, 2) = cma + cmb + cma * cmb;
-  return m;
-}
-
 using Lanes = Eigen::Array<double, 18, 1>;
 using Lanes10 = Eigen::Array<double, 10, 1>;
 
@@ -437,11 +419,11 @@ inline void evaluate_lanes(const MachineData& data, const Vec3& p, Lanes& e, Lan
 
 // sin and cos − 1 of the nine angles (lanes 0..8; lane 9 is computed and ignored): short Taylor
 // series, exact to rounding, when every |angle| < 1e-3 (omitted terms below 1e-21 relative).
-inline void sincos_lanes(const Lanes& e, Lanes10& s, Lanes10& cm) noexcept {
+EIGEN_STRONG_INLINE void sincos_lanes(const Lanes& e, Lanes10& s, Lanes10& cm) noexcept {
   const Lanes10 x = e.head<10>();
-  if (x.head<9>().abs().maxCoeff() < 1e-3) {
+  const Lanes10 x2 = x * x;
+  if (x2.head<9>().maxCoeff() < 1e-6) {
     constexpr double k6 = -1.0 / 6.0, k120 = 1.0 / 120.0, k24 = 1.0 / 24.0, k720 = -1.0 / 720.0;
-    const Lanes10 x2 = x * x;
     s = x + x * x2 * (k6 + x2 * k120);
     cm = x2 * (-0.5 + x2 * (k24 + x2 * k720));
   } else {
@@ -458,35 +440,53 @@ inline Vec3 exact_kernel(MachineData& data, const Vec3& p, Mat3* jacobian) {
   evaluate_lanes<Jacobian>(data, p, e, sl);
   Lanes10 s, cm;
   sincos_lanes(e, s, cm);
-  Vec3 v = data.tip_nominal;
-  Vec3 d = data.tip_local;
+  // Plain scalars (the 3-vectors do not fill SIMD registers; this keeps them in registers).
+  double v0 = data.tip_nominal[0], v1 = data.tip_nominal[1], v2 = data.tip_nominal[2];
+  double d0 = data.tip_local[0], d1 = data.tip_local[1], d2 = data.tip_local[2];
   std::array<Vec3, 3> arm;
-  int i = 0;
-  for (; i < data.tool_steps; ++i) {
+  for (int i = 0; i < 3; ++i) {
     const detail::ChainStep& st = data.steps[i];
     const int k = st.axis;
     const double q = p[k];
-    const Mat3 rm = rotation_deviation(&s[3 * k], &cm[3 * k]);
-    if (Jacobian) arm[k] = v;
-    // v_frame = o + R (v + d) + q u' + δ ; nominal o + v + q u
-    const Vec3 c = rm * v + q * data.direction[k] + e.segment<3>(9 + 3 * k).matrix();
-    d += rm * d + c;
-    v += st.origin;
-    v[k] += q;
-  }
-  for (; i < 3; ++i) {
-    const detail::ChainStep& st = data.steps[i];
-    const int k = st.axis;
-    const double q = p[k];
-    const Mat3 rm = rotation_deviation(&s[3 * k], &cm[3 * k]);
-    // The table moves by −t = −(q u' + δ) and turns by R⁻¹ about its own origin:
-    // W = R (v + d − o + t) ; nominal v − o + q u (arm: the point relative to the carriage's current origin).
-    const Vec3 t_dev = q * data.direction[k] + e.segment<3>(9 + 3 * k).matrix();
-    v -= st.origin;
-    v[k] += q;
-    if (Jacobian) arm[k] = v;
-    const Vec3 c = t_dev + rm * (v + t_dev);
-    d += rm * d + c;
+    // R − I from sin and cos − 1 of (a, b, c), R = Rz(c)·Ry(b)·Rx(a) (no cancellation)
+    const double sa = s[3 * k], sb = s[3 * k + 1], sc = s[3 * k + 2];
+    const double cma = cm[3 * k], cmb = cm[3 * k + 1], cmc = cm[3 * k + 2];
+    const double ca = 1.0 + cma, cb = 1.0 + cmb, cc = 1.0 + cmc;
+    const double sasb = sa * sb, casb = ca * sb;
+    const double m00 = cmb + cmc + cmb * cmc, m01 = sasb * cc - ca * sc, m02 = casb * cc + sa * sc;
+    const double m10 = cb * sc, m11 = sasb * sc + cma + cmc + cma * cmc, m12 = casb * sc - sa * cc;
+    const double m20 = -sb, m21 = sa * cb, m22 = cma + cmb + cma * cmb;
+    // t − q u = q (u' − u) + δ
+    const Vec3& du = data.direction[k];
+    const double t0 = q * du[0] + e[9 + 3 * k], t1 = q * du[1] + e[10 + 3 * k], t2 = q * du[2] + e[11 + 3 * k];
+    const double o0 = st.origin[0] + (k == 0 ? q : 0.0), o1 = st.origin[1] + (k == 1 ? q : 0.0),
+                 o2 = st.origin[2] + (k == 2 ? q : 0.0);  // origin + q u
+    double c0, c1, c2;
+    if (st.tool) {
+      // v_frame = o + R (v + d) + q u' + δ ; nominal o + v + q u. The part that does not depend on d is
+      // formed first, so that the chain of dependent operations is one 3×3 product per axis.
+      if (Jacobian) arm[k] = Vec3(v0, v1, v2);
+      c0 = m00 * v0 + m01 * v1 + m02 * v2 + t0;
+      c1 = m10 * v0 + m11 * v1 + m12 * v2 + t1;
+      c2 = m20 * v0 + m21 * v1 + m22 * v2 + t2;
+      v0 += o0, v1 += o1, v2 += o2;
+    } else {
+      // The table moves by −t = −(q u' + δ) and turns by R⁻¹ about its own origin:
+      // W = R (v + d − o + t) ; nominal v − o + q u (arm: the point relative to the carriage's current origin).
+      v0 -= st.origin[0], v1 -= st.origin[1], v2 -= st.origin[2];
+      if (k == 0) v0 += q;
+      if (k == 1) v1 += q;
+      if (k == 2) v2 += q;
+      if (Jacobian) arm[k] = Vec3(v0, v1, v2);
+      const double w0 = v0 + t0, w1 = v1 + t1, w2 = v2 + t2;
+      c0 = t0 + (m00 * w0 + m01 * w1 + m02 * w2);
+      c1 = t1 + (m10 * w0 + m11 * w1 + m12 * w2);
+      c2 = t2 + (m20 * w0 + m21 * w1 + m22 * w2);
+    }
+    const double n0 = d0 + (m00 * d0 + m01 * d1 + m02 * d2 + c0);
+    const double n1 = d1 + (m10 * d0 + m11 * d1 + m12 * d2 + c1);
+    const double n2 = d2 + (m20 * d0 + m21 * d1 + m22 * d2 + c2);
+    d0 = n0, d1 = n1, d2 = n2;
   }
   if (Jacobian) {
     for (int k = 0; k < 3; ++k) {
@@ -503,7 +503,7 @@ inline Vec3 exact_kernel(MachineData& data, const Vec3& p, Mat3* jacobian) {
                          eps_sum.cross(Vec3::Unit(k));
     }
   }
-  return d;
+  return Vec3(d0, d1, d2);
 }
 
 inline void evaluate_components_inline(MachineData& data, const Vec3& p) {
