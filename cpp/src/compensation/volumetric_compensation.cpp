@@ -29,37 +29,53 @@ long VolumetricResult::first_failure() const {
 }
 
 namespace {
+// One point. `step_matrix` is (I + J₁)⁻¹ of the first-order model; when `have_step` is true on entry it
+// comes from a neighbouring point (path) and is reused — it differs from the one here by O(J' · distance),
+// which only slows convergence, never changes the fixed point — otherwise it is computed at the start.
 VolumetricStatus solve_point(const Machine& machine, MachineData& data, const Vec3& nominal, const Vec3& start,
-                             const VolumetricOptions& options, Vec3& commanded, double& residual,
-                             int& iterations, int& axis) {
+                             const VolumetricOptions& options, Mat3& step_matrix, bool& have_step, bool& computed,
+                             Vec3& commanded, double& residual, int& iterations, int& axis) {
+  computed = false;
   axis = -1;
   iterations = 0;
   Vec3 p = start;
   residual = INFINITY;
   bool newton = false;
-  Mat3 step_matrix = Mat3::Identity();  // (I + J)^-1 of the first-order model at the start point
+  bool fresh = false;  // step_matrix computed at a point of this solve
+  const double tol2 = options.tolerance * options.tolerance;
   try {
     while (iterations < options.max_iterations) {
       Vec3 r;
-      if (iterations == 0) {
-        // Chord Newton: the first-order Jacobian at the start, reused for every step. It differs
-        // from the exact Jacobian by O(error²), so each step gains ~8 digits instead of the plain
-        // fixed point's ~4; the residual below is always the exact one.
+      if (!have_step) {
+        // Chord Newton: the first-order Jacobian, reused for every step. It differs from the exact
+        // Jacobian by O(error²), so each step gains ~8 digits instead of the plain fixed point's ~4;
+        // the residual below is always the exact one.
         Mat3 jac;
         r = p + machine::tip_error_and_jacobian(machine, data, p, jac) - nominal;
         const Mat3 a = Mat3::Identity() + jac;
         const double det = a.determinant();
-        if (std::isfinite(det) && std::abs(det) > 1e-6) step_matrix = a.inverse();
+        step_matrix = std::isfinite(det) && std::abs(det) > 1e-6 ? Mat3(a.inverse()) : Mat3::Identity();
+        have_step = true;
+        fresh = true;
+        computed = true;
       } else {
         r = p + machine::tip_error(machine, data, p) - nominal;
       }
       ++iterations;
-      const double rn = r.norm();
-      if (rn <= options.tolerance) {
-        residual = rn;
+      const double rn2 = r.squaredNorm();
+      if (rn2 <= tol2) {
+        residual = std::sqrt(rn2);
         break;
       }
-      if (!newton && rn > 0.5 * residual) newton = true;  // slow contraction: switch to Newton
+      const double rn = std::sqrt(rn2);
+      if (!newton && rn > 0.5 * residual) {
+        // slow contraction: first a Jacobian at the current point, then Newton with finite differences
+        if (fresh) {
+          newton = true;
+        } else {
+          have_step = false;  // the next evaluation computes it
+        }
+      }
       residual = rn;
       if (iterations >= options.max_iterations) break;
       if (!newton) {
@@ -104,7 +120,10 @@ VolumetricStatus solve_point(const Machine& machine, MachineData& data, const Ve
 VolumetricStatus compensate_point(const Machine& machine, MachineData& data, const Vec3& nominal,
                                   const VolumetricOptions& options, Vec3& commanded, double& residual,
                                   int& iterations, int& axis) {
-  return solve_point(machine, data, nominal, nominal, options, commanded, residual, iterations, axis);
+  Mat3 step_matrix;
+  bool have_step = false, computed = false;
+  return solve_point(machine, data, nominal, nominal, options, step_matrix, have_step, computed, commanded,
+                     residual, iterations, axis);
 }
 
 VolumetricResult compensate_points_status(const Machine& machine, const Eigen::Ref<const Points3>& nominal,
@@ -121,6 +140,8 @@ VolumetricResult compensate_points_status(const Machine& machine, const Eigen::R
   bool have_prev = false;
   Vec3 prev_correction = Vec3::Zero();
   Vec3 prev_nominal = Vec3::Zero();
+  Mat3 step_matrix = Mat3::Identity();
+  Vec3 step_at = Vec3::Zero();  // nominal point where step_matrix was computed
   for (Eigen::Index i = 0; i < n; ++i) {
     const Vec3 p = nominal.row(i).transpose();
     for (int c = 0; c < 3; ++c) NETSHAPE_CHECK_FINITE("nominal points", p[c]);
@@ -130,9 +151,13 @@ VolumetricResult compensate_points_status(const Machine& machine, const Eigen::R
     // Warm start: neighbouring CL points need nearly the same correction, so start from the
     // previous point's correction (one evaluation fewer along a path; same fixed point).
     // Only for a neighbour within 10 mm: the correction of a far point is no better a guess than 0.
+    // The step matrix of a point within 10 mm of where it was computed is reused as well (no
+    // Jacobian along a path).
     const bool warm = have_prev && (p - prev_nominal).squaredNorm() < 100.0;
     const Vec3 start = warm ? Vec3(p + prev_correction) : p;
-    res.status[i] = solve_point(machine, data, p, start, options, cmd, r, it, ax);
+    bool have_step = warm && (p - step_at).squaredNorm() < 100.0, computed = false;
+    res.status[i] = solve_point(machine, data, p, start, options, step_matrix, have_step, computed, cmd, r, it, ax);
+    if (computed) step_at = p;  // (computed near p: at the start or an iterate)
     have_prev = res.status[i] == VolumetricStatus::ok;
     if (have_prev) {
       prev_correction = cmd - p;

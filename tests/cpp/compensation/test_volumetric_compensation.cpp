@@ -73,3 +73,30 @@ TEST_CASE("a machine the iteration cannot invert is reported, not returned") {
   o.tolerance = -1;
   CHECK_THROWS_AS(compensate_points(m, nominal, o), std::invalid_argument);
 }
+
+TEST_CASE("along a path the step matrix is reused: two evaluations per point, residual still verified") {
+  const Machine m = test_machine();
+  // a zig-zag raster with 0.05 mm steps and jumps of 30 mm between rows (step matrix recomputed there)
+  const int n = 4000;
+  Points3 nominal(n, 3);
+  for (int i = 0; i < n; ++i) {
+    const int row = i / 1000, j = i % 1000;
+    nominal.row(i) << -300.0 + 0.05 * (row % 2 ? 999 - j : j) + 30.0 * row, -200.0 + 30.0 * row, 100.0 + 5 * std::sin(0.01 * i);
+  }
+  const VolumetricResult res = compensate_points_status(m, nominal);
+  REQUIRE(res.all_ok());
+  const Points3 actual = actual_points(m, res.commanded);
+  CHECK((actual - nominal).rowwise().norm().maxCoeff() <= 1e-9);
+  CHECK(res.residual.maxCoeff() <= 1e-9);
+  CHECK(res.iterations.cast<double>().mean() < 2.01);
+  // the same points one by one (a fresh Jacobian each) give the same commanded points to the tolerance
+  MachineData data(m);
+  for (int i = 0; i < n; i += 97) {
+    Vec3 cmd;
+    double r;
+    int it, ax;
+    REQUIRE(compensate_point(m, data, nominal.row(i).transpose(), VolumetricOptions{}, cmd, r, it, ax) ==
+            VolumetricStatus::ok);
+    CHECK((cmd - res.commanded.row(i).transpose()).norm() < 1e-8);
+  }
+}

@@ -215,3 +215,56 @@ TEST_CASE("first-order Jacobian matches finite differences of the error") {
     }
   }
 }
+
+TEST_CASE("tables and mixed axes (one-pass kernels and the generic path) equal the 4x4 composition") {
+  // Axis k of each random machine becomes: 0 all six components tables on shared uniform positions,
+  // 1 shared non-uniform positions with two zero components, 2 tables on different positions (generic),
+  // 3 one table among polynomials (generic). Policies clamp / extrapolate, points partly outside the tables.
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (int trial = 0; trial < 24; ++trial) {
+    Machine m = random_machine(rng, trial % 3 ? 1.0 : 100.0);
+    for (int k = 0; k < 3; ++k) {
+      const int mode = (trial + k) % 4;
+      const OutOfRange policy = (trial + k) % 2 ? OutOfRange::clamp : OutOfRange::extrapolate;
+      std::vector<double> x;
+      for (int i = 0; i <= 12; ++i) x.push_back(-300.0 + 50.0 * i + (mode == 1 ? 10.0 * std::sin(1.7 * i) : 0.0));
+      for (int c = 0; c < 6; ++c) {
+        if (mode == 3 && c != 4) continue;  // keep the polynomials
+        if (mode == 1 && (c == 1 || c == 5)) {
+          m.axes[k].errors[c] = ErrorFunction::zero_function();
+          continue;
+        }
+        std::vector<double> xc = x;
+        if (mode == 2)
+          for (double& xi : xc) xi += 3.0 * c;
+        std::vector<double> v;
+        for (double xi : xc) v.push_back(m.axes[k].errors[c](xi) + (c < 3 ? 1e-3 : 1e-6) * U(rng));
+        m.axes[k].errors[c] = ErrorFunction::table(xc, v, policy, component_name(static_cast<Component>(c), k));
+      }
+    }
+    m.validate();
+    MachineData data(m);
+    for (int i = 0; i < 20; ++i) {
+      const Vec3 p(400.0 * U(rng), 400.0 * U(rng), 400.0 * U(rng));
+      const Vec3 e = tip_error(m, data, p);
+      const Vec3 r = reference_error(m, p);
+      CHECK((e - r).norm() < 1e-10 * (1.0 + r.norm()) + 1e-11);
+      Mat3 jac;
+      // same value with slopes (tables: interpolation written through the slope, rounding-level differences)
+      CHECK((tip_error_and_jacobian(m, data, p, jac) - e).norm() < 1e-14 * (1.0 + e.norm()));
+    }
+  }
+}
+
+TEST_CASE("a table with out_of_range = error refuses a point outside it in every kernel") {
+  Machine m = ideal_machine({0, 1}, {2}, 100.0);
+  m.axes[0].errors[0] = ErrorFunction::table({0.0, 100.0}, {0.0, 0.01}, OutOfRange::error, "EXX");  // packed
+  m.axes[1].errors[0] = ErrorFunction::table({0.0, 100.0}, {0.0, 0.01}, OutOfRange::error, "EXY");  // mixed
+  m.axes[1].errors[4] = ErrorFunction::polynomial({1e-5});
+  MachineData data(m);
+  CHECK_NOTHROW(tip_error(m, data, Vec3(50.0, 50.0, 0.0)));
+  CHECK_THROWS_WITH_AS(tip_error(m, data, Vec3(150.0, 50.0, 0.0)), doctest::Contains("EXX"), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(tip_error(m, data, Vec3(50.0, -5.0, 0.0)), doctest::Contains("EXY"), std::invalid_argument);
+  CHECK_THROWS_AS(tip_error(m, data, Vec3(NAN, 50.0, 0.0)), std::invalid_argument);
+}

@@ -4,12 +4,14 @@
 /// actual tool tip P_cmd + e(P_cmd) lands on the nominal point P_nom, with e from the exact error
 /// synthesis of a machine::Machine.
 ///
-/// Iteration: P ← P − (I + J₁)⁻¹·(P + e(P) − P_nom), J₁ the first-order Jacobian at the start point
-/// (chord Newton on the exact residual; with J₁ = 0 this is the fixed point P ← P − (P + e(P) − P_nom) of
-/// seeds/003, same solution). Start: P_nom, or P_nom plus the previous point's correction when the
-/// previous point is within 10 mm. 2–3 exact evaluations reach 1e-9 mm on typical machines. When a step
-/// does not at least halve the residual the solver switches to Newton steps with a finite-difference
-/// Jacobian.
+/// Iteration: P ← P − (I + J₁)⁻¹·(P + e(P) − P_nom), J₁ the first-order Jacobian (chord Newton on the
+/// exact residual; with J₁ = 0 this is the fixed point P ← P − (P + e(P) − P_nom) of seeds/003, same
+/// solution). Start: P_nom, or P_nom plus the previous point's correction when the previous point is
+/// within 10 mm. (I + J₁)⁻¹ is computed at the start of a point and reused by the following points while
+/// they stay within 10 mm of where it was computed (along a path: no Jacobian, 2 exact evaluations per
+/// point). When a step does not at least halve the residual, the matrix is recomputed at the current
+/// iterate, and if that does not help either the solver switches to Newton steps with a
+/// finite-difference Jacobian. Every returned point's last evaluation is the exact residual.
 /// Points that do not reach the tolerance within `max_iterations` are reported (status) or thrown
 /// (netshape::Error) — never returned silently.
 

@@ -23,6 +23,8 @@
 ///    side) — seeds/003 eq. (9)–(11) for any chain. exact − first order = O(error²).
 
 #include <array>
+#include <cstdint>
+#include <vector>
 
 #include "netshape/core/types.hpp"
 #include "netshape/machine/machine.hpp"
@@ -45,6 +47,31 @@ struct PreparedFunction {
   const ErrorFunction* source = nullptr;  ///< for the out-of-range message
   double operator()(double q) const;
 };
+
+/// The six components of one axis prepared to be evaluated in one pass: all polynomials packed
+/// (coefficient j of component c at [j * 6 + c], zero-padded to the highest degree: Horner gives the
+/// same numbers as on the unpadded polynomial), or all tables on the same positions with the same
+/// out-of-range policy (value i of component c at [i * 6 + c]: one lookup for six interpolations).
+/// Other mixes fall back to the per-function evaluation.
+struct AxisKernel {
+  enum class Mode : std::uint8_t { generic = 0, polynomial = 1, table = 2 };
+  Mode mode = Mode::generic;
+  int terms = 0;                     ///< polynomial: coefficients per component; table: points
+  std::vector<double> packed;        ///< packed coefficients or table values (see above)
+  const double* x = nullptr;         ///< table positions (in the machine's ErrorFunction)
+  double lo = 0, hi = 0, inv_step = 0;
+  bool uniform = false;
+  OutOfRange out_of_range = OutOfRange::error;
+  const ErrorFunction* source = nullptr;  ///< a table of this axis, for the out-of-range message
+};
+
+/// One carriage of a chain in evaluation order (tool side from the spindle down to the bed, then the
+/// workpiece side from the bed up to the table).
+struct ChainStep {
+  int axis = 0;
+  bool tool = true;
+  Vec3 origin = Vec3::Zero();
+};
 }  // namespace detail
 
 /// Workspace for evaluating a `Machine` (Model/Data split, pinocchio style): constants derived from
@@ -56,13 +83,22 @@ struct MachineData {
   explicit MachineData(const Machine& machine);
 
   std::array<detail::PreparedFunction, 18> functions;  ///< [axis * 6 + component]
+  std::array<detail::AxisKernel, 3> kernels;           ///< per axis: six components in one pass
+  /// All three axes polynomial: the 18 components as one polynomial in 18 lanes (lane 3k + c: rotation
+  /// c of axis k; lane 9 + 3k + c: translation c of axis k), coefficient j of lane l at [j * 18 + l].
+  bool all_polynomial = false;
+  int lane_terms = 0;
+  std::vector<double> lane_coefficients;
+  std::array<detail::ChainStep, 3> steps;              ///< the chains in evaluation order
+  int tool_steps = 0;                                  ///< steps[0, tool_steps) are tool side
+  std::array<std::array<bool, 3>, 3> arm_grows{};      ///< [k][j]: axis j's Abbe arm grows with q_k
 
   std::array<Vec3, 3> direction;          ///< u'_k: axis directions with squareness (exact), unit
   std::array<Vec3, 3> direction_linear;   ///< u_k + first-order squareness deviation
   Vec3 tip_local;                         ///< tip in the last tool-side frame with spindle tilt (exact) [mm]
   Vec3 tip_local_linear;                  ///< same, tilt to first order [mm]
   Vec3 tip_nominal;                       ///< tip without tilt [mm]
-  // per-point scratch
+  // per-point scratch (filled by evaluate_components, first-order tip_error and tip_error_and_jacobian)
   std::array<Vec3, 3> delta;              ///< (EXk, EYk, EZk) at the current point [mm]
   std::array<Vec3, 3> epsilon;            ///< (EAk, EBk, ECk) at the current point [rad]
   std::array<Vec3, 3> delta_slope;        ///< d(EXk, EYk, EZk)/dq_k [mm/mm] (Jacobian only)
