@@ -40,7 +40,7 @@ struct FlatEndModel {
   double k_beta() const;  ///< helix lag constant tan β / R [rad/mm]
 };
 
-/// Precomputed element constants and buffers for one FlatEndModel. Rebuild it (or call reset) when
+/// Precomputed element constants for one FlatEndModel. Rebuild it (or call reset) when
 /// the model's geometry changes; coefficients, feed and engagement may change freely.
 class FlatEndWorkspace {
  public:
@@ -67,7 +67,6 @@ class FlatEndWorkspace {
   Eigen::ArrayXd off_;         // (elements) angle offset j·2π/N − k_β z wrapped to [0, 2π)
   Eigen::ArrayXd cos_off_, sin_off_;
   Eigen::ArrayXi disk_of_;     // (elements) disk index
-  Eigen::ArrayXd gx_, gy_, gz_;  // (elements) per-element force buffers
 };
 
 /// Forces on the cutter [N] at the rotation angles `angles` (n) [rad] (immersion of flute 1 at the
