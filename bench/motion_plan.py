@@ -36,10 +36,12 @@ def load(name, feed_scale=1.0, n=None):
 
 def throughput(points, rule, repeat):
     opts = nm.make_options(rule, lookahead=64)
-    t0 = time.perf_counter()
-    segs, _ = nm._m._throughput(points, 1e9, LIM, opts, repeat)
-    dt = time.perf_counter() - t0
-    return (len(points) - 1) * repeat / dt, segs
+    best = float("inf")
+    for _ in range(3):  # CPU time, best of three (the machine is shared)
+        t0 = time.process_time()
+        segs, _ = nm._m._throughput(points, 1e9, LIM, opts, repeat)
+        best = min(best, time.process_time() - t0)
+    return (len(points) - 1) * repeat / best, segs
 
 
 def toppra_time(points, s, vmax, amax, grid):

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "netshape/motion/corner.hpp"
 
@@ -11,6 +12,11 @@ namespace netshape::motion {
 namespace {
 constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr double tangent_angle = 1e-6;  // [rad] below this a junction counts as tangent
+constexpr int max_arc_pieces = 64;      // an arc is cut into at most this many pieces ...
+constexpr double arc_piece_angle = pi / 32;  // ... of at most this sweep [rad] (when it can)
+constexpr int blend_pieces = 8;         // pieces of a corner blend (4 with jerk limits)
+// nodes one push may add: the previous arc's pieces, the blend pieces, the new block
+constexpr long per_block = max_arc_pieces + blend_pieces + 2;
 
 bool finite3(const Vec3& v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
 
@@ -34,13 +40,80 @@ Vec3 piece_point(const Segment& s, double at) {
   return s.block.point_at(std::clamp(at / s.full_length, 0.0, 1.0));
 }
 Vec3 piece_tangent(const Segment& s, double at) { return s.block.tangent_at(std::clamp(at / s.full_length, 0.0, 1.0)); }
+
+// largest |cos| and |sin| over the angles between p0 and p1 [rad]
+void trig_max(double p0, double p1, double& mc, double& ms) {
+  if (p0 > p1) std::swap(p0, p1);
+  if (p1 - p0 >= pi) {
+    mc = ms = 1.0;
+    return;
+  }
+  mc = std::max(std::abs(std::cos(p0)), std::abs(std::cos(p1)));
+  ms = std::max(std::abs(std::sin(p0)), std::abs(std::sin(p1)));
+  if (std::floor(p1 / pi) >= std::ceil(p0 / pi)) mc = 1.0;                          // k·π inside
+  if (std::floor((p1 - 0.5 * pi) / pi) >= std::ceil((p0 - 0.5 * pi) / pi)) ms = 1.0;  // π/2 + k·π inside
+}
+
+int arc_piece_count(const Segment& s) {
+  const double sweep = std::abs(s.block.sweep()) * s.length() / s.full_length;
+  return std::clamp(static_cast<int>(std::ceil(sweep / arc_piece_angle - 1e-9)), 1, max_arc_pieces);
+}
+
+// Per-axis bounds over the arc window [s0, s1] (arc length from the block start) of |u_i| (U) and of
+// the curvature vector |κ n_i| (K) [1/mm]; a helix's curvature vector points to its axis.
+void arc_bounds(const Segment& s, double s0, double s1, Vec3& U, Vec3& K) {
+  const toolpath::Block& b = s.block;
+  const auto ax = toolpath::plane_axes(b.plane);
+  const double r0 = std::hypot(b.start[ax.a] - b.center[ax.a], b.start[ax.b] - b.center[ax.b]);
+  const double r1 = std::hypot(b.end[ax.a] - b.center[ax.a], b.end[ax.b] - b.center[ax.b]);
+  const double sw = b.sweep(), dn = b.end[ax.n] - b.start[ax.n];
+  const double ang0 = std::atan2(b.start[ax.b] - b.center[ax.b], b.start[ax.a] - b.center[ax.a]);
+  double mc, ms;
+  trig_max(ang0 + sw * s0 / s.full_length, ang0 + sw * s1 / s.full_length, mc, ms);
+  const double rmin = std::min(r0, r1), rmax = std::max(r0, r1), dr = rmax - rmin;
+  const double rho = std::hypot(rmin * sw, dn);  // |dp/df| (lower bound when the radius varies)
+  U[ax.a] = std::min(1.0, (rmax * std::abs(sw) * ms + dr) / rho);
+  U[ax.b] = std::min(1.0, (rmax * std::abs(sw) * mc + dr) / rho);
+  U[ax.n] = std::min(1.0, std::abs(dn) / rho);
+  const double c = sw != 0.0 ? dn / sw : 0.0;
+  const double kappa = std::max(r0 / (r0 * r0 + c * c), r1 / (r1 * r1 + c * c)) * (1.0 + 1e-9);
+  K[ax.a] = kappa * mc;
+  K[ax.b] = kappa * ms;
+  K[ax.n] = 0.0;
+}
+
+// Bounds over the table nodes [i0, i1] of a blend, with a margin for what lies between the nodes
+// (a quarter of the largest second difference, twice the parabolic estimate).
+void blend_bounds(const std::array<Vec3, 17>& T, const std::array<Vec3, 17>& Kv, int i0, int i1, Vec3& U,
+                  Vec3& K) {
+  for (int c = 0; c < 3; ++c) {
+    double mu = 0, mk = 0, du = 0, dk = 0;
+    for (int i = i0; i <= i1; ++i) {
+      mu = std::max(mu, std::abs(T[static_cast<std::size_t>(i)][c]));
+      mk = std::max(mk, std::abs(Kv[static_cast<std::size_t>(i)][c]));
+    }
+    for (int i = std::max(1, i0); i <= std::min(15, i1); ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      du = std::max(du, std::abs(std::abs(T[k - 1][c]) - 2 * std::abs(T[k][c]) + std::abs(T[k + 1][c])));
+      dk = std::max(dk, std::abs(std::abs(Kv[k - 1][c]) - 2 * std::abs(Kv[k][c]) + std::abs(Kv[k + 1][c])));
+    }
+    U[c] = std::min(1.0, mu + 0.25 * du + 1e-12);
+    K[c] = mk * (1.0 + 1e-9) + 0.25 * dk;
+  }
+}
+
+// quadratic corner bound next to curves: v·d/ts + κ·v² ≤ A
+double jump_speed(double acc, double d, double ts, double kappa) {
+  const double b = d / ts;
+  if (kappa <= 0) return b > 0 ? acc / b : inf;
+  return 2.0 * acc / (b + std::sqrt(b * b + 4.0 * kappa * acc));
+}
 }  // namespace
 
 Planner::Planner(const AxisLimits& limits, const PlanOptions& options) : limits_(limits), opt_(options) {
   limits_.validate();
   opt_.validate();
-  const long per = opt_.rule == CornerRule::blend ? 5 : 1;
-  cap_ = per * opt_.lookahead + 3;
+  cap_ = per_block * (opt_.lookahead + 2) + 3;
   ring_.resize(static_cast<std::size_t>(cap_));
   quick_.resize(static_cast<std::size_t>(cap_));
 }
@@ -52,6 +125,11 @@ void Planner::sync(long k) noexcept {
   x.len = plan_length(n);
   x.a = n.a;
   x.j = n.j;
+  x.curved = n.curved;
+  for (int i = 0; i < 3; ++i) {
+    x.U[i] = n.U[i];
+    x.K[i] = n.K[i];
+  }
 }
 
 void Planner::reset() noexcept {
@@ -65,9 +143,12 @@ void Planner::reset() noexcept {
   error_ = "";
 }
 
+long Planner::blocks_in_buffer() const noexcept { return tail_ > head_ ? pushed_ - at(head_).blk : 0; }
+
 int Planner::free_blocks() const noexcept {
-  const long per = opt_.rule == CornerRule::blend ? 5 : 1;
-  return static_cast<int>(std::max(0L, (cap_ - (tail_ - head_)) / per));
+  const long by_nodes = (cap_ - (tail_ - head_)) / per_block;
+  const long by_blocks = opt_.lookahead + 1 - blocks_in_buffer();
+  return static_cast<int>(std::max(0L, std::min(by_nodes, by_blocks)));
 }
 
 double Planner::end_time() const noexcept {
@@ -79,10 +160,7 @@ Status Planner::fail(const char* msg) noexcept {
   return Status::invalid_input;
 }
 
-bool Planner::buffer_ready() const noexcept {
-  const long per = opt_.rule == CornerRule::blend ? 5 : 1;
-  return finished_ || cap_ - (tail_ - head_) < per;
-}
+bool Planner::buffer_ready() const noexcept { return finished_ || free_blocks() == 0; }
 
 double Planner::plan_length(const Node& n) const noexcept {
   const Segment& s = n.seg;
@@ -97,8 +175,8 @@ void Planner::set_params(Node& n) const noexcept {
   const double amin = min_over(limits_.acceleration, moving);
   const double vmin = min_over(limits_.velocity, moving);
   const double jmin = min_over(limits_.jerk, moving);
-  const double c = opt_.centripetal_fraction;
   const bool jerk = std::isfinite(jmin);
+  n.curved = false;
   if (s.kind == SegmentKind::line) {
     const Vec3 u = s.block.tangent_at(0.0);
     n.vmax = std::min(n.vmax, along(limits_.velocity, u));
@@ -106,16 +184,86 @@ void Planner::set_params(Node& n) const noexcept {
     n.j = jerk ? along(limits_.jerk, u) : inf;
     return;
   }
-  // arcs and blends: centripetal share c·A, tangential share sqrt(1 − c²)·A
+  if (!jerk) {
+    // the per-axis box: |u_i|·v ≤ V_i and K_i·v² ≤ A_i (the tangential share is set per speed)
+    n.curved = true;
+    n.j = inf;
+    for (int i = 0; i < 3; ++i) {
+      if (n.U[i] > 0) n.vmax = std::min(n.vmax, limits_.velocity[i] / n.U[i]);
+      if (n.K[i] > 0) n.vmax = std::min(n.vmax, std::sqrt(limits_.acceleration[i] / n.K[i]));
+    }
+    n.a = amin;
+    return;
+  }
+  // with jerk limits: centripetal share c·A, tangential share sqrt(1 − c²)·A (vector bound)
+  const double c = opt_.centripetal_fraction;
   const double k = std::max(s.curvature, 1e-300);
   n.a = std::sqrt(1.0 - c * c) * amin;
   n.vmax = std::min({n.vmax, vmin, std::sqrt(c * amin / k)});
-  n.j = inf;
-  if (jerk) {
-    // jerk vector = (j_t − v³κ²) t + (3 v a_t κ + v³ dκ/ds) n: give j_t 0.4 J and the rest 0.3 J each
-    n.j = 0.4 * jmin;
-    n.vmax = std::min(n.vmax, 0.3 * jmin / (k * (c * amin + 3.0 * n.a)));
-    if (s.curvature_rate > 0) n.vmax = std::min(n.vmax, std::cbrt(0.3 * jmin / s.curvature_rate));
+  // jerk vector = (j_t − v³κ²) t + (3 v a_t κ + v³ dκ/ds) n: give j_t 0.4 J and the rest 0.3 J each
+  n.j = 0.4 * jmin;
+  n.vmax = std::min(n.vmax, 0.3 * jmin / (k * (c * amin + 3.0 * n.a)));
+  if (s.curvature_rate > 0) n.vmax = std::min(n.vmax, std::cbrt(0.3 * jmin / s.curvature_rate));
+}
+
+// largest squared speed at one end of a node when the other end runs at sqrt(w0) [mm²/s²]
+double Planner::reach_sq(const Quick& n, double w0) const noexcept {
+  if (std::isfinite(n.j)) {
+    const double r = reach_speed(std::sqrt(w0), n.len, n.a, n.j);
+    return r * r;
+  }
+  if (!n.curved) return w0 + 2.0 * n.a * n.len;
+  // per axis: w·(U_i + 2·L·K_i) ≤ U_i·w0 + 2·L·A_i (exact for constant bounds)
+  double w = inf;
+  for (int i = 0; i < 3; ++i) {
+    const double den = n.U[i] + 2.0 * n.len * n.K[i];
+    if (den > 0) w = std::min(w, (n.U[i] * w0 + 2.0 * n.len * limits_.acceleration[i]) / den);
+  }
+  return std::isfinite(w) ? w : w0;
+}
+
+void Planner::append(const Node& n) noexcept {
+  at(tail_) = n;
+  sync(tail_);
+  q(tail_).vb = 0.0;
+  ++tail_;
+}
+
+// The last node holds a whole block whose end is now known: cut arcs into pieces of at most
+// arc_piece_angle, each with its own bounds (the axis box is much tighter on a short piece).
+void Planner::split_tail() noexcept {
+  Node& p = at(tail_ - 1);
+  if (!p.provisional) return;
+  p.provisional = false;
+  p.tail_trim = false;
+  if (p.seg.kind != SegmentKind::arc) {
+    sync(tail_ - 1);
+    return;
+  }
+  const Node base = p;
+  const double s0 = base.seg.trim_start, s1 = base.seg.full_length - base.seg.trim_end;
+  const int m = arc_piece_count(base.seg);
+  double v_prev = 0;
+  for (int k = 0; k < m; ++k) {
+    Node x = base;
+    const double a = s0 + (s1 - s0) * k / m, b = k + 1 == m ? s1 : s0 + (s1 - s0) * (k + 1) / m;
+    x.seg.trim_start = a;
+    x.seg.trim_end = base.seg.full_length - b;
+    arc_bounds(x.seg, a, b, x.U, x.K);
+    x.vmax = base.fcap;
+    set_params(x);
+    x.res_s = k == 0 ? base.res_s : 0.0;
+    x.jump_s = k == 0 && base.jump_s;
+    x.res_e = k + 1 == m ? base.res_e : 0.0;
+    x.jump_e = k + 1 == m && base.jump_e;
+    x.v_lim = k == 0 ? std::min(base.v_corner, x.vmax) : std::min(v_prev, x.vmax);
+    v_prev = x.vmax;
+    if (k == 0) {
+      p = x;
+      sync(tail_ - 1);
+    } else {
+      append(x);
+    }
   }
 }
 
@@ -123,8 +271,7 @@ Status Planner::push(const toolpath::Block& b) noexcept {
   if (finished_) return fail("push() after finish()");
   if (!finite3(b.start) || !finite3(b.end) || !finite3(b.center) || !std::isfinite(b.feed) || b.feed < 0)
     return fail("block has a non-finite coordinate or a negative feed");
-  const long per = opt_.rule == CornerRule::blend ? 5 : 1;
-  if (cap_ - (tail_ - head_) < per) return Status::buffer_full;
+  if (cap_ - (tail_ - head_) < per_block || blocks_in_buffer() > opt_.lookahead) return Status::buffer_full;
   const bool arc = b.kind == toolpath::MotionKind::arc;
   if (arc && !(b.radius() > 0)) return fail("arc radius must be positive");
   if (arc && b.turns < 1) return fail("arc turns must be at least 1");
@@ -133,117 +280,135 @@ Status Planner::push(const toolpath::Block& b) noexcept {
   if (have_last_ && (b.start - last_point_).norm() > 1e-6 * (1.0 + last_point_.norm()))
     return fail("block does not start where the previous one ended");
   const long source = pushed_++;
-  Segment seg = arc ? Segment::arc(b, source) : Segment::line(b, source);
   last_point_ = b.end;
   have_last_ = true;
   const bool rapid = b.kind == toolpath::MotionKind::rapid;
-  const double feed_cap = (rapid || b.feed <= 0) ? inf : b.feed;
+  const bool jerk_mode = limits_.jerk_limited();
 
   const bool has_prev = tail_ > head_ && tail_ - 1 >= frozen_;
-  const long prev_index = tail_ - 1;
+  const long first = tail_ - 1;  // the previous block's node (it is cut into pieces below)
   const double ts2 = opt_.ts2;
   const bool jump_rule = opt_.rule == CornerRule::vector || opt_.rule == CornerRule::per_axis;
 
-  // the new node (not yet in the ring)
+  // the new node (not yet in the ring): the whole block, bounds over all of it, until its end is known
   Node nn;
-  nn.seg = seg;
-  nn.vmax = feed_cap;
+  nn.seg = arc ? Segment::arc(b, source) : Segment::line(b, source);
+  nn.blk = source;
+  nn.fcap = (rapid || b.feed <= 0) ? inf : b.feed;
+  nn.vmax = nn.fcap;
+  if (arc) arc_bounds(nn.seg, 0.0, nn.seg.full_length, nn.U, nn.K);
   set_params(nn);
-  if (jump_rule) nn.res_e = 2.0 * ts2 * std::min(nn.vmax, seg.full_length / (8.0 * ts2));
+  nn.provisional = true;
+  const double first_piece = arc ? nn.seg.full_length / arc_piece_count(nn.seg) : nn.seg.full_length;
+  if (jump_rule) nn.res_e = 2.0 * ts2 * std::min(nn.vmax, first_piece / (8.0 * ts2));
   nn.tail_trim = opt_.rule == CornerRule::blend;
 
   if (!has_prev) {
-    nn.v_lim = 0.0;  // start from rest
-    at(tail_) = nn;
-    sync(tail_);
-    q(tail_).vb = 0.0;
-    ++tail_;
+    nn.v_lim = nn.v_corner = 0.0;  // start from rest
+    append(nn);
     back_pass(tail_ - 1);
     return Status::ok;
   }
-  Node& p = at(prev_index);
-  const Vec3 u1 = end_tangent(p.seg), u2 = start_tangent(seg);
+  const Vec3 u1 = end_tangent(at(first).seg), u2 = start_tangent(nn.seg);
   const double theta = turn_angle(u1, u2);
-  const double vcap = std::min(p.vmax, nn.vmax);
   const double amin = moving_axes_min(limits_.acceleration, u1, u2);
-  const bool arc_adjacent = p.seg.kind == SegmentKind::arc || seg.kind == SegmentKind::arc;
-  const double f = arc_adjacent ? 1.0 - opt_.centripetal_fraction : 1.0;
 
   if (opt_.rule == CornerRule::blend && theta > tangent_angle && theta < pi - 1e-3) {
+    const Segment pseg = at(first).seg;  // the whole previous block (trim_start already final)
     // corner blend: P0 on the previous piece, P3 on the next, both at distance d from the vertex
-    const double dmax = 0.45 * std::min(p.seg.full_length, seg.full_length);
+    const double dmax = 0.45 * std::min(pseg.full_length, nn.seg.full_length);
     double d = std::min(dmax, 4.0 * opt_.tolerance / std::sin(0.5 * theta));
     std::array<Vec3, 4> bl;
     for (int it = 0; it < 40; ++it) {
-      const double sp = p.seg.full_length - d;
-      const Vec3 p0 = piece_point(p.seg, sp), t0 = piece_tangent(p.seg, sp);
-      const Vec3 p3 = piece_point(seg, d), t3 = piece_tangent(seg, d);
+      const double sp = pseg.full_length - d;
+      const Vec3 p0 = piece_point(pseg, sp), t0 = piece_tangent(pseg, sp);
+      const Vec3 p3 = piece_point(nn.seg, d), t3 = piece_tangent(nn.seg, d);
       bl = {p0, p0 + d * t0, p3 - d * t3, p3};
-      if (p.seg.kind == SegmentKind::line && seg.kind == SegmentKind::line) break;  // bound is exact
+      if (pseg.kind == SegmentKind::line && nn.seg.kind == SegmentKind::line) break;  // bound is exact
       double dev = 0;
       for (int i = 1; i < 16; ++i) {
-        const Vec3 q = bezier_point(bl, i / 16.0);
-        dev = std::max(dev, std::min(p.seg.distance_to_piece(q, sp, p.seg.full_length),
-                                     seg.distance_to_piece(q, 0.0, d)));
+        const Vec3 qp = bezier_point(bl, i / 16.0);
+        dev = std::max(dev, std::min(pseg.distance_to_piece(qp, sp, pseg.full_length),
+                                     nn.seg.distance_to_piece(qp, 0.0, d)));
       }
       if (dev <= opt_.tolerance) break;
       d *= 0.5;
     }
-    p.seg.trim_end = d;
-    p.tail_trim = false;
+    at(first).seg.trim_end = d;
     nn.seg.trim_start = d;
-    // four pieces (de Casteljau at u = 1/4, 1/2, 3/4), each driven at the speed of its own largest
-    // curvature: the speed dips only where the curvature peaks
-    std::array<std::array<Vec3, 4>, 4> pieces;
-    {
-      auto split = [](const std::array<Vec3, 4>& c, std::array<Vec3, 4>& l, std::array<Vec3, 4>& r) {
-        const Vec3 a = 0.5 * (c[0] + c[1]), b = 0.5 * (c[1] + c[2]), e = 0.5 * (c[2] + c[3]);
-        const Vec3 ab = 0.5 * (a + b), be = 0.5 * (b + e), m = 0.5 * (ab + be);
-        l = {c[0], a, ab, m};
-        r = {m, be, e, c[3]};
-      };
-      std::array<Vec3, 4> h0, h1;
-      split(bl, h0, h1);
-      split(h0, pieces[0], pieces[1]);
-      split(h1, pieces[2], pieces[3]);
+    split_tail();
+    const double vfeed = std::min(at(first).fcap, nn.fcap);
+    double v_prev = at(tail_ - 1).vmax;
+    // the blend, cut into pieces at its arc-length table nodes; each piece has its own axis-box
+    // bounds, so the speed follows the curvature (the forward and backward passes over the pieces
+    // are the phase-plane method on a grid of stations)
+    std::array<Vec3, 17> T, Kv;
+    const Segment whole = Segment::blend(bl[0], bl[1], bl[2], bl[3], pseg.source, &T, &Kv);
+    int np = jerk_mode ? 4 : blend_pieces;
+    if (!jerk_mode) {
+      Vec3 U, K;
+      blend_bounds(T, Kv, 0, 16, U, K);
+      double vcap = vfeed;
+      for (int i = 0; i < 3; ++i)
+        if (U[i] > 0) vcap = std::min(vcap, limits_.velocity[i] / U[i]);
+      // a gentle turn: the centripetal part takes little of the budget at full speed; one piece
+      if (K.maxCoeff() * vcap * vcap <= 0.02 * limits_.acceleration.minCoeff()) np = 1;
     }
-    const double vfeed = std::min(p.vmax, nn.vmax);
-    double v_prev = p.vmax;
-    for (const auto& c : pieces) {
+    const int step = 16 / np;
+    for (int k = 0; k < np; ++k) {
+      const int i0 = k * step, i1 = i0 + step;
       Node bn;
-      bn.seg = Segment::blend(c[0], c[1], c[2], c[3], p.seg.source);
+      bn.seg = whole;
+      bn.seg.trim_start = whole.table[static_cast<std::size_t>(i0)];
+      bn.seg.trim_end = whole.full_length - whole.table[static_cast<std::size_t>(i1)];
+      bn.blk = source;
+      bn.fcap = vfeed;
+      blend_bounds(T, Kv, i0, i1, bn.U, bn.K);
+      if (jerk_mode) {
+        double kmax = 0, rate = 0;
+        for (int i = i0; i <= i1; ++i) {
+          const auto ii = static_cast<std::size_t>(i);
+          kmax = std::max(kmax, Kv[ii].norm());
+          if (i > i0 && whole.table[ii] > whole.table[ii - 1])
+            rate = std::max(rate, std::abs(Kv[ii].norm() - Kv[ii - 1].norm()) / (whole.table[ii] - whole.table[ii - 1]));
+        }
+        bn.seg.curvature = kmax;
+        bn.seg.curvature_rate = rate;
+      }
       bn.vmax = vfeed;
       set_params(bn);
-      bn.v_lim = std::min(v_prev, bn.vmax);
+      bn.v_lim = bn.v_corner = std::min(v_prev, bn.vmax);
       v_prev = bn.vmax;
-      at(tail_) = bn;
-      sync(tail_);
-      q(tail_).vb = 0.0;
-      ++tail_;
+      append(bn);
     }
+    nn.v_corner = v_prev;
     nn.v_lim = std::min(v_prev, nn.vmax);
-    at(tail_) = nn;
-    sync(tail_);
-    q(tail_).vb = 0.0;
-    ++tail_;
-    sync(prev_index);
-    back_pass(prev_index);
+    append(nn);
+    back_pass(first);
     return Status::ok;
   }
 
+  split_tail();
+  Node& p = at(tail_ - 1);  // the previous block's last piece
+  const double vcap = std::min(p.vmax, nn.fcap);
   double v = vcap;
   bool jump = false;
   if (theta > tangent_angle) {
+    // next to arcs the vertex straddling second differences also see the centripetal part
+    const double kappa = std::max(p.seg.kind == SegmentKind::arc ? p.seg.block.curvature() : 0.0,
+                                  arc ? nn.seg.block.curvature() : 0.0);
     switch (opt_.rule) {
       case CornerRule::paper:
         v = std::max(paper_corner_speed(amin, opt_.ts1, theta), opt_.allowable_speed_difference);
         break;
       case CornerRule::vector:
-        v = f * vector_corner_speed(u1, u2, amin, ts2);
+        v = jump_speed(amin, (u2 - u1).norm(), ts2, kappa);
         jump = true;
         break;
       case CornerRule::per_axis:
-        v = f * per_axis_corner_speed(u1, u2, limits_.acceleration, ts2);
+        v = inf;
+        for (int i = 0; i < 3; ++i)
+          v = std::min(v, jump_speed(limits_.acceleration[i], std::abs(u2[i] - u1[i]), ts2, kappa));
         jump = true;
         break;
       case CornerRule::junction_deviation: {
@@ -259,7 +424,7 @@ Status Planner::push(const toolpath::Block& b) noexcept {
   }
   if (jump_rule) {
     if (jump) {
-      v = std::min({v, (p.seg.full_length - p.seg.trim_start) / (8.0 * ts2), seg.full_length / (8.0 * ts2)});
+      v = std::min({v, p.seg.length() / (8.0 * ts2), first_piece / (8.0 * ts2)});
       p.res_e = 2.0 * ts2 * v;
       nn.res_s = 2.0 * ts2 * v;
     } else {
@@ -267,14 +432,12 @@ Status Planner::push(const toolpath::Block& b) noexcept {
     }
     p.jump_e = jump;
     nn.jump_s = jump;
+    sync(tail_ - 1);
   }
-  nn.v_lim = v;
-  at(tail_) = nn;
-  sync(tail_);
-  q(tail_).vb = 0.0;
-  ++tail_;
-  sync(prev_index);
-  back_pass(prev_index);
+  nn.v_corner = v;
+  nn.v_lim = std::min(v, nn.vmax);
+  append(nn);
+  back_pass(first);
   return Status::ok;
 }
 
@@ -282,13 +445,15 @@ void Planner::finish() noexcept {
   if (finished_) return;
   finished_ = true;
   if (tail_ > frozen_) {
-    Node& t = at(tail_ - 1);
+    const long first = tail_ - 1;
+    Node& t = at(first);
     t.tail_trim = false;
     t.seg.trim_end = 0.0;
     t.res_e = 0.0;
     t.jump_e = false;
-    sync(tail_ - 1);
-    back_pass(tail_ - 1);
+    split_tail();
+    sync(first);
+    back_pass(first);
   }
 }
 
@@ -296,10 +461,8 @@ void Planner::back_pass(long dirty_from) noexcept {
   double v_next = 0.0;  // the buffer always ends at rest
   for (long k = tail_ - 1; k >= frozen_; --k) {
     Quick& n = q(k);
-    // seeds/002 eq. 3 (trapezoid) or its S-curve counterpart, capped by the junction limit
-    const double reach = std::isfinite(n.j) ? reach_speed(v_next, n.len, n.a, n.j)
-                                            : std::sqrt(v_next * v_next + 2.0 * n.a * n.len);
-    const double v = std::min(n.v_lim, reach);
+    // seeds/002 eq. 3 (trapezoid; on curves the axis box), capped by the junction limit
+    const double v = std::min(n.v_lim, std::sqrt(reach_sq(n, v_next * v_next)));
     if (k < dirty_from && v == n.vb) break;  // nothing changes further back
     n.vb = v;
     v_next = v;
@@ -312,11 +475,35 @@ bool Planner::freeze_next() noexcept {
   if (is_tail && !finished_) return false;
   if (!buffer_ready()) return false;
   Node& n = at(frozen_);
+  const Quick& qn = q(frozen_);
   const double vs = v_frozen_end_;
   const double target = is_tail ? 0.0 : q(frozen_ + 1).vb;
-  const double ve = std::min(target, reach_speed(vs, plan_length(n), n.a, n.j));
-  n.prof = Profile::make(n.seg.length(), vs, ve, std::max(n.vmax, std::max(vs, ve)), n.a, n.j,
-                         n.jump_s ? 2.0 * opt_.ts2 * vs : 0.0, n.jump_e ? 2.0 * opt_.ts2 * ve : 0.0);
+  const double ve = std::min(target, std::sqrt(reach_sq(qn, vs * vs)));
+  const double ws = n.jump_s ? 2.0 * opt_.ts2 * vs : 0.0, we = n.jump_e ? 2.0 * opt_.ts2 * ve : 0.0;
+  const double len = n.seg.length();
+  if (qn.curved && !std::isfinite(qn.j)) {
+    // peak speed and tangential acceleration from the axis box at that speed:
+    // 2·w − vs² − ve² = 2·L·(A_i − K_i·w)/U_i for the binding axis
+    const double lr = std::max(0.0, len - std::min(ws, len) - std::min(we, len));
+    const double S = vs * vs + ve * ve;
+    double wp = n.vmax * n.vmax;
+    for (int i = 0; i < 3; ++i) {
+      const double den = 2.0 * n.U[i] + 2.0 * lr * n.K[i];
+      if (den > 0) wp = std::min(wp, (n.U[i] * S + 2.0 * lr * limits_.acceleration[i]) / den);
+    }
+    wp = std::max(wp, std::max(vs * vs, ve * ve));
+    double a = inf;
+    for (int i = 0; i < 3; ++i)
+      if (n.U[i] > 0) a = std::min(a, (limits_.acceleration[i] - n.K[i] * wp) / n.U[i]);
+    // at the curvature cap the tangential budget is 0: a floor of 1e-6·A keeps the rounding-size speed
+    // differences of neighbouring pieces from turning into long ramps
+    const double amin = limits_.acceleration.minCoeff();
+    if (!(a > 1e-6 * amin)) a = 1e-6 * amin;
+    if (!std::isfinite(a)) a = amin;
+    n.prof = Profile::make(len, vs, ve, std::sqrt(wp), a, inf, ws, we);
+  } else {
+    n.prof = Profile::make(len, vs, ve, std::max(n.vmax, std::max(vs, ve)), n.a, n.j, ws, we);
+  }
   n.t0 = t_frozen_end_;
   t_frozen_end_ += n.prof.duration;
   v_frozen_end_ = ve;

@@ -12,7 +12,8 @@ double ramp_time(double v0, double v1, double a, double j) noexcept {
 }
 
 double ramp_distance(double v0, double v1, double a, double j) noexcept {
-  if (!std::isfinite(j)) return std::abs(v1 * v1 - v0 * v0) / (2.0 * a);
+  // mean speed times duration (not |v1² − v0²|/2a, which cancels when v1 ≈ v0 and then disagrees
+  // with the duration)
   return 0.5 * (v0 + v1) * ramp_time(v0, v1, a, j);
 }
 
@@ -53,6 +54,11 @@ Profile Profile::make(double length, double vs, double ve, double vmax, double a
   }
   vp = std::max(vlow, std::min(vp, std::max(vmax, vlow)));
   p.vp = vp;
+  if (!std::isfinite(j) && lr > 0) {
+    // rounding (or a speed-dependent a chosen by the caller at the peak): make both ramps fit
+    const double need = (2.0 * vp * vp - vs * vs - ve * ve) / (2.0 * lr);
+    if (need > a) p.a = a = need;
+  }
   p.d[0] = ws;
   p.t[0] = ws > 0 ? ws / vs : 0.0;
   p.d[1] = ramp_distance(vs, vp, a, j);

@@ -58,7 +58,8 @@ Segment Segment::arc(const toolpath::Block& b, long source) {
   return s;
 }
 
-Segment Segment::blend(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3, long source) {
+Segment Segment::blend(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3, long source,
+                       std::array<Vec3, 17>* tangent, std::array<Vec3, 17>* curvature_vector) {
   Segment s;
   s.kind = SegmentKind::blend;
   s.ctrl = {p0, p1, p2, p3};
@@ -81,6 +82,12 @@ Segment Segment::blend(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec
     const Vec3 v1 = c0 + u * (c1 + u * c2), v2 = c1 + 2.0 * u * c2;
     const double sp = v1.norm();
     const double k = sp > 0 ? v1.cross(v2).norm() / (sp * sp * sp) : 0.0;
+    if (tangent) (*tangent)[static_cast<std::size_t>(i)] = sp > 0 ? Vec3(v1 / sp) : Vec3::Zero();
+    if (curvature_vector) {
+      // normal part of B'' over |B'|^2
+      const Vec3 t = sp > 0 ? Vec3(v1 / sp) : Vec3::Zero();
+      (*curvature_vector)[static_cast<std::size_t>(i)] = sp > 0 ? Vec3((v2 - v2.dot(t) * t) / (sp * sp)) : Vec3::Zero();
+    }
     s.curvature = std::max(s.curvature, k);
     if (i > 0 && s.table[i] > s.table[i - 1])
       s.curvature_rate = std::max(s.curvature_rate, std::abs(k - kprev) / (s.table[i] - s.table[i - 1]));
@@ -115,7 +122,7 @@ Vec3 Segment::point_at(double s) const noexcept {
       return block.start + f * (block.end - block.start);
     }
     case SegmentKind::arc: return block.point_at(std::clamp((trim_start + s) / full_length, 0.0, 1.0));
-    case SegmentKind::blend: return bezier_point(ctrl, bezier_u(s));
+    case SegmentKind::blend: return bezier_point(ctrl, bezier_u(trim_start + s));
   }
   return Vec3::Zero();
 }
@@ -125,7 +132,7 @@ Vec3 Segment::tangent_at(double s) const noexcept {
     case SegmentKind::line: return block.tangent_at(0.0);
     case SegmentKind::arc: return block.tangent_at(std::clamp((trim_start + s) / full_length, 0.0, 1.0));
     case SegmentKind::blend: {
-      const Vec3 d = bezier_d1(ctrl, bezier_u(s));
+      const Vec3 d = bezier_d1(ctrl, bezier_u(trim_start + s));
       const double n = d.norm();
       return n > 0 ? Vec3(d / n) : Vec3((ctrl[3] - ctrl[0]).normalized());
     }

@@ -70,7 +70,10 @@ def test_jerk_limited_profile_on_a_line_is_smooth():
 
 
 def test_arcs_planned_as_arcs_centripetal_limit():
-    """A full circle r = 5 mm at F far above the limit: the speed on the arc is √(c·A·r) (c = 0.8)."""
+    """Two full turns r = 5 mm at F far above the limit, planned against the per-axis box: at constant
+    speed some axis sees the whole centripetal v²/r, so the arc runs near √(A·r) (a little above on
+    the diagonals, where the load splits over two axes; never above √(√2·A·r)), faster than the vector
+    split of the jerk-limited mode (√(0.8·A·r)), and every axis stays within A (checked in _check)."""
     r, a = 5.0, 1000.0
     arr = dict(kind=np.array([2]), start=np.array([[r, 0, 0.0]]), end=np.array([[r, 0, 0.0]]),
                center=np.zeros((1, 3)), clockwise=np.array([0]), plane=np.array([0]), turns=np.array([2]),
@@ -78,7 +81,7 @@ def test_arcs_planned_as_arcs_centripetal_limit():
     lim = nm.AxisLimits.uniform(500.0, a)
     for rule in nm.RULES:
         tr = nm.plan(arr, lim, rule=rule)
-        assert tr.feed.max() == pytest.approx(np.sqrt(0.8 * a * r), rel=1e-9)
+        assert np.sqrt(a * r) * 0.98 <= tr.feed.max() <= np.sqrt(np.sqrt(2.0) * a * r)
         _check(tr, lim, rule)
 
 

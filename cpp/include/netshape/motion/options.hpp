@@ -34,8 +34,9 @@ struct PlanOptions {
   double tolerance = 0.01;              ///< blend rule: contour tolerance ε [mm]
   double junction_deviation = 0.0;      ///< junction-deviation rule: δ [mm] (used when scv = 0)
   double square_corner_velocity = 5.0;  ///< Klipper's square corner velocity [mm/s] (0: use δ)
-  /// On arcs and blends, the share of the acceleration budget given to the centripetal part
-  /// (v²κ ≤ c·A); the tangential part gets √(1 − c²)·A so that the vector sum stays ≤ A.
+  /// With jerk limits only: on arcs and blends, the share of the acceleration budget given to the
+  /// centripetal part (v²κ ≤ c·A); the tangential part gets √(1 − c²)·A so that the vector sum stays
+  /// ≤ A. Without jerk limits curves are planned against the per-axis box (docs/motion.md).
   double centripetal_fraction = 0.8;
 
   void validate() const;

@@ -90,18 +90,28 @@ class Planner {
  private:
   struct Node {
     Segment seg;
-    double vmax = 0, a = 1, j = 0;  // cruise cap [mm/s], path acceleration, path jerk
+    double vmax = 0, a = 1, j = 0;  // cruise cap [mm/s], path acceleration (lines, jerk mode), path jerk
+    // curved pieces (arcs, blends) without jerk limits: per-axis bounds over the piece of |u_i| (U)
+    // and of the curvature vector |κ n_i| [1/mm] (K); the axis box |u_i·s̈ + κ n_i·ṡ²| ≤ A_i then
+    // holds for |s̈| ≤ min_i (A_i − K_i·ṡ²)/U_i
+    Vec3 U = Vec3::Zero(), K = Vec3::Zero();
+    bool curved = false;
     double v_lim = 0;               // junction limit at the start [mm/s]
-    double vb = 0;                  // back-pass speed at the start [mm/s]
+    double v_corner = 0;            // corner speed before this node's own cap [mm/s]
+    double fcap = 0;                // programmed feed cap [mm/s] (+inf for rapids)
     double res_s = 0, res_e = 0;    // distance reserved for constant-speed windows [mm]
     bool jump_s = false, jump_e = false;
     bool tail_trim = false;         // blend mode: end trim is still the tentative maximum
+    bool provisional = false;       // last block: not yet cut into pieces (arcs)
+    long blk = 0;                   // index of the program block that brought this node in
     Profile prof;
     double t0 = 0;
   };
-  // compact copy of what the backward pass reads and writes, so it walks 40-byte records, not Nodes
+  // compact copy of what the backward pass reads and writes, so it walks small records, not Nodes
   struct Quick {
     double v_lim = 0, vb = 0, len = 0, a = 1, j = 0;
+    double U[3] = {0, 0, 0}, K[3] = {0, 0, 0};
+    bool curved = false;
   };
   Quick& q(long k) noexcept { return quick_[static_cast<std::size_t>(k % cap_)]; }
   void sync(long k) noexcept;
@@ -109,7 +119,10 @@ class Planner {
   const Node& at(long k) const noexcept { return ring_[static_cast<std::size_t>(k % cap_)]; }
   double plan_length(const Node& n) const noexcept;
   void set_params(Node& n) const noexcept;
-  Status add_segment(const Segment& s, double feed, bool rapid) noexcept;
+  double reach_sq(const Quick& n, double w0) const noexcept;
+  void split_tail() noexcept;
+  void append(const Node& n) noexcept;
+  long blocks_in_buffer() const noexcept;
   void back_pass(long dirty_from) noexcept;
   bool buffer_ready() const noexcept;
   bool freeze_next() noexcept;

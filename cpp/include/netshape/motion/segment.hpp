@@ -14,23 +14,26 @@ namespace netshape::motion {
 enum class SegmentKind : std::uint8_t { line = 0, arc = 1, blend = 2 };
 
 /// Path segment. Lines and arcs keep the programmed block and a trimmed window
-/// [trim_start, full_length − trim_end] of it (blends eat into their ends); blends are cubic Béziers.
+/// [trim_start, full_length − trim_end] of it (blends eat into their ends; the planner also cuts arcs
+/// and blends into several windows); blends are cubic Béziers.
 struct Segment {
   SegmentKind kind = SegmentKind::line;
   toolpath::Block block;           ///< line / arc: the programmed block
   std::array<Vec3, 4> ctrl{};      ///< blend: Bézier control points P0..P3 [mm]
   std::array<double, 17> table{};  ///< blend: arc length at u = i/16 [mm]
   double full_length = 0.0;        ///< line / arc: untrimmed length; blend: length [mm]
-  double trim_start = 0.0;         ///< [mm] removed at the start (lines / arcs)
-  double trim_end = 0.0;           ///< [mm] removed at the end (lines / arcs)
+  double trim_start = 0.0;         ///< [mm] removed at the start
+  double trim_end = 0.0;           ///< [mm] removed at the end
   double curvature = 0.0;          ///< largest curvature on the segment [1/mm]
   double curvature_rate = 0.0;     ///< largest |dκ/ds| [1/mm^2] (blends; 0 for lines and arcs)
   long source = -1;                ///< index of the program block (blend: the block before it)
 
   static Segment line(const toolpath::Block& b, long source);
   static Segment arc(const toolpath::Block& b, long source);
-  /// Cubic Bézier with control points p0..p3 [mm].
-  static Segment blend(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3, long source);
+  /// Cubic Bézier with control points p0..p3 [mm]. When `tangent` / `curvature_vector` are given,
+  /// they receive the unit tangent and the curvature vector [1/mm] at the table nodes u = i/16.
+  static Segment blend(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3, long source,
+                       std::array<Vec3, 17>* tangent = nullptr, std::array<Vec3, 17>* curvature_vector = nullptr);
 
   /// Length after trimming [mm].
   double length() const noexcept { return full_length - trim_start - trim_end; }
