@@ -270,7 +270,7 @@ constexpr double kSkipMargin = 1e-9;
 // bound(k) a lower bound of it. h = min(h, max(z, bottom)) where ok.
 template <class Node, class Bound>
 NETSHAPE_INLINE void row_blocks(int n, double* __restrict h, double bottom, const Node& node, const Bound& bound,
-                                RowOut& out) {
+                                RowOut& out, double margin = kSkipMargin) {
   double vol = 0.0;
   int cnt = 0;  // an int reduction vectorises (a 64-bit one does not, GCC 12)
   for (int b0 = 0; b0 < n; b0 += kBlock) {
@@ -281,7 +281,7 @@ NETSHAPE_INLINE void row_blocks(int n, double* __restrict h, double bottom, cons
       const double g = h[k] - bound(k);
       gap = g > gap ? g : gap;
     }
-    if (gap <= -kSkipMargin) continue;
+    if (gap <= -margin) continue;
     NETSHAPE_PRAGMA(omp simd reduction(+ : vol, cnt))
     for (int k = b0; k < b1; ++k) {
       bool ok;
@@ -403,7 +403,8 @@ NETSHAPE_SIMD_CLONES void row_level(const LineSetup& s, const TipProfile& p, int
       ok = sp * sp + u * u <= r2;
       return L.az;
     };
-    row_blocks(row.n, h, bottom, node, bound, out);
+    // here the bound is z itself (A_z, no lift): nodes already at A_z are skipped too
+    row_blocks(row.n, h, bottom, node, bound, out, 0.0);
   } else if (kind == kBall) {
     auto node = [&](int k, bool& ok) NETSHAPE_ALWAYS_INLINE_LAMBDA {
       double sp, u;
