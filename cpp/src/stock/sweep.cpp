@@ -214,61 +214,417 @@ inline void lower(double& h, double z, double bottom, SweepStats& st) noexcept {
   }
 }
 
-// Row kernel over a chunk of at most kChunk consecutive nodes, written as Eigen array expressions so
-// that it runs on SIMD packets (sqrt, min, max, select) without branches; the chunk arrays live on
-// the stack (fixed maximum size): no allocation.
-constexpr int kChunk = 256;
-using Chunk = Eigen::Array<double, Eigen::Dynamic, 1, Eigen::ColMajor, kChunk, 1>;
+// ---------------------------------------------------------------------------------------------
+// Row kernels. One grid row at a time over the contiguous nodes j0 … j0 + n − 1 the stadium of the
+// move covers: plain loops with every per-row constant hoisted and only selects inside, which the
+// compiler turns into SIMD code (`#pragma omp simd`, enabled by -fopenmp-simd for this file; no
+// OpenMP runtime). With GCC on x86-64 each kernel is also compiled for AVX2 and AVX-512 and the
+// best one the CPU has is chosen at load time (target_clones), so the wheel stays portable.
+// Node coordinates are computed exactly as ZMap::node_x does and the per-node arithmetic follows
+// the same order as netshape.stock.reference, so flat and ball heights match it bit for bit.
+// ---------------------------------------------------------------------------------------------
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
+    !defined(NETSHAPE_NO_TARGET_CLONES)
+#define NETSHAPE_SIMD_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define NETSHAPE_SIMD_CLONES
+#endif
+#if defined(_OPENMP) || defined(__GNUC__)
+#define NETSHAPE_PRAGMA(x) _Pragma(#x)
+#else
+#define NETSHAPE_PRAGMA(x)
+#endif
+#if defined(__GNUC__)
+#define NETSHAPE_ALWAYS_INLINE_LAMBDA __attribute__((always_inline))
+#define NETSHAPE_INLINE inline __attribute__((always_inline))
+#else
+#define NETSHAPE_ALWAYS_INLINE_LAMBDA
+#define NETSHAPE_INLINE inline
+#endif
 
-// Nodes the cutter does not cover get +1e30·(how far outside) added instead of a branch or a select,
-// so that each expression below stays one fused loop over SIMD packets.
-constexpr double kOutside = 1e30;
+/// One row of nodes: node k sits at x = x0 + (jb + k)·dx (jb = j0 + ½), y; h points at node j0.
+struct Row {
+  double x0 = 0, dx = 1, jb = 0.5;  // grid X origin [mm], cell size [mm], j0 + ½
+  double qy = 0;                    // node y − A_y [mm]
+  int n = 0;                        // nodes in the row segment
+};
 
-template <int Kind>
-void row_chunk(const LineSetup& s, const TipProfile& p, double r2, double qx0, double dxn, double qy, int n,
-               double* h, double bottom, SweepStats& st) {
-  // node k of the chunk sits at qx0 + k·dx relative to the start of the move
-  const Chunk qx = Chunk::LinSpaced(n, qx0, qx0 + (n - 1) * dxn);
-  const auto tq = qx * s.ex + qy * s.ey;   // foot point along the move [mm]
-  const auto sp = qy * s.ex - qx * s.ey;   // signed distance from the line [mm]
-  Eigen::Map<Chunk> hv(h, n);
-  Chunk nh;
-  if (s.m == 0.0) {
-    // horizontal move: the lowest reach is at the point of the segment nearest to the node
-    const auto u = tq - tq.max(0.0).min(s.len);
-    const Chunk d2 = sp.square() + u.square();
-    const auto out = (d2 - r2).max(0.0) * kOutside;
-    if (Kind == kFlat) {
-      nh = hv.min((s.az + out).max(bottom));
-    } else if (Kind == kBall) {
-      nh = hv.min((s.az + p.radius - (r2 - d2).max(0.0).sqrt() + out).max(bottom));
-    } else {
-      const auto e = (d2.sqrt().min(p.radius) - p.flat_radius).max(0.0);
-      nh = hv.min((s.az + p.corner_radius - (p.corner_radius * p.corner_radius - e.square()).max(0.0).sqrt() + out)
-                      .max(bottom));
+/// Accumulated effect of the row kernels.
+struct RowOut {
+  double vol = 0.0;         // removed height summed over nodes [mm] (× cell area later)
+  std::int64_t lowered = 0;  // nodes whose height went down
+};
+
+
+// Nodes are taken in blocks of kBlock. A block is skipped when no node of it can be lowered: every
+// height is at least kSkipMargin below a cheap lower bound of the cutter there (no square root:
+// the tip's lowest point over the node's feasible travel from ρ ≤ R, plus a lower bound of the lift
+// from the node's distance to the line, g(d) ≥ (d − a)²/(2 r_c)). Exact — a skipped node would
+// not have changed — and frequent when moves re-cut material (the margin covers rounding).
+constexpr int kBlock = 32;
+constexpr double kSkipMargin = 1e-9;
+
+// The row loop: node(k, ok) gives the lowest reach z at node k (ok: the cutter covers it),
+// bound(k) a lower bound of it. h = min(h, max(z, bottom)) where ok.
+// The row loop: node(k, ok) gives the lowest reach z at node k (ok: the cutter covers it),
+// bound(k) a lower bound of it. h = min(h, max(z, bottom)) where ok.
+template <class Node, class Bound>
+NETSHAPE_INLINE void row_blocks(int n, double* __restrict h, double bottom, const Node& node, const Bound& bound,
+                                RowOut& out, double margin = kSkipMargin) {
+  double vol = 0.0;
+  int cnt = 0;  // an int reduction vectorises (a 64-bit one does not, GCC 12)
+  for (int b0 = 0; b0 < n; b0 += kBlock) {
+    const int b1 = b0 + kBlock < n ? b0 + kBlock : n;
+    double gap = -inf;
+    NETSHAPE_PRAGMA(omp simd reduction(max : gap))
+    for (int k = b0; k < b1; ++k) {
+      const double g = h[k] - bound(k);
+      gap = g > gap ? g : gap;
     }
+    if (gap <= -margin) continue;
+    NETSHAPE_PRAGMA(omp simd reduction(+ : vol, cnt))
+    for (int k = b0; k < b1; ++k) {
+      bool ok;
+      const double z = node(k, ok);
+      const double hk = h[k];
+      const double zb = z > bottom ? z : bottom;
+      const double nh = (ok & (zb < hk)) ? zb : hk;
+      vol += hk - nh;
+      cnt += nh < hk;
+      h[k] = nh;
+    }
+  }
+  out.vol += vol;
+  out.lowered += cnt;
+}
+
+// per-row constants of a line
+struct LineRow {
+  double ax, az, ex, ey, len, m, kb, x0, dx, jb, qy;
+  bool up;
+  LineRow(const LineSetup& s, const Row& row)
+      : ax(s.ax), az(s.az), ex(s.ex), ey(s.ey), len(s.len), m(s.m), kb(s.kball), x0(row.x0), dx(row.dx),
+        jb(row.jb), qy(row.qy), up(s.m >= 0.0) {}
+  // node k relative to the start: foot point along the move and signed distance from it [mm]
+  NETSHAPE_INLINE void at(int k, double& tq, double& sp) const {
+    const double qx = (x0 + (jb + k) * dx) - ax;
+    tq = qx * ex + qy * ey;
+    sp = qy * ex - qx * ey;
+  }
+  // lowest tip z over the travel where the node can be under the cutter (ρ ≤ R) [mm]
+  NETSHAPE_INLINE double tip_bound(double tq, double R) const {
+    const double l = tq - R > 0.0 ? tq - R : 0.0;
+    const double u = tq + R < len ? tq + R : len;
+    return az + m * (up ? l : u);
+  }
+};
+
+// lift lower bound from a lower bound dmin of the distance to the axis: (dmin − a)²/(2 r_c), ≥ 0
+NETSHAPE_INLINE double lift_bound(double dmin, double a0, double half_inv_rc) {
+  const double e = dmin - a0 > 0.0 ? dmin - a0 : 0.0;
+  return e * e * half_inv_rc;
+}
+
+// ramp or level line, flat end mill: z = A_z + m·(lo if m ≥ 0 else hi)
+NETSHAPE_SIMD_CLONES void row_flat(const LineSetup& s, double r2, double R, const Row& row, double bottom,
+                                   double* __restrict h, RowOut& out) {
+  const LineRow L(s, row);
+  auto node = [&](int k, bool& ok) NETSHAPE_ALWAYS_INLINE_LAMBDA {
+    double tq, sp;
+    L.at(k, tq, sp);
+    const double rho2 = r2 - sp * sp;
+    const double rho = std::sqrt(rho2 > 0.0 ? rho2 : 0.0);
+    const double tlo = tq - rho, thi = tq + rho;
+    const double lo = tlo > 0.0 ? tlo : 0.0;
+    const double hi = thi < L.len ? thi : L.len;
+    ok = (rho2 >= 0.0) & (lo <= hi);
+    return L.az + L.m * (L.up ? lo : hi);
+  };
+  auto bound = [&](int k) NETSHAPE_ALWAYS_INLINE_LAMBDA {
+    double tq, sp;
+    L.at(k, tq, sp);
+    return L.tip_bound(tq, R);
+  };
+  row_blocks(row.n, h, bottom, node, bound, out);
+}
+
+// ramp, ball end mill: σ* = clamp(τ_q − m·ρ/sqrt(1 + m²), lo, hi)
+NETSHAPE_SIMD_CLONES void row_ball(const LineSetup& s, double r2, double R, const Row& row, double bottom,
+                                   double* __restrict h, RowOut& out) {
+  const LineRow L(s, row);
+  const double half_inv_r = 0.5 / R;
+  auto node = [&](int k, bool& ok) NETSHAPE_ALWAYS_INLINE_LAMBDA {
+    double tq, sp;
+    L.at(k, tq, sp);
+    const double rho2 = r2 - sp * sp;
+    const double rho = std::sqrt(rho2 > 0.0 ? rho2 : 0.0);
+    const double tlo = tq - rho, thi = tq + rho;
+    const double lo = tlo > 0.0 ? tlo : 0.0;
+    const double hi = thi < L.len ? thi : L.len;
+    ok = (rho2 >= 0.0) & (lo <= hi);
+    double sig = tq - L.kb * rho;
+    sig = sig > lo ? sig : lo;
+    sig = sig < hi ? sig : hi;
+    const double u = sig - tq;
+    const double w = rho2 - u * u;
+    return L.az + L.m * sig + R - std::sqrt(w > 0.0 ? w : 0.0);
+  };
+  auto bound = [&](int k) NETSHAPE_ALWAYS_INLINE_LAMBDA {
+    double tq, sp;
+    L.at(k, tq, sp);
+    return L.tip_bound(tq, R) + sp * sp * half_inv_r;
+  };
+  row_blocks(row.n, h, bottom, node, bound, out);
+}
+
+// level line (m = 0), any cutter: the point of the segment nearest to the node, d² = s² + u²
+NETSHAPE_SIMD_CLONES void row_level(const LineSetup& s, const TipProfile& p, int kind, double r2, const Row& row,
+                                    double bottom, double* __restrict h, RowOut& out) {
+  const LineRow L(s, row);
+  const double R = p.radius, rc = p.corner_radius, fr = p.flat_radius, rc2 = rc * rc;
+  const double half_inv_rc = rc > 0.0 ? 0.5 / rc : 0.0;
+  // nearest point of the segment: u = τ_q − clamp(τ_q, 0, L)
+  auto near = [&](int k, double& sp, double& u) NETSHAPE_ALWAYS_INLINE_LAMBDA {
+    double tq;
+    L.at(k, tq, sp);
+    const double c = tq > 0.0 ? (tq < L.len ? tq : L.len) : 0.0;
+    u = tq - c;
+  };
+  auto bound = [&](int k) NETSHAPE_ALWAYS_INLINE_LAMBDA {
+    double sp, u;
+    near(k, sp, u);
+    const double as = sp < 0.0 ? -sp : sp, au = u < 0.0 ? -u : u;
+    return L.az + lift_bound(as > au ? as : au, fr, half_inv_rc);
+  };
+  if (kind == kFlat) {
+    auto node = [&](int k, bool& ok) NETSHAPE_ALWAYS_INLINE_LAMBDA {
+      double sp, u;
+      near(k, sp, u);
+      ok = sp * sp + u * u <= r2;
+      return L.az;
+    };
+    // here the bound is z itself (A_z, no lift): nodes already at A_z are skipped too
+    row_blocks(row.n, h, bottom, node, bound, out, 0.0);
+  } else if (kind == kBall) {
+    auto node = [&](int k, bool& ok) NETSHAPE_ALWAYS_INLINE_LAMBDA {
+      double sp, u;
+      near(k, sp, u);
+      const double d2 = sp * sp + u * u;
+      const double w = r2 - d2;
+      ok = d2 <= r2;
+      return L.az + R - std::sqrt(w > 0.0 ? w : 0.0);
+    };
+    row_blocks(row.n, h, bottom, node, bound, out);
   } else {
-    const Chunk rho2 = r2 - sp.square();
-    const Chunk rho = rho2.max(0.0).sqrt();
-    const Chunk lo = (tq - rho).max(0.0);
-    const Chunk hi = (tq + rho).min(s.len);
-    const auto out = ((-rho2).max(0.0) + (lo - hi).max(0.0)) * kOutside;
-    if (Kind == kBall) {
-      const Chunk sig = (tq - s.kball * rho).max(lo).min(hi);
-      nh = hv.min((s.az + s.m * sig + p.radius - (rho2 - (sig - tq).square()).max(0.0).sqrt() + out).max(bottom));
-    } else if (s.m >= 0.0) {  // flat (bull ramps take the scalar path)
-      nh = hv.min((s.az + s.m * lo + out).max(bottom));
-    } else {
-      nh = hv.min((s.az + s.m * hi + out).max(bottom));
+    auto node = [&](int k, bool& ok) NETSHAPE_ALWAYS_INLINE_LAMBDA {
+      double sp, u;
+      near(k, sp, u);
+      const double d2 = sp * sp + u * u;
+      const double d = std::sqrt(d2);
+      const double e = (d < R ? d : R) - fr;
+      const double w = rc2 - e * e;
+      ok = d2 <= r2;
+      return L.az + (e > 0.0 ? rc - std::sqrt(w > 0.0 ? w : 0.0) : 0.0);
+    };
+    row_blocks(row.n, h, bottom, node, bound, out);
+  }
+}
+
+// vertical move (plunge), any cutter: min(A_z, B_z) + g(d)
+NETSHAPE_SIMD_CLONES void row_vertical(const LineSetup& s, const TipProfile& p, double r2, const Row& row,
+                                       double bottom, double* __restrict h, RowOut& out) {
+  const double ax = s.ax, zv = s.zv;
+  const double R = p.radius, rc = p.corner_radius, fr = p.flat_radius, rc2 = rc * rc;
+  const double x0 = row.x0, dx = row.dx, jb = row.jb, qy = row.qy;
+  auto node = [&](int k, bool& ok) NETSHAPE_ALWAYS_INLINE_LAMBDA {
+    const double qx = (x0 + (jb + k) * dx) - ax;
+    const double d2 = qx * qx + qy * qy;
+    const double d = std::sqrt(d2);
+    const double e = (d < R ? d : R) - fr;
+    const double w = rc2 - e * e;
+    ok = d2 <= r2;
+    return zv + (e > 0.0 ? rc - std::sqrt(w > 0.0 ? w : 0.0) : 0.0);
+  };
+  auto bound = [&](int) NETSHAPE_ALWAYS_INLINE_LAMBDA { return zv; };
+  row_blocks(row.n, h, bottom, node, bound, out);
+}
+
+// Bull-nose ramps. F(σ) = m·σ + g(sqrt(sp² + (σ − τ_q)²)) is convex on [lo, hi]; its minimum is
+// where F' changes sign, found per node by Newton steps kept inside a bisection bracket — the same
+// iteration as bull_ramp_min, run on many nodes at once: every lane takes one step per pass, lanes
+// that have converged keep their result, and the pass repeats while any lane is still running
+// (finished lanes are squeezed out when they are many). Nodes whose height is already at or below
+// the lowest the tip itself gets over the node's interval (A_z + m·lo, or m·hi going down) cannot
+// be lowered (the lift is ≥ 0) and are skipped before any iteration: exact, and common when a
+// program re-cuts.
+constexpr int kBullChunk = 256;
+
+struct BullLanes {
+  double tq[kBullChunk], sp2[kBullChunk], lo[kBullChunk], hi[kBullChunk];
+  double a[kBullChunk], b[kBullChunk], x[kBullChunk], sig[kBullChunk];
+  int node[kBullChunk];
+  unsigned char done[kBullChunk];
+};
+
+// F'(σ) and F''(σ) of the bull ramp (F'' = 0 where F' is ±inf or in the flat zone)
+inline void bull_derivs(double sig, double tq, double sp2, double m, double a0, double rc2, double& f,
+                        double& f2) {
+  const double u = sig - tq;
+  const double dd = sp2 + u * u;
+  const double d = std::sqrt(dd);
+  const double e = d - a0;
+  const double w = rc2 - e * e;
+  const double sw = std::sqrt(w > 0.0 ? w : 1.0);
+  const double g1 = e / sw;
+  const double g2 = rc2 / (w * sw);
+  const double dsafe = d > 0.0 ? d : 1.0;
+  const double fin = m + g1 * u / dsafe;
+  const double s2 = g2 * u * u / (dsafe * dsafe) + g1 * sp2 / (dsafe * dsafe * dsafe);
+  const double finf = u > 0.0 ? inf : (u < 0.0 ? -inf : m);
+  const bool flat = e <= 0.0, edge = w <= 0.0;
+  f = flat ? m : (edge ? finf : fin);
+  f2 = flat ? 0.0 : (edge ? 0.0 : s2);
+}
+
+NETSHAPE_SIMD_CLONES void row_bull_ramp(const LineSetup& s, const TipProfile& p, double r2, const Row& row,
+                                        double bottom, double* __restrict h, RowOut& out, BullLanes& L) {
+  const double ax = s.ax, az = s.az, ex = s.ex, ey = s.ey, len = s.len, m = s.m;
+  const bool up = m >= 0.0;
+  const double a0 = p.flat_radius, rc = p.corner_radius, rc2 = rc * rc, R = p.radius;
+  const double half_inv_rc = 0.5 / rc;
+  const double x0 = row.x0, dx = row.dx, jb = row.jb, qy = row.qy;
+  double vol = 0.0;
+  std::int64_t cnt = 0;
+  for (int c0 = 0; c0 < row.n; c0 += kBullChunk) {
+    const int n = std::min(kBullChunk, row.n - c0);
+    double* hc = h + c0;
+    // 1. per node: interval, skip test; the nodes left are packed into the lanes
+    int nl = 0;
+    for (int k = 0; k < n; ++k) {
+      const double qx = (x0 + (jb + (c0 + k)) * dx) - ax;
+      const double tq = qx * ex + qy * ey;
+      const double sp = qy * ex - qx * ey;
+      const double rho2 = r2 - sp * sp;
+      const double rho = std::sqrt(rho2 > 0.0 ? rho2 : 0.0);
+      const double tlo = tq - rho, thi = tq + rho;
+      const double lo = tlo > 0.0 ? tlo : 0.0;
+      const double hi = thi < len ? thi : len;
+      const bool ok = (rho2 >= 0.0) & (lo <= hi);
+      const double asp = sp < 0.0 ? -sp : sp;
+      const double zmin = az + m * (up ? lo : hi) + lift_bound(asp, a0, half_inv_rc);
+      L.tq[nl] = tq;
+      L.sp2[nl] = sp * sp;
+      L.lo[nl] = lo;
+      L.hi[nl] = hi;
+      L.node[nl] = k;
+      nl += (ok && hc[k] > zmin - kSkipMargin) ? 1 : 0;
+    }
+    if (nl == 0) continue;
+    // 2. ends of the interval, Newton start
+    NETSHAPE_PRAGMA(omp simd)
+    for (int l = 0; l < nl; ++l) {
+      double flo, fhi, f2;
+      bull_derivs(L.lo[l], L.tq[l], L.sp2[l], m, a0, rc2, flo, f2);
+      bull_derivs(L.hi[l], L.tq[l], L.sp2[l], m, a0, rc2, fhi, f2);
+      const double ua2 = a0 * a0 - L.sp2[l];
+      const double ua = std::sqrt(ua2 > 0.0 ? ua2 : 0.0);
+      double x0l = L.tq[l] + (up ? -ua : ua);
+      x0l = x0l < L.lo[l] ? L.lo[l] : (L.hi[l] < x0l ? L.hi[l] : x0l);
+      const bool at_lo = flo >= 0.0, at_hi = !at_lo && fhi <= 0.0;
+      L.sig[l] = at_lo ? L.lo[l] : L.hi[l];
+      L.done[l] = (at_lo || at_hi) ? 1 : 0;
+      L.a[l] = L.lo[l];
+      L.b[l] = L.hi[l];
+      L.x[l] = x0l;
+    }
+    // 3. bracketed Newton, all lanes at once
+    int live = nl;  // lanes [0, live) may still run; sig of finished lanes is final
+    for (int it = 0; it < 100 && live > 0; ++it) {
+      int running = 0;
+      NETSHAPE_PRAGMA(omp simd reduction(+ : running))
+      for (int l = 0; l < live; ++l) {
+        const double x = L.x[l];
+        double fx, f2;
+        bull_derivs(x, L.tq[l], L.sp2[l], m, a0, rc2, fx, f2);
+        const bool neg = fx < 0.0;
+        const double a = neg ? x : L.a[l];
+        const double b = neg ? L.b[l] : x;
+        const double mid = 0.5 * (a + b);
+        double xn = f2 > 0.0 ? x - fx / f2 : mid;
+        xn = (xn > a && xn < b) ? xn : mid;
+        const double step = xn - x;
+        const bool zero = fx == 0.0;
+        const bool narrow = b - a <= line_tol;
+        const bool small = (step < 0.0 ? -step : step) <= newton_tol;
+        const bool stop = zero || narrow || small;
+        const bool was = L.done[l] != 0;
+        L.sig[l] = was ? L.sig[l] : (zero ? x : (narrow ? mid : xn));
+        L.a[l] = was ? L.a[l] : a;
+        L.b[l] = was ? L.b[l] : b;
+        L.x[l] = was ? x : xn;
+        L.done[l] = (was || stop) ? 1 : 0;
+        running += (was || stop) ? 0 : 1;
+      }
+      if (running == 0) break;
+      if (it == 99) {  // out of steps: the middle of the bracket (as bull_ramp_min)
+        for (int l = 0; l < live; ++l)
+          if (!L.done[l]) L.sig[l] = 0.5 * (L.a[l] + L.b[l]);
+        break;
+      }
+      if (2 * running < live) {  // squeeze finished lanes behind the live ones (results kept)
+        int w = 0;
+        for (int l = 0; l < live; ++l) {
+          if (!L.done[l]) {
+            if (w != l) {
+              std::swap(L.tq[w], L.tq[l]); std::swap(L.sp2[w], L.sp2[l]); std::swap(L.lo[w], L.lo[l]);
+              std::swap(L.hi[w], L.hi[l]); std::swap(L.a[w], L.a[l]); std::swap(L.b[w], L.b[l]);
+              std::swap(L.x[w], L.x[l]); std::swap(L.sig[w], L.sig[l]); std::swap(L.node[w], L.node[l]);
+              std::swap(L.done[w], L.done[l]);
+            }
+            ++w;
+          }
+        }
+        live = w;
+      }
+    }
+    // 4. heights
+    for (int l = 0; l < nl; ++l) {
+      const int k = L.node[l];
+      const double sig = L.sig[l];
+      const double u = sig - L.tq[l];
+      const double d = std::sqrt(L.sp2[l] + u * u);
+      const double e = (d < R ? d : R) - a0;
+      const double w = rc2 - e * e;
+      const double z = az + m * sig + (e > 0.0 ? rc - std::sqrt(w > 0.0 ? w : 0.0) : 0.0);
+      const double hk = hc[k];
+      const double zb = z > bottom ? z : bottom;
+      const double nh = zb < hk ? zb : hk;
+      vol += hk - nh;
+      cnt += nh < hk ? 1 : 0;
+      hc[k] = nh;
     }
   }
-  st.removed_volume += (hv - nh).sum();
-  std::int64_t lowered = 0;  // an integer reduction: vectorised by the compiler
-  for (int k = 0; k < n; ++k) {
-    lowered += nh[k] < h[k];
-    h[k] = nh[k];
-  }
-  st.nodes_lowered += lowered;
+  out.vol += vol;
+  out.lowered += cnt;
+}
+
+// Node range [j0, j1] of row i covered by the stadium of the move; false if none.
+inline bool row_nodes(const ZMap& zm, const LineSetup& s, double r, int i, int& j0, int& j1) noexcept {
+  double xlo, xhi;
+  if (!row_range(s, r, zm.node_y(i), xlo, xhi)) return false;
+  return node_range(xlo, xhi, zm.x0(), zm.dx(), zm.nx(), j0, j1);
+}
+
+// The rows of a move lie nx·8 bytes apart, so every row segment starts with cache misses; the
+// heights of the next row are prefetched while the current one is computed.
+inline void prefetch_row(const double* h, int n) noexcept {
+#if defined(__GNUC__)
+  for (int k = 0; k < n; k += 8) __builtin_prefetch(h + k, 1, 3);
+  __builtin_prefetch(h + n - 1, 1, 3);
+#else
+  (void)h;
+  (void)n;
+#endif
 }
 
 template <int Kind>
@@ -277,30 +633,40 @@ void sweep_line_k(ZMap& zm, const TipProfile& p, const LineSetup& s, double ylo,
   int i0, i1;
   if (!node_range(ylo - r, yhi + r, zm.y0(), zm.dy(), zm.ny(), i0, i1)) return;
   MatrixXdR& H = zm.heights_mut();
+  const Eigen::Index nx = zm.nx();
   const double bottom = zm.bottom();
-  // packet path: flat and ball always, bull for horizontal moves; vertical moves and bull ramps
-  // go node by node
-  const bool packets = !s.vertical && (Kind != kBull || s.m == 0.0);
+  RowOut out;
+  BullLanes* lanes = nullptr;
+  BullLanes lanes_storage;  // only touched for bull ramps
+  if (Kind == kBull && !s.vertical && s.m != 0.0) lanes = &lanes_storage;
+  int j0 = 0, j1 = -1;
+  bool has = row_nodes(zm, s, r, i0, j0, j1);
   for (int i = i0; i <= i1; ++i) {
-    const double y = zm.node_y(i);
-    double xlo, xhi;
-    if (!row_range(s, r, y, xlo, xhi)) continue;
-    int j0, j1;
-    if (!node_range(xlo, xhi, zm.x0(), zm.dx(), zm.nx(), j0, j1)) continue;
-    double* row = H.data() + static_cast<Eigen::Index>(i) * zm.nx();
-    st.nodes_visited += j1 - j0 + 1;
-    if (packets) {
-      for (int j = j0; j <= j1; j += kChunk) {
-        const int n = std::min(kChunk, j1 - j + 1);
-        row_chunk<Kind>(s, p, r2, zm.node_x(j) - s.ax, zm.dx(), y - s.ay, n, row + j, bottom, st);
-      }
-      continue;
+    // the next row's range, prefetched before this row is computed
+    int n0 = 0, n1 = -1;
+    const bool next = i < i1 && row_nodes(zm, s, r, i + 1, n0, n1);
+    if (next) prefetch_row(H.data() + (i + 1) * nx + n0, n1 - n0 + 1);
+    if (has) {
+      double* h = H.data() + static_cast<Eigen::Index>(i) * nx + j0;
+      st.nodes_visited += j1 - j0 + 1;
+      Row row;
+      row.x0 = zm.x0();
+      row.dx = zm.dx();
+      row.jb = j0 + 0.5;
+      row.qy = zm.node_y(i) - s.ay;
+      row.n = j1 - j0 + 1;
+      if (s.vertical) row_vertical(s, p, r2, row, bottom, h, out);
+      else if (s.m == 0.0) row_level(s, p, Kind, r2, row, bottom, h, out);
+      else if (Kind == kFlat) row_flat(s, r2, r, row, bottom, h, out);
+      else if (Kind == kBall) row_ball(s, r2, r, row, bottom, h, out);
+      else row_bull_ramp(s, p, r2, row, bottom, h, out, *lanes);
     }
-    for (int j = j0; j <= j1; ++j) {
-      const double z = reach_line<Kind>(s, p, r2, zm.node_x(j), y);
-      lower(row[j], z, bottom, st);
-    }
+    has = next;
+    j0 = n0;
+    j1 = n1;
   }
+  st.removed_volume += out.vol;
+  st.nodes_lowered += out.lowered;
 }
 
 SweepStats sweep_line_impl(ZMap& zm, const TipProfile& p, ProfileKind kind, const Vec3& a, const Vec3& b) {

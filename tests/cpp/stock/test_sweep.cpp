@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -329,25 +330,42 @@ TEST_CASE("sweep: moves outside the footprint touch nothing; bad input is reject
   CHECK((z.heights().array() == 10.0).all());
 }
 
-TEST_CASE("sweep: the packet row kernel equals the per-node kernel") {
+TEST_CASE("sweep: the SIMD row kernels over the stadium rows equal the per-node kernel over the bounding box") {
+  // Every node of the grid (the whole bounding box and beyond) is compared with the scalar per-node
+  // kernel; moves of every kind (ramps up and down, level, plunges, steep, along the axes) and on
+  // stock that earlier moves have already cut, so that skipped blocks (height already below the
+  // cutter's lower bound) are exercised too.
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> U(0.0, 1.0);
   for (const Cutter& c : {Cutter::flat_end(6.0, 2, 0.5), Cutter::ball_end(6.0, 2, 0.5),
                           Cutter::bull_nose(6.0, 1.0, 2, 0.5)}) {
     const TipProfile prof = TipProfile::of(c);
-    for (int t = 0; t < 6; ++t) {
+    ZMap z(0.0, 25.0, 0.0, 25.0, 0.15, 12.0, 0.0);
+    MatrixXdR expect = z.heights();
+    std::int64_t lowered = 0;
+    for (int t = 0; t < 16; ++t) {
       const Vec3 a(25 * U(rng), 25 * U(rng), 5 + 5 * U(rng));
       Vec3 b(25 * U(rng), 25 * U(rng), 5 + 5 * U(rng));
-      if (t % 3 == 0) b.z() = a.z();  // horizontal
-      ZMap z(0.0, 25.0, 0.0, 25.0, 0.15, 12.0, 0.0);
-      netshape::stock::sweep_line(z, c, a, b);
+      if (t % 8 == 0) b.z() = a.z();                      // level
+      if (t % 8 == 1) b = Vec3(a.x(), a.y(), b.z());      // plunge
+      if (t % 8 == 2) b = Vec3(a.x() + 0.2, a.y(), b.z()); // steep ramp
+      if (t % 8 == 3) b.y() = a.y();                      // along X
+      if (t % 8 == 4) b.x() = a.x();                      // along Y
+      const auto st = netshape::stock::sweep_line(z, c, a, b);
+      std::int64_t low = 0;
       double worst = 0.0;
       for (int i = 0; i < z.ny(); ++i)
         for (int j = 0; j < z.nx(); ++j) {
-          const double e = std::max(0.0, std::min(12.0, netshape::stock::lowest_reach_line(prof, a, b, z.node_x(j), z.node_y(i))));
-          worst = std::max(worst, std::abs(z.heights()(i, j) - e));
+          const double e = netshape::stock::lowest_reach_line(prof, a, b, z.node_x(j), z.node_y(i));
+          const double nh = std::min(expect(i, j), std::max(0.0, e));
+          low += nh < expect(i, j);
+          expect(i, j) = nh;
+          worst = std::max(worst, std::abs(z.heights()(i, j) - nh));
         }
-      CHECK(worst < 1e-9);
+      CHECK(worst <= 1e-12);
+      CHECK(st.nodes_lowered == low);
+      lowered += low;
     }
+    CHECK(lowered > 1000);
   }
 }
