@@ -102,6 +102,24 @@ void blend_bounds(const std::array<Vec3, 17>& T, const std::array<Vec3, 17>& Kv,
   }
 }
 
+// curvature vector κ·n [1/mm] at the start or the end of a segment (0 on lines)
+Vec3 curvature_vector(const Segment& s, bool at_end) {
+  if (s.kind == SegmentKind::line) return Vec3::Zero();
+  if (s.kind == SegmentKind::blend) {
+    const double u = at_end ? 1.0 : 0.0;
+    const Vec3 d1 = bezier_d1(s.ctrl, u), d2 = bezier_d2(s.ctrl, u);
+    const double n2 = d1.squaredNorm();
+    return n2 > 0 ? Vec3((d2 - d1 * (d1.dot(d2) / n2)) / n2) : Vec3::Zero();
+  }
+  const Vec3 p = s.point_at(at_end ? s.length() : 0.0);
+  const auto ax = toolpath::plane_axes(s.block.plane);
+  Vec3 r = Vec3::Zero();
+  r[ax.a] = s.block.center[ax.a] - p[ax.a];
+  r[ax.b] = s.block.center[ax.b] - p[ax.b];
+  const double rn = r.norm();
+  return rn > 0 ? Vec3(r * (s.block.curvature() / rn)) : Vec3::Zero();
+}
+
 // quadratic corner bound next to curves: v·d/ts + κ·v² ≤ A
 double jump_speed(double acc, double d, double ts, double kappa) {
   const double b = d / ts;
@@ -252,6 +270,9 @@ void Planner::split_tail() noexcept {
     arc_bounds(x.seg, a, b, x.U, x.K);
     x.vmax = base.fcap;
     set_params(x);
+    x.spike_s = k == 0 && base.spike_s;
+    x.spike_e = k + 1 == m && base.spike_e;
+    if (x.spike_s || x.spike_e) x.j *= 0.5;
     x.res_s = k == 0 ? base.res_s : 0.0;
     x.jump_s = k == 0 && base.jump_s;
     x.res_e = k + 1 == m ? base.res_e : 0.0;
@@ -265,6 +286,13 @@ void Planner::split_tail() noexcept {
       append(x);
     }
   }
+}
+
+double Planner::curvature_step_speed(const Vec3& dk) const noexcept {
+  double v = inf;
+  for (int i = 0; i < 3; ++i)
+    if (std::abs(dk[i]) > 1e-12) v = std::min(v, std::sqrt(0.5 * limits_.jerk[i] * opt_.ts2 / std::abs(dk[i])));
+  return v;
 }
 
 Status Planner::push(const toolpath::Block& b) noexcept {
@@ -289,6 +317,7 @@ Status Planner::push(const toolpath::Block& b) noexcept {
   const long first = tail_ - 1;  // the previous block's node (it is cut into pieces below)
   const double ts2 = opt_.ts2;
   const bool jump_rule = opt_.rule == CornerRule::vector || opt_.rule == CornerRule::per_axis;
+  const double wf = window_periods();  // constant-speed window on each side of a velocity jump [ts2]
 
   // the new node (not yet in the ring): the whole block, bounds over all of it, until its end is known
   Node nn;
@@ -300,7 +329,7 @@ Status Planner::push(const toolpath::Block& b) noexcept {
   set_params(nn);
   nn.provisional = true;
   const double first_piece = arc ? nn.seg.full_length / arc_piece_count(nn.seg) : nn.seg.full_length;
-  if (jump_rule) nn.res_e = 2.0 * ts2 * std::min(nn.vmax, first_piece / (8.0 * ts2));
+  if (jump_rule) nn.res_e = wf * ts2 * std::min(nn.vmax, first_piece / (4.0 * wf * ts2));
   nn.tail_trim = opt_.rule == CornerRule::blend;
 
   if (!has_prev) {
@@ -355,6 +384,19 @@ Status Planner::push(const toolpath::Block& b) noexcept {
       if (K.maxCoeff() * vcap * vcap <= 0.02 * limits_.acceleration.minCoeff()) np = 1;
     }
     const int step = 16 / np;
+    // jerk mode: where the blend meets an arc the curvature jumps (tangent junction); cap the speed
+    // so the acceleration step's third difference takes at most half of J_i (see below)
+    Vec3 dk0 = Vec3::Zero(), dk1 = Vec3::Zero();
+    if (jerk_mode) {
+      dk0 = Kv[0] - curvature_vector(at(tail_ - 1).seg, true);
+      dk1 = curvature_vector(nn.seg, false) - Kv[16];
+      if (dk0.norm() > 1e-12) {
+        Node& pl = at(tail_ - 1);
+        if (!pl.spike_s && !pl.spike_e) pl.j *= 0.5;
+        pl.spike_e = true;
+        sync(tail_ - 1);
+      }
+    }
     for (int k = 0; k < np; ++k) {
       const int i0 = k * step, i1 = i0 + step;
       Node bn;
@@ -378,11 +420,22 @@ Status Planner::push(const toolpath::Block& b) noexcept {
       bn.vmax = vfeed;
       set_params(bn);
       bn.v_lim = bn.v_corner = std::min(v_prev, bn.vmax);
+      if (jerk_mode) {
+        bn.spike_s = k == 0 && dk0.norm() > 1e-12;
+        bn.spike_e = k + 1 == np && dk1.norm() > 1e-12;
+        if (bn.spike_s || bn.spike_e) bn.j *= 0.5;
+        if (k == 0) bn.v_lim = bn.v_corner = std::min(bn.v_lim, curvature_step_speed(dk0));
+      }
       v_prev = bn.vmax;
       append(bn);
     }
     nn.v_corner = v_prev;
-    nn.v_lim = std::min(v_prev, nn.vmax);
+    if (jerk_mode && dk1.norm() > 1e-12) {
+      nn.v_corner = std::min(nn.v_corner, curvature_step_speed(dk1));
+      nn.spike_s = true;
+      nn.j *= 0.5;
+    }
+    nn.v_lim = std::min(nn.v_corner, nn.vmax);
     append(nn);
     back_pass(first);
     return Status::ok;
@@ -393,6 +446,7 @@ Status Planner::push(const toolpath::Block& b) noexcept {
   const double vcap = std::min(p.vmax, nn.fcap);
   double v = vcap;
   bool jump = false;
+  const Vec3 dk = jerk_mode ? Vec3(curvature_vector(nn.seg, false) - curvature_vector(p.seg, true)) : Vec3::Zero();
   if (theta > tangent_angle) {
     // next to arcs the vertex straddling second differences also see the centripetal part
     const double kappa = std::max(p.seg.kind == SegmentKind::arc ? p.seg.block.curvature() : 0.0,
@@ -403,12 +457,20 @@ Status Planner::push(const toolpath::Block& b) noexcept {
         break;
       case CornerRule::vector:
         v = jump_speed(amin, (u2 - u1).norm(), ts2, kappa);
+        if (jerk_mode) {
+          // third differences: a velocity step Δv gives |Δv|/ts2², an acceleration step |Δa|/ts2
+          const double jmin = moving_axes_min(limits_.jerk, u1, u2);
+          v = std::min(v, jump_speed(jmin * ts2, (u2 - u1).norm(), ts2, dk.norm()));
+        }
         jump = true;
         break;
       case CornerRule::per_axis:
         v = inf;
         for (int i = 0; i < 3; ++i)
           v = std::min(v, jump_speed(limits_.acceleration[i], std::abs(u2[i] - u1[i]), ts2, kappa));
+        if (jerk_mode)
+          for (int i = 0; i < 3; ++i)
+            v = std::min(v, jump_speed(limits_.jerk[i] * ts2, std::abs(u2[i] - u1[i]), ts2, std::abs(dk[i])));
         jump = true;
         break;
       case CornerRule::junction_deviation: {
@@ -421,12 +483,24 @@ Status Planner::push(const toolpath::Block& b) noexcept {
       case CornerRule::blend: v = 0.0; break;  // reversal: stop
     }
     v = std::min(v, vcap);
+  } else if (jerk_mode && opt_.rule != CornerRule::paper && opt_.rule != CornerRule::junction_deviation) {
+    // tangent junction where the curvature jumps (line ↔ arc, arcs of other radii): the acceleration
+    // steps by v²·Δ(κn); its third difference |Δa_i|/ts2 gets half of J_i, the S-curve ramps on both
+    // sides the other half
+    v = std::min(v, curvature_step_speed(dk));
+    if (dk.norm() > 1e-12) {
+      if (!p.spike_s && !p.spike_e) p.j *= 0.5;
+      p.spike_e = true;
+      nn.spike_s = true;
+      nn.j *= 0.5;
+      sync(tail_ - 1);
+    }
   }
   if (jump_rule) {
     if (jump) {
-      v = std::min({v, p.seg.length() / (8.0 * ts2), first_piece / (8.0 * ts2)});
-      p.res_e = 2.0 * ts2 * v;
-      nn.res_s = 2.0 * ts2 * v;
+      v = std::min({v, p.seg.length() / (4.0 * wf * ts2), first_piece / (4.0 * wf * ts2)});
+      p.res_e = wf * ts2 * v;
+      nn.res_s = wf * ts2 * v;
     } else {
       p.res_e = 0.0;
     }
@@ -479,7 +553,8 @@ bool Planner::freeze_next() noexcept {
   const double vs = v_frozen_end_;
   const double target = is_tail ? 0.0 : q(frozen_ + 1).vb;
   const double ve = std::min(target, std::sqrt(reach_sq(qn, vs * vs)));
-  const double ws = n.jump_s ? 2.0 * opt_.ts2 * vs : 0.0, we = n.jump_e ? 2.0 * opt_.ts2 * ve : 0.0;
+  const double wf = window_periods();
+  const double ws = n.jump_s ? wf * opt_.ts2 * vs : 0.0, we = n.jump_e ? wf * opt_.ts2 * ve : 0.0;
   const double len = n.seg.length();
   if (qn.curved && !std::isfinite(qn.j)) {
     // peak speed and tangential acceleration from the axis box at that speed:

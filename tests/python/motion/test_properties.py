@@ -3,8 +3,9 @@
 Feasible-by-construction rules (vector, per-axis, blend): every axis' velocity and acceleration,
 measured by finite differences of the samples at ts2, stays within its limit; tolerance: 1e-6
 relative on velocity and 0.5 % on acceleration (the second difference of a path sampled across a
-corner window or a curvature change differs from the continuous acceleration by O(ts2)). Jerk is
-checked for the blend rule with jerk limits on polylines (5 % tolerance on the third difference).
+corner window or a curvature change differs from the continuous acceleration by O(ts2)). With jerk
+limits, jerk is checked too (5 % tolerance on the third difference), on polylines and where a line
+meets an arc.
 Every rule: samples stay on the programmed path (1e-9 mm; blend: the tolerance ε) and end exactly at
 the program's end point.
 """
@@ -51,12 +52,31 @@ def test_random_polylines(seed, rule):
     np.testing.assert_array_equal(tr.position[-1], pts[-1])
 
 
+JERK_LIM = nm.AxisLimits([250.0, 200.0, 120.0], [3000.0, 2500.0, 1500.0], [2e6, 2e6, 1e6])
+
+
 @pytest.mark.parametrize("seed", [3, 4])
-def test_blend_with_jerk_limit(seed):
-    lim = nm.AxisLimits([250.0, 200.0, 120.0], [3000.0, 2500.0, 1500.0], [2e6, 2e6, 1e6])
+@pytest.mark.parametrize("rule", FEASIBLE)
+def test_feasible_rules_with_jerk_limit(seed, rule):
+    """With jerk limits the velocity-jump rules keep each axis' jump within J_i·ts2² (its third
+    difference) and hold the speed for 3·ts2 around it; the blend rule has no jump at all."""
     pts = _random_polyline(seed, n=12) * 3.0
-    tr = nm.plan(pts, lim, feed=200.0, rule="blend", tolerance=0.05, ts1=1e-3, ts2=1e-4)
-    _check(tr, lim, "blend", tol=0.05, jerk=True)
+    tr = nm.plan(pts, JERK_LIM, feed=200.0, rule=rule, tolerance=0.05, ts1=1e-3, ts2=1e-4)
+    _check(tr, JERK_LIM, rule, tol=0.05, jerk=True)
+
+
+@pytest.mark.parametrize("rule", FEASIBLE)
+def test_jerk_limit_where_the_curvature_jumps(rule):
+    """Line → semicircle (r = 5 mm) → line, tangent at both junctions: the centripetal acceleration
+    steps there, so the speed is capped to keep that step's third difference within J."""
+    r = 5.0
+    arr = dict(kind=np.array([1, 2, 1]), start=np.array([[-10, -r, 0.0], [0, -r, 0], [0, r, 0]]),
+               end=np.array([[0, -r, 0.0], [0, r, 0], [-10, r, 0]]), center=np.zeros((3, 3)),
+               clockwise=np.array([0, 0, 0]), plane=np.zeros(3, int), turns=np.array([1, 1, 1]),
+               feed=np.array([200.0, 200.0, 200.0]))
+    tr = nm.plan(arr, JERK_LIM, rule=rule, tolerance=0.05)
+    _check(tr, JERK_LIM, rule, tol=0.05, jerk=True)
+    assert tr.stats["max_axis_jerk_mm_s3"] > 1e5  # the limit is actually worked against
 
 
 def test_jerk_limited_profile_on_a_line_is_smooth():
@@ -106,3 +126,14 @@ def test_shared_programs(shared_data, rule, name, n, scale):
     tr = nm.plan(arr, LIM, rule=rule, ts1=1e-3, ts2=1e-4, lookahead=32)
     _check(tr, LIM, rule)
     np.testing.assert_allclose(tr.position[-1], arr["end"][-1], rtol=0, atol=0)
+
+
+@pytest.mark.shared_data
+@pytest.mark.parametrize("rule", FEASIBLE)
+def test_shared_arc_program_with_jerk_limit(shared_data, rule):
+    """arcspiral.ngc (arcs meeting lines and blends, feeds ×100) with jerk limits: velocity,
+    acceleration and jerk of every axis stay within the limits."""
+    arr = _shared_program(shared_data, "arcspiral.ngc", 60, 100.0)
+    lim = nm.AxisLimits.uniform(250.0, 3000.0, 1e6)
+    tr = nm.plan(arr, lim, rule=rule, tolerance=0.01, ts1=1e-3, ts2=1e-4, lookahead=32)
+    _check(tr, lim, rule, tol=0.01, jerk=True)

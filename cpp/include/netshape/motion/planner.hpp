@@ -101,6 +101,7 @@ class Planner {
     double fcap = 0;                // programmed feed cap [mm/s] (+inf for rapids)
     double res_s = 0, res_e = 0;    // distance reserved for constant-speed windows [mm]
     bool jump_s = false, jump_e = false;
+    bool spike_s = false, spike_e = false;  // jerk mode: curvature jump at the start / end (j halved)
     bool tail_trim = false;         // blend mode: end trim is still the tentative maximum
     bool provisional = false;       // last block: not yet cut into pieces (arcs)
     long blk = 0;                   // index of the program block that brought this node in
@@ -128,6 +129,12 @@ class Planner {
   bool freeze_next() noexcept;
   Status ensure_frozen_until(double t) noexcept;
   Status fail(const char* msg) noexcept;
+  /// Fine periods of constant speed on each side of a velocity jump: 2 (second differences see the
+  /// jump alone), 3 with jerk limits (third differences too).
+  double window_periods() const noexcept { return limits_.jerk_limited() ? 3.0 : 2.0; }
+  /// Jerk mode: largest speed at a tangent junction where the curvature vector steps by dk [1/mm]:
+  /// v²·|dk_i| ≤ J_i·ts2/2 (the acceleration step's third difference gets half of the jerk limit).
+  double curvature_step_speed(const Vec3& dk) const noexcept;
 
   AxisLimits limits_;
   PlanOptions opt_;
