@@ -270,9 +270,9 @@ void Planner::split_tail() noexcept {
     arc_bounds(x.seg, a, b, x.U, x.K);
     x.vmax = base.fcap;
     set_params(x);
-    x.spike_s = k == 0 && base.spike_s;
-    x.spike_e = k + 1 == m && base.spike_e;
-    if (x.spike_s || x.spike_e) x.j *= 0.5;
+    x.spike_s = x.spike_e = false;  // set_params gave the piece its full jerk again
+    if (k == 0 && base.spike_s) mark_spike(x, true);
+    if (k + 1 == m && base.spike_e) mark_spike(x, false);
     x.res_s = k == 0 ? base.res_s : 0.0;
     x.jump_s = k == 0 && base.jump_s;
     x.res_e = k + 1 == m ? base.res_e : 0.0;
@@ -286,6 +286,11 @@ void Planner::split_tail() noexcept {
       append(x);
     }
   }
+}
+
+void Planner::mark_spike(Node& n, bool at_start) noexcept {
+  if (!n.spike_s && !n.spike_e) n.j *= 0.5;
+  (at_start ? n.spike_s : n.spike_e) = true;
 }
 
 double Planner::curvature_step_speed(const Vec3& dk) const noexcept {
@@ -391,9 +396,7 @@ Status Planner::push(const toolpath::Block& b) noexcept {
       dk0 = Kv[0] - curvature_vector(at(tail_ - 1).seg, true);
       dk1 = curvature_vector(nn.seg, false) - Kv[16];
       if (dk0.norm() > 1e-12) {
-        Node& pl = at(tail_ - 1);
-        if (!pl.spike_s && !pl.spike_e) pl.j *= 0.5;
-        pl.spike_e = true;
+        mark_spike(at(tail_ - 1), false);
         sync(tail_ - 1);
       }
     }
@@ -421,9 +424,8 @@ Status Planner::push(const toolpath::Block& b) noexcept {
       set_params(bn);
       bn.v_lim = bn.v_corner = std::min(v_prev, bn.vmax);
       if (jerk_mode) {
-        bn.spike_s = k == 0 && dk0.norm() > 1e-12;
-        bn.spike_e = k + 1 == np && dk1.norm() > 1e-12;
-        if (bn.spike_s || bn.spike_e) bn.j *= 0.5;
+        if (k == 0 && dk0.norm() > 1e-12) mark_spike(bn, true);
+        if (k + 1 == np && dk1.norm() > 1e-12) mark_spike(bn, false);
         if (k == 0) bn.v_lim = bn.v_corner = std::min(bn.v_lim, curvature_step_speed(dk0));
       }
       v_prev = bn.vmax;
@@ -432,8 +434,7 @@ Status Planner::push(const toolpath::Block& b) noexcept {
     nn.v_corner = v_prev;
     if (jerk_mode && dk1.norm() > 1e-12) {
       nn.v_corner = std::min(nn.v_corner, curvature_step_speed(dk1));
-      nn.spike_s = true;
-      nn.j *= 0.5;
+      mark_spike(nn, true);
     }
     nn.v_lim = std::min(nn.v_corner, nn.vmax);
     append(nn);
@@ -489,10 +490,8 @@ Status Planner::push(const toolpath::Block& b) noexcept {
     // sides the other half
     v = std::min(v, curvature_step_speed(dk));
     if (dk.norm() > 1e-12) {
-      if (!p.spike_s && !p.spike_e) p.j *= 0.5;
-      p.spike_e = true;
-      nn.spike_s = true;
-      nn.j *= 0.5;
+      mark_spike(p, false);
+      mark_spike(nn, true);
       sync(tail_ - 1);
     }
   }

@@ -135,6 +135,8 @@ class Planner {
   /// Jerk mode: largest speed at a tangent junction where the curvature vector steps by dk [1/mm]:
   /// v²·|dk_i| ≤ J_i·ts2/2 (the acceleration step's third difference gets half of the jerk limit).
   double curvature_step_speed(const Vec3& dk) const noexcept;
+  /// Jerk mode: a curvature step at the start (or end) of n; its S-curve jerk is halved once.
+  static void mark_spike(Node& n, bool at_start) noexcept;
 
   AxisLimits limits_;
   PlanOptions opt_;
