@@ -65,28 +65,28 @@ struct Pack<1> {
 // Pack<4> returns 32-byte vectors from inlined helpers also in the baseline code (where they are
 // never instantiated); the ABI note about passing AVX vectors does not apply to inlined calls.
 #pragma GCC diagnostic ignored "-Wpsabi"
-template <>
-struct Pack<2> {
-  typedef double type __attribute__((vector_size(16)));
+typedef double Double2 __attribute__((vector_size(16)));
+typedef double Double4 __attribute__((vector_size(32)));
+template <typename V>
+struct VectorPack {
+  typedef V type;
+  static constexpr int width = sizeof(V) / sizeof(double);
   static NETSHAPE_ALWAYS_INLINE type load(const double* p) {
     type v;
     __builtin_memcpy(&v, p, sizeof v);
     return v;
   }
-  static NETSHAPE_ALWAYS_INLINE type splat(double x) { return type{x, x}; }
+  static NETSHAPE_ALWAYS_INLINE type splat(double x) {
+    type v;
+    for (int l = 0; l < width; ++l) v[l] = x;
+    return v;
+  }
   static NETSHAPE_ALWAYS_INLINE double lane(const type& v, int l) { return v[l]; }
 };
 template <>
-struct Pack<4> {
-  typedef double type __attribute__((vector_size(32)));
-  static NETSHAPE_ALWAYS_INLINE type load(const double* p) {
-    type v;
-    __builtin_memcpy(&v, p, sizeof v);
-    return v;
-  }
-  static NETSHAPE_ALWAYS_INLINE type splat(double x) { return type{x, x, x, x}; }
-  static NETSHAPE_ALWAYS_INLINE double lane(const type& v, int l) { return v[l]; }
-};
+struct Pack<2> : VectorPack<Double2> {};
+template <>
+struct Pack<4> : VectorPack<Double4> {};
 #endif
 constexpr int step_elements = 4;  // elements per step of the element loop (= number of partial sums)
 
