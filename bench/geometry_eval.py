@@ -17,18 +17,6 @@ import numpy as np
 import netshape.geometry as g
 
 
-def random_surface(rng, p=3, q=3, nu=12, nv=12):
-    def knots(n, deg):
-        inner = np.sort(rng.uniform(0.05, 0.95, n - deg - 1))
-        return np.concatenate([np.zeros(deg + 1), inner, np.ones(deg + 1)])
-
-    ku, kv = knots(nu, p), knots(nv, q)
-    cp = np.stack(np.meshgrid(np.arange(nu), np.arange(nv), indexing="ij"), -1).reshape(-1, 2).astype(float)
-    cp = np.hstack([cp + rng.uniform(-0.3, 0.3, cp.shape), rng.uniform(-1, 1, (nu * nv, 1))])
-    w = rng.uniform(0.5, 2.0, nu * nv)
-    return g.NurbsSurface(p, q, ku, kv, cp, w)
-
-
 def best_rate(fn, n, repeat=3):
     best = np.inf
     for _ in range(repeat):
@@ -48,7 +36,7 @@ def main(argv=None):
     from geomdl import operations
 
     rng = np.random.default_rng(0)
-    s = random_surface(rng)
+    s = g.random_surface(rng)
     gs = g.to_geomdl(s)
     n = args.points
     uv = rng.random((n, 2))

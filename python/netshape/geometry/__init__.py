@@ -20,6 +20,7 @@ from .mesh import (
     surface_mesh,
     write_stl,
 )
+from .samples import random_surface
 from .interop import from_dict, from_geomdl, load_json, load_toml, save_json, save_toml, to_dict, to_geomdl
 
 CurveProjection = _g.CurveProjection
@@ -46,6 +47,7 @@ __all__ = [
     "rings_gcode",
     "surface_mesh",
     "write_stl",
+    "random_surface",
     "CurveProjection",
     "SurfaceProjection",
     "NurbsCurve",

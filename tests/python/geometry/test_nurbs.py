@@ -157,31 +157,13 @@ def test_quarter_circle_hemisphere_pole_and_equator():
     assert np.allclose(grid_n, -grid_p / 2.0, atol=1e-12)
 
 
-def _random_geomdl_pair(rng, p, q, nu, nv):
-    from geomdl import NURBS
-
-    def knots(n, deg):
-        inner = np.sort(rng.uniform(0.05, 0.95, n - deg - 1))
-        return np.concatenate([np.zeros(deg + 1), inner, np.ones(deg + 1)])
-
-    ku, kv = knots(nu, p), knots(nv, q)
-    cp = np.stack(np.meshgrid(np.arange(nu), np.arange(nv), indexing="ij"), -1).reshape(-1, 2).astype(float)
-    cp = np.hstack([cp + rng.uniform(-0.3, 0.3, cp.shape), rng.uniform(-1, 1, (nu * nv, 1))])
-    w = rng.uniform(0.5, 2.0, nu * nv)
-    ours = g.NurbsSurface(p, q, ku, kv, cp, w)
-    gs = NURBS.Surface()
-    gs.degree_u, gs.degree_v = p, q
-    gs.set_ctrlpts(np.hstack([cp * w[:, None], w[:, None]]).tolist(), nu, nv)
-    gs.knotvector_u, gs.knotvector_v = ku.tolist(), kv.tolist()
-    return ours, gs
-
-
 def test_cross_check_geomdl_random_surfaces():
     """Points and first/second derivatives agree with geomdl to 1e-12 on random rational surfaces."""
     rng = np.random.default_rng(42)
     for trial in range(6):
         p, q = 1 + trial % 3, 2 + trial % 2
-        ours, gs = _random_geomdl_pair(rng, p, q, p + 4, q + 3)
+        ours = g.random_surface(rng, p, q, p + 4, q + 3)
+        gs = g.to_geomdl(ours)
         uv = rng.random((40, 2))
         pts = ours.evaluate(uv)
         ref = np.array(gs.evaluate_list([tuple(x) for x in uv]))
@@ -278,10 +260,21 @@ def test_bad_input_is_named(surf):
 def test_high_degree_generic_path_matches_reference():
     """Degrees above the specialised kernels (≤ 5) take the generic loop: same answers."""
     rng = np.random.default_rng(8)
-    ours, gs = _random_geomdl_pair(rng, 6, 2, 9, 5)
+    ours = g.random_surface(rng, 6, 2, 9, 5)
+    gs = g.to_geomdl(ours)
     uv = rng.random((30, 2))
     p, n = ours.evaluate_with_normals(uv)
     for k in range(len(uv)):
         assert np.allclose(p[k], ours.point(*uv[k]), atol=1e-13)
         assert np.allclose(n[k], ours.normal(*uv[k]), atol=1e-12)
     assert np.abs(p - np.array(gs.evaluate_list([tuple(x) for x in uv]))).max() < 1e-12
+
+
+def test_random_surface_is_reproducible_and_checks_counts():
+    """The same seed gives the same net; too few control points for the degree is refused by name."""
+    a, b = g.random_surface(7, 2, 3, 5, 6), g.random_surface(np.random.default_rng(7), 2, 3, 5, 6)
+    assert (a.count_u, a.count_v) == (5, 6)
+    assert np.array_equal(a.control_points, b.control_points) and np.array_equal(a.weights, b.weights)
+    assert not np.array_equal(a.control_points, g.random_surface(8, 2, 3, 5, 6).control_points)
+    with pytest.raises(ValueError, match="count_v = 3"):
+        g.random_surface(0, 3, 3, 5, 3)
