@@ -572,7 +572,8 @@ Eigen::VectorXd volumetric_error(const Machine& machine, const Eigen::Ref<const 
 
 // ---- Many points at once: the exact kernel vectorised over points -------------------------------
 // Each lane of a pack is one point and runs the operations of exact_kernel in the same order, so a
-// lane gives the same numbers as the one-point function. Component tables and mixed axes are looked
+// lane gives the same numbers as the one-point function (to rounding where the AVX-512 code fuses
+// multiply-adds). Component tables and mixed axes are looked
 // up per lane (scalar), everything after them is vector code.
 namespace {
 template <int W>
@@ -952,6 +953,32 @@ unsigned tip_error_lanes(MachineData& data, const double (&p)[3][batch_lanes], d
                          double (*jacobian)[9][batch_lanes]) {
   static const LanesFn fn = pick_lanes();
   return fn(data, p, e, jacobian);
+}
+
+bool detail::lanes_width_supported(int width) {
+#if defined(NETSHAPE_LANE_VECTORS)
+#if defined(__x86_64__)
+  if (width == 8) return __builtin_cpu_supports("avx512f");
+  if (width == 4) return __builtin_cpu_supports("avx2");
+#endif
+  return width == 2;
+#else
+  return width == 1;
+#endif
+}
+
+unsigned detail::tip_error_lanes_width(int width, MachineData& data, const double (&p)[3][batch_lanes],
+                                       double (&e)[3][batch_lanes], double (*jacobian)[9][batch_lanes]) {
+  NETSHAPE_CHECK(lanes_width_supported(width), "width", width, "must be a vector width this CPU runs");
+#if defined(NETSHAPE_LANE_VECTORS)
+#if defined(__x86_64__)
+  if (width == 8) return lanes_avx512(data, p, e, jacobian);
+  if (width == 4) return lanes_avx2(data, p, e, jacobian);
+#endif
+  return lanes_base(data, p, e, jacobian);
+#else
+  return lanes_scalar(data, p, e, jacobian);
+#endif
 }
 
 }  // namespace netshape::machine

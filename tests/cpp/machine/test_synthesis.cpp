@@ -277,6 +277,21 @@ void check_lanes(const Machine& m, MachineData& data, const std::array<Vec3, bat
     for (int c = 0; c < 3; ++c) p[c][l] = pts[l][c];
   CHECK(tip_error_lanes(data, p, e) == expect_bad);
   CHECK(tip_error_lanes(data, p, e2, &jac) == expect_bad);
+  // every vector width this CPU runs gives the same numbers to rounding
+  int widths = 0;
+  for (int w : {1, 2, 4, 8}) {
+    if (!detail::lanes_width_supported(w)) continue;
+    ++widths;
+    double ew[3][batch_lanes], jw[9][batch_lanes];
+    CHECK(detail::tip_error_lanes_width(w, data, p, ew, &jw) == expect_bad);
+    for (int l = 0; l < batch_lanes; ++l) {
+      if ((expect_bad >> l) & 1u) continue;
+      // the same operations; the AVX-512 variant may fuse multiply-adds (rounding-level differences)
+      for (int c = 0; c < 3; ++c) CHECK(std::abs(ew[c][l] - e2[c][l]) <= 1e-15 * (1.0 + std::abs(e2[c][l])));
+      for (int j = 0; j < 9; ++j) CHECK(std::abs(jw[j][l] - jac[j][l]) <= 1e-15 * (1.0 + std::abs(jac[j][l])));
+    }
+  }
+  CHECK(widths >= 1);
   for (int l = 0; l < batch_lanes; ++l) {
     if ((expect_bad >> l) & 1u) continue;
     Mat3 j1;
