@@ -194,10 +194,13 @@ VolumetricResult compensate_points_status(const Machine& machine, const Eigen::R
     for (int c = 0; c < 3; ++c) prev_correction[c][l] = prev_nominal[c][l] = step_at[c][l] = 0.0;
   }
   std::vector<Eigen::Index> again;
+  const double travel_min[3] = {machine.axes[0].travel_min, machine.axes[1].travel_min, machine.axes[2].travel_min};
+  const double travel_max[3] = {machine.axes[0].travel_max, machine.axes[1].travel_max, machine.axes[2].travel_max};
   const double tol2 = options.tolerance * options.tolerance;
   const int max_iterations = options.max_iterations;
   enum : unsigned char { idle = 0, active = 1, done = 2, failed = 3 };
-  double N[3][lanes], P[3][lanes], e[3][lanes], jac[9][lanes], residual[lanes];
+  double N[3][lanes], P[3][lanes], e[3][lanes], jac[9][lanes];
+  double residual[lanes];  // squared residual of the last evaluation [mm²]
   double S[9][lanes];  // the lane's step matrix (I + J₁)⁻¹, row-major, kept from point to point
   for (int j = 0; j < 9; ++j)
     for (int l = 0; l < lanes; ++l) S[j][l] = j % 4 == 0 ? 1.0 : 0.0;
@@ -263,19 +266,18 @@ VolumetricResult compensate_points_status(const Machine& machine, const Eigen::R
         ++iterations[l];
         const double rn2 = r0 * r0 + r1 * r1 + r2 * r2;
         if (rn2 <= tol2) {
-          residual[l] = std::sqrt(rn2);  // the exact residual at the returned point
+          residual[l] = rn2;  // (squared) the exact residual at the returned point
           state[l] = done;
           continue;
         }
-        const double rn = std::sqrt(rn2);
-        if (rn > 0.5 * residual[l]) {
+        if (rn2 > 0.25 * residual[l]) {  // |r| > ½ |r_previous| (residual holds squares)
           if (fresh[l]) {
             state[l] = failed;  // solve_point would switch to finite-difference Newton here
             continue;
           }
           have_step[l] = false;  // the next evaluation computes the step matrix at the iterate
         }
-        residual[l] = rn;
+        residual[l] = rn2;
         if (iterations[l] >= max_iterations) {
           state[l] = failed;
           continue;
@@ -283,7 +285,7 @@ VolumetricResult compensate_points_status(const Machine& machine, const Eigen::R
         const double q0 = P[0][l] - (S[0][l] * r0 + S[1][l] * r1 + S[2][l] * r2);
         const double q1 = P[1][l] - (S[3][l] * r0 + S[4][l] * r1 + S[5][l] * r2);
         const double q2 = P[2][l] - (S[6][l] * r0 + S[7][l] * r1 + S[8][l] * r2);
-        if (!(std::isfinite(q0) && std::isfinite(q1) && std::isfinite(q2))) {
+        if (!std::isfinite(q0 + q1 + q2)) {  // (an overflowing sum only sends the point to the fallback)
           state[l] = failed;
           continue;
         }
@@ -311,8 +313,7 @@ VolumetricResult compensate_points_status(const Machine& machine, const Eigen::R
       int ax = -1;
       if (options.check_travel) {
         for (int k = 0; k < 3; ++k) {
-          const auto& a = machine.axes[k];
-          if (P[k][l] < a.travel_min || P[k][l] > a.travel_max) {
+          if (P[k][l] < travel_min[k] || P[k][l] > travel_max[k]) {
             ax = k;
             st = VolumetricStatus::outside_travel;
             break;
@@ -320,7 +321,7 @@ VolumetricResult compensate_points_status(const Machine& machine, const Eigen::R
         }
       }
       for (int c = 0; c < 3; ++c) res.commanded(i, c) = P[c][l];
-      res.residual[i] = residual[l];
+      res.residual[i] = std::sqrt(residual[l]);
       res.iterations[i] = iterations[l];
       res.axis[i] = ax;
       res.status[static_cast<std::size_t>(i)] = st;
