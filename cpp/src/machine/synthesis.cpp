@@ -570,4 +570,415 @@ Eigen::VectorXd volumetric_error(const Machine& machine, const Eigen::Ref<const 
   return e.rowwise().norm();
 }
 
+// ---- Many points at once: the exact kernel vectorised over points -------------------------------
+// Each lane of a pack is one point and runs the operations of exact_kernel in the same order, so a
+// lane gives the same numbers as the one-point function (to rounding where the AVX-512 code fuses
+// multiply-adds). Component tables and mixed axes are looked
+// up per lane (scalar), everything after them is vector code.
+namespace {
+template <int W>
+struct LanePack;
+#if defined(__GNUC__) && !defined(__clang__)
+#define NETSHAPE_LANE_VECTORS 1
+#define NETSHAPE_LANE_INLINE inline __attribute__((always_inline))
+// 32-byte packs are returned from inlined helpers also in the baseline code (never instantiated
+// there); the ABI note about passing AVX vectors does not apply to inlined calls.
+#pragma GCC diagnostic ignored "-Wpsabi"
+template <>
+struct LanePack<2> {
+  typedef double type __attribute__((vector_size(16)));
+  typedef int itype __attribute__((vector_size(8)));
+};
+template <>
+struct LanePack<4> {
+  typedef double type __attribute__((vector_size(32)));
+  typedef int itype __attribute__((vector_size(16)));
+};
+template <>
+struct LanePack<8> {
+  typedef double type __attribute__((vector_size(64)));
+  typedef int itype __attribute__((vector_size(32)));
+};
+#else
+#define NETSHAPE_LANE_INLINE inline
+#endif
+template <>
+struct LanePack<1> {
+  typedef double type;
+};
+
+template <class V>
+NETSHAPE_LANE_INLINE V splat(double x) {
+  if constexpr (sizeof(V) == sizeof(double)) {
+    return x;
+  } else {
+    V v;
+    for (std::size_t w = 0; w < sizeof(V) / sizeof(double); ++w) v[w] = x;  // one broadcast
+    return v;
+  }
+}
+// (row[0][off], row[1][off], …) built in registers (no store-to-load round trip)
+template <int W>
+NETSHAPE_LANE_INLINE typename LanePack<W>::type gather_lanes(const double* const* row, int off) {
+  if constexpr (W == 1) {
+    return row[0][off];
+  } else if constexpr (W == 2) {
+    return typename LanePack<W>::type{row[0][off], row[1][off]};
+  } else if constexpr (W == 4) {
+    return typename LanePack<W>::type{row[0][off], row[1][off], row[2][off], row[3][off]};
+  } else {
+    return typename LanePack<W>::type{row[0][off], row[1][off], row[2][off], row[3][off],
+                                      row[4][off], row[5][off], row[6][off], row[7][off]};
+  }
+}
+template <class V>
+NETSHAPE_LANE_INLINE V load_lanes(const double* x) {
+  V v;
+  __builtin_memcpy(&v, x, sizeof v);
+  return v;
+}
+template <class V>
+NETSHAPE_LANE_INLINE void store_lanes(double* x, const V& v) {
+  __builtin_memcpy(x, &v, sizeof v);
+}
+
+// Six components of axis k at q into v[6] (slopes into s[6] when slope); false when q leaves a table
+// whose policy is `error` or is not finite (then v and s are zeros), instead of throwing.
+bool axis_lane(const MachineData& data, int k, double q, bool slope, double* v, double* s) {
+  const detail::AxisKernel& ker = data.kernels[k];
+  if (ker.mode == detail::AxisKernel::Mode::table && ker.out_of_range == OutOfRange::error) {
+    if (!(q >= ker.lo && q <= ker.hi)) {
+      for (int c = 0; c < 6; ++c) v[c] = s[c] = 0.0;
+      return false;
+    }
+  } else if (ker.mode == detail::AxisKernel::Mode::generic) {
+    for (int c = 0; c < 6; ++c) {
+      const detail::PreparedFunction& f = data.functions[k * 6 + c];
+      if (f.kind == ErrorFunction::Kind::table && !(q >= f.lo && q <= f.hi) &&
+          (f.out_of_range == OutOfRange::error || !std::isfinite(q))) {
+        for (int j = 0; j < 6; ++j) v[j] = s[j] = 0.0;
+        return false;
+      }
+    }
+  }
+  if (!std::isfinite(q)) {
+    for (int c = 0; c < 6; ++c) v[c] = s[c] = 0.0;
+    return false;
+  }
+  if (slope)
+    evaluate_axis<true>(data, k, q, v, s);
+  else
+    evaluate_axis<false>(data, k, q, v, s);
+  return true;
+}
+
+// One pack of W points starting at lane `first` of the batch arrays. Axis by axis along the chain:
+// its six components, sin/cos − 1 of its angles, its 3×3 step (few values live at a time).
+template <int W, bool Jacobian>
+NETSHAPE_LANE_INLINE unsigned lanes_pack(MachineData& data, const double (&pin)[3][batch_lanes], int first,
+                                         double (&out)[3][batch_lanes], double (*jac)[9][batch_lanes]) {
+  using V = typename LanePack<W>::type;
+  unsigned bad = 0;
+  V P[3];
+  for (int c = 0; c < 3; ++c) P[c] = load_lanes<V>(&pin[c][first]);
+  {
+    const V z = (P[0] - P[0]) + (P[1] - P[1]) + (P[2] - P[2]);  // 0 where the point is finite, else NaN
+    for (int w = 0; w < W; ++w) {
+      double zw;
+      if constexpr (W == 1)
+        zw = z;
+      else
+        zw = z[w];
+      if (!(zw == 0.0)) bad |= 1u << (first + w);
+    }
+  }
+  // How each axis' components are evaluated: a polynomial axis by a six-component Horner on its packed
+  // coefficients (the values of the 18-lane Horner of exact_kernel), a uniform table with every lane
+  // inside it by vector interpolation, anything else per lane (other tables, lanes outside a table,
+  // mixed axes) into ev/sv (lane layout of MachineData::lane_coefficients).
+  enum : unsigned char { axis_poly, axis_table, per_lane };
+  unsigned char how[3];
+  for (int k = 0; k < 3; ++k) {
+    const detail::AxisKernel& ker = data.kernels[k];
+    if (ker.mode == detail::AxisKernel::Mode::polynomial) {
+      // (zero padding to the machine's highest degree, as lane_coefficients has, changes no value)
+      how[k] = axis_poly;
+    } else if (ker.mode == detail::AxisKernel::Mode::table && ker.uniform) {
+      bool inside = true;
+      for (int w = 0; w < W; ++w) {
+        const double q = pin[k][first + w];
+        inside = inside && q >= ker.lo && q <= ker.hi;
+      }
+      how[k] = inside ? axis_table : per_lane;
+    } else {
+      how[k] = per_lane;
+    }
+  }
+  double ev[18][W], sv[18][W];
+  for (int k = 0; k < 3; ++k) {
+    if (how[k] != per_lane) continue;
+    for (int w = 0; w < W; ++w) {
+      double v[6], d[6];
+      if (!axis_lane(data, k, pin[k][first + w], Jacobian, v, d)) bad |= 1u << (first + w);
+      for (int c = 0; c < 3; ++c) {
+        ev[9 + 3 * k + c][w] = v[c];
+        ev[3 * k + c][w] = v[3 + c];
+        if (Jacobian) {
+          sv[9 + 3 * k + c][w] = d[c];
+          sv[3 * k + c][w] = d[3 + c];
+        }
+      }
+    }
+  }
+  V v0 = splat<V>(data.tip_nominal[0]), v1 = splat<V>(data.tip_nominal[1]), v2 = splat<V>(data.tip_nominal[2]);
+  V d0 = splat<V>(data.tip_local[0]), d1 = splat<V>(data.tip_local[1]), d2 = splat<V>(data.tip_local[2]);
+  V arm[3][3], eps[3][3], eps_slope[3][3], delta_slope[3][3];
+  const V one = splat<V>(1.0);
+  V big = splat<V>(0.0);  // largest squared angle of each lane
+  for (int i = 0; i < 3; ++i) {
+    const detail::ChainStep& st = data.steps[i];
+    const int k = st.axis;
+    const V q = P[k];
+    // e[0..2]: angles (EAk, EBk, ECk) [rad], e[3..5]: translations (EXk, EYk, EZk) [mm]
+    V e[6], sl[6];
+    const int lane[6] = {3 * k, 3 * k + 1, 3 * k + 2, 9 + 3 * k, 10 + 3 * k, 11 + 3 * k};
+    if (how[k] == axis_poly) {
+      // as evaluate_axis: packed [j * 6 + c], translations c = 0..2, rotations 3..5
+      const detail::AxisKernel& ker = data.kernels[k];
+      const double* ck = ker.packed.data();
+      const int lk = ker.terms - 1;
+      constexpr int comp[6] = {3, 4, 5, 0, 1, 2};
+#pragma GCC unroll 6
+      for (int c = 0; c < 6; ++c) {
+        e[c] = splat<V>(ck[lk * 6 + comp[c]]);
+        if (Jacobian) sl[c] = splat<V>(0.0);
+      }
+      for (int j = lk - 1; j >= 0; --j) {
+        const double* cj = ck + j * 6;
+#pragma GCC unroll 6
+        for (int c = 0; c < 6; ++c) {
+          if (Jacobian) sl[c] = sl[c] * q + e[c];
+          e[c] = e[c] * q + cj[comp[c]];
+        }
+      }
+    } else if (how[k] == axis_table) {
+      // as evaluate_axis on a uniform table, every lane inside it: one row lookup per lane
+      const detail::AxisKernel& ker = data.kernels[k];
+      const V u = (q - ker.lo) * ker.inv_step;
+      V fi;
+      const double* row[W];
+      if constexpr (W == 1) {
+        int i = static_cast<int>(u);
+        if (i > ker.terms - 2) i = ker.terms - 2;
+        fi = i;
+        row[0] = ker.packed.data() + static_cast<std::ptrdiff_t>(i) * 6;
+      } else {
+        using I = typename LanePack<W>::itype;
+        I iv = __builtin_convertvector(u, I);  // truncation, as static_cast<int>
+        const I top = iv - iv + (ker.terms - 2);
+        iv = iv > top ? top : iv;
+        fi = __builtin_convertvector(iv, V);
+        for (int w = 0; w < W; ++w) row[w] = ker.packed.data() + static_cast<std::ptrdiff_t>(iv[w]) * 6;
+      }
+      const V t = u - fi;
+      const int comp[6] = {3, 4, 5, 0, 1, 2};
+#pragma GCC unroll 6
+      for (int c = 0; c < 6; ++c) {
+        const V a = gather_lanes<W>(row, comp[c]), b = gather_lanes<W>(row, 6 + comp[c]);
+        const V dv = b - a;
+        e[c] = a + t * dv;
+        if (Jacobian) sl[c] = dv * ker.inv_step;
+      }
+    } else {
+#pragma GCC unroll 6
+      for (int c = 0; c < 6; ++c) {
+        e[c] = load_lanes<V>(ev[lane[c]]);
+        if (Jacobian) sl[c] = load_lanes<V>(sv[lane[c]]);
+      }
+    }
+    if (Jacobian) {
+      for (int c = 0; c < 3; ++c) {
+        eps[k][c] = e[c];
+        eps_slope[k][c] = sl[c];
+        delta_slope[k][c] = sl[3 + c];
+      }
+    }
+    // sin and cos − 1: the short Taylor series of sincos_lanes, exact to rounding when every
+    // |angle| < 1e-3; a lane with a larger angle is evaluated again by the one-point kernel below.
+    V sn[3], cm[3];
+    {
+      constexpr double k6 = -1.0 / 6.0, k120 = 1.0 / 120.0, k24 = 1.0 / 24.0, k720 = -1.0 / 720.0;
+#pragma GCC unroll 3
+      for (int c = 0; c < 3; ++c) {
+        const V x2 = e[c] * e[c];
+        big = big > x2 ? big : x2;
+        sn[c] = e[c] + e[c] * x2 * (k6 + x2 * k120);
+        cm[c] = x2 * (-0.5 + x2 * (k24 + x2 * k720));
+      }
+    }
+    const V sa = sn[0], sb = sn[1], sc = sn[2];
+    const V cma = cm[0], cmb = cm[1], cmc = cm[2];
+    const V ca = one + cma, cb = one + cmb, cc = one + cmc;
+    const V sasb = sa * sb, casb = ca * sb;
+    const V m00 = cmb + cmc + cmb * cmc, m01 = sasb * cc - ca * sc, m02 = casb * cc + sa * sc;
+    const V m10 = cb * sc, m11 = sasb * sc + cma + cmc + cma * cmc, m12 = casb * sc - sa * cc;
+    const V m20 = -sb, m21 = sa * cb, m22 = cma + cmb + cma * cmb;
+    const Vec3& du = data.direction[k];
+    const V t0 = q * du[0] + e[3], t1 = q * du[1] + e[4], t2 = q * du[2] + e[5];
+    V c0, c1, c2;
+    if (st.tool) {
+      if (Jacobian) arm[k][0] = v0, arm[k][1] = v1, arm[k][2] = v2;
+      c0 = m00 * v0 + m01 * v1 + m02 * v2 + t0;
+      c1 = m10 * v0 + m11 * v1 + m12 * v2 + t1;
+      c2 = m20 * v0 + m21 * v1 + m22 * v2 + t2;
+      // v += origin + q u (the same additions as exact_kernel: origin + (q or 0) first)
+      const V o0 = k == 0 ? st.origin[0] + q : splat<V>(st.origin[0]);
+      const V o1 = k == 1 ? st.origin[1] + q : splat<V>(st.origin[1]);
+      const V o2 = k == 2 ? st.origin[2] + q : splat<V>(st.origin[2]);
+      v0 += o0, v1 += o1, v2 += o2;
+    } else {
+      v0 -= st.origin[0], v1 -= st.origin[1], v2 -= st.origin[2];
+      if (k == 0) v0 += q;
+      if (k == 1) v1 += q;
+      if (k == 2) v2 += q;
+      if (Jacobian) arm[k][0] = v0, arm[k][1] = v1, arm[k][2] = v2;
+      const V w0 = v0 + t0, w1 = v1 + t1, w2 = v2 + t2;
+      c0 = t0 + (m00 * w0 + m01 * w1 + m02 * w2);
+      c1 = t1 + (m10 * w0 + m11 * w1 + m12 * w2);
+      c2 = t2 + (m20 * w0 + m21 * w1 + m22 * w2);
+    }
+    const V n0 = d0 + (m00 * d0 + m01 * d1 + m02 * d2 + c0);
+    const V n1 = d1 + (m10 * d0 + m11 * d1 + m12 * d2 + c1);
+    const V n2 = d2 + (m20 * d0 + m21 * d1 + m22 * d2 + c2);
+    d0 = n0, d1 = n1, d2 = n2;
+  }
+  store_lanes(&out[0][first], d0);
+  store_lanes(&out[1][first], d1);
+  store_lanes(&out[2][first], d2);
+  unsigned redo = 0;
+  for (int w = 0; w < W; ++w) {
+    double b;
+    if constexpr (W == 1)
+      b = big;
+    else
+      b = big[w];
+    if (!(b < 1e-6)) redo |= 1u << w;
+  }
+  if (Jacobian) {
+    // column k = δ'_k + (u'_k − u_k)₁ + ε'_k × r_k + (Σ_{j: arm grows with q_k} ε_j) × u_k
+    for (int k = 0; k < 3; ++k) {
+      V es0 = splat<V>(0.0), es1 = es0, es2 = es0;
+      for (int j = 0; j < 3; ++j)
+        if (data.arm_grows[k][j]) es0 += eps[j][0], es1 += eps[j][1], es2 += eps[j][2];
+      const V a0 = eps_slope[k][0], a1 = eps_slope[k][1], a2 = eps_slope[k][2];
+      const V r0 = arm[k][0], r1 = arm[k][1], r2 = arm[k][2];
+      const V col[3] = {a1 * r2 - a2 * r1, a2 * r0 - a0 * r2, a0 * r1 - a1 * r0};
+      // (es × u_k): x̂ → (0, es2, −es1); ŷ → (−es2, 0, es0); ẑ → (es1, −es0, 0)
+      const V zero = splat<V>(0.0);
+      const V x[3] = {k == 0 ? zero : (k == 1 ? -es2 : es1), k == 0 ? es2 : (k == 1 ? zero : -es0),
+                      k == 0 ? -es1 : (k == 1 ? es0 : zero)};
+      for (int r = 0; r < 3; ++r) {
+        const V c = delta_slope[k][r] + data.direction_linear[k][r] + col[r] + x[r];
+        store_lanes(&(*jac)[3 * k + r][first], c);
+      }
+    }
+  }
+  // lanes with an angle ≥ 1e-3 rad (not a realistic geometric error, but allowed): the one-point kernel
+  redo &= ~(bad >> first);
+  if (redo) {
+    for (int w = 0; w < W; ++w) {
+      if (!((redo >> w) & 1u)) continue;
+      const Vec3 pw(pin[0][first + w], pin[1][first + w], pin[2][first + w]);
+      Vec3 ew;
+      if (Jacobian) {
+        Mat3 jw;
+        ew = exact_kernel<true>(data, pw, &jw);
+        for (int col = 0; col < 3; ++col)
+          for (int r = 0; r < 3; ++r) (*jac)[3 * col + r][first + w] = jw(r, col);
+      } else {
+        ew = exact_kernel<false>(data, pw, nullptr);
+      }
+      for (int c = 0; c < 3; ++c) out[c][first + w] = ew[c];
+    }
+  }
+  return bad;
+}
+
+template <int W>
+NETSHAPE_LANE_INLINE unsigned lanes_impl(MachineData& data, const double (&p)[3][batch_lanes],
+                                         double (&e)[3][batch_lanes], double (*jac)[9][batch_lanes]) {
+  unsigned bad = 0;
+  if (jac) {
+    for (int f = 0; f < batch_lanes; f += W) bad |= lanes_pack<W, true>(data, p, f, e, jac);
+  } else {
+    for (int f = 0; f < batch_lanes; f += W) bad |= lanes_pack<W, false>(data, p, f, e, nullptr);
+  }
+  return bad;
+}
+
+using LanesFn = unsigned (*)(MachineData&, const double (&)[3][batch_lanes], double (&)[3][batch_lanes],
+                             double (*)[9][batch_lanes]);
+#if defined(NETSHAPE_LANE_VECTORS)
+unsigned lanes_base(MachineData& data, const double (&p)[3][batch_lanes], double (&e)[3][batch_lanes],
+                    double (*jac)[9][batch_lanes]) {
+  return lanes_impl<2>(data, p, e, jac);
+}
+#if defined(__x86_64__)
+__attribute__((target("avx2"))) unsigned lanes_avx2(MachineData& data, const double (&p)[3][batch_lanes],
+                                                    double (&e)[3][batch_lanes], double (*jac)[9][batch_lanes]) {
+  return lanes_impl<4>(data, p, e, jac);
+}
+__attribute__((target("avx512f"))) unsigned lanes_avx512(MachineData& data, const double (&p)[3][batch_lanes],
+                                                          double (&e)[3][batch_lanes], double (*jac)[9][batch_lanes]) {
+  return lanes_impl<8>(data, p, e, jac);
+}
+#endif
+LanesFn pick_lanes() {
+#if defined(__x86_64__)
+  if (__builtin_cpu_supports("avx512f")) return &lanes_avx512;
+  if (__builtin_cpu_supports("avx2")) return &lanes_avx2;
+#endif
+  return &lanes_base;
+}
+#else
+unsigned lanes_scalar(MachineData& data, const double (&p)[3][batch_lanes], double (&e)[3][batch_lanes],
+                      double (*jac)[9][batch_lanes]) {
+  return lanes_impl<1>(data, p, e, jac);
+}
+LanesFn pick_lanes() { return &lanes_scalar; }
+#endif
+}  // namespace
+
+unsigned tip_error_lanes(MachineData& data, const double (&p)[3][batch_lanes], double (&e)[3][batch_lanes],
+                         double (*jacobian)[9][batch_lanes]) {
+  static const LanesFn fn = pick_lanes();
+  return fn(data, p, e, jacobian);
+}
+
+bool detail::lanes_width_supported(int width) {
+#if defined(NETSHAPE_LANE_VECTORS)
+#if defined(__x86_64__)
+  if (width == 8) return __builtin_cpu_supports("avx512f");
+  if (width == 4) return __builtin_cpu_supports("avx2");
+#endif
+  return width == 2;
+#else
+  return width == 1;
+#endif
+}
+
+unsigned detail::tip_error_lanes_width(int width, MachineData& data, const double (&p)[3][batch_lanes],
+                                       double (&e)[3][batch_lanes], double (*jacobian)[9][batch_lanes]) {
+  NETSHAPE_CHECK(lanes_width_supported(width), "width", width, "must be a vector width this CPU runs");
+#if defined(NETSHAPE_LANE_VECTORS)
+#if defined(__x86_64__)
+  if (width == 8) return lanes_avx512(data, p, e, jacobian);
+  if (width == 4) return lanes_avx2(data, p, e, jacobian);
+#endif
+  return lanes_base(data, p, e, jacobian);
+#else
+  return lanes_scalar(data, p, e, jacobian);
+#endif
+}
+
 }  // namespace netshape::machine

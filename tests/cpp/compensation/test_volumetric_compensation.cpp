@@ -100,3 +100,69 @@ TEST_CASE("along a path the step matrix is reused: two evaluations per point, re
     CHECK((cmd - res.commanded.row(i).transpose()).norm() < 1e-8);
   }
 }
+
+TEST_CASE("many points at once give the one-by-one points and statuses, failures included") {
+  Machine m = test_machine();
+  m.axes[0].errors[0] = ErrorFunction::polynomial({0.5, 1e-4});  // X reads 0.5 mm long: needs X − 0.5
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> U(-450.0, 450.0);
+  for (const int n : {0, 1, 3, 8, 37, 203}) {
+    Points3 nominal(n, 3);
+    for (int i = 0; i < n; ++i) nominal.row(i) << U(rng), U(rng), U(rng);
+    if (n > 20) {
+      nominal.row(5) << -499.8, 0, 0;  // pushed outside X's travel
+      // a short path inside the random points (warm starts within a lane's run)
+      for (int i = 10; i < 20; ++i) nominal.row(i) << 100.0 + 0.05 * i, 20.0, -30.0;
+    }
+    const VolumetricResult res = compensate_points_status(m, nominal);
+    REQUIRE(res.commanded.rows() == n);
+    MachineData data(m);
+    for (int i = 0; i < n; ++i) {
+      Vec3 cmd;
+      double r;
+      int it, ax;
+      const VolumetricStatus st = compensate_point(m, data, nominal.row(i).transpose(), VolumetricOptions{}, cmd, r, it, ax);
+      CHECK(st == res.status[i]);
+      CHECK(ax == res.axis[i]);
+      CHECK((cmd - res.commanded.row(i).transpose()).norm() < 1e-8);
+      if (st == VolumetricStatus::ok) {
+        // the residual was evaluated at the returned point
+        const Vec3 c = res.commanded.row(i).transpose();
+        const double verified = (c + tip_error(m, data, c) - nominal.row(i).transpose()).norm();
+        CHECK(verified <= 1e-9);
+        CHECK(res.residual[i] == doctest::Approx(verified).epsilon(1e-6));
+      }
+    }
+    if (n > 20) CHECK(res.status[5] == VolumetricStatus::outside_travel);
+  }
+}
+
+TEST_CASE("many points at once: a table left during the iteration and a machine that cannot be inverted") {
+  // X error table with policy error: the first point is pushed below its start
+  Machine m = test_machine();
+  for (int c = 0; c < 6; ++c) m.axes[0].errors[c] = ErrorFunction::zero_function();
+  m.axes[0].errors[0] = ErrorFunction::table({-100.0, 0.0, 100.0}, {0.2, 0.1, 0.3}, OutOfRange::error, "EXX");
+  Points3 nominal(20, 3);
+  for (int i = 0; i < 20; ++i) nominal.row(i) << -99.95 + 10.0 * i, 5.0, 5.0;
+  const VolumetricResult res = compensate_points_status(m, nominal);
+  MachineData data(m);
+  int outside = 0;
+  for (int i = 0; i < 20; ++i) {
+    Vec3 cmd;
+    double r;
+    int it, ax;
+    const VolumetricStatus st = compensate_point(m, data, nominal.row(i).transpose(), VolumetricOptions{}, cmd, r, it, ax);
+    CHECK(st == res.status[i]);
+    outside += st == VolumetricStatus::outside_table;
+  }
+  CHECK(outside > 0);
+  CHECK(res.status[0] == VolumetricStatus::outside_table);
+  CHECK(res.status[1] == VolumetricStatus::ok);
+  // e(x) = −x on X: not invertible, reported for every point
+  Machine bad = ideal_machine({0, 1, 2}, {}, 0.0);
+  bad.axes[0].errors[0] = ErrorFunction::polynomial({0.0, -1.0});
+  VolumetricOptions o;
+  o.check_travel = false;
+  const VolumetricResult rb = compensate_points_status(bad, nominal, o);
+  for (int i = 0; i < 20; ++i) CHECK(rb.status[i] == VolumetricStatus::not_converged);
+}

@@ -268,3 +268,89 @@ TEST_CASE("a table with out_of_range = error refuses a point outside it in every
   CHECK_THROWS_WITH_AS(tip_error(m, data, Vec3(50.0, -5.0, 0.0)), doctest::Contains("EXY"), std::invalid_argument);
   CHECK_THROWS_AS(tip_error(m, data, Vec3(NAN, 50.0, 0.0)), std::invalid_argument);
 }
+
+namespace {
+// tip_error_lanes against the one-point functions on `batch_lanes` points; `bad` lanes are skipped.
+void check_lanes(const Machine& m, MachineData& data, const std::array<Vec3, batch_lanes>& pts, unsigned expect_bad) {
+  double p[3][batch_lanes], e[3][batch_lanes], jac[9][batch_lanes], e2[3][batch_lanes];
+  for (int l = 0; l < batch_lanes; ++l)
+    for (int c = 0; c < 3; ++c) p[c][l] = pts[l][c];
+  CHECK(tip_error_lanes(data, p, e) == expect_bad);
+  CHECK(tip_error_lanes(data, p, e2, &jac) == expect_bad);
+  // every vector width this CPU runs gives the same numbers to rounding
+  int widths = 0;
+  for (int w : {1, 2, 4, 8}) {
+    if (!detail::lanes_width_supported(w)) continue;
+    ++widths;
+    double ew[3][batch_lanes], jw[9][batch_lanes];
+    CHECK(detail::tip_error_lanes_width(w, data, p, ew, &jw) == expect_bad);
+    for (int l = 0; l < batch_lanes; ++l) {
+      if ((expect_bad >> l) & 1u) continue;
+      // the same operations; the AVX-512 variant may fuse multiply-adds (rounding-level differences)
+      for (int c = 0; c < 3; ++c) CHECK(std::abs(ew[c][l] - e2[c][l]) <= 1e-15 * (1.0 + std::abs(e2[c][l])));
+      for (int j = 0; j < 9; ++j) CHECK(std::abs(jw[j][l] - jac[j][l]) <= 1e-15 * (1.0 + std::abs(jac[j][l])));
+    }
+  }
+  CHECK(widths >= 1);
+  for (int l = 0; l < batch_lanes; ++l) {
+    if ((expect_bad >> l) & 1u) continue;
+    Mat3 j1;
+    const Vec3 ref = tip_error_and_jacobian(m, data, pts[l], j1);
+    const Vec3 ref0 = tip_error(m, data, pts[l]);
+    const double scale = 1e-15 * (1.0 + ref.norm());
+    for (int c = 0; c < 3; ++c) {
+      CHECK(std::abs(e[c][l] - ref0[c]) <= scale);
+      CHECK(std::abs(e2[c][l] - ref0[c]) <= scale);
+      for (int col = 0; col < 3; ++col) CHECK(std::abs(jac[3 * col + c][l] - j1(c, col)) <= 1e-15 * (1.0 + j1.norm()));
+    }
+  }
+}
+}  // namespace
+
+TEST_CASE("many points at once (vectorised) equal the one-point synthesis and Jacobian") {
+  // polynomial machines, table machines (uniform: vector lookup; non-uniform, mixed: per lane), angles
+  // above 1e-3 rad (per-lane fallback), lanes outside a table with policy clamp / extrapolate
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (int trial = 0; trial < 24; ++trial) {
+    Machine m = random_machine(rng, trial % 3 ? 1.0 : 100.0);
+    if (trial % 4 >= 2) {
+      for (int k = 0; k < 3; ++k) {
+        const bool uniform = (trial + k) % 3 != 0;
+        std::vector<double> x;
+        for (int i = 0; i <= 12; ++i) x.push_back(-300.0 + 50.0 * i + (uniform ? 0.0 : 10.0 * std::sin(1.7 * i)));
+        const OutOfRange policy = (trial + k) % 2 ? OutOfRange::clamp : OutOfRange::extrapolate;
+        for (int c = 0; c < 6; ++c) {
+          if ((trial + k) % 5 == 0 && c == 2) continue;  // a polynomial among tables: generic per-function path
+          std::vector<double> v;
+          for (double xi : x) v.push_back(m.axes[k].errors[c](xi));
+          m.axes[k].errors[c] = ErrorFunction::table(x, v, policy);
+        }
+      }
+      m.validate();
+    }
+    MachineData data(m);
+    for (int rep = 0; rep < 4; ++rep) {
+      std::array<Vec3, batch_lanes> pts;
+      // rep 0: all inside ±280 mm (tables: vector lookup), others: some lanes outside the tables
+      const double r = rep == 0 ? 280.0 : 400.0;
+      for (auto& q : pts) q = Vec3(r * U(rng), r * U(rng), r * U(rng));
+      check_lanes(m, data, pts, 0u);
+    }
+  }
+}
+
+TEST_CASE("many points at once: points outside a table with policy error are flagged, not thrown") {
+  Machine m = ideal_machine({0, 1}, {2}, 100.0);
+  for (int c = 0; c < 6; ++c)
+    m.axes[0].errors[c] = ErrorFunction::table({0.0, 50.0, 100.0}, {0.0, 1e-3, 0.01}, OutOfRange::error, "EXX");
+  m.axes[1].errors[0] = ErrorFunction::table({0.0, 100.0}, {0.0, 0.01}, OutOfRange::error, "EXY");  // mixed
+  m.axes[1].errors[4] = ErrorFunction::polynomial({1e-5});
+  MachineData data(m);
+  std::array<Vec3, batch_lanes> pts;
+  for (int l = 0; l < batch_lanes; ++l) pts[l] = Vec3(10.0 * l, 5.0 * l, 0.0);
+  pts[2].x() = 150.0;   // outside X's table
+  pts[5].y() = -5.0;    // outside Y's table
+  pts[7].z() = NAN;     // not finite (polynomial Z)
+  check_lanes(m, data, pts, (1u << 2) | (1u << 5) | (1u << 7));
+}

@@ -60,6 +60,12 @@ VolumetricStatus compensate_point(const machine::Machine& machine, machine::Mach
                                   double& residual, int& iterations, int& axis);
 
 /// Compensate (n, 3) nominal points [mm]. Never throws for per-point failures (see status).
+/// Runs the iteration above for `machine::batch_lanes` points at once: lane l takes the contiguous run
+/// [l·n/lanes, (l+1)·n/lanes) in order (its own warm start and step matrix, as one by one) and one vectorised
+/// `machine::tip_error_lanes` call evaluates all lanes. A point that leaves the chord iteration (slow
+/// contraction right after a fresh step matrix, max_iterations, a table left, not finite) is solved again
+/// by `compensate_point` from a cold start: its result and status are that function's. The commanded points
+/// equal the one-by-one ones to the tolerance (only the starts differ).
 VolumetricResult compensate_points_status(const machine::Machine& machine,
                                           const Eigen::Ref<const Points3>& nominal,
                                           const VolumetricOptions& options = {});

@@ -118,6 +118,28 @@ Vec3 tip_error(const Machine& machine, MachineData& data, const Vec3& p, Order o
 /// fixed point.
 Vec3 tip_error_and_jacobian(const Machine& machine, MachineData& data, const Vec3& p, Mat3& jacobian);
 
+/// Points per call of `tip_error_lanes`.
+constexpr int batch_lanes = 8;
+
+/// Exact tip errors of `batch_lanes` points at once, vectorised over the points (structure of arrays;
+/// AVX-512 or AVX2 when the CPU has them, else SSE2), the same synthesis as `tip_error(…, Order::exact)`
+/// (the same operations in the same order per point; the AVX-512 code may fuse multiply-adds, so results
+/// can differ from the one-point function by rounding, ~1e-16 relative). p[c][i]: coordinate c of point i [mm]; e[c][i]: error
+/// component c [mm]. With `jacobian` non-null, also the first-order Jacobian of each point as
+/// `tip_error_and_jacobian` gives it: (*jacobian)[3 * col + row][i]. Never throws: returns a bit mask
+/// of the points (bit i = point i) that left a table with out_of_range = error or are not finite
+/// (their outputs are meaningless; the per-point functions throw for them).
+unsigned tip_error_lanes(MachineData& data, const double (&p)[3][batch_lanes], double (&e)[3][batch_lanes],
+                         double (*jacobian)[9][batch_lanes] = nullptr);
+
+namespace detail {
+/// Whether this build and CPU run `tip_error_lanes` with `width` points per vector (1, 2, 4 or 8).
+bool lanes_width_supported(int width);
+/// `tip_error_lanes` with a chosen vector width (tests: every variant gives the same numbers).
+unsigned tip_error_lanes_width(int width, MachineData& data, const double (&p)[3][batch_lanes],
+                               double (&e)[3][batch_lanes], double (*jacobian)[9][batch_lanes] = nullptr);
+}  // namespace detail
+
 /// Tip errors at many points: (n, 3) [mm] in, (n, 3) [mm] out.
 Points3 tip_error(const Machine& machine, const Eigen::Ref<const Points3>& points,
                   Order order = Order::exact);
