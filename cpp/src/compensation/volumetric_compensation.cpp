@@ -201,7 +201,7 @@ VolumetricResult compensate_points_status(const Machine& machine, const Eigen::R
   enum : unsigned char { idle = 0, active = 1, done = 2, failed = 3 };
   double N[3][lanes], P[3][lanes], e[3][lanes], jac[9][lanes];
   double residual[lanes];  // squared residual of the last evaluation [mm²]
-  double S[9][lanes];  // the lane's step matrix (I + J₁)⁻¹, row-major, kept from point to point
+  double S[9][lanes];  // the lane's step matrix (I + J)⁻¹ (exact J), row-major, kept from point to point
   for (int j = 0; j < 9; ++j)
     for (int l = 0; l < lanes; ++l) S[j][l] = j % 4 == 0 ? 1.0 : 0.0;
   int iterations[lanes];
