@@ -201,12 +201,14 @@ VolumetricResult compensate_points_status(const Machine& machine, const Eigen::R
   enum : unsigned char { idle = 0, active = 1, done = 2, failed = 3 };
   double N[3][lanes], P[3][lanes], e[3][lanes], jac[9][lanes];
   double residual[lanes];  // squared residual of the last evaluation [mm²]
-  double S[9][lanes];  // the lane's step matrix (I + J₁)⁻¹, row-major, kept from point to point
+  double S[9][lanes];  // the lane's step matrix (I + J)⁻¹ (exact J), row-major, kept from point to point
   for (int j = 0; j < 9; ++j)
     for (int l = 0; l < lanes; ++l) S[j][l] = j % 4 == 0 ? 1.0 : 0.0;
   int iterations[lanes];
   unsigned char state[lanes];
-  bool have_step[lanes], fresh[lanes], computed[lanes];
+  bool have_step[lanes], fresh[lanes], computed[lanes], second[lanes];
+  // grows[m][k]: axis k's Abbe arm grows with q_m (second-order step)
+  const auto& grows = data.arm_grows;
   Eigen::Index index[lanes];
   for (;;) {
     // a point from each stream
@@ -244,13 +246,14 @@ VolumetricResult compensate_points_status(const Machine& machine, const Eigen::R
       bool need_jacobian = false;
       for (int l = 0; l < lanes; ++l) need_jacobian |= state[l] == active && !have_step[l];
       const unsigned bad = machine::tip_error_lanes(data, P, e, need_jacobian ? &jac : nullptr);
+      for (int l = 0; l < lanes; ++l) second[l] = false;
       if (need_jacobian) {
         double m[9][lanes];
-        step_matrices(jac, m);
+        step_matrices(data.lane_jacobian, m);  // the exact Jacobian (jac: first order)
         for (int l = 0; l < lanes; ++l) {
           if (state[l] != active || have_step[l]) continue;
           for (int j = 0; j < 9; ++j) S[j][l] = m[j][l];
-          have_step[l] = fresh[l] = computed[l] = true;
+          have_step[l] = fresh[l] = computed[l] = second[l] = true;
         }
       }
       int still = 0;
@@ -282,9 +285,33 @@ VolumetricResult compensate_points_status(const Machine& machine, const Eigen::R
           state[l] = failed;
           continue;
         }
-        const double q0 = P[0][l] - (S[0][l] * r0 + S[1][l] * r1 + S[2][l] * r2);
-        const double q1 = P[1][l] - (S[3][l] * r0 + S[4][l] * r1 + S[5][l] * r2);
-        const double q2 = P[2][l] - (S[6][l] * r0 + S[7][l] * r1 + S[8][l] * r2);
+        double s0 = S[0][l] * r0 + S[1][l] * r1 + S[2][l] * r2;
+        double s1 = S[3][l] * r0 + S[4][l] * r1 + S[5][l] * r2;
+        double s2 = S[6][l] * r0 + S[7][l] * r1 + S[8][l] * r2;
+        if (second[l]) {
+          // Second-order step from the same evaluation: with the step d = −s of the linear model, the
+          // residual left at P + d is ≈ ½ H[d, d] (curvature of the error functions and the Abbe arms'
+          // growth; ~1e-8 mm on seeds/003's HMC); subtract (I + J)⁻¹ ½ H[d, d] as well. Only a better
+          // start: the next evaluation checks the residual exactly as before.
+          const double d[3] = {-s0, -s1, -s2};
+          const double(&cv)[18][machine::batch_lanes] = data.lane_curvature;
+          double h[3] = {0.0, 0.0, 0.0};
+          for (int k = 0; k < 3; ++k) {
+            double w[3];
+            for (int m = 0; m < 3; ++m) w[m] = grows[m][k] ? d[m] : 0.0;
+            const double a0 = cv[9 + 3 * k][l], a1 = cv[10 + 3 * k][l], a2 = cv[11 + 3 * k][l];
+            const double dk2 = d[k] * d[k], tk = 2.0 * d[k];
+            h[0] += dk2 * cv[3 * k][l] + tk * (a1 * w[2] - a2 * w[1]);
+            h[1] += dk2 * cv[3 * k + 1][l] + tk * (a2 * w[0] - a0 * w[2]);
+            h[2] += dk2 * cv[3 * k + 2][l] + tk * (a0 * w[1] - a1 * w[0]);
+          }
+          s0 += 0.5 * (S[0][l] * h[0] + S[1][l] * h[1] + S[2][l] * h[2]);
+          s1 += 0.5 * (S[3][l] * h[0] + S[4][l] * h[1] + S[5][l] * h[2]);
+          s2 += 0.5 * (S[6][l] * h[0] + S[7][l] * h[1] + S[8][l] * h[2]);
+        }
+        const double q0 = P[0][l] - s0;
+        const double q1 = P[1][l] - s1;
+        const double q2 = P[2][l] - s2;
         if (!std::isfinite(q0 + q1 + q2)) {  // (an overflowing sum only sends the point to the fallback)
           state[l] = failed;
           continue;

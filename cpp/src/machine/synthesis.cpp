@@ -733,6 +733,13 @@ NETSHAPE_LANE_INLINE unsigned lanes_pack(MachineData& data, const double (&pin)[
   V v0 = splat<V>(data.tip_nominal[0]), v1 = splat<V>(data.tip_nominal[1]), v2 = splat<V>(data.tip_nominal[2]);
   V d0 = splat<V>(data.tip_local[0]), d1 = splat<V>(data.tip_local[1]), d2 = splat<V>(data.tip_local[2]);
   V arm[3][3], eps[3][3], eps_slope[3][3], delta_slope[3][3];
+  V curv[3][6];  // second derivatives of the components of a polynomial axis (0 otherwise), as e[]
+  // exact Jacobian by forward differentiation along the chain: D[r][m] = ∂d_r/∂q_m
+  V D[3][3];
+  if (Jacobian)
+    for (int r = 0; r < 3; ++r)
+      for (int m = 0; m < 3; ++m) D[r][m] = splat<V>(0.0);
+  bool added[3] = {false, false, false};  // axis m's q_m e_m is in the nominal position v
   const V one = splat<V>(1.0);
   V big = splat<V>(0.0);  // largest squared angle of each lane
   for (int i = 0; i < 3; ++i) {
@@ -740,7 +747,7 @@ NETSHAPE_LANE_INLINE unsigned lanes_pack(MachineData& data, const double (&pin)[
     const int k = st.axis;
     const V q = P[k];
     // e[0..2]: angles (EAk, EBk, ECk) [rad], e[3..5]: translations (EXk, EYk, EZk) [mm]
-    V e[6], sl[6];
+    V e[6], sl[6], s2[6];
     const int lane[6] = {3 * k, 3 * k + 1, 3 * k + 2, 9 + 3 * k, 10 + 3 * k, 11 + 3 * k};
     if (how[k] == axis_poly) {
       // as evaluate_axis: packed [j * 6 + c], translations c = 0..2, rotations 3..5
@@ -751,16 +758,21 @@ NETSHAPE_LANE_INLINE unsigned lanes_pack(MachineData& data, const double (&pin)[
 #pragma GCC unroll 6
       for (int c = 0; c < 6; ++c) {
         e[c] = splat<V>(ck[lk * 6 + comp[c]]);
-        if (Jacobian) sl[c] = splat<V>(0.0);
+        if (Jacobian) sl[c] = s2[c] = splat<V>(0.0);
       }
       for (int j = lk - 1; j >= 0; --j) {
         const double* cj = ck + j * 6;
 #pragma GCC unroll 6
         for (int c = 0; c < 6; ++c) {
-          if (Jacobian) sl[c] = sl[c] * q + e[c];
+          if (Jacobian) {
+            s2[c] = s2[c] * q + sl[c];
+            sl[c] = sl[c] * q + e[c];
+          }
           e[c] = e[c] * q + cj[comp[c]];
         }
       }
+      if (Jacobian)
+        for (int c = 0; c < 6; ++c) curv[k][c] = s2[c] + s2[c];
     } else if (how[k] == axis_table) {
       // as evaluate_axis on a uniform table, every lane inside it: one row lookup per lane
       const detail::AxisKernel& ker = data.kernels[k];
@@ -789,12 +801,16 @@ NETSHAPE_LANE_INLINE unsigned lanes_pack(MachineData& data, const double (&pin)[
         e[c] = a + t * dv;
         if (Jacobian) sl[c] = dv * ker.inv_step;
       }
+      if (Jacobian)
+        for (int c = 0; c < 6; ++c) curv[k][c] = splat<V>(0.0);
     } else {
 #pragma GCC unroll 6
       for (int c = 0; c < 6; ++c) {
         e[c] = load_lanes<V>(ev[lane[c]]);
         if (Jacobian) sl[c] = load_lanes<V>(sv[lane[c]]);
       }
+      if (Jacobian)
+        for (int c = 0; c < 6; ++c) curv[k][c] = splat<V>(0.0);
     }
     if (Jacobian) {
       for (int c = 0; c < 3; ++c) {
@@ -850,8 +866,43 @@ NETSHAPE_LANE_INLINE unsigned lanes_pack(MachineData& data, const double (&pin)[
     const V n0 = d0 + (m00 * d0 + m01 * d1 + m02 * d2 + c0);
     const V n1 = d1 + (m10 * d0 + m11 * d1 + m12 * d2 + c1);
     const V n2 = d2 + (m20 * d0 + m21 * d1 + m22 * d2 + c2);
+    if (Jacobian) {
+      // tool: n = R d + M v + t (v before its update); table: n = R d + t + M (v + t) (v after it).
+      // ∂n/∂q_m = R ∂d/∂q_m + M ∂v/∂q_m, and for m = k also t' (table: R t') + R' x with
+      // x = d + v (tool) or d + v + t (table); R' x = ω × R x, ω = c' ẑ + b' Rz ŷ + a' Rz Ry x̂, and
+      // R x = v + n − t (tool) or v + n (table).
+      if (!st.tool) added[k] = true;
+      const V M[3][3] = {{m00, m01, m02}, {m10, m11, m12}, {m20, m21, m22}};
+      V Dn[3][3];
+      for (int r = 0; r < 3; ++r)
+        for (int m = 0; m < 3; ++m) {
+          V a = D[r][m] + (M[r][0] * D[0][m] + M[r][1] * D[1][m] + M[r][2] * D[2][m]);
+          if (added[m]) a += M[r][m];
+          Dn[r][m] = a;
+        }
+      const V tp0 = du[0] + sl[3], tp1 = du[1] + sl[4], tp2 = du[2] + sl[5];
+      V x0 = arm[k][0] + n0, x1 = arm[k][1] + n1, x2 = arm[k][2] + n2;
+      V g0 = tp0, g1 = tp1, g2 = tp2;
+      if (st.tool) {
+        x0 -= t0, x1 -= t1, x2 -= t2;
+      } else {
+        g0 += m00 * tp0 + m01 * tp1 + m02 * tp2;
+        g1 += m10 * tp0 + m11 * tp1 + m12 * tp2;
+        g2 += m20 * tp0 + m21 * tp1 + m22 * tp2;
+      }
+      const V w0 = sl[0] * cb * cc - sl[1] * sc, w1 = sl[0] * cb * sc + sl[1] * cc, w2 = sl[2] - sl[0] * sb;
+      Dn[0][k] += g0 + (w1 * x2 - w2 * x1);
+      Dn[1][k] += g1 + (w2 * x0 - w0 * x2);
+      Dn[2][k] += g2 + (w0 * x1 - w1 * x0);
+      for (int r = 0; r < 3; ++r)
+        for (int m = 0; m < 3; ++m) D[r][m] = Dn[r][m];
+      if (st.tool) added[k] = true;
+    }
     d0 = n0, d1 = n1, d2 = n2;
   }
+  if (Jacobian)
+    for (int m = 0; m < 3; ++m)
+      for (int r = 0; r < 3; ++r) store_lanes(&data.lane_jacobian[3 * m + r][first], D[r][m]);
   store_lanes(&out[0][first], d0);
   store_lanes(&out[1][first], d1);
   store_lanes(&out[2][first], d2);
@@ -880,6 +931,14 @@ NETSHAPE_LANE_INLINE unsigned lanes_pack(MachineData& data, const double (&pin)[
       for (int r = 0; r < 3; ++r) {
         const V c = delta_slope[k][r] + data.direction_linear[k][r] + col[r] + x[r];
         store_lanes(&(*jac)[3 * k + r][first], c);
+      }
+      // second-order terms: g_k = δ''_k + ε''_k × r_k, and ε'_k
+      const V b0 = curv[k][0], b1 = curv[k][1], b2 = curv[k][2];
+      const V g[3] = {curv[k][3] + (b1 * r2 - b2 * r1), curv[k][4] + (b2 * r0 - b0 * r2),
+                      curv[k][5] + (b0 * r1 - b1 * r0)};
+      for (int r = 0; r < 3; ++r) {
+        store_lanes(&data.lane_curvature[3 * k + r][first], g[r]);
+        store_lanes(&data.lane_curvature[9 + 3 * k + r][first], eps_slope[k][r]);
       }
     }
   }

@@ -354,3 +354,53 @@ TEST_CASE("many points at once: points outside a table with policy error are fla
   pts[7].z() = NAN;     // not finite (polynomial Z)
   check_lanes(m, data, pts, (1u << 2) | (1u << 5) | (1u << 7));
 }
+
+TEST_CASE("many points at once: exact Jacobian and second-order terms match finite differences") {
+  // lane_jacobian is ∂e/∂p of the exact synthesis (forward differentiation along the chain);
+  // lane_curvature gives the second derivative of e along d (exact minus it is O(error · slope))
+  std::mt19937 rng(41);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  double worst_j = 0.0, worst_h = 0.0;
+  for (int trial = 0; trial < 12; ++trial) {
+    const Machine m = random_machine(rng, 1.0);
+    MachineData data(m);
+    for (int w : {1, 2, 4, 8}) {
+      if (!detail::lanes_width_supported(w)) continue;
+      double p[3][batch_lanes], e[3][batch_lanes], jac[9][batch_lanes];
+      for (int c = 0; c < 3; ++c)
+        for (int l = 0; l < batch_lanes; ++l) p[c][l] = 300.0 * U(rng);
+      REQUIRE(detail::tip_error_lanes_width(w, data, p, e, &jac) == 0u);
+      for (int l = 0; l < batch_lanes; ++l) {
+        const Vec3 q(p[0][l], p[1][l], p[2][l]);
+        for (int k = 0; k < 3; ++k) {
+          const double h = 1e-2;
+          Vec3 a = q, b = q;
+          a[k] += h;
+          b[k] -= h;
+          const Vec3 fd = (tip_error(m, data, a) - tip_error(m, data, b)) / (2 * h);
+          const Vec3 jk(data.lane_jacobian[3 * k][l], data.lane_jacobian[3 * k + 1][l],
+                        data.lane_jacobian[3 * k + 2][l]);
+          worst_j = std::max(worst_j, (fd - jk).norm());
+        }
+        // second derivative along d (|d| ≈ 0.5 mm)
+        const Vec3 d(0.3 * U(rng), 0.3 * U(rng), 0.3 * U(rng));
+        const Vec3 fd2 = tip_error(m, data, q + d) + tip_error(m, data, q - d) - 2.0 * tip_error(m, data, q);
+        Vec3 hd = Vec3::Zero();
+        for (int k = 0; k < 3; ++k) {
+          Vec3 wk = Vec3::Zero();
+          for (int j = 0; j < 3; ++j)
+            if (data.arm_grows[j][k]) wk[j] = d[j];
+          const Vec3 g(data.lane_curvature[3 * k][l], data.lane_curvature[3 * k + 1][l],
+                       data.lane_curvature[3 * k + 2][l]);
+          const Vec3 es(data.lane_curvature[9 + 3 * k][l], data.lane_curvature[10 + 3 * k][l],
+                        data.lane_curvature[11 + 3 * k][l]);
+          hd += d[k] * d[k] * g + 2.0 * d[k] * es.cross(wk);
+        }
+        worst_h = std::max(worst_h, (fd2 - hd).norm() / std::max(fd2.norm(), 1e-12));
+      }
+    }
+  }
+  MESSAGE("exact Jacobian vs finite differences: " << worst_j << ", H[d,d] relative: " << worst_h);
+  CHECK(worst_j < 1e-9);   // the first-order Jacobian is off by ~1e-8 here
+  CHECK(worst_h < 1e-2);
+}

@@ -62,7 +62,10 @@ VolumetricStatus compensate_point(const machine::Machine& machine, machine::Mach
 /// Compensate (n, 3) nominal points [mm]. Never throws for per-point failures (see status).
 /// Runs the iteration above for `machine::batch_lanes` points at once: lane l takes the contiguous run
 /// [l·n/lanes, (l+1)·n/lanes) in order (its own warm start and step matrix, as one by one) and one vectorised
-/// `machine::tip_error_lanes` call evaluates all lanes. A point that leaves the chord iteration (slow
+/// `machine::tip_error_lanes` call evaluates all lanes. Here the step matrix is (I + J)⁻¹ of the exact
+/// Jacobian, and the first step after computing it also subtracts (I + J)⁻¹·½H[d, d] (second derivative of
+/// the first-order model along the linear step d, from the same evaluation): a cold point costs 2 exact
+/// evaluations (residual after one step ~1e-12 mm on the seeds/003 HMC). A point that leaves the chord iteration (slow
 /// contraction right after a fresh step matrix, max_iterations, a table left, not finite) is solved again
 /// by `compensate_point` from a cold start: its result and status are that function's. The commanded points
 /// equal the one-by-one ones to the tolerance (only the starts differ).

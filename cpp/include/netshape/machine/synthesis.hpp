@@ -79,6 +79,9 @@ struct ChainStep {
 /// evaluation), and per-point scratch. Build one per thread; the evaluation functions never
 /// allocate. A MachineData refers to its machine's error tables: keep the machine alive and
 /// unchanged while the data is in use (build a new MachineData after changing the machine).
+/// Points per call of `tip_error_lanes`.
+constexpr int batch_lanes = 8;
+
 struct MachineData {
   explicit MachineData(const Machine& machine);
 
@@ -103,6 +106,16 @@ struct MachineData {
   std::array<Vec3, 3> epsilon;            ///< (EAk, EBk, ECk) at the current point [rad]
   std::array<Vec3, 3> delta_slope;        ///< d(EXk, EYk, EZk)/dq_k [mm/mm] (Jacobian only)
   std::array<Vec3, 3> epsilon_slope;      ///< d(EAk, EBk, ECk)/dq_k [rad/mm] (Jacobian only)
+  /// Second-order terms of the first-order model, left by `tip_error_lanes` when it computes Jacobians,
+  /// point i in [..][i]: [3k + c] = (δ''_k + ε''_k × r_k)_c [mm/mm²] for a polynomial axis k (0 for
+  /// tables and axes evaluated per point), [9 + 3k + c] = ε'_k,c [rad/mm]. With them the second
+  /// derivative of e₁ along d is Σ_k d_k² g_k + 2 Σ_k d_k ε'_k × (Σ_{m: r_k grows with q_m} d_m u_m)
+  /// (compensation: second-order first step).
+  double lane_curvature[18][batch_lanes];
+  /// The exact Jacobian ∂e/∂p of each point (forward differentiation along the chain), left by
+  /// `tip_error_lanes` when it computes Jacobians: [3 * col + row][i] (approximate for a point whose
+  /// angles exceed 1e-3 rad).
+  double lane_jacobian[9][batch_lanes];
 };
 
 /// Evaluate the six components of each axis at program point p into `data.delta`/`data.epsilon`.
@@ -117,9 +130,6 @@ Vec3 tip_error(const Machine& machine, MachineData& data, const Vec3& p, Order o
 /// the Jacobian differs from the exact one by O(error²), which only slows convergence, never changes the
 /// fixed point.
 Vec3 tip_error_and_jacobian(const Machine& machine, MachineData& data, const Vec3& p, Mat3& jacobian);
-
-/// Points per call of `tip_error_lanes`.
-constexpr int batch_lanes = 8;
 
 /// Exact tip errors of `batch_lanes` points at once, vectorised over the points (structure of arrays;
 /// AVX-512 or AVX2 when the CPU has them, else SSE2), the same synthesis as `tip_error(…, Order::exact)`
