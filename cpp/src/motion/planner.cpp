@@ -223,17 +223,27 @@ void Planner::set_reach(Quick& x, bool curved, const Vec3& U, const Vec3& K) con
     return;
   }
   // per axis: w·(U_i + 2·L·K_i) ≤ U_i·w0 + 2·L·A_i (exact for constant bounds)
-  bool any = false;
-  for (int i = 0; i < 3; ++i) {
-    const double den = U[i] + 2.0 * x.len * K[i];
-    if (den > 0) {
-      const double r = 1.0 / den;
-      x.alpha[i] = U[i] * r;
-      x.beta[i] = 2.0 * x.len * limits_.acceleration[i] * r;
-      any = true;
-    } else {
-      x.alpha[i] = 0.0;
-      x.beta[i] = inf;
+  double den[3];
+  for (int i = 0; i < 3; ++i) den[i] = U[i] + 2.0 * x.len * K[i];
+  const bool any = den[0] > 0 || den[1] > 0 || den[2] > 0;
+  if (den[0] > 0 && den[1] > 0 && den[2] > 0) {
+    // the three reciprocals from one division: 1/d0 = d1·d2/(d0·d1·d2), ...
+    const double d01 = den[0] * den[1], r = 1.0 / (d01 * den[2]);
+    const double rd[3] = {den[1] * den[2] * r, den[0] * den[2] * r, d01 * r};
+    for (int i = 0; i < 3; ++i) {
+      x.alpha[i] = U[i] * rd[i];
+      x.beta[i] = 2.0 * x.len * limits_.acceleration[i] * rd[i];
+    }
+  } else {
+    for (int i = 0; i < 3; ++i) {
+      if (den[i] > 0) {
+        const double r = 1.0 / den[i];
+        x.alpha[i] = U[i] * r;
+        x.beta[i] = 2.0 * x.len * limits_.acceleration[i] * r;
+      } else {
+        x.alpha[i] = 0.0;
+        x.beta[i] = inf;
+      }
     }
   }
   if (!any) {  // no bound at all: the speed carries over
@@ -498,7 +508,8 @@ Status Planner::push(const toolpath::Block& b) noexcept {
     for (int k = 0; k < np; ++k) {
       const int i0 = k * step, i1 = i0 + step;
       // built in place in the ring (a Node is large: no temporary and copy)
-      Node& bn = at(tail_);
+      const std::size_t slot = static_cast<std::size_t>(tail_ % cap_);
+      Node& bn = ring_[slot];
       if (jerk_mode) {
         bn.seg = whole;
         bn.slim = false;
@@ -546,8 +557,13 @@ Status Planner::push(const toolpath::Block& b) noexcept {
         if (k == 0) bn.v_lim = bn.v_corner = std::min(bn.v_lim, curvature_step_speed(dk0));
       }
       v_prev = bn.vmax;
-      sync(tail_);
-      q(tail_).wb = 0.0;
+      Quick& x = quick_[slot];  // sync(tail_) without its two modulos
+      x.w_lim = bn.v_lim * bn.v_lim;
+      x.len = plan_length(bn);
+      x.a = bn.a;
+      x.j = bn.j;
+      set_reach(x, bn.curved, bn.U, bn.K);
+      x.wb = 0.0;
       ++tail_;
     }
     nn.v_corner = v_prev;
@@ -651,8 +667,10 @@ void Planner::finish() noexcept {
 
 void Planner::back_pass(long dirty_from) noexcept {
   double w_next = 0.0;  // the buffer always ends at rest (squared speeds: no root per node)
-  for (long k = tail_ - 1; k >= frozen_; --k) {
-    Quick& n = q(k);
+  if (tail_ <= frozen_) return;
+  std::size_t slot = static_cast<std::size_t>((tail_ - 1) % cap_);  // one modulo, then wrap by hand
+  for (long k = tail_ - 1; k >= frozen_; --k, slot = slot == 0 ? static_cast<std::size_t>(cap_ - 1) : slot - 1) {
+    Quick& n = quick_[slot];
     // seeds/002 eq. 3 (trapezoid; on curves the axis box), capped by the junction limit
     const double w = std::min(n.w_lim, reach_sq(n, w_next));
     if (k < dirty_from && w == n.wb) break;  // nothing changes further back
@@ -666,10 +684,11 @@ bool Planner::freeze_next() noexcept {
   const bool is_tail = frozen_ == tail_ - 1;
   if (is_tail && !finished_) return false;
   if (!buffer_ready()) return false;
-  Node& n = at(frozen_);
-  const Quick& qn = q(frozen_);
+  const std::size_t slot = static_cast<std::size_t>(frozen_ % cap_);
+  Node& n = ring_[slot];
+  const Quick& qn = quick_[slot];
   const double vs = v_frozen_end_;
-  const double wt = is_tail ? 0.0 : q(frozen_ + 1).wb;
+  const double wt = is_tail ? 0.0 : quick_[slot + 1 == static_cast<std::size_t>(cap_) ? 0 : slot + 1].wb;
   const double ve = std::sqrt(std::min(wt, reach_sq(qn, vs * vs)));
   const double wf = window_periods();
   const double ws = n.jump_s ? wf * opt_.ts2 * vs : 0.0, we = n.jump_e ? wf * opt_.ts2 * ve : 0.0;
