@@ -82,25 +82,58 @@ void arc_bounds(const Segment& s, double s0, double s1, Vec3& U, Vec3& K) {
   K[ax.n] = 0.0;
 }
 
-// Bounds over the table nodes [i0, i1] of a blend, with a margin for what lies between the nodes
-// (a quarter of the largest second difference, twice the parabolic estimate).
-void blend_bounds(const std::array<Vec3, 17>& T, const std::array<Vec3, 17>& Kv, int i0, int i1, Vec3& U,
-                  Vec3& K) {
-  for (int c = 0; c < 3; ++c) {
-    double mu = 0, mk = 0, du = 0, dk = 0;
-    for (int i = i0; i <= i1; ++i) {
-      mu = std::max(mu, std::abs(T[static_cast<std::size_t>(i)][c]));
-      mk = std::max(mk, std::abs(Kv[static_cast<std::size_t>(i)][c]));
+// Per-axis bounds of a blend's unit tangent |u_i| (U) and curvature vector |κ n_i| (K) over runs of
+// its 17 table nodes, with a margin for what lies between the nodes (a quarter of the largest second
+// difference of the node values, twice the parabolic estimate). The raw maxima are taken once per
+// run of `step` intervals; a longer run is the max over its runs (max is exact, so the bounds of the
+// whole blend equal those computed over all nodes at once).
+struct BlendBounds {
+  double mu[8][3], mk[8][3], du[8][3], dk[8][3];  // raw maxima per run (at most 8 runs)
+  void fill(const std::array<Vec3, 17>& T, const std::array<Vec3, 17>& Kv, int step) noexcept {
+    double t[17][3], k[17][3], dt[17][3], dkk[17][3];
+    for (int i = 0; i < 17; ++i)
+      for (int c = 0; c < 3; ++c) {
+        t[i][c] = std::abs(T[static_cast<std::size_t>(i)][c]);
+        k[i][c] = std::abs(Kv[static_cast<std::size_t>(i)][c]);
+      }
+    for (int c = 0; c < 3; ++c) dt[0][c] = dkk[0][c] = dt[16][c] = dkk[16][c] = 0.0;  // ends: none
+    for (int i = 1; i <= 15; ++i)
+      for (int c = 0; c < 3; ++c) {
+        dt[i][c] = std::abs(t[i - 1][c] - 2 * t[i][c] + t[i + 1][c]);
+        dkk[i][c] = std::abs(k[i - 1][c] - 2 * k[i][c] + k[i + 1][c]);
+      }
+    for (int r = 0; r * step < 16; ++r) {
+      const int i0 = r * step, i1 = i0 + step;
+      for (int c = 0; c < 3; ++c) {
+        mu[r][c] = t[i0][c];
+        mk[r][c] = k[i0][c];
+        du[r][c] = dt[i0][c];
+        dk[r][c] = dkk[i0][c];
+      }
+      for (int i = i0 + 1; i <= i1; ++i)
+        for (int c = 0; c < 3; ++c) {
+          mu[r][c] = std::max(mu[r][c], t[i][c]);
+          mk[r][c] = std::max(mk[r][c], k[i][c]);
+          du[r][c] = std::max(du[r][c], dt[i][c]);
+          dk[r][c] = std::max(dk[r][c], dkk[i][c]);
+        }
     }
-    for (int i = std::max(1, i0); i <= std::min(15, i1); ++i) {
-      const auto k = static_cast<std::size_t>(i);
-      du = std::max(du, std::abs(std::abs(T[k - 1][c]) - 2 * std::abs(T[k][c]) + std::abs(T[k + 1][c])));
-      dk = std::max(dk, std::abs(std::abs(Kv[k - 1][c]) - 2 * std::abs(Kv[k][c]) + std::abs(Kv[k + 1][c])));
-    }
-    U[c] = std::min(1.0, mu + 0.25 * du + 1e-12);
-    K[c] = mk * (1.0 + 1e-9) + 0.25 * dk;
   }
-}
+  // bounds over runs [r0, r1)
+  void bounds(int r0, int r1, Vec3& U, Vec3& K) const noexcept {
+    for (int c = 0; c < 3; ++c) {
+      double a = mu[r0][c], b = mk[r0][c], e = du[r0][c], f = dk[r0][c];
+      for (int r = r0 + 1; r < r1; ++r) {
+        a = std::max(a, mu[r][c]);
+        b = std::max(b, mk[r][c]);
+        e = std::max(e, du[r][c]);
+        f = std::max(f, dk[r][c]);
+      }
+      U[c] = std::min(1.0, std::max(0.0, a) + 0.25 * std::max(0.0, e) + 1e-12);
+      K[c] = std::max(0.0, b) * (1.0 + 1e-9) + 0.25 * std::max(0.0, f);
+    }
+  }
+};
 
 // curvature vector κ·n [1/mm] at the start or the end of a segment (0 on lines)
 Vec3 curvature_vector(const Segment& s, bool at_end) {
@@ -120,6 +153,15 @@ Vec3 curvature_vector(const Segment& s, bool at_end) {
   return rn > 0 ? Vec3(r * (s.block.curvature() / rn)) : Vec3::Zero();
 }
 
+// smallest num[i]/den[i] over the i with den[i] > 0, +inf if none; one division (the fractions are
+// compared by cross-multiplication)
+double min_ratio(const double* num, const double* den) noexcept {
+  int best = -1;
+  for (int i = 0; i < 3; ++i)
+    if (den[i] > 0 && (best < 0 || num[i] * den[best] < num[best] * den[i])) best = i;
+  return best < 0 ? inf : num[best] / den[best];
+}
+
 // quadratic corner bound next to curves: v·d/ts + κ·v² ≤ A
 double jump_speed(double acc, double d, double ts, double kappa) {
   const double b = d / ts;
@@ -134,19 +176,79 @@ Planner::Planner(const AxisLimits& limits, const PlanOptions& options) : limits_
   cap_ = per_block * (opt_.lookahead + 2) + 3;
   ring_.resize(static_cast<std::size_t>(cap_));
   quick_.resize(static_cast<std::size_t>(cap_));
+  // blocks from the head's to the newest: at most lookahead + 2 (push refuses beyond)
+  blends_.resize(static_cast<std::size_t>(opt_.lookahead + 4));
+}
+
+void Planner::copy_segment(const Node& n, Segment& out) noexcept {
+  if (!n.slim) {
+    out = n.seg;
+    return;
+  }
+  out = blends_[static_cast<std::size_t>(n.blk % static_cast<long>(blends_.size()))];
+  out.trim_start = n.seg.trim_start;
+  out.trim_end = n.seg.trim_end;
+  out.curvature = n.seg.curvature;
+  out.curvature_rate = n.seg.curvature_rate;
+}
+
+const Segment& Planner::seg_of(Node& n) noexcept {
+  if (n.slim) {
+    Segment full;
+    copy_segment(n, full);
+    n.seg = full;
+    n.slim = false;
+  }
+  return n.seg;
 }
 
 void Planner::sync(long k) noexcept {
   const Node& n = at(k);
   Quick& x = q(k);
-  x.v_lim = n.v_lim;
+  x.w_lim = n.v_lim * n.v_lim;
   x.len = plan_length(n);
   x.a = n.a;
   x.j = n.j;
-  x.curved = n.curved;
-  for (int i = 0; i < 3; ++i) {
-    x.U[i] = n.U[i];
-    x.K[i] = n.K[i];
+  set_reach(x, n.curved, n.U, n.K);
+}
+
+void Planner::set_reach(Quick& x, bool curved, const Vec3& U, const Vec3& K) const noexcept {
+  if (!curved) {
+    x.alpha[0] = 1.0;
+    x.beta[0] = 2.0 * x.a * x.len;
+    for (int i = 1; i < 3; ++i) {
+      x.alpha[i] = 0.0;
+      x.beta[i] = inf;
+    }
+    return;
+  }
+  // per axis: w·(U_i + 2·L·K_i) ≤ U_i·w0 + 2·L·A_i (exact for constant bounds)
+  double den[3];
+  for (int i = 0; i < 3; ++i) den[i] = U[i] + 2.0 * x.len * K[i];
+  const bool any = den[0] > 0 || den[1] > 0 || den[2] > 0;
+  if (den[0] > 0 && den[1] > 0 && den[2] > 0) {
+    // the three reciprocals from one division: 1/d0 = d1·d2/(d0·d1·d2), ...
+    const double d01 = den[0] * den[1], r = 1.0 / (d01 * den[2]);
+    const double rd[3] = {den[1] * den[2] * r, den[0] * den[2] * r, d01 * r};
+    for (int i = 0; i < 3; ++i) {
+      x.alpha[i] = U[i] * rd[i];
+      x.beta[i] = 2.0 * x.len * limits_.acceleration[i] * rd[i];
+    }
+  } else {
+    for (int i = 0; i < 3; ++i) {
+      if (den[i] > 0) {
+        const double r = 1.0 / den[i];
+        x.alpha[i] = U[i] * r;
+        x.beta[i] = 2.0 * x.len * limits_.acceleration[i] * r;
+      } else {
+        x.alpha[i] = 0.0;
+        x.beta[i] = inf;
+      }
+    }
+  }
+  if (!any) {  // no bound at all: the speed carries over
+    x.alpha[0] = 1.0;
+    x.beta[0] = 0.0;
   }
 }
 
@@ -230,20 +332,13 @@ double Planner::reach_sq(const Quick& n, double w0) const noexcept {
     const double r = reach_speed(std::sqrt(w0), n.len, n.a, n.j);
     return r * r;
   }
-  if (!n.curved) return w0 + 2.0 * n.a * n.len;
-  // per axis: w·(U_i + 2·L·K_i) ≤ U_i·w0 + 2·L·A_i (exact for constant bounds)
-  double w = inf;
-  for (int i = 0; i < 3; ++i) {
-    const double den = n.U[i] + 2.0 * n.len * n.K[i];
-    if (den > 0) w = std::min(w, (n.U[i] * w0 + 2.0 * n.len * limits_.acceleration[i]) / den);
-  }
-  return std::isfinite(w) ? w : w0;
+  return std::min({n.alpha[0] * w0 + n.beta[0], n.alpha[1] * w0 + n.beta[1], n.alpha[2] * w0 + n.beta[2]});
 }
 
 void Planner::append(const Node& n) noexcept {
   at(tail_) = n;
   sync(tail_);
-  q(tail_).vb = 0.0;
+  q(tail_).wb = 0.0;
   ++tail_;
 }
 
@@ -348,17 +443,22 @@ Status Planner::push(const toolpath::Block& b) noexcept {
   const double amin = moving_axes_min(limits_.acceleration, u1, u2);
 
   if (opt_.rule == CornerRule::blend && theta > tangent_angle && theta < pi - 1e-3) {
-    const Segment pseg = at(first).seg;  // the whole previous block (trim_start already final)
+    const Segment& pseg = at(first).seg;  // the whole previous block (trim_start already final)
+    const long psource = pseg.source;
+    const bool lines = pseg.kind == SegmentKind::line && nn.seg.kind == SegmentKind::line;
     // corner blend: P0 on the previous piece, P3 on the next, both at distance d from the vertex
     const double dmax = 0.45 * std::min(pseg.full_length, nn.seg.full_length);
     double d = std::min(dmax, 4.0 * opt_.tolerance / std::sin(0.5 * theta));
     std::array<Vec3, 4> bl;
     for (int it = 0; it < 40; ++it) {
       const double sp = pseg.full_length - d;
-      const Vec3 p0 = piece_point(pseg, sp), t0 = piece_tangent(pseg, sp);
-      const Vec3 p3 = piece_point(nn.seg, d), t3 = piece_tangent(nn.seg, d);
+      const Vec3 p0 = piece_point(pseg, sp), p3 = piece_point(nn.seg, d);
+      if (lines) {  // the tangents are u1 and u2; the deviation bound is exact
+        bl = {p0, p0 + d * u1, p3 - d * u2, p3};
+        break;
+      }
+      const Vec3 t0 = piece_tangent(pseg, sp), t3 = piece_tangent(nn.seg, d);
       bl = {p0, p0 + d * t0, p3 - d * t3, p3};
-      if (pseg.kind == SegmentKind::line && nn.seg.kind == SegmentKind::line) break;  // bound is exact
       double dev = 0;
       for (int i = 1; i < 16; ++i) {
         const Vec3 qp = bezier_point(bl, i / 16.0);
@@ -377,18 +477,21 @@ Status Planner::push(const toolpath::Block& b) noexcept {
     // bounds, so the speed follows the curvature (the forward and backward passes over the pieces
     // are the phase-plane method on a grid of stations)
     std::array<Vec3, 17> T, Kv;
-    const Segment whole = Segment::blend(bl[0], bl[1], bl[2], bl[3], pseg.source, &T, &Kv);
+    Segment& whole = blend_of(source);
+    whole = Segment::blend(bl[0], bl[1], bl[2], bl[3], psource, &T, &Kv);
+    BlendBounds tab;
     int np = jerk_mode ? 4 : blend_pieces;
+    tab.fill(T, Kv, 16 / np);
     if (!jerk_mode) {
       Vec3 U, K;
-      blend_bounds(T, Kv, 0, 16, U, K);
+      tab.bounds(0, np, U, K);
       double vcap = vfeed;
       for (int i = 0; i < 3; ++i)
         if (U[i] > 0) vcap = std::min(vcap, limits_.velocity[i] / U[i]);
       // a gentle turn: the centripetal part takes little of the budget at full speed; one piece
       if (K.maxCoeff() * vcap * vcap <= 0.02 * limits_.acceleration.minCoeff()) np = 1;
     }
-    const int step = 16 / np;
+    const int step = 16 / np, runs = np == 1 ? blend_pieces : 1;  // runs of the table per piece
     // jerk mode: where the blend meets an arc the curvature jumps (tangent junction); cap the speed
     // so the acceleration step's third difference takes at most half of J_i (see below)
     Vec3 dk0 = Vec3::Zero(), dk1 = Vec3::Zero();
@@ -400,15 +503,32 @@ Status Planner::push(const toolpath::Block& b) noexcept {
         sync(tail_ - 1);
       }
     }
+    // what set_params() finds for every piece of this blend (the same axes move on all of them)
+    const double amin_blend = min_over(limits_.acceleration, whole.moving_axes());
     for (int k = 0; k < np; ++k) {
       const int i0 = k * step, i1 = i0 + step;
-      Node bn;
-      bn.seg = whole;
+      // built in place in the ring (a Node is large: no temporary and copy)
+      const std::size_t slot = static_cast<std::size_t>(tail_ % cap_);
+      Node& bn = ring_[slot];
+      if (jerk_mode) {
+        bn.seg = whole;
+        bn.slim = false;
+      } else {  // the geometry stays in blends_ (copy_segment / seg_of)
+        bn.seg.kind = SegmentKind::blend;
+        bn.seg.full_length = whole.full_length;
+        bn.seg.curvature = whole.curvature;
+        bn.seg.curvature_rate = whole.curvature_rate;
+        bn.seg.source = whole.source;
+        bn.slim = true;
+      }
       bn.seg.trim_start = whole.table[static_cast<std::size_t>(i0)];
       bn.seg.trim_end = whole.full_length - whole.table[static_cast<std::size_t>(i1)];
       bn.blk = source;
       bn.fcap = vfeed;
-      blend_bounds(T, Kv, i0, i1, bn.U, bn.K);
+      bn.res_s = bn.res_e = 0.0;
+      bn.jump_s = bn.jump_e = bn.spike_s = bn.spike_e = bn.tail_trim = bn.provisional = false;
+      tab.bounds(k * runs, (k + 1) * runs, bn.U, bn.K);
+      bn.vmax = vfeed;
       if (jerk_mode) {
         double kmax = 0, rate = 0;
         for (int i = i0; i <= i1; ++i) {
@@ -419,9 +539,17 @@ Status Planner::push(const toolpath::Block& b) noexcept {
         }
         bn.seg.curvature = kmax;
         bn.seg.curvature_rate = rate;
+        set_params(bn);
+      } else {
+        // set_params() on a curved piece without jerk limits: the per-axis box
+        bn.curved = true;
+        bn.j = inf;
+        bn.a = amin_blend;
+        // min of the ratios with one division each, min of the roots = root of the min (one root)
+        bn.vmax = std::min(bn.vmax, min_ratio(limits_.velocity.data(), bn.U.data()));
+        const double wk = min_ratio(limits_.acceleration.data(), bn.K.data());
+        if (wk < inf) bn.vmax = std::min(bn.vmax, std::sqrt(wk));
       }
-      bn.vmax = vfeed;
-      set_params(bn);
       bn.v_lim = bn.v_corner = std::min(v_prev, bn.vmax);
       if (jerk_mode) {
         if (k == 0 && dk0.norm() > 1e-12) mark_spike(bn, true);
@@ -429,7 +557,14 @@ Status Planner::push(const toolpath::Block& b) noexcept {
         if (k == 0) bn.v_lim = bn.v_corner = std::min(bn.v_lim, curvature_step_speed(dk0));
       }
       v_prev = bn.vmax;
-      append(bn);
+      Quick& x = quick_[slot];  // sync(tail_) without its two modulos
+      x.w_lim = bn.v_lim * bn.v_lim;
+      x.len = plan_length(bn);
+      x.a = bn.a;
+      x.j = bn.j;
+      set_reach(x, bn.curved, bn.U, bn.K);
+      x.wb = 0.0;
+      ++tail_;
     }
     nn.v_corner = v_prev;
     if (jerk_mode && dk1.norm() > 1e-12) {
@@ -531,14 +666,16 @@ void Planner::finish() noexcept {
 }
 
 void Planner::back_pass(long dirty_from) noexcept {
-  double v_next = 0.0;  // the buffer always ends at rest
-  for (long k = tail_ - 1; k >= frozen_; --k) {
-    Quick& n = q(k);
+  double w_next = 0.0;  // the buffer always ends at rest (squared speeds: no root per node)
+  if (tail_ <= frozen_) return;
+  std::size_t slot = static_cast<std::size_t>((tail_ - 1) % cap_);  // one modulo, then wrap by hand
+  for (long k = tail_ - 1; k >= frozen_; --k, slot = slot == 0 ? static_cast<std::size_t>(cap_ - 1) : slot - 1) {
+    Quick& n = quick_[slot];
     // seeds/002 eq. 3 (trapezoid; on curves the axis box), capped by the junction limit
-    const double v = std::min(n.v_lim, std::sqrt(reach_sq(n, v_next * v_next)));
-    if (k < dirty_from && v == n.vb) break;  // nothing changes further back
-    n.vb = v;
-    v_next = v;
+    const double w = std::min(n.w_lim, reach_sq(n, w_next));
+    if (k < dirty_from && w == n.wb) break;  // nothing changes further back
+    n.wb = w;
+    w_next = w;
   }
 }
 
@@ -547,28 +684,29 @@ bool Planner::freeze_next() noexcept {
   const bool is_tail = frozen_ == tail_ - 1;
   if (is_tail && !finished_) return false;
   if (!buffer_ready()) return false;
-  Node& n = at(frozen_);
-  const Quick& qn = q(frozen_);
+  const std::size_t slot = static_cast<std::size_t>(frozen_ % cap_);
+  Node& n = ring_[slot];
+  const Quick& qn = quick_[slot];
   const double vs = v_frozen_end_;
-  const double target = is_tail ? 0.0 : q(frozen_ + 1).vb;
-  const double ve = std::min(target, std::sqrt(reach_sq(qn, vs * vs)));
+  const double wt = is_tail ? 0.0 : quick_[slot + 1 == static_cast<std::size_t>(cap_) ? 0 : slot + 1].wb;
+  const double ve = std::sqrt(std::min(wt, reach_sq(qn, vs * vs)));
   const double wf = window_periods();
   const double ws = n.jump_s ? wf * opt_.ts2 * vs : 0.0, we = n.jump_e ? wf * opt_.ts2 * ve : 0.0;
   const double len = n.seg.length();
-  if (qn.curved && !std::isfinite(qn.j)) {
+  if (n.curved && !std::isfinite(qn.j)) {
     // peak speed and tangential acceleration from the axis box at that speed:
     // 2·w − vs² − ve² = 2·L·(A_i − K_i·w)/U_i for the binding axis
     const double lr = std::max(0.0, len - std::min(ws, len) - std::min(we, len));
     const double S = vs * vs + ve * ve;
-    double wp = n.vmax * n.vmax;
+    double num[3], den[3];
     for (int i = 0; i < 3; ++i) {
-      const double den = 2.0 * n.U[i] + 2.0 * lr * n.K[i];
-      if (den > 0) wp = std::min(wp, (n.U[i] * S + 2.0 * lr * limits_.acceleration[i]) / den);
+      num[i] = n.U[i] * S + 2.0 * lr * limits_.acceleration[i];
+      den[i] = 2.0 * n.U[i] + 2.0 * lr * n.K[i];
     }
+    double wp = std::min(n.vmax * n.vmax, min_ratio(num, den));
     wp = std::max(wp, std::max(vs * vs, ve * ve));
-    double a = inf;
-    for (int i = 0; i < 3; ++i)
-      if (n.U[i] > 0) a = std::min(a, (limits_.acceleration[i] - n.K[i] * wp) / n.U[i]);
+    for (int i = 0; i < 3; ++i) num[i] = limits_.acceleration[i] - n.K[i] * wp;
+    double a = min_ratio(num, n.U.data());
     // at the curvature cap the tangential budget is 0: a floor of 1e-6·A keeps the rounding-size speed
     // differences of neighbouring pieces from turning into long ramps
     const double amin = limits_.acceleration.minCoeff();
@@ -620,14 +758,15 @@ Status Planner::next(Sample& out) noexcept {
     return Status::ok;
   }
   while (head_ < frozen_ - 1 && at(head_).t0 + at(head_).prof.duration <= t) ++head_;
-  const Node& n = at(head_);
+  Node& n = at(head_);
+  const Segment& sg = seg_of(n);
   double s, v, acc;
   n.prof.eval(t - n.t0, s, v, acc);
-  out.position = n.seg.point_at(s);
-  out.velocity = v * n.seg.tangent_at(s);
+  out.position = sg.point_at(s);
+  out.velocity = v * sg.tangent_at(s);
   out.feed = v;
   out.path_acceleration = acc;
-  out.block = n.seg.source;
+  out.block = sg.source;
   ++sample_;
   return Status::ok;
 }
@@ -638,7 +777,7 @@ Status Planner::next_segment(PlannedSegment& out) noexcept {
     if (!freeze_next()) return Status::need_blocks;
   }
   const Node& n = at(head_);
-  out.segment = n.seg;
+  copy_segment(n, out.segment);
   out.profile = n.prof;
   out.t0 = n.t0;
   ++head_;

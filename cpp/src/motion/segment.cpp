@@ -64,35 +64,65 @@ Segment Segment::blend(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec
   s.kind = SegmentKind::blend;
   s.ctrl = {p0, p1, p2, p3};
   s.source = source;
-  // hodograph as a polynomial: B'(u) = c0 + c1·u + c2·u², B''(u) = c1 + 2·c2·u
+  // hodograph as a polynomial: B'(u) = c0 + c1·u + c2·u², B''(u) = c1 + 2·c2·u; |B'(u)|² as a quartic
   const Vec3 d0 = p1 - p0, d1 = p2 - p1, d2 = p3 - p2;
   const Vec3 c0 = 3.0 * d0, c1 = 6.0 * (d1 - d0), c2 = 3.0 * (d0 - 2.0 * d1 + d2);
-  auto speed = [&](double u) { return (c0 + u * (c1 + u * c2)).norm(); };
+  const double q0 = c0.squaredNorm(), q1 = 2.0 * c0.dot(c1), q2 = c1.squaredNorm() + 2.0 * c0.dot(c2),
+               q3 = 2.0 * c1.dot(c2), q4 = c2.squaredNorm();
+  auto speed = [&](double u) { return std::sqrt(std::max(0.0, q0 + u * (q1 + u * (q2 + u * (q3 + u * q4))))); };
   // arc-length table at u = i/16 (3-point Gauss-Legendre per interval, exact to ~1e-9 relative for
-  // these smooth speeds) and curvature at the same nodes; |dκ/ds| from neighbouring nodes
+  // these smooth speeds) and curvature at the same nodes; |dκ/ds| from neighbouring nodes.
+  // A blend between two lines (P1 = P2, |P1 − P0| = |P3 − P2|) is symmetric about u = 1/2: its
+  // second half of the intervals mirrors the first.
   static const double gx = 0.7745966692414834, w0 = 8.0 / 9.0, w1 = 5.0 / 9.0;
+  const double n0 = d0.squaredNorm();
+  const bool symmetric = d1.squaredNorm() <= 1e-20 * n0 && std::abs(n0 - d2.squaredNorm()) <= 1e-12 * n0;
+  double piece[16];
+  const int n_eval = symmetric ? 8 : 16;
+  for (int i = 0; i < n_eval; ++i) {
+    const double m = (i + 0.5) / 16.0, h = 0.5 / 16.0;
+    piece[i] = h * (w0 * speed(m) + w1 * (speed(m - h * gx) + speed(m + h * gx)));
+  }
+  if (symmetric)
+    for (int i = 0; i < 8; ++i) piece[15 - i] = piece[i];
   s.table[0] = 0;
-  double kprev = 0;
+  for (int i = 1; i <= 16; ++i) s.table[i] = s.table[i - 1] + piece[i - 1];
+  // unit tangent v1/|v1| and curvature vector (the normal part of B'' over |B'|²) at the nodes; on a
+  // symmetric blend |B'| and κ at node 16 − i equal those at node i
+  double isp_at[17], k_at[17];
   for (int i = 0; i <= 16; ++i) {
     const double u = i / 16.0;
-    if (i > 0) {
-      const double m = (i - 0.5) / 16.0, h = 0.5 / 16.0;
-      s.table[i] = s.table[i - 1] + h * (w0 * speed(m) + w1 * (speed(m - h * gx) + speed(m + h * gx)));
-    }
     const Vec3 v1 = c0 + u * (c1 + u * c2), v2 = c1 + 2.0 * u * c2;
-    const double sp = v1.norm();
-    const double k = sp > 0 ? v1.cross(v2).norm() / (sp * sp * sp) : 0.0;
-    if (tangent) (*tangent)[static_cast<std::size_t>(i)] = sp > 0 ? Vec3(v1 / sp) : Vec3::Zero();
-    if (curvature_vector) {
-      // normal part of B'' over |B'|^2
-      const Vec3 t = sp > 0 ? Vec3(v1 / sp) : Vec3::Zero();
-      (*curvature_vector)[static_cast<std::size_t>(i)] = sp > 0 ? Vec3((v2 - v2.dot(t) * t) / (sp * sp)) : Vec3::Zero();
+    const double sp2 = v1.squaredNorm();
+    Vec3 tn = Vec3::Zero(), kv = Vec3::Zero();
+    double k = 0.0;
+    if (sp2 > 0) {
+      const double isp = symmetric && i > 8 ? isp_at[16 - i] : 1.0 / std::sqrt(sp2);
+      const double isp2 = isp * isp;
+      kv = (v2 - (v2.dot(v1) * isp2) * v1) * isp2;
+      tn = v1 * isp;
+      isp_at[i] = isp;
+      k = symmetric && i > 8 ? k_at[16 - i] : kv.norm();
+    } else {
+      isp_at[i] = 0.0;
     }
-    s.curvature = std::max(s.curvature, k);
-    if (i > 0 && s.table[i] > s.table[i - 1])
-      s.curvature_rate = std::max(s.curvature_rate, std::abs(k - kprev) / (s.table[i] - s.table[i - 1]));
-    kprev = k;
+    k_at[i] = k;
+    if (tangent) (*tangent)[static_cast<std::size_t>(i)] = tn;
+    if (curvature_vector) (*curvature_vector)[static_cast<std::size_t>(i)] = kv;
   }
+  // largest curvature and |dκ/ds| between neighbouring nodes (fractions compared by cross-multiplying,
+  // one division)
+  double rn = 0.0, rd = 1.0;
+  s.curvature = k_at[0];
+  for (int i = 1; i <= 16; ++i) {
+    s.curvature = std::max(s.curvature, k_at[i]);
+    const double ds = s.table[i] - s.table[i - 1], dk = std::abs(k_at[i] - k_at[i - 1]);
+    if (ds > 0 && dk * rd > rn * ds) {
+      rn = dk;
+      rd = ds;
+    }
+  }
+  s.curvature_rate = rn / rd;
   s.full_length = s.table[16];
   return s;
 }

@@ -105,17 +105,23 @@ class Planner {
     bool tail_trim = false;         // blend mode: end trim is still the tentative maximum
     bool provisional = false;       // last block: not yet cut into pieces (arcs)
     long blk = 0;                   // index of the program block that brought this node in
+    // blend pieces: seg holds kind, trims, lengths, curvature and source only; the Bézier (ctrl,
+    // table) stays once per blend in blends_[blk % size] until seg_of() copies it in (sampling)
+    bool slim = false;
     Profile prof;
     double t0 = 0;
   };
   // compact copy of what the backward pass reads and writes, so it walks small records, not Nodes
+  // (the reach of a trapezoidal node is w = min_i alpha_i·w0 + beta_i in squared speeds w = v²:
+  // lines alpha = 1, beta = 2·a·L; curved pieces the axis box, alpha_i = U_i/(U_i + 2·L·K_i),
+  // beta_i = 2·L·A_i/(U_i + 2·L·K_i); precomputed by sync() so the passes need no division)
   struct Quick {
-    double v_lim = 0, vb = 0, len = 0, a = 1, j = 0;
-    double U[3] = {0, 0, 0}, K[3] = {0, 0, 0};
-    bool curved = false;
+    double w_lim = 0, wb = 0, len = 0, a = 1, j = 0;  // squared junction limit and backward speed [mm²/s²]
+    double alpha[3] = {1, 0, 0}, beta[3] = {0, 0, 0};
   };
   Quick& q(long k) noexcept { return quick_[static_cast<std::size_t>(k % cap_)]; }
   void sync(long k) noexcept;
+  void set_reach(Quick& x, bool curved, const Vec3& U, const Vec3& K) const noexcept;
   Node& at(long k) noexcept { return ring_[static_cast<std::size_t>(k % cap_)]; }
   const Node& at(long k) const noexcept { return ring_[static_cast<std::size_t>(k % cap_)]; }
   double plan_length(const Node& n) const noexcept;
@@ -142,6 +148,12 @@ class Planner {
   PlanOptions opt_;
   std::vector<Node> ring_;
   std::vector<Quick> quick_;
+  std::vector<Segment> blends_;  // whole blend of each block in the buffer, by blk % size
+  Segment& blend_of(long blk) noexcept { return blends_[static_cast<std::size_t>(blk % static_cast<long>(blends_.size()))]; }
+  /// The node's segment with its geometry (blend pieces: copied in from blends_ on first use).
+  const Segment& seg_of(Node& n) noexcept;
+  /// Copy of the node's full segment (blend pieces: the blend with the piece's trims).
+  void copy_segment(const Node& n, Segment& out) noexcept;
   long cap_ = 0;
   long head_ = 0;      // first segment in the buffer
   long frozen_ = 0;    // segments [head_, frozen_) are frozen
