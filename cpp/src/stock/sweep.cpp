@@ -2,7 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
+#include <string>
+#include <vector>
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 #include "netshape/core/error.hpp"
 
@@ -266,8 +273,6 @@ constexpr double kSkipMargin = 1e-9;
 
 // The row loop: node(k, ok) gives the lowest reach z at node k (ok: the cutter covers it),
 // bound(k) a lower bound of it. h = min(h, max(z, bottom)) where ok.
-// The row loop: node(k, ok) gives the lowest reach z at node k (ok: the cutter covers it),
-// bound(k) a lower bound of it. h = min(h, max(z, bottom)) where ok.
 template <class Node, class Bound>
 NETSHAPE_INLINE void row_blocks(int n, double* __restrict h, double bottom, const Node& node, const Bound& bound,
                                 RowOut& out, double margin = kSkipMargin) {
@@ -300,22 +305,14 @@ NETSHAPE_INLINE void row_blocks(int n, double* __restrict h, double bottom, cons
 
 // per-row constants of a line
 struct LineRow {
-  double ax, az, ex, ey, len, m, kb, x0, dx, jb, qy;
-  bool up;
+  double ax, az, ex, ey, len, x0, dx, jb, qy;
   LineRow(const LineSetup& s, const Row& row)
-      : ax(s.ax), az(s.az), ex(s.ex), ey(s.ey), len(s.len), m(s.m), kb(s.kball), x0(row.x0), dx(row.dx),
-        jb(row.jb), qy(row.qy), up(s.m >= 0.0) {}
+      : ax(s.ax), az(s.az), ex(s.ex), ey(s.ey), len(s.len), x0(row.x0), dx(row.dx), jb(row.jb), qy(row.qy) {}
   // node k relative to the start: foot point along the move and signed distance from it [mm]
   NETSHAPE_INLINE void at(int k, double& tq, double& sp) const {
     const double qx = (x0 + (jb + k) * dx) - ax;
     tq = qx * ex + qy * ey;
     sp = qy * ex - qx * ey;
-  }
-  // lowest tip z over the travel where the node can be under the cutter (ρ ≤ R) [mm]
-  NETSHAPE_INLINE double tip_bound(double tq, double R) const {
-    const double l = tq - R > 0.0 ? tq - R : 0.0;
-    const double u = tq + R < len ? tq + R : len;
-    return az + m * (up ? l : u);
   }
 };
 
@@ -323,58 +320,6 @@ struct LineRow {
 NETSHAPE_INLINE double lift_bound(double dmin, double a0, double half_inv_rc) {
   const double e = dmin - a0 > 0.0 ? dmin - a0 : 0.0;
   return e * e * half_inv_rc;
-}
-
-// ramp or level line, flat end mill: z = A_z + m·(lo if m ≥ 0 else hi)
-NETSHAPE_SIMD_CLONES void row_flat(const LineSetup& s, double r2, double R, const Row& row, double bottom,
-                                   double* __restrict h, RowOut& out) {
-  const LineRow L(s, row);
-  auto node = [&](int k, bool& ok) NETSHAPE_ALWAYS_INLINE_LAMBDA {
-    double tq, sp;
-    L.at(k, tq, sp);
-    const double rho2 = r2 - sp * sp;
-    const double rho = std::sqrt(rho2 > 0.0 ? rho2 : 0.0);
-    const double tlo = tq - rho, thi = tq + rho;
-    const double lo = tlo > 0.0 ? tlo : 0.0;
-    const double hi = thi < L.len ? thi : L.len;
-    ok = (rho2 >= 0.0) & (lo <= hi);
-    return L.az + L.m * (L.up ? lo : hi);
-  };
-  auto bound = [&](int k) NETSHAPE_ALWAYS_INLINE_LAMBDA {
-    double tq, sp;
-    L.at(k, tq, sp);
-    return L.tip_bound(tq, R);
-  };
-  row_blocks(row.n, h, bottom, node, bound, out);
-}
-
-// ramp, ball end mill: σ* = clamp(τ_q − m·ρ/sqrt(1 + m²), lo, hi)
-NETSHAPE_SIMD_CLONES void row_ball(const LineSetup& s, double r2, double R, const Row& row, double bottom,
-                                   double* __restrict h, RowOut& out) {
-  const LineRow L(s, row);
-  const double half_inv_r = 0.5 / R;
-  auto node = [&](int k, bool& ok) NETSHAPE_ALWAYS_INLINE_LAMBDA {
-    double tq, sp;
-    L.at(k, tq, sp);
-    const double rho2 = r2 - sp * sp;
-    const double rho = std::sqrt(rho2 > 0.0 ? rho2 : 0.0);
-    const double tlo = tq - rho, thi = tq + rho;
-    const double lo = tlo > 0.0 ? tlo : 0.0;
-    const double hi = thi < L.len ? thi : L.len;
-    ok = (rho2 >= 0.0) & (lo <= hi);
-    double sig = tq - L.kb * rho;
-    sig = sig > lo ? sig : lo;
-    sig = sig < hi ? sig : hi;
-    const double u = sig - tq;
-    const double w = rho2 - u * u;
-    return L.az + L.m * sig + R - std::sqrt(w > 0.0 ? w : 0.0);
-  };
-  auto bound = [&](int k) NETSHAPE_ALWAYS_INLINE_LAMBDA {
-    double tq, sp;
-    L.at(k, tq, sp);
-    return L.tip_bound(tq, R) + sp * sp * half_inv_r;
-  };
-  row_blocks(row.n, h, bottom, node, bound, out);
 }
 
 // level line (m = 0), any cutter: the point of the segment nearest to the node, d² = s² + u²
@@ -627,6 +572,219 @@ inline void prefetch_row(const double* h, int n) noexcept {
 #endif
 }
 
+inline void prefetch_line(const double* p) noexcept {
+#if defined(__GNUC__)
+  __builtin_prefetch(p, 1, 3);
+#else
+  (void)p;
+#endif
+}
+
+// ---------------------------------------------------------------------------------------------
+// Flat and ball ramps (most of the lines of a 3-D program): one call per move, with explicit SIMD
+// (AVX-512 or AVX2 intrinsics, chosen once per process from the CPU; plain C++ elsewhere), so the
+// speed does not hang on what the auto-vectoriser makes of a loop at -O2 vs -O3. The kernel is
+// written once (ramp_kernel.inc) and compiled per instruction set. Rows of a move lie nx·8 bytes
+// apart (a new page per row for big grids); the row kAhead rows on is prefetched one cache line per
+// chunk while a row is computed. Per-column terms qx·ex and qx·ey are computed once per move.
+// ---------------------------------------------------------------------------------------------
+struct MoveOut {
+  double vol = 0.0;          // removed height summed over nodes [mm] (× cell area later)
+  std::int64_t lowered = 0;  // nodes whose height went down
+  std::int64_t visited = 0;  // nodes of the stadium rows
+};
+
+struct RowSpan {
+  int j0 = 0, j1 = -1;
+  bool has = false;
+};
+
+constexpr int kAhead = 4;  // rows prefetched ahead
+constexpr int kRing = 8;   // > kAhead + 1
+
+// nodes of row i in the stadium, clamped to the move's columns [jlo, jhi]; none past row i1
+inline RowSpan span_of(const ZMap& zm, const LineSetup& s, double r, int i, int i1, int jlo, int jhi) noexcept {
+  RowSpan sp;
+  sp.has = i <= i1 && row_nodes(zm, s, r, i, sp.j0, sp.j1);
+  if (sp.has) {
+    sp.j0 = std::max(sp.j0, jlo);
+    sp.j1 = std::min(sp.j1, jhi);
+    sp.has = sp.j0 <= sp.j1;
+  }
+  return sp;
+}
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(NETSHAPE_NO_X86_KERNELS)
+#define NETSHAPE_X86_KERNELS 1
+#endif
+
+#define NETSHAPE_SPAN(i) span_of(zm, s, R, (i), i1, jlo, jhi)
+
+#ifdef NETSHAPE_X86_KERNELS
+#pragma GCC push_options
+#pragma GCC target("avx512f")
+namespace k512 {
+struct V {
+  using D = __m512d;
+  using M = __mmask8;
+  static constexpr int W = 8;
+  static D set(double x) { return _mm512_set1_pd(x); }
+  static M valid(int n) { return n >= 8 ? M(0xFF) : M((1u << n) - 1u); }
+  static D load(const double* p, M v, bool full) { return full ? _mm512_loadu_pd(p) : _mm512_maskz_loadu_pd(v, p); }
+  static void store(double* p, D x, M v, bool full) {
+    if (full) _mm512_storeu_pd(p, x);
+    else _mm512_mask_storeu_pd(p, v, x);
+  }
+  static D add(D a, D b) { return _mm512_add_pd(a, b); }
+  static D sub(D a, D b) { return _mm512_sub_pd(a, b); }
+  static D mul(D a, D b) { return _mm512_mul_pd(a, b); }
+  static D sqrt(D a) { return _mm512_sqrt_pd(a); }
+  static D max(D a, D b) { return _mm512_max_pd(a, b); }  // a > b ? a : b
+  static D min(D a, D b) { return _mm512_min_pd(a, b); }  // a < b ? a : b
+  static M lt(D a, D b) { return _mm512_cmp_pd_mask(a, b, _CMP_LT_OQ); }
+  static M le(D a, D b) { return _mm512_cmp_pd_mask(a, b, _CMP_LE_OQ); }
+  static M gt(D a, D b) { return _mm512_cmp_pd_mask(a, b, _CMP_GT_OQ); }
+  static M ge(D a, D b) { return _mm512_cmp_pd_mask(a, b, _CMP_GE_OQ); }
+  static M land(M a, M b) { return M(a & b); }
+  static bool any(M m) { return m != 0; }
+  static D blend(M m, D a, D b) { return _mm512_mask_blend_pd(m, a, b); }
+  static int count(M m) { return __builtin_popcount(m); }
+  static double sum(D a) { return _mm512_reduce_add_pd(a); }
+};
+#include "ramp_kernel.inc"
+}  // namespace k512
+#pragma GCC pop_options
+
+#pragma GCC push_options
+#pragma GCC target("avx2")
+namespace k256 {
+struct V {
+  using D = __m256d;
+  using M = __m256d;
+  static constexpr int W = 4;
+  static D set(double x) { return _mm256_set1_pd(x); }
+  static M valid(int n) {
+    return _mm256_castsi256_pd(_mm256_cmpgt_epi64(_mm256_set1_epi64x(n), _mm256_set_epi64x(3, 2, 1, 0)));
+  }
+  static D load(const double* p, M v, bool full) {
+    return full ? _mm256_loadu_pd(p) : _mm256_maskload_pd(p, _mm256_castpd_si256(v));
+  }
+  static void store(double* p, D x, M v, bool full) {
+    if (full) _mm256_storeu_pd(p, x);
+    else _mm256_maskstore_pd(p, _mm256_castpd_si256(v), x);
+  }
+  static D add(D a, D b) { return _mm256_add_pd(a, b); }
+  static D sub(D a, D b) { return _mm256_sub_pd(a, b); }
+  static D mul(D a, D b) { return _mm256_mul_pd(a, b); }
+  static D sqrt(D a) { return _mm256_sqrt_pd(a); }
+  static D max(D a, D b) { return _mm256_max_pd(a, b); }
+  static D min(D a, D b) { return _mm256_min_pd(a, b); }
+  static M lt(D a, D b) { return _mm256_cmp_pd(a, b, _CMP_LT_OQ); }
+  static M le(D a, D b) { return _mm256_cmp_pd(a, b, _CMP_LE_OQ); }
+  static M gt(D a, D b) { return _mm256_cmp_pd(a, b, _CMP_GT_OQ); }
+  static M ge(D a, D b) { return _mm256_cmp_pd(a, b, _CMP_GE_OQ); }
+  static M land(M a, M b) { return _mm256_and_pd(a, b); }
+  static bool any(M m) { return _mm256_movemask_pd(m) != 0; }
+  static D blend(M m, D a, D b) { return _mm256_blendv_pd(a, b, m); }
+  static int count(M m) { return __builtin_popcount(static_cast<unsigned>(_mm256_movemask_pd(m))); }
+  static double sum(D a) {
+    alignas(32) double t[4];
+    _mm256_store_pd(t, a);
+    return ((t[0] + t[1]) + t[2]) + t[3];
+  }
+};
+#include "ramp_kernel.inc"
+}  // namespace k256
+#pragma GCC pop_options
+#endif  // NETSHAPE_X86_KERNELS
+
+namespace k64 {
+struct V {  // one node at a time, plain C++ (other compilers and CPUs)
+  using D = double;
+  using M = bool;
+  static constexpr int W = 1;
+  static D set(double x) { return x; }
+  static M valid(int n) { return n > 0; }
+  static D load(const double* p, M, bool) { return *p; }
+  static void store(double* p, D x, M, bool) { *p = x; }
+  static D add(D a, D b) { return a + b; }
+  static D sub(D a, D b) { return a - b; }
+  static D mul(D a, D b) { return a * b; }
+  static D sqrt(D a) { return std::sqrt(a); }
+  static D max(D a, D b) { return a > b ? a : b; }
+  static D min(D a, D b) { return a < b ? a : b; }
+  static M lt(D a, D b) { return a < b; }
+  static M le(D a, D b) { return a <= b; }
+  static M gt(D a, D b) { return a > b; }
+  static M ge(D a, D b) { return a >= b; }
+  static M land(M a, M b) { return a && b; }
+  static bool any(M m) { return m; }
+  static D blend(M m, D a, D b) { return m ? b : a; }
+  static int count(M m) { return m ? 1 : 0; }
+  static double sum(D a) { return a; }
+};
+#include "ramp_kernel.inc"
+}  // namespace k64
+#undef NETSHAPE_SPAN
+
+enum class Isa { plain, avx2, avx512 };
+
+// The instruction set of the ramp kernels, chosen once: the best the CPU (and OS) supports, or
+// NETSHAPE_STOCK_ISA=plain|avx2|avx512 (a lower one than the CPU has; for tests and benchmarks).
+Isa ramp_isa() {
+  static const Isa isa = [] {
+    Isa best = Isa::plain;
+#ifdef NETSHAPE_X86_KERNELS
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx512f")) best = Isa::avx512;
+    else if (__builtin_cpu_supports("avx2")) best = Isa::avx2;
+#endif
+    const char* env = std::getenv("NETSHAPE_STOCK_ISA");
+    if (env != nullptr) {
+      const std::string want(env);
+      if (want == "plain") best = Isa::plain;
+      else if (want == "avx2" && best == Isa::avx512) best = Isa::avx2;
+    }
+    return best;
+  }();
+  return isa;
+}
+
+// Sweep a flat or ball ramp over rows i0 … i1.
+template <int Kind>
+void ramp_rows(ZMap& zm, const LineSetup& s, double R, int i0, int i1, SweepStats& st) {
+  // the columns the move can reach, widened to whole chunks of 8 and padded so that chunk loads of
+  // the per-column terms stay inside the buffer
+  int jlo, jhi;
+  if (!node_range(std::min(s.ax, s.ax + s.len * s.ex) - R, std::max(s.ax, s.ax + s.len * s.ex) + R, zm.x0(),
+                  zm.dx(), zm.nx(), jlo, jhi))
+    return;
+  const int cmin = jlo - jlo % 8;
+  const int ncol = (jhi - cmin) / 8 * 8 + 16;
+  thread_local std::vector<double> cols;  // grows to the widest move a thread has swept
+  if (static_cast<int>(cols.size()) < 2 * ncol) cols.resize(2 * static_cast<std::size_t>(ncol));
+  double* tqx = cols.data();
+  double* spx = cols.data() + ncol;
+  for (int k = 0; k < ncol; ++k) {  // qx exactly as ZMap::node_x − A_x
+    const double qx = (zm.x0() + (static_cast<double>(cmin + k) + 0.5) * zm.dx()) - s.ax;
+    tqx[k] = qx * s.ex;
+    spx[k] = qx * s.ey;
+  }
+  MoveOut mo;
+  double* H = zm.heights_mut().data();
+  const double bottom = zm.bottom();
+  switch (ramp_isa()) {
+#ifdef NETSHAPE_X86_KERNELS
+    case Isa::avx512: k512::ramp_move<Kind>(zm, H, s, R, i0, i1, jlo, jhi, bottom, tqx, spx, cmin, mo); break;
+    case Isa::avx2: k256::ramp_move<Kind>(zm, H, s, R, i0, i1, jlo, jhi, bottom, tqx, spx, cmin, mo); break;
+#endif
+    default: k64::ramp_move<Kind>(zm, H, s, R, i0, i1, jlo, jhi, bottom, tqx, spx, cmin, mo); break;
+  }
+  st.nodes_visited += mo.visited;
+  st.removed_volume += mo.vol;
+  st.nodes_lowered += mo.lowered;
+}
+
 template <int Kind>
 void sweep_line_k(ZMap& zm, const TipProfile& p, const LineSetup& s, double ylo, double yhi, SweepStats& st) {
   const double r = p.radius, r2 = r * r;
@@ -635,6 +793,10 @@ void sweep_line_k(ZMap& zm, const TipProfile& p, const LineSetup& s, double ylo,
   MatrixXdR& H = zm.heights_mut();
   const Eigen::Index nx = zm.nx();
   const double bottom = zm.bottom();
+  if (Kind != kBull && !s.vertical && s.m != 0.0) {
+    ramp_rows<Kind>(zm, s, r, i0, i1, st);
+    return;
+  }
   RowOut out;
   BullLanes* lanes = nullptr;
   BullLanes lanes_storage;  // only touched for bull ramps
@@ -657,8 +819,6 @@ void sweep_line_k(ZMap& zm, const TipProfile& p, const LineSetup& s, double ylo,
       row.n = j1 - j0 + 1;
       if (s.vertical) row_vertical(s, p, r2, row, bottom, h, out);
       else if (s.m == 0.0) row_level(s, p, Kind, r2, row, bottom, h, out);
-      else if (Kind == kFlat) row_flat(s, r2, r, row, bottom, h, out);
-      else if (Kind == kBall) row_ball(s, r2, r, row, bottom, h, out);
       else row_bull_ramp(s, p, r2, row, bottom, h, out, *lanes);
     }
     has = next;

@@ -30,7 +30,8 @@
 ///              chord swept exactly as a line.
 ///
 /// Cost: only the nodes whose centres can be under the cutter are visited (per row, the X range of
-/// the stadium the line sweeps; for arcs the bounding box of the arc grown by R). No allocation.
+/// the stadium the line sweeps; for arcs the bounding box of the arc grown by R). No allocation per
+/// move (flat/ball ramps use a per-thread buffer of per-column terms that grows to the widest move).
 
 #include <cstdint>
 
