@@ -82,24 +82,14 @@ Profile Profile::make(double length, double vs, double ve, double vmax, double a
   we = ve > 0 ? std::min(we, length - ws) : 0.0;
   const double lr = std::max(0.0, length - ws - we);
   const double vlow = std::max(vs, ve);
-  double vp;
-  if (!std::isfinite(j)) {
-    vp = std::sqrt(std::max(0.0, (2.0 * a * lr + vs * vs + ve * ve) / 2.0));
-  } else {
-    double lo = vlow, hi = std::sqrt(vs * vs + ve * ve + 2.0 * a * lr) + 1e-9;
-    for (int it = 0; it < 60 && hi - lo > 1e-12 * (1.0 + hi); ++it) {
-      const double m = 0.5 * (lo + hi);
-      (ramp_distance(vs, m, a, j) + ramp_distance(m, ve, a, j) <= lr ? lo : hi) = m;
-    }
-    vp = lo;
+  // jerk-limited: the largest peak whose two S-curve ramps fit in lr (bisection)
+  double lo = vlow, hi = std::sqrt(vs * vs + ve * ve + 2.0 * a * lr) + 1e-9;
+  for (int it = 0; it < 60 && hi - lo > 1e-12 * (1.0 + hi); ++it) {
+    const double m = 0.5 * (lo + hi);
+    (ramp_distance(vs, m, a, j) + ramp_distance(m, ve, a, j) <= lr ? lo : hi) = m;
   }
-  vp = std::max(vlow, std::min(vp, std::max(vmax, vlow)));
+  const double vp = std::max(vlow, std::min(lo, std::max(vmax, vlow)));
   p.vp = vp;
-  if (!std::isfinite(j) && lr > 0) {
-    // rounding (or a speed-dependent a chosen by the caller at the peak): make both ramps fit
-    const double need = (2.0 * vp * vp - vs * vs - ve * ve) / (2.0 * lr);
-    if (need > a) p.a = a = need;
-  }
   p.d[0] = ws;
   p.t[0] = ws > 0 ? ws / vs : 0.0;
   p.d[1] = ramp_distance(vs, vp, a, j);
