@@ -131,11 +131,6 @@ VolumetricStatus compensate_point(const Machine& machine, MachineData& data, con
 namespace {
 constexpr int lanes = machine::batch_lanes;
 
-inline double dist2(const double* a, const double* b) {
-  const double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
-  return x * x + y * y + z * z;
-}
-
 // (I + J)⁻¹ of every lane (J column-major in jac[3 * col + row][l]) into m (row-major, m[3 * row + col][l])
 // by cofactors; identity for a lane where I + J is (nearly) singular, as solve_point does. Branch-free
 // loops over the lanes (vectorised).
