@@ -14,7 +14,16 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr double tangent_angle = 1e-6;  // [rad] below this a junction counts as tangent
 constexpr int max_arc_pieces = 64;      // an arc is cut into at most this many pieces ...
 constexpr double arc_piece_angle = pi / 32;  // ... of at most this sweep [rad] (when it can)
-constexpr int blend_pieces = 8;         // pieces of a corner blend (4 with jerk limits)
+constexpr int blend_pieces = 8;         // most pieces of a corner blend
+// pieces of a corner blend, as runs of its 16 arc-length table intervals (node indices)
+const int cuts_general[9] = {0, 2, 4, 6, 8, 10, 12, 14, 16};
+constexpr int n_cuts_general = 8;
+const int cuts_jerk[5] = {0, 4, 8, 12, 16};
+constexpr int n_cuts_jerk = 4;
+// between two lines (symmetric blends, curvature peak at node 8) six pieces, narrow around the peak
+const int cuts_lines[7] = {0, 4, 6, 8, 10, 12, 16};
+constexpr int n_cuts_lines = 6;
+const int cuts_one[2] = {0, 16};
 // nodes one push may add: the previous arc's pieces, the blend pieces, the new block
 constexpr long per_block = max_arc_pieces + blend_pieces + 2;
 
@@ -88,8 +97,8 @@ void arc_bounds(const Segment& s, double s0, double s1, Vec3& U, Vec3& K) {
 // run of `step` intervals; a longer run is the max over its runs (max is exact, so the bounds of the
 // whole blend equal those computed over all nodes at once).
 struct BlendBounds {
-  double mu[8][3], mk[8][3], du[8][3], dk[8][3];  // raw maxima per run (at most 8 runs)
-  void fill(const std::array<Vec3, 17>& T, const std::array<Vec3, 17>& Kv, int step) noexcept {
+  double mu[16][3], mk[16][3], du[16][3], dk[16][3];  // raw maxima per table interval
+  void fill(const std::array<Vec3, 17>& T, const std::array<Vec3, 17>& Kv) noexcept {
     double t[17][3], k[17][3], dt[17][3], dkk[17][3];
     for (int i = 0; i < 17; ++i)
       for (int c = 0; c < 3; ++c) {
@@ -102,24 +111,15 @@ struct BlendBounds {
         dt[i][c] = std::abs(t[i - 1][c] - 2 * t[i][c] + t[i + 1][c]);
         dkk[i][c] = std::abs(k[i - 1][c] - 2 * k[i][c] + k[i + 1][c]);
       }
-    for (int r = 0; r * step < 16; ++r) {
-      const int i0 = r * step, i1 = i0 + step;
+    for (int r = 0; r < 16; ++r)
       for (int c = 0; c < 3; ++c) {
-        mu[r][c] = t[i0][c];
-        mk[r][c] = k[i0][c];
-        du[r][c] = dt[i0][c];
-        dk[r][c] = dkk[i0][c];
+        mu[r][c] = std::max(t[r][c], t[r + 1][c]);
+        mk[r][c] = std::max(k[r][c], k[r + 1][c]);
+        du[r][c] = std::max(dt[r][c], dt[r + 1][c]);
+        dk[r][c] = std::max(dkk[r][c], dkk[r + 1][c]);
       }
-      for (int i = i0 + 1; i <= i1; ++i)
-        for (int c = 0; c < 3; ++c) {
-          mu[r][c] = std::max(mu[r][c], t[i][c]);
-          mk[r][c] = std::max(mk[r][c], k[i][c]);
-          du[r][c] = std::max(du[r][c], dt[i][c]);
-          dk[r][c] = std::max(dk[r][c], dkk[i][c]);
-        }
-    }
   }
-  // bounds over runs [r0, r1)
+  // bounds over the table nodes i0..i1 (intervals [i0, i1))
   void bounds(int r0, int r1, Vec3& U, Vec3& K) const noexcept {
     for (int c = 0; c < 3; ++c) {
       double a = mu[r0][c], b = mk[r0][c], e = du[r0][c], f = dk[r0][c];
@@ -132,6 +132,103 @@ struct BlendBounds {
       U[c] = std::min(1.0, std::max(0.0, a) + 0.25 * std::max(0.0, e) + 1e-12);
       K[c] = std::max(0.0, b) * (1.0 + 1e-9) + 0.25 * std::max(0.0, f);
     }
+  }
+};
+
+// The symmetric blend between two lines: P0 = V − d·u1, P1 = P2 = V, P3 = V + d·u2 (u1, u2 unit).
+// Its hodograph is B'(u) = 3d·((1 − u)²·u1 + u²·u2) and B''(u) = 6d·(−(1 − u)·u1 + u·u2), so the
+// unit tangent and the curvature vector are combinations a·u1 + b·u2 whose scalar coefficients depend
+// on u and cos θ = u1·u2 only (|B'|² = 9d²·(a² + b² + 2ab·cos θ)); the node 16 − i mirrors node i with
+// u1 and u2 swapped. Fills s in place (the fields of Segment::blend) and, per axis c and table node i,
+// |u_c| in t[i][c] and |κ n_c| in k[i][c] (lane 3: padding).
+void blend_lines(Segment& s, const Vec3& p0, const Vec3& vtx, const Vec3& p3, const Vec3& u1, const Vec3& u2,
+                 double d, long source, Eigen::Array4d t[17], Eigen::Array4d k[17]) {
+  s.kind = SegmentKind::blend;
+  s.ctrl = {p0, vtx, vtx, p3};
+  s.source = source;
+  s.trim_start = s.trim_end = 0.0;
+  const double c = u1.dot(u2);
+  auto g2 = [c](double u) {
+    const double a = (1 - u) * (1 - u), b = u * u;
+    return a * a + b * b + 2.0 * a * b * c;
+  };
+  // arc length: 3-point Gauss-Legendre per interval of |B'| = 3d·sqrt(g2); first half, mirrored
+  static const double gx = 0.7745966692414834, w0 = 8.0 / 9.0, w1 = 5.0 / 9.0;
+  constexpr double h = 0.5 / 16.0;
+  double piece[8];
+  for (int i = 0; i < 8; ++i) {
+    const double m = (i + 0.5) / 16.0;
+    piece[i] = w0 * std::sqrt(std::max(0.0, g2(m))) +
+               w1 * (std::sqrt(std::max(0.0, g2(m - h * gx))) + std::sqrt(std::max(0.0, g2(m + h * gx))));
+  }
+  const double scale = 3.0 * d * h;
+  s.table[0] = 0;
+  for (int i = 1; i <= 8; ++i) s.table[i] = s.table[i - 1] + scale * piece[i - 1];
+  for (int i = 9; i <= 16; ++i) s.table[i] = s.table[i - 1] + scale * piece[16 - i];
+  // nodes 0..8: tangent (ta·u1 + tb·u2) and curvature vector (ka·u1 + kb·u2); node 16 − i: tangent
+  // tb·u1 + ta·u2, curvature vector −(kb·u1 + ka·u2)
+  double ta[17], tb[17], ka[17], kb[17], k_at[17];
+  const double k_scale = 2.0 / (3.0 * d);
+  for (int i = 0; i <= 8; ++i) {
+    const double u = i / 16.0;
+    const double a = (1 - u) * (1 - u), b = u * u, e = -(1 - u), f = u;
+    const double G = std::max(g2(u), 1e-300), iG = 1.0 / G, ig = std::sqrt(iG);
+    const double m = e * a + f * b + (e * b + f * a) * c;
+    const double ca = k_scale * iG * (e - m * a * iG), cb = k_scale * iG * (f - m * b * iG);
+    ta[16 - i] = b * ig;  // the mirror first: at i = 8 node i itself wins
+    tb[16 - i] = a * ig;
+    ka[16 - i] = cb;
+    kb[16 - i] = ca;
+    ta[i] = a * ig;
+    tb[i] = b * ig;
+    ka[i] = ca;
+    kb[i] = cb;
+    k_at[i] = k_at[16 - i] = std::sqrt(std::max(0.0, ca * ca + cb * cb + 2.0 * ca * cb * c));
+  }
+  const Eigen::Array4d x1(u1[0], u1[1], u1[2], 0.0), x2(u2[0], u2[1], u2[2], 0.0);  // lane 3: padding
+  for (int i = 0; i < 17; ++i) {
+    t[i] = (ta[i] * x1 + tb[i] * x2).abs();
+    k[i] = (ka[i] * x1 + kb[i] * x2).abs();
+  }
+  double rn = 0.0, rd = 1.0;
+  s.curvature = k_at[0];
+  for (int i = 1; i <= 16; ++i) {
+    s.curvature = std::max(s.curvature, k_at[i]);
+    const double ds = s.table[i] - s.table[i - 1], dk = std::abs(k_at[i] - k_at[i - 1]);
+    if (ds > 0 && dk * rd > rn * ds) {
+      rn = dk;
+      rd = ds;
+    }
+  }
+  s.curvature_rate = rn / rd;
+  s.full_length = s.table[16];
+}
+
+// Bounds of a blend piece over the table nodes i0..i1 from per-axis node values t, k (as BlendBounds:
+// the largest node value plus a quarter of the largest second difference of the node values, which
+// are 0 at the two end nodes)
+struct NodeBounds {
+  using Lane = Eigen::Array4d;  // axes x, y, z and a padding lane (Eigen vectorises fixed-size arrays)
+  Lane t[17], k[17];            // |u_c| and |κ n_c| at the table nodes
+  Lane dt[17], dk[17];          // a quarter of their second differences (0 at the two end nodes)
+  void second_differences() noexcept {
+    dt[0] = dk[0] = dt[16] = dk[16] = Lane::Zero();
+    for (int i = 1; i <= 15; ++i) {
+      dt[i] = 0.25 * (t[i - 1] - 2.0 * t[i] + t[i + 1]).abs();
+      dk[i] = 0.25 * (k[i - 1] - 2.0 * k[i] + k[i + 1]).abs();
+    }
+  }
+  void bounds(int i0, int i1, Vec3& U, Vec3& K) const noexcept {
+    Lane a = t[i0], b = k[i0], e = dt[i0], f = dk[i0];
+    for (int i = i0 + 1; i <= i1; ++i) {
+      a = a.max(t[i]);
+      b = b.max(k[i]);
+      e = e.max(dt[i]);
+      f = f.max(dk[i]);
+    }
+    const Lane u = (a + e + 1e-12).min(1.0), kk = b * (1.0 + 1e-9) + f;
+    U = Vec3(u[0], u[1], u[2]);
+    K = Vec3(kk[0], kk[1], kk[2]);
   }
 };
 
@@ -173,6 +270,7 @@ double jump_speed(double acc, double d, double ts, double kappa) {
 Planner::Planner(const AxisLimits& limits, const PlanOptions& options) : limits_(limits), opt_(options) {
   limits_.validate();
   opt_.validate();
+  jerk_ = limits_.jerk_limited();
   cap_ = per_block * (opt_.lookahead + 2) + 3;
   ring_.resize(static_cast<std::size_t>(cap_));
   quick_.resize(static_cast<std::size_t>(cap_));
@@ -185,7 +283,12 @@ void Planner::copy_segment(const Node& n, Segment& out) noexcept {
     out = n.seg;
     return;
   }
-  out = blends_[static_cast<std::size_t>(n.blk % static_cast<long>(blends_.size()))];
+  const Segment& g = blends_[static_cast<std::size_t>(n.blk % static_cast<long>(blends_.size()))];
+  // the pieces of a blend come one after the other: the caller's segment often holds this blend's
+  // geometry already (same control points, length and source); then only the trims change
+  if (!(out.kind == SegmentKind::blend && out.source == g.source && out.full_length == g.full_length &&
+        out.ctrl[0] == g.ctrl[0] && out.ctrl[1] == g.ctrl[1] && out.ctrl[2] == g.ctrl[2] && out.ctrl[3] == g.ctrl[3]))
+    out = g;
   out.trim_start = n.seg.trim_start;
   out.trim_end = n.seg.trim_end;
   out.curvature = n.seg.curvature;
@@ -280,7 +383,10 @@ Status Planner::fail(const char* msg) noexcept {
   return Status::invalid_input;
 }
 
-bool Planner::buffer_ready() const noexcept { return finished_ || free_blocks() == 0; }
+bool Planner::buffer_ready() const noexcept {
+  // free_blocks() == 0 without its division
+  return finished_ || cap_ - (tail_ - head_) < per_block || blocks_in_buffer() >= opt_.lookahead + 1;
+}
 
 double Planner::plan_length(const Node& n) const noexcept {
   const Segment& s = n.seg;
@@ -395,6 +501,96 @@ double Planner::curvature_step_speed(const Vec3& dk) const noexcept {
   return v;
 }
 
+// The blend of a corner between two lines without jerk limits (blend_lines), cut into pieces at the
+// table nodes cuts_lines; each piece is written in place in the ring with its bounds, its reach
+// coefficients (Quick) and the coefficients freeze_next() needs for its peak speed and tangential
+// acceleration (Node::pre), so neither pass divides. v_prev: the speed cap before the blend on
+// entry, the cap of its last piece on return [mm/s].
+void Planner::push_line_blend(long source, long psource, const Vec3& p0, const Vec3& vtx, const Vec3& p3, const Vec3& u1,
+                              const Vec3& u2, double d, double vfeed, double& v_prev) noexcept {
+  Segment& whole = blend_of(source);
+  NodeBounds nb;
+  blend_lines(whole, p0, vtx, p3, u1, u2, d, psource, nb.t, nb.k);
+  nb.second_differences();
+  const Vec3& A = limits_.acceleration;
+  const Vec3& V = limits_.velocity;
+  const int* cut = cuts_lines;
+  int np = n_cuts_lines;
+  // bounds of every piece; those of the whole blend are their largest (max and min(1, ·) commute)
+  Vec3 Up[9], Kp[9];
+  {
+    Vec3 U = Vec3::Zero(), K = Vec3::Zero();
+    for (int k = 0; k < np; ++k) {
+      nb.bounds(cut[k], cut[k + 1], Up[k], Kp[k]);
+      U = U.cwiseMax(Up[k]);
+      K = K.cwiseMax(Kp[k]);
+    }
+    Up[8] = U;
+    Kp[8] = K;
+    double vcap = vfeed;
+    for (int i = 0; i < 3; ++i) vcap = std::min(vcap, V[i] / U[i]);  // U ≥ 1e-12
+    // a gentle turn: the centripetal part takes little of the budget at full speed; one piece
+    if (K.maxCoeff() * vcap * vcap <= 0.02 * A.minCoeff()) {
+      np = 1;
+      cut = cuts_one;
+      Up[0] = U;
+      Kp[0] = K;
+    }
+  }
+  // the axes that move on the blend (Segment::moving_axes) and the smallest of their accelerations
+  double amin_blend = inf;
+  for (int i = 0; i < 3; ++i)
+    if (std::abs(d * u1[i]) > 1e-12 || std::abs(d * u2[i]) > 1e-12) amin_blend = std::min(amin_blend, A[i]);
+  if (!std::isfinite(amin_blend)) amin_blend = A.minCoeff();
+  for (int k = 0; k < np; ++k) {
+    const int i0 = cut[k], i1 = cut[k + 1];
+    const std::size_t slot = static_cast<std::size_t>(tail_ % cap_);
+    Node& bn = ring_[slot];
+    bn.seg.kind = SegmentKind::blend;
+    bn.seg.full_length = whole.full_length;
+    bn.seg.curvature = whole.curvature;
+    bn.seg.curvature_rate = whole.curvature_rate;
+    bn.seg.source = whole.source;
+    bn.slim = true;
+    bn.pre = true;
+    bn.seg.trim_start = whole.table[static_cast<std::size_t>(i0)];
+    bn.seg.trim_end = whole.full_length - whole.table[static_cast<std::size_t>(i1)];
+    bn.blk = source;
+    bn.fcap = vfeed;
+    bn.res_s = bn.res_e = 0.0;
+    bn.jump_s = bn.jump_e = bn.spike_s = bn.spike_e = bn.tail_trim = bn.provisional = false;
+    bn.U = Up[k];
+    bn.K = Kp[k];
+    bn.curved = true;
+    bn.j = inf;
+    bn.a = amin_blend;
+    const double L = std::max(0.0, bn.seg.full_length - bn.seg.trim_start - bn.seg.trim_end);
+    double vmax = vfeed, wk = inf;
+    Quick& x = quick_[slot];
+    for (int i = 0; i < 3; ++i) {
+      const double U = bn.U[i], K = bn.K[i];
+      const double iu = 1.0 / U, r1 = 1.0 / (U + L * K), r2 = 1.0 / (U + 2.0 * L * K);
+      vmax = std::min(vmax, V[i] * iu);
+      if (K > 0) wk = std::min(wk, A[i] / K);
+      bn.iu[i] = iu;
+      bn.p1[i] = 0.5 * U * r1;  // peak: w = min_i (U_i·(vs² + ve²)/2 + L·A_i)/(U_i + L·K_i)
+      bn.p0[i] = L * A[i] * r1;
+      x.alpha[i] = U * r2;  // reach: w = min_i (U_i·w0 + 2·L·A_i)/(U_i + 2·L·K_i)
+      x.beta[i] = 2.0 * L * A[i] * r2;
+    }
+    if (wk < inf) vmax = std::min(vmax, std::sqrt(wk));
+    bn.vmax = vmax;
+    bn.v_lim = bn.v_corner = std::min(v_prev, vmax);
+    v_prev = vmax;
+    x.w_lim = bn.v_lim * bn.v_lim;
+    x.len = L;
+    x.a = bn.a;
+    x.j = inf;
+    x.wb = 0.0;
+    ++tail_;
+  }
+}
+
 Status Planner::push(const toolpath::Block& b) noexcept {
   if (finished_) return fail("push() after finish()");
   if (!finite3(b.start) || !finite3(b.end) || !finite3(b.center) || !std::isfinite(b.feed) || b.feed < 0)
@@ -476,22 +672,34 @@ Status Planner::push(const toolpath::Block& b) noexcept {
     // the blend, cut into pieces at its arc-length table nodes; each piece has its own axis-box
     // bounds, so the speed follows the curvature (the forward and backward passes over the pieces
     // are the phase-plane method on a grid of stations)
+    if (lines && !jerk_mode) {  // the common case, built from scalar coefficients
+      push_line_blend(source, psource, bl[0], pseg.block.end, bl[3], u1, u2, d, vfeed, v_prev);
+      nn.v_corner = v_prev;
+      nn.v_lim = std::min(nn.v_corner, nn.vmax);
+      append(nn);
+      back_pass(first);
+      return Status::ok;
+    }
     std::array<Vec3, 17> T, Kv;
     Segment& whole = blend_of(source);
     whole = Segment::blend(bl[0], bl[1], bl[2], bl[3], psource, &T, &Kv);
     BlendBounds tab;
-    int np = jerk_mode ? 4 : blend_pieces;
-    tab.fill(T, Kv, 16 / np);
+    tab.fill(T, Kv);
+    // piece boundaries at table nodes
+    const int* cut = jerk_mode ? cuts_jerk : cuts_general;
+    int np = jerk_mode ? n_cuts_jerk : n_cuts_general;
     if (!jerk_mode) {
       Vec3 U, K;
-      tab.bounds(0, np, U, K);
+      tab.bounds(0, 16, U, K);
       double vcap = vfeed;
       for (int i = 0; i < 3; ++i)
         if (U[i] > 0) vcap = std::min(vcap, limits_.velocity[i] / U[i]);
       // a gentle turn: the centripetal part takes little of the budget at full speed; one piece
-      if (K.maxCoeff() * vcap * vcap <= 0.02 * limits_.acceleration.minCoeff()) np = 1;
+      if (K.maxCoeff() * vcap * vcap <= 0.02 * limits_.acceleration.minCoeff()) {
+        np = 1;
+        cut = cuts_one;
+      }
     }
-    const int step = 16 / np, runs = np == 1 ? blend_pieces : 1;  // runs of the table per piece
     // jerk mode: where the blend meets an arc the curvature jumps (tangent junction); cap the speed
     // so the acceleration step's third difference takes at most half of J_i (see below)
     Vec3 dk0 = Vec3::Zero(), dk1 = Vec3::Zero();
@@ -506,7 +714,7 @@ Status Planner::push(const toolpath::Block& b) noexcept {
     // what set_params() finds for every piece of this blend (the same axes move on all of them)
     const double amin_blend = min_over(limits_.acceleration, whole.moving_axes());
     for (int k = 0; k < np; ++k) {
-      const int i0 = k * step, i1 = i0 + step;
+      const int i0 = cut[k], i1 = cut[k + 1];
       // built in place in the ring (a Node is large: no temporary and copy)
       const std::size_t slot = static_cast<std::size_t>(tail_ % cap_);
       Node& bn = ring_[slot];
@@ -527,7 +735,8 @@ Status Planner::push(const toolpath::Block& b) noexcept {
       bn.fcap = vfeed;
       bn.res_s = bn.res_e = 0.0;
       bn.jump_s = bn.jump_e = bn.spike_s = bn.spike_e = bn.tail_trim = bn.provisional = false;
-      tab.bounds(k * runs, (k + 1) * runs, bn.U, bn.K);
+      bn.pre = false;
+      tab.bounds(i0, i1, bn.U, bn.K);
       bn.vmax = vfeed;
       if (jerk_mode) {
         double kmax = 0, rate = 0;
@@ -693,7 +902,20 @@ bool Planner::freeze_next() noexcept {
   const double wf = window_periods();
   const double ws = n.jump_s ? wf * opt_.ts2 * vs : 0.0, we = n.jump_e ? wf * opt_.ts2 * ve : 0.0;
   const double len = n.seg.length();
-  if (n.curved && !std::isfinite(qn.j)) {
+  if (n.pre) {
+    // blend piece between lines (push_line_blend): the same as below with the coefficients
+    // precomputed (no windows on blend pieces)
+    const double S = vs * vs + ve * ve;
+    double wp = n.vmax * n.vmax;
+    for (int i = 0; i < 3; ++i) wp = std::min(wp, n.p1[i] * S + n.p0[i]);
+    wp = std::max(wp, std::max(vs * vs, ve * ve));
+    double a = inf;
+    for (int i = 0; i < 3; ++i) a = std::min(a, (limits_.acceleration[i] - n.K[i] * wp) * n.iu[i]);
+    const double amin = limits_.acceleration.minCoeff();
+    if (!(a > 1e-6 * amin)) a = 1e-6 * amin;
+    if (!std::isfinite(a)) a = amin;
+    n.prof = Profile::make(len, vs, ve, std::sqrt(wp), a, inf, 0.0, 0.0);
+  } else if (n.curved && !std::isfinite(qn.j)) {
     // peak speed and tangential acceleration from the axis box at that speed:
     // 2·w − vs² − ve² = 2·L·(A_i − K_i·w)/U_i for the binding axis
     const double lr = std::max(0.0, len - std::min(ws, len) - std::min(we, len));

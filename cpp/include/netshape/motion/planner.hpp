@@ -108,6 +108,10 @@ class Planner {
     // blend pieces: seg holds kind, trims, lengths, curvature and source only; the Bézier (ctrl,
     // table) stays once per blend in blends_[blk % size] until seg_of() copies it in (sampling)
     bool slim = false;
+    // blend pieces between lines (push_line_blend): freeze_next() finds the peak squared speed as
+    // min_i p1_i·(vs² + ve²) + p0_i and the tangential budget as min_i (A_i − K_i·w)·iu_i
+    bool pre = false;
+    double p1[3] = {0, 0, 0}, p0[3] = {0, 0, 0}, iu[3] = {0, 0, 0};
     Profile prof;
     double t0 = 0;
   };
@@ -128,6 +132,8 @@ class Planner {
   void set_params(Node& n) const noexcept;
   double reach_sq(const Quick& n, double w0) const noexcept;
   void split_tail() noexcept;
+  void push_line_blend(long source, long psource, const Vec3& p0, const Vec3& vtx, const Vec3& p3, const Vec3& u1, const Vec3& u2,
+                       double d, double vfeed, double& v_prev) noexcept;
   void append(const Node& n) noexcept;
   long blocks_in_buffer() const noexcept;
   void back_pass(long dirty_from) noexcept;
@@ -137,7 +143,7 @@ class Planner {
   Status fail(const char* msg) noexcept;
   /// Fine periods of constant speed on each side of a velocity jump: 2 (second differences see the
   /// jump alone), 3 with jerk limits (third differences too).
-  double window_periods() const noexcept { return limits_.jerk_limited() ? 3.0 : 2.0; }
+  double window_periods() const noexcept { return jerk_ ? 3.0 : 2.0; }
   /// Jerk mode: largest speed at a tangent junction where the curvature vector steps by dk [1/mm]:
   /// v²·|dk_i| ≤ J_i·ts2/2 (the acceleration step's third difference gets half of the jerk limit).
   double curvature_step_speed(const Vec3& dk) const noexcept;
@@ -154,6 +160,7 @@ class Planner {
   const Segment& seg_of(Node& n) noexcept;
   /// Copy of the node's full segment (blend pieces: the blend with the piece's trims).
   void copy_segment(const Node& n, Segment& out) noexcept;
+  bool jerk_ = false;  // limits_.jerk_limited()
   long cap_ = 0;
   long head_ = 0;      // first segment in the buffer
   long frozen_ = 0;    // segments [head_, frozen_) are frozen
