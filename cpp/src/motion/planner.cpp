@@ -397,6 +397,15 @@ double Planner::plan_length(const Node& n) const noexcept {
 void Planner::set_params(Node& n) const noexcept {
   // n.vmax holds the programmed feed cap on entry
   const Segment& s = n.seg;
+  if (s.kind == SegmentKind::line && !jerk_ && opt_.rule != CornerRule::paper) {
+    // the common case below without the moving-axes minima it does not use
+    const Vec3 u = s.block.tangent_at(0.0);
+    n.curved = false;
+    n.vmax = std::min(n.vmax, along(limits_.velocity, u));
+    n.a = along(limits_.acceleration, u);
+    n.j = inf;
+    return;
+  }
   const Vec3 moving = s.moving_axes();
   const double amin = min_over(limits_.acceleration, moving);
   const double vmin = min_over(limits_.velocity, moving);
@@ -880,8 +889,11 @@ void Planner::back_pass(long dirty_from) noexcept {
   std::size_t slot = static_cast<std::size_t>((tail_ - 1) % cap_);  // one modulo, then wrap by hand
   for (long k = tail_ - 1; k >= frozen_; --k, slot = slot == 0 ? static_cast<std::size_t>(cap_ - 1) : slot - 1) {
     Quick& n = quick_[slot];
-    // seeds/002 eq. 3 (trapezoid; on curves the axis box), capped by the junction limit
-    const double w = std::min(n.w_lim, reach_sq(n, w_next));
+    // seeds/002 eq. 3 (trapezoid; on curves the axis box), capped by the junction limit (without
+    // jerk limits reach_sq is the min of three affine terms, inlined here)
+    const double w = jerk_ ? std::min(n.w_lim, reach_sq(n, w_next))
+                           : std::min(std::min(n.w_lim, n.alpha[0] * w_next + n.beta[0]),
+                                      std::min(n.alpha[1] * w_next + n.beta[1], n.alpha[2] * w_next + n.beta[2]));
     if (k < dirty_from && w == n.wb) break;  // nothing changes further back
     n.wb = w;
     w_next = w;
