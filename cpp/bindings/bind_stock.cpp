@@ -120,6 +120,10 @@ void bind_stock(py::module_& m) {
         py::arg("y"), "lowest z [mm] of the tip surface above (x, y) along the line a -> b (inf if never over it)");
   m.def("sweep_line", &sweep_line, py::arg("zmap"), py::arg("cutter"), py::arg("a"), py::arg("b"),
         py::call_guard<py::gil_scoped_release>(), "sweep the tip along the line a -> b [mm]");
+  m.def("sweep_lines", &sweep_lines, py::arg("zmap"), py::arg("cutter"), py::arg("starts"), py::arg("ends"),
+        py::call_guard<py::gil_scoped_release>(),
+        "sweep the tip along the lines starts[k] -> ends[k] ((n, 3) each [mm]) in order, in one call; "
+        "the same heights as n sweep_line calls, summed stats");
   m.def("sweep_polyline", &sweep_polyline, py::arg("zmap"), py::arg("cutter"), py::arg("points"),
         py::arg("merge_collinear") = true, py::call_guard<py::gil_scoped_release>(),
         "sweep the tip along the polyline through (n, 3) points [mm]");

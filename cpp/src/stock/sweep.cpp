@@ -1021,6 +1021,38 @@ SweepStats sweep_line(ZMap& zmap, const cutter::Cutter& cutter, const Vec3& a, c
   return sweep_line_impl(zmap, TipProfile::of(cutter), kind_of(cutter), a, b);
 }
 
+SweepStats sweep_lines(ZMap& zmap, const cutter::Cutter& cutter, const Eigen::Ref<const MatrixXdR>& starts,
+                       const Eigen::Ref<const MatrixXdR>& ends) {
+  cutter.validate();
+  NETSHAPE_CHECK(starts.cols() == 3, "starts.shape[1]", starts.cols(), "must be 3 (x, y, z) [mm]");
+  NETSHAPE_CHECK(ends.cols() == 3, "ends.shape[1]", ends.cols(), "must be 3 (x, y, z) [mm]");
+  if (ends.rows() != starts.rows()) {
+    const std::string req = "must equal starts.shape[0] = " + std::to_string(starts.rows());
+    NETSHAPE_CHECK(false, "ends.shape[0]", ends.rows(), req.c_str());
+  }
+  const Eigen::Index n = starts.rows();
+  for (Eigen::Index k = 0; k < n; ++k)
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(starts(k, c))) {
+        const std::string f = "starts[" + std::to_string(k) + ", " + std::to_string(c) + "]";
+        NETSHAPE_CHECK_FINITE(f.c_str(), starts(k, c));
+      }
+      if (!std::isfinite(ends(k, c))) {
+        const std::string f = "ends[" + std::to_string(k) + ", " + std::to_string(c) + "]";
+        NETSHAPE_CHECK_FINITE(f.c_str(), ends(k, c));
+      }
+    }
+  const TipProfile p = TipProfile::of(cutter);
+  const ProfileKind kind = kind_of(cutter);
+  SweepStats st;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Vec3 a(starts(k, 0), starts(k, 1), starts(k, 2));
+    const Vec3 b(ends(k, 0), ends(k, 1), ends(k, 2));
+    st += sweep_line_impl(zmap, p, kind, a, b);
+  }
+  return st;
+}
+
 SweepStats sweep_polyline(ZMap& zmap, const cutter::Cutter& cutter, const Eigen::Ref<const Points3>& points,
                           bool merge_collinear) {
   cutter.validate();

@@ -369,3 +369,46 @@ TEST_CASE("sweep: the SIMD row kernels over the stadium rows equal the per-node 
     CHECK(lowered > 1000);
   }
 }
+
+TEST_CASE("sweep: sweep_lines equals one sweep_line per move, bit for bit; bad shapes are rejected") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  for (const Cutter& c : {Cutter::flat_end(6.0, 2, 0.5), Cutter::ball_end(6.0, 2, 0.5),
+                          Cutter::bull_nose(6.0, 1.0, 2, 0.5)}) {
+    for (int n : {0, 1, 30}) {
+      MatrixXdR a(n, 3), b(n, 3);
+      for (int k = 0; k < n; ++k) {
+        a.row(k) << 25 * U(rng), 25 * U(rng), 5 + 5 * U(rng);
+        b.row(k) << 25 * U(rng), 25 * U(rng), 5 + 5 * U(rng);
+        if (k % 4 == 1) b(k, 2) = a(k, 2);
+      }
+      ZMap one(0.0, 25.0, 0.0, 25.0, 0.15, 12.0, 0.0);
+      ZMap batch = one;
+      std::int64_t visited = 0, lowered = 0;
+      for (int k = 0; k < n; ++k) {
+        const auto st = netshape::stock::sweep_line(one, c, a.row(k).transpose(), b.row(k).transpose());
+        visited += st.nodes_visited;
+        lowered += st.nodes_lowered;
+      }
+      const auto st = netshape::stock::sweep_lines(batch, c, a, b);
+      CHECK(st.moves == n);
+      CHECK(st.nodes_visited == visited);
+      CHECK(st.nodes_lowered == lowered);
+      CHECK((batch.heights().array() == one.heights().array()).all());
+    }
+  }
+  ZMap z(0.0, 10.0, 0.0, 10.0, 0.1, 10.0, 0.0);
+  const Cutter c = Cutter::flat_end(6.0, 2, 0.5);
+  MatrixXdR two(2, 2), three(2, 3), four(3, 3);
+  two.setZero();
+  three.setZero();
+  four.setZero();
+  CHECK_THROWS_WITH_AS(netshape::stock::sweep_lines(z, c, two, three), doctest::Contains("starts.shape[1]"),
+                       std::invalid_argument);
+  CHECK_THROWS_WITH_AS(netshape::stock::sweep_lines(z, c, three, four), doctest::Contains("ends.shape[0]"),
+                       std::invalid_argument);
+  three(1, 2) = std::nan("");
+  CHECK_THROWS_WITH_AS(netshape::stock::sweep_lines(z, c, three, three), doctest::Contains("starts[1, 2]"),
+                       std::invalid_argument);
+  CHECK((z.heights().array() == 10.0).all());
+}

@@ -69,6 +69,13 @@ double lowest_reach_line(const TipProfile& profile, const Vec3& a, const Vec3& b
 /// Sweep the cutter tip along the straight line a → b [mm].
 SweepStats sweep_line(ZMap& zmap, const cutter::Cutter& cutter, const Vec3& a, const Vec3& b);
 
+/// Sweep the cutter tip along n straight lines starts(k) → ends(k) [mm], in order: the same heights
+/// bit for bit as n calls of sweep_line, with the summed stats (moves = n), without a per-move call
+/// from Python. starts and ends are (n, 3) (n ≥ 0; n = 0 does nothing); all input is checked
+/// (shapes, finite) before any height changes.
+SweepStats sweep_lines(ZMap& zmap, const cutter::Cutter& cutter, const Eigen::Ref<const MatrixXdR>& starts,
+                       const Eigen::Ref<const MatrixXdR>& ends);
+
 /// Sweep along the polyline through the (n, 3) points [mm] (n ≥ 1; one point = a stationary cut).
 /// The fast path for many short blocks: one call, no per-block overhead; with `merge_collinear`
 /// runs of collinear segments going the same way are swept as one line (identical result).
