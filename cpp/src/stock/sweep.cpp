@@ -594,31 +594,26 @@ struct MoveOut {
   std::int64_t visited = 0;  // nodes of the stadium rows
 };
 
-struct RowSpan {
-  int j0 = 0, j1 = -1;
-  bool has = false;
-};
-
 constexpr int kAhead = 4;  // rows prefetched ahead
-constexpr int kRing = 8;   // > kAhead + 1
+/// Slack of the row spans of ramps [index units]: a node this close outside the stadium is visited
+/// too (the per-node test rejects it), so rounding in the span can never drop a covered node.
+constexpr double kSpanSlack = 1e-6;
 
-// nodes of row i in the stadium, clamped to the move's columns [jlo, jhi]; none past row i1
-inline RowSpan span_of(const ZMap& zm, const LineSetup& s, double r, int i, int i1, int jlo, int jhi) noexcept {
-  RowSpan sp;
-  sp.has = i <= i1 && row_nodes(zm, s, r, i, sp.j0, sp.j1);
-  if (sp.has) {
-    sp.j0 = std::max(sp.j0, jlo);
-    sp.j1 = std::min(sp.j1, jhi);
-    sp.has = sp.j0 <= sp.j1;
-  }
-  return sp;
-}
+/// Per-move constants of the row spans (ramp kernels): end points, direction and its reciprocals
+/// (directions within 1e-15 of an axis use the axis-parallel form instead), grid origin and steps.
+struct SpanSetup {
+  double ax, ay, bx, by, r, r2, ex, ey, len, iex, iey, y0, dy, x0, idx;
+  bool use_ex, use_ey;
+  SpanSetup(const ZMap& zm, const LineSetup& s, double R)
+      : ax(s.ax), ay(s.ay), bx(s.ax + s.len * s.ex), by(s.ay + s.len * s.ey), r(R), r2(R * R), ex(s.ex), ey(s.ey),
+        len(s.len), iex(std::abs(s.ex) >= 1e-15 ? 1.0 / s.ex : 0.0), iey(std::abs(s.ey) >= 1e-15 ? 1.0 / s.ey : 0.0),
+        y0(zm.y0()), dy(zm.dy()), x0(zm.x0()), idx(1.0 / zm.dx()), use_ex(std::abs(s.ex) >= 1e-15),
+        use_ey(std::abs(s.ey) >= 1e-15) {}
+};
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(NETSHAPE_NO_X86_KERNELS)
 #define NETSHAPE_X86_KERNELS 1
 #endif
-
-#define NETSHAPE_SPAN(i) span_of(zm, s, R, (i), i1, jlo, jhi)
 
 #ifdef NETSHAPE_X86_KERNELS
 #pragma GCC push_options
@@ -629,6 +624,10 @@ struct V {
   using M = __mmask8;
   static constexpr int W = 8;
   static D set(double x) { return _mm512_set1_pd(x); }
+  static D iota() { return _mm512_set_pd(7, 6, 5, 4, 3, 2, 1, 0); }
+  static void storeu(double* p, D x) { _mm512_storeu_pd(p, x); }
+  static D floor(D a) { return _mm512_roundscale_pd(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC); }
+  static D ceil(D a) { return _mm512_roundscale_pd(a, _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC); }
   static M valid(int n) { return n >= 8 ? M(0xFF) : M((1u << n) - 1u); }
   static D load(const double* p, M v, bool full) { return full ? _mm512_loadu_pd(p) : _mm512_maskz_loadu_pd(v, p); }
   static void store(double* p, D x, M v, bool full) {
@@ -663,6 +662,10 @@ struct V {
   using M = __m256d;
   static constexpr int W = 4;
   static D set(double x) { return _mm256_set1_pd(x); }
+  static D iota() { return _mm256_set_pd(3, 2, 1, 0); }
+  static void storeu(double* p, D x) { _mm256_storeu_pd(p, x); }
+  static D floor(D a) { return _mm256_floor_pd(a); }
+  static D ceil(D a) { return _mm256_ceil_pd(a); }
   static M valid(int n) {
     return _mm256_castsi256_pd(_mm256_cmpgt_epi64(_mm256_set1_epi64x(n), _mm256_set_epi64x(3, 2, 1, 0)));
   }
@@ -704,6 +707,10 @@ struct V {  // one node at a time, plain C++ (other compilers and CPUs)
   using M = bool;
   static constexpr int W = 1;
   static D set(double x) { return x; }
+  static D iota() { return 0.0; }
+  static void storeu(double* p, D x) { *p = x; }
+  static D floor(D a) { return std::floor(a); }
+  static D ceil(D a) { return std::ceil(a); }
   static M valid(int n) { return n > 0; }
   static D load(const double* p, M, bool) { return *p; }
   static void store(double* p, D x, M, bool) { *p = x; }
@@ -725,7 +732,6 @@ struct V {  // one node at a time, plain C++ (other compilers and CPUs)
 };
 #include "ramp_kernel.inc"
 }  // namespace k64
-#undef NETSHAPE_SPAN
 
 enum class Isa { plain, avx2, avx512 };
 
@@ -770,16 +776,28 @@ void ramp_rows(ZMap& zm, const LineSetup& s, double R, int i0, int i1, SweepStat
     tqx[k] = qx * s.ex;
     spx[k] = qx * s.ey;
   }
+  const int nrows = i1 - i0 + 1;
+  thread_local std::vector<int> spans;  // j0, j1 of each row of the move
+  if (static_cast<int>(spans.size()) < 2 * nrows + 16) spans.resize(2 * static_cast<std::size_t>(nrows) + 16);
+  int* j0s = spans.data();
+  int* j1s = spans.data() + nrows + 8;
+  const SpanSetup q(zm, s, R);
   MoveOut mo;
   double* H = zm.heights_mut().data();
   const double bottom = zm.bottom();
+  const bool up = s.m >= 0.0;
+#define NETSHAPE_RAMP(ns)                                                                                   \
+  ns::row_spans(q, i0, nrows, jlo, jhi, j0s, j1s);                                                          \
+  if (up) ns::ramp_move<Kind, true>(zm, H, s, R, i0, i1, j0s, j1s, bottom, tqx, spx, cmin, mo);             \
+  else ns::ramp_move<Kind, false>(zm, H, s, R, i0, i1, j0s, j1s, bottom, tqx, spx, cmin, mo);
   switch (ramp_isa()) {
 #ifdef NETSHAPE_X86_KERNELS
-    case Isa::avx512: k512::ramp_move<Kind>(zm, H, s, R, i0, i1, jlo, jhi, bottom, tqx, spx, cmin, mo); break;
-    case Isa::avx2: k256::ramp_move<Kind>(zm, H, s, R, i0, i1, jlo, jhi, bottom, tqx, spx, cmin, mo); break;
+    case Isa::avx512: NETSHAPE_RAMP(k512) break;
+    case Isa::avx2: NETSHAPE_RAMP(k256) break;
 #endif
-    default: k64::ramp_move<Kind>(zm, H, s, R, i0, i1, jlo, jhi, bottom, tqx, spx, cmin, mo); break;
+    default: NETSHAPE_RAMP(k64) break;
   }
+#undef NETSHAPE_RAMP
   st.nodes_visited += mo.visited;
   st.removed_volume += mo.vol;
   st.nodes_lowered += mo.lowered;
