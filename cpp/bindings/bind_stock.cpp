@@ -71,6 +71,8 @@ void bind_stock(py::module_& m) {
       .def("volume", &ZMap::volume, "material volume above the bottom [mm^3]")
       .def("min_height", &ZMap::min_height)
       .def("max_height", &ZMap::max_height)
+      .def("height_bound", &ZMap::height_bound, py::arg("i0"), py::arg("i1"),
+           "upper bound of the heights of rows i0..i1 [mm] used by the quick reject (>= their maximum)")
       .def("node_x", &ZMap::node_x, py::arg("j"))
       .def("node_y", &ZMap::node_y, py::arg("i"))
       .def("height_at", py::overload_cast<double, double>(&ZMap::height_at, py::const_), py::arg("x"), py::arg("y"),

@@ -15,6 +15,46 @@
 
 namespace netshape::stock {
 
+/// Quick reject: a move is skipped when the band bounds of its rows are at least this far below the
+/// lowest point its tip reaches [mm] (covers the rounding of the per-node z, ~1e-14 relative).
+constexpr double kRejectMargin = 1e-9;
+/// A band whose bound is above a move is recomputed exactly once the sweeps since its last exact
+/// bound have booked at least this many times its node count (amortised: at most one read of a
+/// height per node of sweep work).
+constexpr double kRefreshWork = 1.0;
+
+/// The sweeps' access to a Z-map (a friend of ZMap): the heights without marking the bounds stale,
+/// and the quick reject.
+struct SweepAccess {
+  static MatrixXdR& heights(ZMap& z) noexcept { return z.heights_; }
+
+  /// True if every height of rows i0 … i1 is at least kRejectMargin below zlow [mm]: a move whose
+  /// cutter never reaches below zlow lowers nothing there. Bands whose bound is above are
+  /// recomputed when their booked work allows (above); when false, `width` nodes per row are booked
+  /// on every band of the rows (the move is swept there).
+  static bool above(ZMap& z, int i0, int i1, double zlow, double width) {
+    if (z.bounds_stale_) z.init_bounds();
+    const double lim = zlow - kRejectMargin;
+    const int br = z.band_rows_, b0 = i0 / br, b1 = i1 / br;
+    const double band_nodes = static_cast<double>(br) * z.nx_;
+    bool ok = true;
+    for (int b = b0; b <= b1; ++b) {
+      const auto k = static_cast<std::size_t>(b);
+      if (z.band_max_[k] <= lim) continue;
+      if (static_cast<double>(z.band_work_[k]) >= kRefreshWork * band_nodes) {
+        z.refresh_band(b);
+        if (z.band_max_[k] <= lim) continue;
+      }
+      ok = false;
+      break;
+    }
+    if (ok) return true;
+    const auto w = static_cast<std::int64_t>(width * br) + 1;
+    for (int b = b0; b <= b1; ++b) z.band_work_[static_cast<std::size_t>(b)] += w;
+    return false;
+  }
+};
+
 namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
@@ -322,7 +362,8 @@ NETSHAPE_INLINE double lift_bound(double dmin, double a0, double half_inv_rc) {
   return e * e * half_inv_rc;
 }
 
-// level line (m = 0), any cutter: the point of the segment nearest to the node, d² = s² + u²
+// level line (m = 0): the point of the segment nearest to the node, d² = s² + u² (bull-nose only; flat
+// and ball level lines go to level_move in ramp_kernel.inc)
 NETSHAPE_SIMD_CLONES void row_level(const LineSetup& s, const TipProfile& p, int kind, double r2, const Row& row,
                                     double bottom, double* __restrict h, RowOut& out) {
   const LineRow L(s, row);
@@ -581,12 +622,14 @@ inline void prefetch_line(const double* p) noexcept {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Flat and ball ramps (most of the lines of a 3-D program): one call per move, with explicit SIMD
-// (AVX-512 or AVX2 intrinsics, chosen once per process from the CPU; plain C++ elsewhere), so the
-// speed does not hang on what the auto-vectoriser makes of a loop at -O2 vs -O3. The kernel is
-// written once (ramp_kernel.inc) and compiled per instruction set. Rows of a move lie nx·8 bytes
-// apart (a new page per row for big grids); the row kAhead rows on is prefetched one cache line per
-// chunk while a row is computed. Per-column terms qx·ex and qx·ey are computed once per move.
+// Flat and ball ramps and level lines (most of the lines of a program): one call per move, with
+// explicit SIMD (AVX-512 or AVX2 intrinsics, chosen once per process from the CPU; plain C++
+// elsewhere), so the speed does not hang on what the auto-vectoriser makes of a loop at -O2 vs -O3.
+// The kernels are written once (ramp_kernel.inc) and compiled per instruction set. The stadium span
+// of every row of the move is computed first, W rows at a time and without division (row_spans);
+// per-column terms qx·ex and qx·ey once per move. Rows of a move lie nx·8 bytes apart (a new page
+// per row for big grids); the row kAhead rows on is prefetched one cache line per chunk while a row
+// is computed.
 // ---------------------------------------------------------------------------------------------
 struct MoveOut {
   double vol = 0.0;          // removed height summed over nodes [mm] (× cell area later)
@@ -756,7 +799,7 @@ Isa ramp_isa() {
   return isa;
 }
 
-// Sweep a flat or ball ramp over rows i0 … i1.
+// Sweep a flat or ball ramp or level line over rows i0 … i1.
 template <int Kind>
 void ramp_rows(ZMap& zm, const LineSetup& s, double R, int i0, int i1, SweepStats& st) {
   // the columns the move can reach, widened to whole chunks of 8 and padded so that chunk loads of
@@ -783,12 +826,13 @@ void ramp_rows(ZMap& zm, const LineSetup& s, double R, int i0, int i1, SweepStat
   int* j1s = spans.data() + nrows + 8;
   const SpanSetup q(zm, s, R);
   MoveOut mo;
-  double* H = zm.heights_mut().data();
+  double* H = SweepAccess::heights(zm).data();
   const double bottom = zm.bottom();
   const bool up = s.m >= 0.0;
 #define NETSHAPE_RAMP(ns)                                                                                   \
   ns::row_spans(q, i0, nrows, jlo, jhi, j0s, j1s);                                                          \
-  if (up) ns::ramp_move<Kind, true>(zm, H, s, R, i0, i1, j0s, j1s, bottom, tqx, spx, cmin, mo);             \
+  if (s.m == 0.0) ns::level_move<Kind>(zm, H, s, R, i0, i1, j0s, j1s, bottom, tqx, spx, cmin, mo);          \
+  else if (up) ns::ramp_move<Kind, true>(zm, H, s, R, i0, i1, j0s, j1s, bottom, tqx, spx, cmin, mo);        \
   else ns::ramp_move<Kind, false>(zm, H, s, R, i0, i1, j0s, j1s, bottom, tqx, spx, cmin, mo);
   switch (ramp_isa()) {
 #ifdef NETSHAPE_X86_KERNELS
@@ -808,10 +852,15 @@ void sweep_line_k(ZMap& zm, const TipProfile& p, const LineSetup& s, double ylo,
   const double r = p.radius, r2 = r * r;
   int i0, i1;
   if (!node_range(ylo - r, yhi + r, zm.y0(), zm.dy(), zm.ny(), i0, i1)) return;
-  MatrixXdR& H = zm.heights_mut();
+  {  // quick reject: the tip never goes below min(A_z, B_z) (the profile only adds lift)
+    const double zlow = s.vertical ? s.zv : std::min(s.az, s.az + s.m * s.len);
+    const double width = std::min(static_cast<double>(zm.nx()), (std::abs(s.len * s.ex) + 2.0 * r) / zm.dx() + 1.0);
+    if (SweepAccess::above(zm, i0, i1, zlow, width)) return;
+  }
+  MatrixXdR& H = SweepAccess::heights(zm);
   const Eigen::Index nx = zm.nx();
   const double bottom = zm.bottom();
-  if (Kind != kBull && !s.vertical && s.m != 0.0) {
+  if (Kind != kBull && !s.vertical) {  // flat and ball ramps and level lines: the SIMD kernels
     ramp_rows<Kind>(zm, s, r, i0, i1, st);
     return;
   }
@@ -990,7 +1039,9 @@ void sweep_arc_k(ZMap& zm, const TipProfile& p, const ArcSetup& s, SweepStats& s
   int i0, i1, j0, j1;
   if (!node_range(ylo - R, yhi + R, zm.y0(), zm.dy(), zm.ny(), i0, i1)) return;
   if (!node_range(xlo - R, xhi + R, zm.x0(), zm.dx(), zm.nx(), j0, j1)) return;
-  MatrixXdR& H = zm.heights_mut();
+  // quick reject: the tip z is linear in the angle, lowest at an end
+  if (SweepAccess::above(zm, i0, i1, std::min(s.z0, s.z0 + s.kz * s.total), j1 - j0 + 1.0)) return;
+  MatrixXdR& H = SweepAccess::heights(zm);
   const double bottom = zm.bottom();
   for (int i = i0; i <= i1; ++i) {
     const double y = zm.node_y(i);

@@ -44,6 +44,10 @@ class ZMap:
         """
         (n,) bilinear heights at (n, 2|3) points
         """
+    def height_bound(self, i0: typing.SupportsInt | typing.SupportsIndex, i1: typing.SupportsInt | typing.SupportsIndex) -> float:
+        """
+        upper bound of the heights of rows i0..i1 [mm] used by the quick reject (>= their maximum)
+        """
     def is_material(self, p: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> bool:
         """
         True if p (3,) [mm] is inside the footprint and bottom <= z < pillar height

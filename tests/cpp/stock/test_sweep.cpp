@@ -412,3 +412,49 @@ TEST_CASE("sweep: sweep_lines equals one sweep_line per move, bit for bit; bad s
                        std::invalid_argument);
   CHECK((z.heights().array() == 10.0).all());
 }
+
+TEST_CASE("sweep: quick reject of moves above the stock; a move over one high cell still cuts it") {
+  for (const Cutter& c : {Cutter::flat_end(6.0, 2, 0.5), Cutter::ball_end(6.0, 2, 0.5),
+                          Cutter::bull_nose(6.0, 1.0, 2, 0.5)}) {
+    // a block at 5 mm with one pillar at 10 mm
+    MatrixXdR h = MatrixXdR::Constant(100, 100, 5.0);
+    h(80, 20) = 10.0;
+    ZMap z = ZMap::from_heights(h, 0.0, 20.0, 0.0, 20.0, 0.0);
+    CHECK(z.height_bound(0, 99) == 10.0);
+    CHECK(z.height_bound(0, 50) == 5.0);
+    // 5 mm above everything, ramps, level lines, plunges, arcs: nothing visited, nothing changed
+    for (const auto& ab : {std::pair<Vec3, Vec3>{Vec3(-5, 3, 15), Vec3(25, 17, 16)},
+                           std::pair<Vec3, Vec3>{Vec3(2, 2, 15), Vec3(18, 18, 15)},
+                           std::pair<Vec3, Vec3>{Vec3(10, 10, 20), Vec3(10, 10, 15)}}) {
+      const auto st = netshape::stock::sweep_line(z, c, ab.first, ab.second);
+      CHECK(st.moves == 1);
+      CHECK(st.nodes_visited == 0);
+      CHECK(st.nodes_lowered == 0);
+    }
+    CHECK(netshape::stock::sweep_block(z, c, arc_block(Vec3(10, 10, 0), 5.0, 0.0, 3.0, 15.0, 16.0, false))
+              .nodes_visited == 0);
+    // above the 5 mm floor but far from the pillar's rows: rejected too
+    CHECK(netshape::stock::sweep_line(z, c, Vec3(0, 3, 6), Vec3(20, 4, 6)).nodes_visited == 0);
+    CHECK((z.heights().array() == h.array()).all());
+    // at 8 mm over the pillar: it is cut (and only it)
+    const auto st = netshape::stock::sweep_line(z, c, Vec3(0, 16.25, 8), Vec3(20, 16.25, 8));
+    CHECK(st.nodes_visited > 0);
+    CHECK(st.nodes_lowered == 1);
+    CHECK(z.heights()(80, 20) < 10.0);
+    CHECK(z.heights()(80, 20) >= 8.0);
+  }
+  // lazily tightened: after the top has been surfaced from 10 to 5 mm, a move at 6 mm is rejected
+  const Cutter c = Cutter::flat_end(4.0, 2, 0.5);
+  ZMap z(0.0, 20.0, 0.0, 20.0, 0.25, 10.0, 0.0);
+  for (double y = -1.0; y <= 21.0; y += 1.5)
+    netshape::stock::sweep_line(z, c, Vec3(-3, y, 5), Vec3(23, y, 5));
+  CHECK(z.max_height() == 5.0);
+  CHECK(netshape::stock::sweep_line(z, c, Vec3(-3, 10, 6), Vec3(23, 12, 6.5)).nodes_visited == 0);
+  CHECK(z.height_bound(40, 50) == 5.0);  // the bands that move consulted were recomputed
+  // raising a height through heights_mut() marks the bounds stale: the next move cuts it
+  z.heights_mut()(40, 40) = 9.0;
+  CHECK(z.height_bound(0, z.ny() - 1) == std::numeric_limits<double>::infinity());
+  const auto st = netshape::stock::sweep_line(z, c, Vec3(-3, 10.1, 6), Vec3(23, 10.1, 6));
+  CHECK(st.nodes_lowered == 1);
+  CHECK(z.heights()(40, 40) == 6.0);
+}

@@ -60,3 +60,21 @@ def test_bad_input_names_the_field_and_changes_nothing(starts, ends, field):
     with pytest.raises(ValueError, match=field):
         ns.stock.sweep_lines(z, Cutter.flat_end(4.0, 2, 0.5236), starts, ends)
     assert np.all(z.heights == 5.0)
+
+
+@pytest.mark.parametrize("make", [lambda: Cutter.flat_end(6.0, 2, 0.5236), lambda: Cutter.ball_end(6.0, 2, 0.5236)])
+def test_flat_and_ball_ramps_and_level_lines_equal_the_reference_bit_for_bit(make):
+    """The SIMD kernels (ramps and, since they share them, level lines) against the NumPy reference."""
+    from netshape.stock.reference import sweep_line_numpy
+
+    cutter = make()
+    starts, ends = _moves(60, 9)
+    ends[3::5, 2] = starts[3::5, 2]  # more level lines, some along the axes
+    ends[3::10, 1] = starts[3::10, 1]
+    ends[8::10, 0] = starts[8::10, 0]
+    z = ns.stock.ZMap(0, 30, 0, 25, 0.1, 10.0, 0.0)
+    ref = z.heights.copy()
+    ns.stock.sweep_lines(z, cutter, starts, ends)
+    for a, b in zip(starts, ends):
+        sweep_line_numpy(ref, z.x0, z.y0, z.dx, z.dy, z.bottom, cutter, a, b)
+    assert np.array_equal(z.heights, ref)

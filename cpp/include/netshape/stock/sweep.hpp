@@ -29,6 +29,10 @@
 ///              split into chords with at most `SweepOptions::chord_tolerance` deviation, each
 ///              chord swept exactly as a line.
 ///
+/// Quick reject: a move whose tip never goes below the height bound of the rows it covers
+/// (ZMap::height_bound, per band of rows, kept as an upper bound and recomputed lazily) returns at
+/// once with nothing visited: retracts and rapids above the stock cost a few reads per row band.
+///
 /// Cost: only the nodes whose centres can be under the cutter are visited (per row, the X range of
 /// the stadium the line sweeps; for arcs the bounding box of the arc grown by R). No allocation per
 /// move (flat/ball ramps use a per-thread buffer of per-column terms that grows to the widest move).
