@@ -20,8 +20,8 @@ namespace netshape::stock {
 constexpr double kRejectMargin = 1e-9;
 /// A band whose bound is above a move is recomputed exactly once the sweeps since its last exact
 /// bound have booked at least this many times its node count (amortised: at most one read of a
-/// height per node of sweep work).
-constexpr double kRefreshWork = 1.0;
+/// height per 4 nodes of sweep work).
+constexpr double kRefreshWork = 4.0;
 
 /// The sweeps' access to a Z-map (a friend of ZMap): the heights without marking the bounds stale,
 /// and the quick reject.

@@ -47,7 +47,10 @@ ZMap::ZMap(double x0, double x1, double y0, double y1, double spacing, double to
   dy_ = (y1 - y0) / ny_;
   bottom_ = bottom;
   heights_.setConstant(ny_, nx_, top);
-  init_bounds();
+  band_rows_ = nx_ >= 64 ? 1 : (64 + nx_ - 1) / nx_;  // as init_bounds, without the pass over the heights
+  band_max_.assign(static_cast<std::size_t>((ny_ + band_rows_ - 1) / band_rows_), top);
+  band_work_.assign(band_max_.size(), 0);
+  bounds_stale_ = false;
 }
 
 ZMap ZMap::from_heights(const MatrixXdR& heights, double x0, double x1, double y0, double y1, double bottom) {
@@ -94,7 +97,11 @@ void ZMap::init_bounds() {
 
 void ZMap::refresh_band(int b) {
   const int r0 = b * band_rows_, r1 = std::min(ny_, r0 + band_rows_);
-  band_max_[static_cast<std::size_t>(b)] = heights_.middleRows(r0, r1 - r0).maxCoeff();
+  // the band's rows are contiguous: one linear (vectorised) max
+  band_max_[static_cast<std::size_t>(b)] =
+      Eigen::Map<const Eigen::VectorXd>(heights_.data() + static_cast<std::size_t>(r0) * nx_,
+                                        static_cast<Eigen::Index>(r1 - r0) * nx_)
+          .maxCoeff();
   band_work_[static_cast<std::size_t>(b)] = 0;
 }
 

@@ -446,7 +446,7 @@ TEST_CASE("sweep: quick reject of moves above the stock; a move over one high ce
   // lazily tightened: after the top has been surfaced from 10 to 5 mm, a move at 6 mm is rejected
   const Cutter c = Cutter::flat_end(4.0, 2, 0.5);
   ZMap z(0.0, 20.0, 0.0, 20.0, 0.25, 10.0, 0.0);
-  for (double y = -1.0; y <= 21.0; y += 1.5)
+  for (double y = -1.0; y <= 21.0; y += 0.5)  // stepover 0.5 mm: each row band is swept about 8 times
     netshape::stock::sweep_line(z, c, Vec3(-3, y, 5), Vec3(23, y, 5));
   CHECK(z.max_height() == 5.0);
   CHECK(netshape::stock::sweep_line(z, c, Vec3(-3, 10, 6), Vec3(23, 12, 6.5)).nodes_visited == 0);
