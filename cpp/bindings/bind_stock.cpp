@@ -71,6 +71,8 @@ void bind_stock(py::module_& m) {
       .def("volume", &ZMap::volume, "material volume above the bottom [mm^3]")
       .def("min_height", &ZMap::min_height)
       .def("max_height", &ZMap::max_height)
+      .def("height_bound", &ZMap::height_bound, py::arg("i0"), py::arg("i1"),
+           "upper bound of the heights of rows i0..i1 [mm] used by the quick reject (>= their maximum)")
       .def("node_x", &ZMap::node_x, py::arg("j"))
       .def("node_y", &ZMap::node_y, py::arg("i"))
       .def("height_at", py::overload_cast<double, double>(&ZMap::height_at, py::const_), py::arg("x"), py::arg("y"),
@@ -120,6 +122,10 @@ void bind_stock(py::module_& m) {
         py::arg("y"), "lowest z [mm] of the tip surface above (x, y) along the line a -> b (inf if never over it)");
   m.def("sweep_line", &sweep_line, py::arg("zmap"), py::arg("cutter"), py::arg("a"), py::arg("b"),
         py::call_guard<py::gil_scoped_release>(), "sweep the tip along the line a -> b [mm]");
+  m.def("sweep_lines", &sweep_lines, py::arg("zmap"), py::arg("cutter"), py::arg("starts"), py::arg("ends"),
+        py::call_guard<py::gil_scoped_release>(),
+        "sweep the tip along the lines starts[k] -> ends[k] ((n, 3) each [mm]) in order, in one call; "
+        "the same heights as n sweep_line calls, summed stats");
   m.def("sweep_polyline", &sweep_polyline, py::arg("zmap"), py::arg("cutter"), py::arg("points"),
         py::arg("merge_collinear") = true, py::call_guard<py::gil_scoped_release>(),
         "sweep the tip along the polyline through (n, 3) points [mm]");

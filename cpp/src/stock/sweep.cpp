@@ -15,6 +15,46 @@
 
 namespace netshape::stock {
 
+/// Quick reject: a move is skipped when the band bounds of its rows are at least this far below the
+/// lowest point its tip reaches [mm] (covers the rounding of the per-node z, ~1e-14 relative).
+constexpr double kRejectMargin = 1e-9;
+/// A band whose bound is above a move is recomputed exactly once the sweeps since its last exact
+/// bound have booked at least this many times its node count (amortised: at most one read of a
+/// height per 4 nodes of sweep work).
+constexpr double kRefreshWork = 4.0;
+
+/// The sweeps' access to a Z-map (a friend of ZMap): the heights without marking the bounds stale,
+/// and the quick reject.
+struct SweepAccess {
+  static MatrixXdR& heights(ZMap& z) noexcept { return z.heights_; }
+
+  /// True if every height of rows i0 … i1 is at least kRejectMargin below zlow [mm]: a move whose
+  /// cutter never reaches below zlow lowers nothing there. Bands whose bound is above are
+  /// recomputed when their booked work allows (above); when false, `width` nodes per row are booked
+  /// on every band of the rows (the move is swept there).
+  static bool above(ZMap& z, int i0, int i1, double zlow, double width) {
+    if (z.bounds_stale_) z.init_bounds();
+    const double lim = zlow - kRejectMargin;
+    const int br = z.band_rows_, b0 = i0 / br, b1 = i1 / br;
+    const double band_nodes = static_cast<double>(br) * z.nx_;
+    bool ok = true;
+    for (int b = b0; b <= b1; ++b) {
+      const auto k = static_cast<std::size_t>(b);
+      if (z.band_max_[k] <= lim) continue;
+      if (static_cast<double>(z.band_work_[k]) >= kRefreshWork * band_nodes) {
+        z.refresh_band(b);
+        if (z.band_max_[k] <= lim) continue;
+      }
+      ok = false;
+      break;
+    }
+    if (ok) return true;
+    const auto w = static_cast<std::int64_t>(width * br) + 1;
+    for (int b = b0; b <= b1; ++b) z.band_work_[static_cast<std::size_t>(b)] += w;
+    return false;
+  }
+};
+
 namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
@@ -322,7 +362,8 @@ NETSHAPE_INLINE double lift_bound(double dmin, double a0, double half_inv_rc) {
   return e * e * half_inv_rc;
 }
 
-// level line (m = 0), any cutter: the point of the segment nearest to the node, d² = s² + u²
+// level line (m = 0): the point of the segment nearest to the node, d² = s² + u² (bull-nose only; flat
+// and ball level lines go to level_move in ramp_kernel.inc)
 NETSHAPE_SIMD_CLONES void row_level(const LineSetup& s, const TipProfile& p, int kind, double r2, const Row& row,
                                     double bottom, double* __restrict h, RowOut& out) {
   const LineRow L(s, row);
@@ -581,12 +622,14 @@ inline void prefetch_line(const double* p) noexcept {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Flat and ball ramps (most of the lines of a 3-D program): one call per move, with explicit SIMD
-// (AVX-512 or AVX2 intrinsics, chosen once per process from the CPU; plain C++ elsewhere), so the
-// speed does not hang on what the auto-vectoriser makes of a loop at -O2 vs -O3. The kernel is
-// written once (ramp_kernel.inc) and compiled per instruction set. Rows of a move lie nx·8 bytes
-// apart (a new page per row for big grids); the row kAhead rows on is prefetched one cache line per
-// chunk while a row is computed. Per-column terms qx·ex and qx·ey are computed once per move.
+// Flat and ball ramps and level lines (most of the lines of a program): one call per move, with
+// explicit SIMD (AVX-512 or AVX2 intrinsics, chosen once per process from the CPU; plain C++
+// elsewhere), so the speed does not hang on what the auto-vectoriser makes of a loop at -O2 vs -O3.
+// The kernels are written once (ramp_kernel.inc) and compiled per instruction set. The stadium span
+// of every row of the move is computed first, W rows at a time and without division (row_spans);
+// per-column terms qx·ex and qx·ey once per move. Rows of a move lie nx·8 bytes apart (a new page
+// per row for big grids); the row kAhead rows on is prefetched one cache line per chunk while a row
+// is computed.
 // ---------------------------------------------------------------------------------------------
 struct MoveOut {
   double vol = 0.0;          // removed height summed over nodes [mm] (× cell area later)
@@ -594,31 +637,26 @@ struct MoveOut {
   std::int64_t visited = 0;  // nodes of the stadium rows
 };
 
-struct RowSpan {
-  int j0 = 0, j1 = -1;
-  bool has = false;
-};
-
 constexpr int kAhead = 4;  // rows prefetched ahead
-constexpr int kRing = 8;   // > kAhead + 1
+/// Slack of the row spans of ramps [index units]: a node this close outside the stadium is visited
+/// too (the per-node test rejects it), so rounding in the span can never drop a covered node.
+constexpr double kSpanSlack = 1e-6;
 
-// nodes of row i in the stadium, clamped to the move's columns [jlo, jhi]; none past row i1
-inline RowSpan span_of(const ZMap& zm, const LineSetup& s, double r, int i, int i1, int jlo, int jhi) noexcept {
-  RowSpan sp;
-  sp.has = i <= i1 && row_nodes(zm, s, r, i, sp.j0, sp.j1);
-  if (sp.has) {
-    sp.j0 = std::max(sp.j0, jlo);
-    sp.j1 = std::min(sp.j1, jhi);
-    sp.has = sp.j0 <= sp.j1;
-  }
-  return sp;
-}
+/// Per-move constants of the row spans (ramp kernels): end points, direction and its reciprocals
+/// (directions within 1e-15 of an axis use the axis-parallel form instead), grid origin and steps.
+struct SpanSetup {
+  double ax, ay, bx, by, r, r2, ex, ey, len, iex, iey, y0, dy, x0, idx;
+  bool use_ex, use_ey;
+  SpanSetup(const ZMap& zm, const LineSetup& s, double R)
+      : ax(s.ax), ay(s.ay), bx(s.ax + s.len * s.ex), by(s.ay + s.len * s.ey), r(R), r2(R * R), ex(s.ex), ey(s.ey),
+        len(s.len), iex(std::abs(s.ex) >= 1e-15 ? 1.0 / s.ex : 0.0), iey(std::abs(s.ey) >= 1e-15 ? 1.0 / s.ey : 0.0),
+        y0(zm.y0()), dy(zm.dy()), x0(zm.x0()), idx(1.0 / zm.dx()), use_ex(std::abs(s.ex) >= 1e-15),
+        use_ey(std::abs(s.ey) >= 1e-15) {}
+};
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(NETSHAPE_NO_X86_KERNELS)
 #define NETSHAPE_X86_KERNELS 1
 #endif
-
-#define NETSHAPE_SPAN(i) span_of(zm, s, R, (i), i1, jlo, jhi)
 
 #ifdef NETSHAPE_X86_KERNELS
 #pragma GCC push_options
@@ -629,6 +667,10 @@ struct V {
   using M = __mmask8;
   static constexpr int W = 8;
   static D set(double x) { return _mm512_set1_pd(x); }
+  static D iota() { return _mm512_set_pd(7, 6, 5, 4, 3, 2, 1, 0); }
+  static void storeu(double* p, D x) { _mm512_storeu_pd(p, x); }
+  static D floor(D a) { return _mm512_roundscale_pd(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC); }
+  static D ceil(D a) { return _mm512_roundscale_pd(a, _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC); }
   static M valid(int n) { return n >= 8 ? M(0xFF) : M((1u << n) - 1u); }
   static D load(const double* p, M v, bool full) { return full ? _mm512_loadu_pd(p) : _mm512_maskz_loadu_pd(v, p); }
   static void store(double* p, D x, M v, bool full) {
@@ -663,6 +705,10 @@ struct V {
   using M = __m256d;
   static constexpr int W = 4;
   static D set(double x) { return _mm256_set1_pd(x); }
+  static D iota() { return _mm256_set_pd(3, 2, 1, 0); }
+  static void storeu(double* p, D x) { _mm256_storeu_pd(p, x); }
+  static D floor(D a) { return _mm256_floor_pd(a); }
+  static D ceil(D a) { return _mm256_ceil_pd(a); }
   static M valid(int n) {
     return _mm256_castsi256_pd(_mm256_cmpgt_epi64(_mm256_set1_epi64x(n), _mm256_set_epi64x(3, 2, 1, 0)));
   }
@@ -704,6 +750,10 @@ struct V {  // one node at a time, plain C++ (other compilers and CPUs)
   using M = bool;
   static constexpr int W = 1;
   static D set(double x) { return x; }
+  static D iota() { return 0.0; }
+  static void storeu(double* p, D x) { *p = x; }
+  static D floor(D a) { return std::floor(a); }
+  static D ceil(D a) { return std::ceil(a); }
   static M valid(int n) { return n > 0; }
   static D load(const double* p, M, bool) { return *p; }
   static void store(double* p, D x, M, bool) { *p = x; }
@@ -725,7 +775,6 @@ struct V {  // one node at a time, plain C++ (other compilers and CPUs)
 };
 #include "ramp_kernel.inc"
 }  // namespace k64
-#undef NETSHAPE_SPAN
 
 enum class Isa { plain, avx2, avx512 };
 
@@ -750,7 +799,7 @@ Isa ramp_isa() {
   return isa;
 }
 
-// Sweep a flat or ball ramp over rows i0 … i1.
+// Sweep a flat or ball ramp or level line over rows i0 … i1.
 template <int Kind>
 void ramp_rows(ZMap& zm, const LineSetup& s, double R, int i0, int i1, SweepStats& st) {
   // the columns the move can reach, widened to whole chunks of 8 and padded so that chunk loads of
@@ -770,16 +819,29 @@ void ramp_rows(ZMap& zm, const LineSetup& s, double R, int i0, int i1, SweepStat
     tqx[k] = qx * s.ex;
     spx[k] = qx * s.ey;
   }
+  const int nrows = i1 - i0 + 1;
+  thread_local std::vector<int> spans;  // j0, j1 of each row of the move
+  if (static_cast<int>(spans.size()) < 2 * nrows + 16) spans.resize(2 * static_cast<std::size_t>(nrows) + 16);
+  int* j0s = spans.data();
+  int* j1s = spans.data() + nrows + 8;
+  const SpanSetup q(zm, s, R);
   MoveOut mo;
-  double* H = zm.heights_mut().data();
+  double* H = SweepAccess::heights(zm).data();
   const double bottom = zm.bottom();
+  const bool up = s.m >= 0.0;
+#define NETSHAPE_RAMP(ns)                                                                                   \
+  ns::row_spans(q, i0, nrows, jlo, jhi, j0s, j1s);                                                          \
+  if (s.m == 0.0) ns::level_move<Kind>(zm, H, s, R, i0, i1, j0s, j1s, bottom, tqx, spx, cmin, mo);          \
+  else if (up) ns::ramp_move<Kind, true>(zm, H, s, R, i0, i1, j0s, j1s, bottom, tqx, spx, cmin, mo);        \
+  else ns::ramp_move<Kind, false>(zm, H, s, R, i0, i1, j0s, j1s, bottom, tqx, spx, cmin, mo);
   switch (ramp_isa()) {
 #ifdef NETSHAPE_X86_KERNELS
-    case Isa::avx512: k512::ramp_move<Kind>(zm, H, s, R, i0, i1, jlo, jhi, bottom, tqx, spx, cmin, mo); break;
-    case Isa::avx2: k256::ramp_move<Kind>(zm, H, s, R, i0, i1, jlo, jhi, bottom, tqx, spx, cmin, mo); break;
+    case Isa::avx512: NETSHAPE_RAMP(k512) break;
+    case Isa::avx2: NETSHAPE_RAMP(k256) break;
 #endif
-    default: k64::ramp_move<Kind>(zm, H, s, R, i0, i1, jlo, jhi, bottom, tqx, spx, cmin, mo); break;
+    default: NETSHAPE_RAMP(k64) break;
   }
+#undef NETSHAPE_RAMP
   st.nodes_visited += mo.visited;
   st.removed_volume += mo.vol;
   st.nodes_lowered += mo.lowered;
@@ -790,10 +852,15 @@ void sweep_line_k(ZMap& zm, const TipProfile& p, const LineSetup& s, double ylo,
   const double r = p.radius, r2 = r * r;
   int i0, i1;
   if (!node_range(ylo - r, yhi + r, zm.y0(), zm.dy(), zm.ny(), i0, i1)) return;
-  MatrixXdR& H = zm.heights_mut();
+  {  // quick reject: the tip never goes below min(A_z, B_z) (the profile only adds lift)
+    const double zlow = s.vertical ? s.zv : std::min(s.az, s.az + s.m * s.len);
+    const double width = std::min(static_cast<double>(zm.nx()), (std::abs(s.len * s.ex) + 2.0 * r) / zm.dx() + 1.0);
+    if (SweepAccess::above(zm, i0, i1, zlow, width)) return;
+  }
+  MatrixXdR& H = SweepAccess::heights(zm);
   const Eigen::Index nx = zm.nx();
   const double bottom = zm.bottom();
-  if (Kind != kBull && !s.vertical && s.m != 0.0) {
+  if (Kind != kBull && !s.vertical) {  // flat and ball ramps and level lines: the SIMD kernels
     ramp_rows<Kind>(zm, s, r, i0, i1, st);
     return;
   }
@@ -972,7 +1039,9 @@ void sweep_arc_k(ZMap& zm, const TipProfile& p, const ArcSetup& s, SweepStats& s
   int i0, i1, j0, j1;
   if (!node_range(ylo - R, yhi + R, zm.y0(), zm.dy(), zm.ny(), i0, i1)) return;
   if (!node_range(xlo - R, xhi + R, zm.x0(), zm.dx(), zm.nx(), j0, j1)) return;
-  MatrixXdR& H = zm.heights_mut();
+  // quick reject: the tip z is linear in the angle, lowest at an end
+  if (SweepAccess::above(zm, i0, i1, std::min(s.z0, s.z0 + s.kz * s.total), j1 - j0 + 1.0)) return;
+  MatrixXdR& H = SweepAccess::heights(zm);
   const double bottom = zm.bottom();
   for (int i = i0; i <= i1; ++i) {
     const double y = zm.node_y(i);
@@ -1019,6 +1088,38 @@ SweepStats sweep_line(ZMap& zmap, const cutter::Cutter& cutter, const Vec3& a, c
   check_point("line.start", a);
   check_point("line.end", b);
   return sweep_line_impl(zmap, TipProfile::of(cutter), kind_of(cutter), a, b);
+}
+
+SweepStats sweep_lines(ZMap& zmap, const cutter::Cutter& cutter, const Eigen::Ref<const MatrixXdR>& starts,
+                       const Eigen::Ref<const MatrixXdR>& ends) {
+  cutter.validate();
+  NETSHAPE_CHECK(starts.cols() == 3, "starts.shape[1]", starts.cols(), "must be 3 (x, y, z) [mm]");
+  NETSHAPE_CHECK(ends.cols() == 3, "ends.shape[1]", ends.cols(), "must be 3 (x, y, z) [mm]");
+  if (ends.rows() != starts.rows()) {
+    const std::string req = "must equal starts.shape[0] = " + std::to_string(starts.rows());
+    NETSHAPE_CHECK(false, "ends.shape[0]", ends.rows(), req.c_str());
+  }
+  const Eigen::Index n = starts.rows();
+  for (Eigen::Index k = 0; k < n; ++k)
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(starts(k, c))) {
+        const std::string f = "starts[" + std::to_string(k) + ", " + std::to_string(c) + "]";
+        NETSHAPE_CHECK_FINITE(f.c_str(), starts(k, c));
+      }
+      if (!std::isfinite(ends(k, c))) {
+        const std::string f = "ends[" + std::to_string(k) + ", " + std::to_string(c) + "]";
+        NETSHAPE_CHECK_FINITE(f.c_str(), ends(k, c));
+      }
+    }
+  const TipProfile p = TipProfile::of(cutter);
+  const ProfileKind kind = kind_of(cutter);
+  SweepStats st;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Vec3 a(starts(k, 0), starts(k, 1), starts(k, 2));
+    const Vec3 b(ends(k, 0), ends(k, 1), ends(k, 2));
+    st += sweep_line_impl(zmap, p, kind, a, b);
+  }
+  return st;
 }
 
 SweepStats sweep_polyline(ZMap& zmap, const cutter::Cutter& cutter, const Eigen::Ref<const Points3>& points,

@@ -47,6 +47,10 @@ ZMap::ZMap(double x0, double x1, double y0, double y1, double spacing, double to
   dy_ = (y1 - y0) / ny_;
   bottom_ = bottom;
   heights_.setConstant(ny_, nx_, top);
+  band_rows_ = nx_ >= 64 ? 1 : (64 + nx_ - 1) / nx_;  // as init_bounds, without the pass over the heights
+  band_max_.assign(static_cast<std::size_t>((ny_ + band_rows_ - 1) / band_rows_), top);
+  band_work_.assign(band_max_.size(), 0);
+  bounds_stale_ = false;
 }
 
 ZMap ZMap::from_heights(const MatrixXdR& heights, double x0, double x1, double y0, double y1, double bottom) {
@@ -79,6 +83,35 @@ void ZMap::set_heights(const MatrixXdR& heights) {
     NETSHAPE_CHECK(h >= bottom_, "zmap.heights", h, "must not be below the bottom [mm]");
   }
   heights_ = heights;
+  init_bounds();
+}
+
+void ZMap::init_bounds() {
+  band_rows_ = nx_ >= 64 ? 1 : (64 + nx_ - 1) / nx_;
+  const int nb = (ny_ + band_rows_ - 1) / band_rows_;
+  band_max_.assign(static_cast<std::size_t>(nb), 0.0);
+  band_work_.assign(static_cast<std::size_t>(nb), 0);
+  for (int b = 0; b < nb; ++b) refresh_band(b);
+  bounds_stale_ = false;
+}
+
+void ZMap::refresh_band(int b) {
+  const int r0 = b * band_rows_, r1 = std::min(ny_, r0 + band_rows_);
+  // the band's rows are contiguous: one linear (vectorised) max
+  band_max_[static_cast<std::size_t>(b)] =
+      Eigen::Map<const Eigen::VectorXd>(heights_.data() + static_cast<std::size_t>(r0) * nx_,
+                                        static_cast<Eigen::Index>(r1 - r0) * nx_)
+          .maxCoeff();
+  band_work_[static_cast<std::size_t>(b)] = 0;
+}
+
+double ZMap::height_bound(int i0, int i1) const noexcept {
+  if (bounds_stale_) return std::numeric_limits<double>::infinity();
+  i0 = std::max(i0, 0);
+  i1 = std::min(i1, ny_ - 1);
+  double m = -std::numeric_limits<double>::infinity();
+  for (int b = i0 / band_rows_; b <= i1 / band_rows_ && i0 <= i1; ++b) m = std::max(m, band_max_[static_cast<std::size_t>(b)]);
+  return m;
 }
 
 double ZMap::volume() const noexcept { return (heights_.array() - bottom_).sum() * dx_ * dy_; }

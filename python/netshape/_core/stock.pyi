@@ -4,7 +4,7 @@ import netshape._core.toolpath
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Immersion', 'ImmersionOptions', 'SweepOptions', 'SweepStats', 'TipProfile', 'ZMap', 'cutting_frame', 'element_point', 'engaged_elements', 'immersion', 'lowest_reach_line', 'stl_triangle_count', 'sweep', 'sweep_block', 'sweep_line', 'sweep_polyline', 'write_stl']
+__all__: list[str] = ['Immersion', 'ImmersionOptions', 'SweepOptions', 'SweepStats', 'TipProfile', 'ZMap', 'cutting_frame', 'element_point', 'engaged_elements', 'immersion', 'lowest_reach_line', 'stl_triangle_count', 'sweep', 'sweep_block', 'sweep_line', 'sweep_lines', 'sweep_polyline', 'write_stl']
 class ZMap:
     """
     Z-map workpiece: node heights [mm] on a cell-centred grid over [x0, x1] x [y0, y1] [mm].
@@ -43,6 +43,10 @@ class ZMap:
     def height_at_points(self, points: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]", "flags.c_contiguous"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
         (n,) bilinear heights at (n, 2|3) points
+        """
+    def height_bound(self, i0: typing.SupportsInt | typing.SupportsIndex, i1: typing.SupportsInt | typing.SupportsIndex) -> float:
+        """
+        upper bound of the heights of rows i0..i1 [mm] used by the quick reject (>= their maximum)
         """
     def is_material(self, p: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> bool:
         """
@@ -240,6 +244,10 @@ def sweep_block(zmap: ZMap, cutter: netshape._core.cutter.Cutter, block: netshap
 def sweep_line(zmap: ZMap, cutter: netshape._core.cutter.Cutter, a: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], b: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> SweepStats:
     """
     sweep the tip along the line a -> b [mm]
+    """
+def sweep_lines(zmap: ZMap, cutter: netshape._core.cutter.Cutter, starts: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]", "flags.c_contiguous"], ends: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]", "flags.c_contiguous"]) -> SweepStats:
+    """
+    sweep the tip along the lines starts[k] -> ends[k] ((n, 3) each [mm]) in order, in one call; the same heights as n sweep_line calls, summed stats
     """
 def sweep_polyline(zmap: ZMap, cutter: netshape._core.cutter.Cutter, points: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], merge_collinear: bool = True) -> SweepStats:
     """

@@ -39,6 +39,7 @@ ImmersionOptions = _stock.ImmersionOptions
 
 lowest_reach_line = _stock.lowest_reach_line
 sweep_line = _stock.sweep_line
+sweep_lines = _stock.sweep_lines
 sweep_polyline = _stock.sweep_polyline
 sweep_block = _stock.sweep_block
 sweep = _stock.sweep
@@ -106,6 +107,7 @@ __all__ = [
     "ImmersionOptions",
     "lowest_reach_line",
     "sweep_line",
+    "sweep_lines",
     "sweep_polyline",
     "sweep_block",
     "sweep",

@@ -369,3 +369,92 @@ TEST_CASE("sweep: the SIMD row kernels over the stadium rows equal the per-node 
     CHECK(lowered > 1000);
   }
 }
+
+TEST_CASE("sweep: sweep_lines equals one sweep_line per move, bit for bit; bad shapes are rejected") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  for (const Cutter& c : {Cutter::flat_end(6.0, 2, 0.5), Cutter::ball_end(6.0, 2, 0.5),
+                          Cutter::bull_nose(6.0, 1.0, 2, 0.5)}) {
+    for (int n : {0, 1, 30}) {
+      MatrixXdR a(n, 3), b(n, 3);
+      for (int k = 0; k < n; ++k) {
+        a.row(k) << 25 * U(rng), 25 * U(rng), 5 + 5 * U(rng);
+        b.row(k) << 25 * U(rng), 25 * U(rng), 5 + 5 * U(rng);
+        if (k % 4 == 1) b(k, 2) = a(k, 2);
+      }
+      ZMap one(0.0, 25.0, 0.0, 25.0, 0.15, 12.0, 0.0);
+      ZMap batch = one;
+      std::int64_t visited = 0, lowered = 0;
+      for (int k = 0; k < n; ++k) {
+        const auto st = netshape::stock::sweep_line(one, c, a.row(k).transpose(), b.row(k).transpose());
+        visited += st.nodes_visited;
+        lowered += st.nodes_lowered;
+      }
+      const auto st = netshape::stock::sweep_lines(batch, c, a, b);
+      CHECK(st.moves == n);
+      CHECK(st.nodes_visited == visited);
+      CHECK(st.nodes_lowered == lowered);
+      CHECK((batch.heights().array() == one.heights().array()).all());
+    }
+  }
+  ZMap z(0.0, 10.0, 0.0, 10.0, 0.1, 10.0, 0.0);
+  const Cutter c = Cutter::flat_end(6.0, 2, 0.5);
+  MatrixXdR two(2, 2), three(2, 3), four(3, 3);
+  two.setZero();
+  three.setZero();
+  four.setZero();
+  CHECK_THROWS_WITH_AS(netshape::stock::sweep_lines(z, c, two, three), doctest::Contains("starts.shape[1]"),
+                       std::invalid_argument);
+  CHECK_THROWS_WITH_AS(netshape::stock::sweep_lines(z, c, three, four), doctest::Contains("ends.shape[0]"),
+                       std::invalid_argument);
+  three(1, 2) = std::nan("");
+  CHECK_THROWS_WITH_AS(netshape::stock::sweep_lines(z, c, three, three), doctest::Contains("starts[1, 2]"),
+                       std::invalid_argument);
+  CHECK((z.heights().array() == 10.0).all());
+}
+
+TEST_CASE("sweep: quick reject of moves above the stock; a move over one high cell still cuts it") {
+  for (const Cutter& c : {Cutter::flat_end(6.0, 2, 0.5), Cutter::ball_end(6.0, 2, 0.5),
+                          Cutter::bull_nose(6.0, 1.0, 2, 0.5)}) {
+    // a block at 5 mm with one pillar at 10 mm
+    MatrixXdR h = MatrixXdR::Constant(100, 100, 5.0);
+    h(80, 20) = 10.0;
+    ZMap z = ZMap::from_heights(h, 0.0, 20.0, 0.0, 20.0, 0.0);
+    CHECK(z.height_bound(0, 99) == 10.0);
+    CHECK(z.height_bound(0, 50) == 5.0);
+    // 5 mm above everything, ramps, level lines, plunges, arcs: nothing visited, nothing changed
+    for (const auto& ab : {std::pair<Vec3, Vec3>{Vec3(-5, 3, 15), Vec3(25, 17, 16)},
+                           std::pair<Vec3, Vec3>{Vec3(2, 2, 15), Vec3(18, 18, 15)},
+                           std::pair<Vec3, Vec3>{Vec3(10, 10, 20), Vec3(10, 10, 15)}}) {
+      const auto st = netshape::stock::sweep_line(z, c, ab.first, ab.second);
+      CHECK(st.moves == 1);
+      CHECK(st.nodes_visited == 0);
+      CHECK(st.nodes_lowered == 0);
+    }
+    CHECK(netshape::stock::sweep_block(z, c, arc_block(Vec3(10, 10, 0), 5.0, 0.0, 3.0, 15.0, 16.0, false))
+              .nodes_visited == 0);
+    // above the 5 mm floor but far from the pillar's rows: rejected too
+    CHECK(netshape::stock::sweep_line(z, c, Vec3(0, 3, 6), Vec3(20, 4, 6)).nodes_visited == 0);
+    CHECK((z.heights().array() == h.array()).all());
+    // at 8 mm over the pillar: it is cut (and only it)
+    const auto st = netshape::stock::sweep_line(z, c, Vec3(0, 16.25, 8), Vec3(20, 16.25, 8));
+    CHECK(st.nodes_visited > 0);
+    CHECK(st.nodes_lowered == 1);
+    CHECK(z.heights()(80, 20) < 10.0);
+    CHECK(z.heights()(80, 20) >= 8.0);
+  }
+  // lazily tightened: after the top has been surfaced from 10 to 5 mm, a move at 6 mm is rejected
+  const Cutter c = Cutter::flat_end(4.0, 2, 0.5);
+  ZMap z(0.0, 20.0, 0.0, 20.0, 0.25, 10.0, 0.0);
+  for (double y = -1.0; y <= 21.0; y += 0.5)  // stepover 0.5 mm: each row band is swept about 8 times
+    netshape::stock::sweep_line(z, c, Vec3(-3, y, 5), Vec3(23, y, 5));
+  CHECK(z.max_height() == 5.0);
+  CHECK(netshape::stock::sweep_line(z, c, Vec3(-3, 10, 6), Vec3(23, 12, 6.5)).nodes_visited == 0);
+  CHECK(z.height_bound(40, 50) == 5.0);  // the bands that move consulted were recomputed
+  // raising a height through heights_mut() marks the bounds stale: the next move cuts it
+  z.heights_mut()(40, 40) = 9.0;
+  CHECK(z.height_bound(0, z.ny() - 1) == std::numeric_limits<double>::infinity());
+  const auto st = netshape::stock::sweep_line(z, c, Vec3(-3, 10.1, 6), Vec3(23, 10.1, 6));
+  CHECK(st.nodes_lowered == 1);
+  CHECK(z.heights()(40, 40) == 6.0);
+}

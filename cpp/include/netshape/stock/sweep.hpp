@@ -29,6 +29,10 @@
 ///              split into chords with at most `SweepOptions::chord_tolerance` deviation, each
 ///              chord swept exactly as a line.
 ///
+/// Quick reject: a move whose tip never goes below the height bound of the rows it covers
+/// (ZMap::height_bound, per band of rows, kept as an upper bound and recomputed lazily) returns at
+/// once with nothing visited: retracts and rapids above the stock cost a few reads per row band.
+///
 /// Cost: only the nodes whose centres can be under the cutter are visited (per row, the X range of
 /// the stadium the line sweeps; for arcs the bounding box of the arc grown by R). No allocation per
 /// move (flat/ball ramps use a per-thread buffer of per-column terms that grows to the widest move).
@@ -68,6 +72,13 @@ double lowest_reach_line(const TipProfile& profile, const Vec3& a, const Vec3& b
 
 /// Sweep the cutter tip along the straight line a → b [mm].
 SweepStats sweep_line(ZMap& zmap, const cutter::Cutter& cutter, const Vec3& a, const Vec3& b);
+
+/// Sweep the cutter tip along n straight lines starts(k) → ends(k) [mm], in order: the same heights
+/// bit for bit as n calls of sweep_line, with the summed stats (moves = n), without a per-move call
+/// from Python. starts and ends are (n, 3) (n ≥ 0; n = 0 does nothing); all input is checked
+/// (shapes, finite) before any height changes.
+SweepStats sweep_lines(ZMap& zmap, const cutter::Cutter& cutter, const Eigen::Ref<const MatrixXdR>& starts,
+                       const Eigen::Ref<const MatrixXdR>& ends);
 
 /// Sweep along the polyline through the (n, 3) points [mm] (n ≥ 1; one point = a stationary cut).
 /// The fast path for many short blocks: one call, no per-block overhead; with `merge_collinear`

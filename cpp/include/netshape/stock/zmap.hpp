@@ -20,6 +20,7 @@
 ///   to the outermost nodes within the footprint); use it to measure or plot the surface.
 
 #include <cstdint>
+#include <vector>
 
 #include "netshape/core/types.hpp"
 
@@ -61,8 +62,12 @@ class ZMap {
   // --- heights ---------------------------------------------------------------------------------
   /// (ny, nx) node heights [mm], row-major.
   const MatrixXdR& heights() const noexcept { return heights_; }
-  /// Mutable heights for the sweep kernels. Keep them finite and ≥ bottom.
-  MatrixXdR& heights_mut() noexcept { return heights_; }
+  /// Mutable heights. Keep them finite and ≥ bottom. Handing them out marks the height bounds of
+  /// the quick reject (below) stale; the next sweep recomputes them.
+  MatrixXdR& heights_mut() noexcept {
+    bounds_stale_ = true;
+    return heights_;
+  }
   /// Replace all heights (same shape, finite, ≥ bottom) [mm].
   void set_heights(const MatrixXdR& heights);
   /// Material volume above the bottom, pillar model [mm³].
@@ -86,8 +91,23 @@ class ZMap {
   /// Bulk `is_material` over (n, 3) points → (n,) bool.
   VectorXb is_material_points(const Eigen::Ref<const Points3>& p) const;
 
+  // --- height bounds (quick reject of moves above the stock) -------------------------------------
+  /// Rows per band of the height bounds (≥ 1; one row when nx ≥ 64).
+  int band_rows() const noexcept { return band_rows_; }
+  /// Upper bound of the heights of rows i0 … i1 [mm] (≥ their true maximum; exact after
+  /// construction and set_heights, and for bands refreshed since; sweeps only lower heights, so the
+  /// bound stays valid without being updated).
+  double height_bound(int i0, int i1) const noexcept;
+
  private:
+  friend struct SweepAccess;  // the sweeps (sweep.cpp): heights without staling the bounds, bounds
   ZMap() = default;
+  void init_bounds();           // band sizes and exact bounds from the heights
+  void refresh_band(int b);     // exact bound of band b
+  int band_rows_ = 1;
+  std::vector<double> band_max_;          // per band of band_rows_ rows: upper bound of the heights [mm]
+  std::vector<std::int64_t> band_work_;   // per band: nodes swept there since its bound was exact
+  bool bounds_stale_ = false;             // heights_mut() was handed out: bounds unknown
   double x0_ = 0, x1_ = 0, y0_ = 0, y1_ = 0, dx_ = 1, dy_ = 1, bottom_ = 0;
   int nx_ = 0, ny_ = 0;
   MatrixXdR heights_;
