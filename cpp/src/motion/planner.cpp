@@ -190,18 +190,7 @@ void blend_lines(Segment& s, const Vec3& p0, const Vec3& vtx, const Vec3& p3, co
     t[i] = (ta[i] * x1 + tb[i] * x2).abs();
     k[i] = (ka[i] * x1 + kb[i] * x2).abs();
   }
-  double rn = 0.0, rd = 1.0;
-  s.curvature = k_at[0];
-  for (int i = 1; i <= 16; ++i) {
-    s.curvature = std::max(s.curvature, k_at[i]);
-    const double ds = s.table[i] - s.table[i - 1], dk = std::abs(k_at[i] - k_at[i - 1]);
-    if (ds > 0 && dk * rd > rn * ds) {
-      rn = dk;
-      rd = ds;
-    }
-  }
-  s.curvature_rate = rn / rd;
-  s.full_length = s.table[16];
+  finish_blend(s, k_at);
 }
 
 // Bounds of a blend piece over the table nodes i0..i1 from per-axis node values t, k (as BlendBounds:
@@ -510,6 +499,30 @@ double Planner::curvature_step_speed(const Vec3& dk) const noexcept {
   return v;
 }
 
+// A blend piece over the table nodes i0..i1 of `whole`, written in place (a Node is large: no
+// temporary and copy). slim: the node keeps kind, trims, length, curvature and source only and the
+// geometry stays in blends_; else it holds the whole segment. Bounds, speeds and reach: the caller.
+void Planner::init_blend_piece(Node& bn, const Segment& whole, int i0, int i1, long source, double vfeed,
+                               bool slim) noexcept {
+  if (slim) {
+    bn.seg.kind = SegmentKind::blend;
+    bn.seg.full_length = whole.full_length;
+    bn.seg.curvature = whole.curvature;
+    bn.seg.curvature_rate = whole.curvature_rate;
+    bn.seg.source = whole.source;
+  } else {
+    bn.seg = whole;
+  }
+  bn.slim = slim;
+  bn.pre = false;
+  bn.seg.trim_start = whole.table[static_cast<std::size_t>(i0)];
+  bn.seg.trim_end = whole.full_length - whole.table[static_cast<std::size_t>(i1)];
+  bn.blk = source;
+  bn.fcap = vfeed;
+  bn.res_s = bn.res_e = 0.0;
+  bn.jump_s = bn.jump_e = bn.spike_s = bn.spike_e = bn.tail_trim = bn.provisional = false;
+}
+
 // The blend of a corner between two lines without jerk limits (blend_lines), cut into pieces at the
 // table nodes cuts_lines; each piece is written in place in the ring with its bounds, its reach
 // coefficients (Quick) and the coefficients freeze_next() needs for its peak speed and tangential
@@ -555,19 +568,8 @@ void Planner::push_line_blend(long source, long psource, const Vec3& p0, const V
     const int i0 = cut[k], i1 = cut[k + 1];
     const std::size_t slot = static_cast<std::size_t>(tail_ % cap_);
     Node& bn = ring_[slot];
-    bn.seg.kind = SegmentKind::blend;
-    bn.seg.full_length = whole.full_length;
-    bn.seg.curvature = whole.curvature;
-    bn.seg.curvature_rate = whole.curvature_rate;
-    bn.seg.source = whole.source;
-    bn.slim = true;
+    init_blend_piece(bn, whole, i0, i1, source, vfeed, true);
     bn.pre = true;
-    bn.seg.trim_start = whole.table[static_cast<std::size_t>(i0)];
-    bn.seg.trim_end = whole.full_length - whole.table[static_cast<std::size_t>(i1)];
-    bn.blk = source;
-    bn.fcap = vfeed;
-    bn.res_s = bn.res_e = 0.0;
-    bn.jump_s = bn.jump_e = bn.spike_s = bn.spike_e = bn.tail_trim = bn.provisional = false;
     bn.U = Up[k];
     bn.K = Kp[k];
     bn.curved = true;
@@ -727,24 +729,8 @@ Status Planner::push(const toolpath::Block& b) noexcept {
       // built in place in the ring (a Node is large: no temporary and copy)
       const std::size_t slot = static_cast<std::size_t>(tail_ % cap_);
       Node& bn = ring_[slot];
-      if (jerk_mode) {
-        bn.seg = whole;
-        bn.slim = false;
-      } else {  // the geometry stays in blends_ (copy_segment / seg_of)
-        bn.seg.kind = SegmentKind::blend;
-        bn.seg.full_length = whole.full_length;
-        bn.seg.curvature = whole.curvature;
-        bn.seg.curvature_rate = whole.curvature_rate;
-        bn.seg.source = whole.source;
-        bn.slim = true;
-      }
-      bn.seg.trim_start = whole.table[static_cast<std::size_t>(i0)];
-      bn.seg.trim_end = whole.full_length - whole.table[static_cast<std::size_t>(i1)];
-      bn.blk = source;
-      bn.fcap = vfeed;
-      bn.res_s = bn.res_e = 0.0;
-      bn.jump_s = bn.jump_e = bn.spike_s = bn.spike_e = bn.tail_trim = bn.provisional = false;
-      bn.pre = false;
+      // jerk mode: the node keeps the whole geometry; else it stays in blends_ (copy_segment / seg_of)
+      init_blend_piece(bn, whole, i0, i1, source, vfeed, !jerk_mode);
       tab.bounds(i0, i1, bn.U, bn.K);
       bn.vmax = vfeed;
       if (jerk_mode) {

@@ -110,6 +110,11 @@ Segment Segment::blend(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec
     if (tangent) (*tangent)[static_cast<std::size_t>(i)] = tn;
     if (curvature_vector) (*curvature_vector)[static_cast<std::size_t>(i)] = kv;
   }
+  finish_blend(s, k_at);
+  return s;
+}
+
+void finish_blend(Segment& s, const double (&k_at)[17]) noexcept {
   // largest curvature and |dκ/ds| between neighbouring nodes (fractions compared by cross-multiplying,
   // one division)
   double rn = 0.0, rd = 1.0;
@@ -124,7 +129,6 @@ Segment Segment::blend(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec
   }
   s.curvature_rate = rn / rd;
   s.full_length = s.table[16];
-  return s;
 }
 
 double Segment::bezier_u(double s) const noexcept {

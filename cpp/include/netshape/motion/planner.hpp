@@ -132,6 +132,7 @@ class Planner {
   void set_params(Node& n) const noexcept;
   double reach_sq(const Quick& n, double w0) const noexcept;
   void split_tail() noexcept;
+  void init_blend_piece(Node& bn, const Segment& whole, int i0, int i1, long source, double vfeed, bool slim) noexcept;
   void push_line_blend(long source, long psource, const Vec3& p0, const Vec3& vtx, const Vec3& p3, const Vec3& u1, const Vec3& u2,
                        double d, double vfeed, double& v_prev) noexcept;
   void append(const Node& n) noexcept;

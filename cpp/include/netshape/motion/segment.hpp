@@ -50,6 +50,10 @@ struct Segment {
   double bezier_u(double s) const noexcept;
 };
 
+/// Blend `s` with its arc-length table filled: sets its largest curvature, largest |dκ/ds| between
+/// neighbouring table nodes and its length, from the curvature at the 17 table nodes [1/mm].
+void finish_blend(Segment& s, const double (&k_at)[17]) noexcept;
+
 /// Bézier point and first two derivatives with respect to u.
 Vec3 bezier_point(const std::array<Vec3, 4>& c, double u) noexcept;
 Vec3 bezier_d1(const std::array<Vec3, 4>& c, double u) noexcept;
