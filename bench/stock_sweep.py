@@ -116,12 +116,13 @@ def surfacing(cutter, spacing: float = 0.1, numpy_reference: bool = False) -> di
     return out
 
 
-def main() -> None:
+def main(argv=None) -> dict:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--quick", action="store_true", help="fewer moves (a smoke run)")
     p.add_argument("--repeats", type=int, default=3, help="best of this many runs (CPU time)")
     p.add_argument("--no-numpy-program", action="store_true", help="skip the NumPy run of the 10 000-block program")
-    args = p.parse_args()
+    args = p.parse_args(argv)
+    results: dict = {}
     rng = np.random.default_rng(0)
     n = 40 if args.quick else 300
     moves = random_moves(n, rng, 20.0)
@@ -131,6 +132,7 @@ def main() -> None:
     for name, cutter in [("flat D10", ns.stock.Cutter.flat_end(10.0, 2, 0.5236)), ("ball D10", ns.stock.Cutter.ball_end(10.0, 2, 0.5236)),
                          ("bull D10 r2", ns.stock.Cutter.bull_nose(10.0, 2.0, 2, 0.5236))]:
         r = throughput(cutter, moves, 0.1, repeats=args.repeats)
+        results[f"ramps {name}"] = r
         print(f"  {name:12s} C++ {r['cpp_node_updates_per_s'] / 1e6:7.1f} M node updates/s (stadium rows)  "
               f"NumPy {r['numpy_node_updates_per_s'] / 1e6:6.1f} M/s (bounding box, {r['numpy_nodes'] / r['cpp_nodes']:.2f}x the nodes)  "
               f"time ratio {r['ratio']:6.1f}x  (CPU best of {args.repeats}: C++ {r['cpp_s']:.3f} s, NumPy {r['numpy_s']:.3f} s, "
@@ -152,10 +154,11 @@ def main() -> None:
     print(f"  moves >= 5 mm above the stock (ball D10, {len(moves)} moves): {t_batch / len(moves) * 1e6:.2f} us per move "
           f"in one sweep_lines call, {t_one / len(moves) * 1e6:.2f} us per sweep_line call; nodes visited {st.nodes_visited}")
     if args.quick:
-        return
+        return results
     print("10 000-block raster surfacing program (G1 0.5 mm blocks, 50 rows, stepover 2 mm), 100 x 100 mm, 0.1 mm grid")
     for name, cutter in [("ball D10", ns.stock.Cutter.ball_end(10.0, 2, 0.5236)), ("flat D10", ns.stock.Cutter.flat_end(10.0, 2, 0.5236))]:
         r = surfacing(cutter, numpy_reference=not args.no_numpy_program)
+        results[f"surfacing {name}"] = r
         print(f"  {name:9s} grid {r['grid']}, {r['feed_blocks']} feed blocks: per block {r['per_block_s']:.3f} s "
               f"({r['per_block_node_updates_per_s'] / 1e6:.0f} M node updates/s); collinear runs merged "
               f"{r['merged_s']:.3f} s ({r['merged_moves']} moves)")
@@ -164,6 +167,7 @@ def main() -> None:
                   f"{r['numpy_per_block_s'] / r['per_block_s']:.1f}x per block, "
                   f"{r['numpy_per_block_s'] / r['merged_s']:.0f}x with merging "
                   f"(max |diff| {r['numpy_max_abs_diff_mm']:.1e} mm)")
+    return results
 
 
 if __name__ == "__main__":
