@@ -31,15 +31,21 @@ double reach_speed(double v, double length, double a, double j) noexcept {
 }
 
 namespace {
+// The constant-speed windows at the ends (a window only where that end speed is > 0, the start's
+// first, together at most the length) clipped in place; returns the length left for the ramps [mm].
+inline double fit_windows(double length, double vs, double ve, double& ws, double& we) noexcept {
+  ws = vs > 0 ? std::min(ws, length) : 0.0;
+  we = ve > 0 ? std::min(we, length - ws) : 0.0;
+  return std::max(0.0, length - ws - we);
+}
+
 // Profile::make for the trapezoid (j = +inf): the same construction with a reciprocal of a and one
 // division for the cruise, since this runs for every segment (and blend piece) at freeze time
 Profile make_trapezoid(double length, double vs, double ve, double vmax, double a, double ws, double we) noexcept {
   Profile p;
   p.vs = vs;
   p.ve = ve;
-  ws = vs > 0 ? std::min(ws, length) : 0.0;
-  we = ve > 0 ? std::min(we, length - ws) : 0.0;
-  const double lr = std::max(0.0, length - ws - we);
+  const double lr = fit_windows(length, vs, ve, ws, we);
   const double vlow = std::max(vs, ve);
   const double s2 = vs * vs + ve * ve;
   double vp = std::sqrt(std::max(0.0, (2.0 * a * lr + s2) / 2.0));
@@ -78,9 +84,7 @@ Profile Profile::make(double length, double vs, double ve, double vmax, double a
   p.ve = ve;
   p.a = a;
   p.j = j;
-  ws = vs > 0 ? std::min(ws, length) : 0.0;
-  we = ve > 0 ? std::min(we, length - ws) : 0.0;
-  const double lr = std::max(0.0, length - ws - we);
+  const double lr = fit_windows(length, vs, ve, ws, we);
   const double vlow = std::max(vs, ve);
   // jerk-limited: the largest peak whose two S-curve ramps fit in lr (bisection)
   double lo = vlow, hi = std::sqrt(vs * vs + ve * ve + 2.0 * a * lr) + 1e-9;
