@@ -315,7 +315,7 @@ constexpr double kSkipMargin = 1e-9;
 // bound(k) a lower bound of it. h = min(h, max(z, bottom)) where ok.
 template <class Node, class Bound>
 NETSHAPE_INLINE void row_blocks(int n, double* __restrict h, double bottom, const Node& node, const Bound& bound,
-                                RowOut& out, double margin = kSkipMargin) {
+                                RowOut& out) {
   double vol = 0.0;
   int cnt = 0;  // an int reduction vectorises (a 64-bit one does not, GCC 12)
   for (int b0 = 0; b0 < n; b0 += kBlock) {
@@ -326,7 +326,7 @@ NETSHAPE_INLINE void row_blocks(int n, double* __restrict h, double bottom, cons
       const double g = h[k] - bound(k);
       gap = g > gap ? g : gap;
     }
-    if (gap <= -margin) continue;
+    if (gap <= -kSkipMargin) continue;
     NETSHAPE_PRAGMA(omp simd reduction(+ : vol, cnt))
     for (int k = b0; k < b1; ++k) {
       bool ok;
@@ -364,8 +364,8 @@ NETSHAPE_INLINE double lift_bound(double dmin, double a0, double half_inv_rc) {
 
 // level line (m = 0): the point of the segment nearest to the node, d² = s² + u² (bull-nose only; flat
 // and ball level lines go to level_move in ramp_kernel.inc)
-NETSHAPE_SIMD_CLONES void row_level(const LineSetup& s, const TipProfile& p, int kind, double r2, const Row& row,
-                                    double bottom, double* __restrict h, RowOut& out) {
+NETSHAPE_SIMD_CLONES void row_bull_level(const LineSetup& s, const TipProfile& p, double r2, const Row& row,
+                                         double bottom, double* __restrict h, RowOut& out) {
   const LineRow L(s, row);
   const double R = p.radius, rc = p.corner_radius, fr = p.flat_radius, rc2 = rc * rc;
   const double half_inv_rc = rc > 0.0 ? 0.5 / rc : 0.0;
@@ -382,38 +382,17 @@ NETSHAPE_SIMD_CLONES void row_level(const LineSetup& s, const TipProfile& p, int
     const double as = sp < 0.0 ? -sp : sp, au = u < 0.0 ? -u : u;
     return L.az + lift_bound(as > au ? as : au, fr, half_inv_rc);
   };
-  if (kind == kFlat) {
-    auto node = [&](int k, bool& ok) NETSHAPE_ALWAYS_INLINE_LAMBDA {
-      double sp, u;
-      near(k, sp, u);
-      ok = sp * sp + u * u <= r2;
-      return L.az;
-    };
-    // here the bound is z itself (A_z, no lift): nodes already at A_z are skipped too
-    row_blocks(row.n, h, bottom, node, bound, out, 0.0);
-  } else if (kind == kBall) {
-    auto node = [&](int k, bool& ok) NETSHAPE_ALWAYS_INLINE_LAMBDA {
-      double sp, u;
-      near(k, sp, u);
-      const double d2 = sp * sp + u * u;
-      const double w = r2 - d2;
-      ok = d2 <= r2;
-      return L.az + R - std::sqrt(w > 0.0 ? w : 0.0);
-    };
-    row_blocks(row.n, h, bottom, node, bound, out);
-  } else {
-    auto node = [&](int k, bool& ok) NETSHAPE_ALWAYS_INLINE_LAMBDA {
-      double sp, u;
-      near(k, sp, u);
-      const double d2 = sp * sp + u * u;
-      const double d = std::sqrt(d2);
-      const double e = (d < R ? d : R) - fr;
-      const double w = rc2 - e * e;
-      ok = d2 <= r2;
-      return L.az + (e > 0.0 ? rc - std::sqrt(w > 0.0 ? w : 0.0) : 0.0);
-    };
-    row_blocks(row.n, h, bottom, node, bound, out);
-  }
+  auto node = [&](int k, bool& ok) NETSHAPE_ALWAYS_INLINE_LAMBDA {
+    double sp, u;
+    near(k, sp, u);
+    const double d2 = sp * sp + u * u;
+    const double d = std::sqrt(d2);
+    const double e = (d < R ? d : R) - fr;
+    const double w = rc2 - e * e;
+    ok = d2 <= r2;
+    return L.az + (e > 0.0 ? rc - std::sqrt(w > 0.0 ? w : 0.0) : 0.0);
+  };
+  row_blocks(row.n, h, bottom, node, bound, out);
 }
 
 // vertical move (plunge), any cutter: min(A_z, B_z) + g(d)
@@ -885,7 +864,7 @@ void sweep_line_k(ZMap& zm, const TipProfile& p, const LineSetup& s, double ylo,
       row.qy = zm.node_y(i) - s.ay;
       row.n = j1 - j0 + 1;
       if (s.vertical) row_vertical(s, p, r2, row, bottom, h, out);
-      else if (s.m == 0.0) row_level(s, p, Kind, r2, row, bottom, h, out);
+      else if (s.m == 0.0) row_bull_level(s, p, r2, row, bottom, h, out);
       else row_bull_ramp(s, p, r2, row, bottom, h, out, *lanes);
     }
     has = next;
