@@ -135,62 +135,92 @@ struct BlendBounds {
   }
 };
 
+// What blend_lines needs at fixed parameter values, computed once: with a = (1 − u)², b = u²,
+// e = −(1 − u), f = u, |B'|²/(9d²) = g2(u) = P + Q·c (P = a² + b², Q = 2ab) at the 3-point
+// Gauss-Legendre points of the first 8 table intervals (3i, 3i + 1, 3i + 2: centre, left, right) and
+// at the nodes 0..8, and m = e·a + f·b + (e·b + f·a)·c = M0 + M1·c at the nodes.
+struct LineBlendTables {
+  using A24 = Eigen::Array<double, 24, 1>;
+  using A9 = Eigen::Array<double, 9, 1>;
+  A24 gp, gq;
+  A9 np, nq, a, b, e, f, m0, m1;
+  LineBlendTables() {
+    const double gx = 0.7745966692414834, h = 0.5 / 16.0;
+    for (int i = 0; i < 8; ++i) {
+      const double m = (i + 0.5) / 16.0, us[3] = {m, m - h * gx, m + h * gx};
+      for (int j = 0; j < 3; ++j) {
+        const double u = us[j], aa = (1 - u) * (1 - u), bb = u * u;
+        gp[3 * i + j] = aa * aa + bb * bb;
+        gq[3 * i + j] = 2.0 * aa * bb;
+      }
+    }
+    for (int i = 0; i <= 8; ++i) {
+      const double u = i / 16.0, aa = (1 - u) * (1 - u), bb = u * u, ee = -(1 - u), ff = u;
+      np[i] = aa * aa + bb * bb;
+      nq[i] = 2.0 * aa * bb;
+      a[i] = aa;
+      b[i] = bb;
+      e[i] = ee;
+      f[i] = ff;
+      m0[i] = ee * aa + ff * bb;
+      m1[i] = ee * bb + ff * aa;
+    }
+  }
+};
+const LineBlendTables line_blend_tables;
+
 // The symmetric blend between two lines: P0 = V − d·u1, P1 = P2 = V, P3 = V + d·u2 (u1, u2 unit).
 // Its hodograph is B'(u) = 3d·((1 − u)²·u1 + u²·u2) and B''(u) = 6d·(−(1 − u)·u1 + u·u2), so the
 // unit tangent and the curvature vector are combinations a·u1 + b·u2 whose scalar coefficients depend
 // on u and cos θ = u1·u2 only (|B'|² = 9d²·(a² + b² + 2ab·cos θ)); the node 16 − i mirrors node i with
-// u1 and u2 swapped. Fills s in place (the fields of Segment::blend) and, per axis c and table node i,
-// |u_c| in t[i][c] and |κ n_c| in k[i][c] (lane 3: padding).
+// u1 and u2 swapped. The curvature κ ∝ u(1 − u)/g2^{3/2} peaks at u = 1/2 (node 8). Fills s in place
+// (the fields of Segment::blend) and, per axis c and table node i, |u_c| in t[i][c] and |κ n_c| in
+// k[i][c] (lane 3: padding). The scalar work runs on whole arrays (Eigen vectorises it).
 void blend_lines(Segment& s, const Vec3& p0, const Vec3& vtx, const Vec3& p3, const Vec3& u1, const Vec3& u2,
                  double d, long source, Eigen::Array4d t[17], Eigen::Array4d k[17]) {
+  const LineBlendTables& T = line_blend_tables;
   s.kind = SegmentKind::blend;
   s.ctrl = {p0, vtx, vtx, p3};
   s.source = source;
   s.trim_start = s.trim_end = 0.0;
   const double c = u1.dot(u2);
-  auto g2 = [c](double u) {
-    const double a = (1 - u) * (1 - u), b = u * u;
-    return a * a + b * b + 2.0 * a * b * c;
-  };
   // arc length: 3-point Gauss-Legendre per interval of |B'| = 3d·sqrt(g2); first half, mirrored
-  static const double gx = 0.7745966692414834, w0 = 8.0 / 9.0, w1 = 5.0 / 9.0;
-  constexpr double h = 0.5 / 16.0;
-  double piece[8];
-  for (int i = 0; i < 8; ++i) {
-    const double m = (i + 0.5) / 16.0;
-    piece[i] = w0 * std::sqrt(std::max(0.0, g2(m))) +
-               w1 * (std::sqrt(std::max(0.0, g2(m - h * gx))) + std::sqrt(std::max(0.0, g2(m + h * gx))));
-  }
+  constexpr double w0 = 8.0 / 9.0, w1 = 5.0 / 9.0, h = 0.5 / 16.0;
+  const LineBlendTables::A24 sp = (T.gp + T.gq * c).max(0.0).sqrt();
   const double scale = 3.0 * d * h;
+  double piece[8];
+  for (int i = 0; i < 8; ++i) piece[i] = scale * (w0 * sp[3 * i] + w1 * (sp[3 * i + 1] + sp[3 * i + 2]));
   s.table[0] = 0;
-  for (int i = 1; i <= 8; ++i) s.table[i] = s.table[i - 1] + scale * piece[i - 1];
-  for (int i = 9; i <= 16; ++i) s.table[i] = s.table[i - 1] + scale * piece[16 - i];
+  for (int i = 1; i <= 8; ++i) s.table[i] = s.table[i - 1] + piece[i - 1];
+  for (int i = 9; i <= 16; ++i) s.table[i] = s.table[i - 1] + piece[16 - i];
   // nodes 0..8: tangent (ta·u1 + tb·u2) and curvature vector (ka·u1 + kb·u2); node 16 − i: tangent
   // tb·u1 + ta·u2, curvature vector −(kb·u1 + ka·u2)
-  double ta[17], tb[17], ka[17], kb[17], k_at[17];
   const double k_scale = 2.0 / (3.0 * d);
-  for (int i = 0; i <= 8; ++i) {
-    const double u = i / 16.0;
-    const double a = (1 - u) * (1 - u), b = u * u, e = -(1 - u), f = u;
-    const double G = std::max(g2(u), 1e-300), iG = 1.0 / G, ig = std::sqrt(iG);
-    const double m = e * a + f * b + (e * b + f * a) * c;
-    const double ca = k_scale * iG * (e - m * a * iG), cb = k_scale * iG * (f - m * b * iG);
-    ta[16 - i] = b * ig;  // the mirror first: at i = 8 node i itself wins
-    tb[16 - i] = a * ig;
-    ka[16 - i] = cb;
-    kb[16 - i] = ca;
-    ta[i] = a * ig;
-    tb[i] = b * ig;
-    ka[i] = ca;
-    kb[i] = cb;
-    k_at[i] = k_at[16 - i] = std::sqrt(std::max(0.0, ca * ca + cb * cb + 2.0 * ca * cb * c));
-  }
+  using A9 = LineBlendTables::A9;
+  const A9 G = (T.np + T.nq * c).max(1e-300), iG = G.inverse(), ig = iG.sqrt();
+  const A9 m = T.m0 + T.m1 * c;
+  const A9 ca = k_scale * iG * (T.e - m * T.a * iG), cb = k_scale * iG * (T.f - m * T.b * iG);
+  const A9 ta = T.a * ig, tb = T.b * ig;
+  const A9 kat = (ca * ca + cb * cb + 2.0 * ca * cb * c).max(0.0).sqrt();
   const Eigen::Array4d x1(u1[0], u1[1], u1[2], 0.0), x2(u2[0], u2[1], u2[2], 0.0);  // lane 3: padding
-  for (int i = 0; i < 17; ++i) {
+  for (int i = 0; i <= 8; ++i) {
     t[i] = (ta[i] * x1 + tb[i] * x2).abs();
-    k[i] = (ka[i] * x1 + kb[i] * x2).abs();
+    k[i] = (ca[i] * x1 + cb[i] * x2).abs();
   }
-  finish_blend(s, k_at);
+  for (int i = 9; i <= 16; ++i) {
+    t[i] = (tb[16 - i] * x1 + ta[16 - i] * x2).abs();
+    k[i] = (cb[16 - i] * x1 + ca[16 - i] * x2).abs();
+  }
+  // largest curvature (at node 8 up to rounding) and |dκ/ds| between neighbouring nodes (the second half mirrors the
+  // first); the largest quotient equals the quotient of the largest fraction (rounding is monotone)
+  s.curvature = kat.maxCoeff();
+  Eigen::Array<double, 8, 1> dk, ds;
+  for (int i = 0; i < 8; ++i) {
+    dk[i] = std::abs(kat[i + 1] - kat[i]);
+    ds[i] = piece[i];
+  }
+  s.curvature_rate = (ds > 0).select(dk / ds, 0.0).maxCoeff();
+  s.full_length = s.table[16];
 }
 
 // Bounds of a blend piece over the table nodes i0..i1 from per-axis node values t, k (as BlendBounds:
@@ -207,7 +237,7 @@ struct NodeBounds {
       dk[i] = 0.25 * (k[i - 1] - 2.0 * k[i] + k[i + 1]).abs();
     }
   }
-  void bounds(int i0, int i1, Vec3& U, Vec3& K) const noexcept {
+  void bounds(int i0, int i1, Lane& U, Lane& K) const noexcept {
     Lane a = t[i0], b = k[i0], e = dt[i0], f = dk[i0];
     for (int i = i0 + 1; i <= i1; ++i) {
       a = a.max(t[i]);
@@ -215,9 +245,8 @@ struct NodeBounds {
       e = e.max(dt[i]);
       f = f.max(dk[i]);
     }
-    const Lane u = (a + e + 1e-12).min(1.0), kk = b * (1.0 + 1e-9) + f;
-    U = Vec3(u[0], u[1], u[2]);
-    K = Vec3(kk[0], kk[1], kk[2]);
+    U = (a + e + 1e-12).min(1.0);
+    K = b * (1.0 + 1e-9) + f;
   }
 };
 
@@ -260,11 +289,20 @@ Planner::Planner(const AxisLimits& limits, const PlanOptions& options) : limits_
   limits_.validate();
   opt_.validate();
   jerk_ = limits_.jerk_limited();
-  cap_ = per_block * (opt_.lookahead + 2) + 3;
+  cap_ = per_block + 16 * (opt_.lookahead + 2) + 3;
   ring_.resize(static_cast<std::size_t>(cap_));
   quick_.resize(static_cast<std::size_t>(cap_));
   // blocks from the head's to the newest: at most lookahead + 2 (push refuses beyond)
   blends_.resize(static_cast<std::size_t>(opt_.lookahead + 4));
+  recs_.resize(blends_.size());
+}
+
+void Planner::put_blend(const Segment& g, Segment& out) const noexcept {
+  // the pieces of a blend come one after the other: the caller's segment often holds this blend's
+  // geometry already (same control points, length and source); then only the trims change
+  if (!(out.kind == SegmentKind::blend && out.source == g.source && out.full_length == g.full_length &&
+        out.ctrl[0] == g.ctrl[0] && out.ctrl[1] == g.ctrl[1] && out.ctrl[2] == g.ctrl[2] && out.ctrl[3] == g.ctrl[3]))
+    out = g;
 }
 
 void Planner::copy_segment(const Node& n, Segment& out) noexcept {
@@ -272,12 +310,7 @@ void Planner::copy_segment(const Node& n, Segment& out) noexcept {
     out = n.seg;
     return;
   }
-  const Segment& g = blends_[static_cast<std::size_t>(n.blk % static_cast<long>(blends_.size()))];
-  // the pieces of a blend come one after the other: the caller's segment often holds this blend's
-  // geometry already (same control points, length and source); then only the trims change
-  if (!(out.kind == SegmentKind::blend && out.source == g.source && out.full_length == g.full_length &&
-        out.ctrl[0] == g.ctrl[0] && out.ctrl[1] == g.ctrl[1] && out.ctrl[2] == g.ctrl[2] && out.ctrl[3] == g.ctrl[3]))
-    out = g;
+  put_blend(blends_[static_cast<std::size_t>(n.blk % static_cast<long>(blends_.size()))], out);
   out.trim_start = n.seg.trim_start;
   out.trim_end = n.seg.trim_end;
   out.curvature = n.seg.curvature;
@@ -301,6 +334,7 @@ void Planner::sync(long k) noexcept {
   x.len = plan_length(n);
   x.a = n.a;
   x.j = n.j;
+  x.rec = -1;
   set_reach(x, n.curved, n.U, n.K);
 }
 
@@ -514,7 +548,7 @@ void Planner::init_blend_piece(Node& bn, const Segment& whole, int i0, int i1, l
     bn.seg = whole;
   }
   bn.slim = slim;
-  bn.pre = false;
+  bn.multi = false;
   bn.seg.trim_start = whole.table[static_cast<std::size_t>(i0)];
   bn.seg.trim_end = whole.full_length - whole.table[static_cast<std::size_t>(i1)];
   bn.blk = source;
@@ -538,25 +572,25 @@ void Planner::push_line_blend(long source, long psource, const Vec3& p0, const V
   const Vec3& V = limits_.velocity;
   const int* cut = cuts_lines;
   int np = n_cuts_lines;
-  // bounds of every piece; those of the whole blend are their largest (max and min(1, ·) commute)
-  Vec3 Up[9], Kp[9];
+  // bounds of every piece (per axis; lane 3 is padding); those of the whole blend are their largest
+  // (max and min(1, ·) commute)
+  using Lane = NodeBounds::Lane;
+  Lane Up[n_cuts_lines], Kp[n_cuts_lines];
+  Lane Uw = Lane::Zero(), Kw = Lane::Zero();
+  for (int k = 0; k < np; ++k) {
+    nb.bounds(cut[k], cut[k + 1], Up[k], Kp[k]);
+    Uw = Uw.max(Up[k]);
+    Kw = Kw.max(Kp[k]);
+  }
   {
-    Vec3 U = Vec3::Zero(), K = Vec3::Zero();
-    for (int k = 0; k < np; ++k) {
-      nb.bounds(cut[k], cut[k + 1], Up[k], Kp[k]);
-      U = U.cwiseMax(Up[k]);
-      K = K.cwiseMax(Kp[k]);
-    }
-    Up[8] = U;
-    Kp[8] = K;
     double vcap = vfeed;
-    for (int i = 0; i < 3; ++i) vcap = std::min(vcap, V[i] / U[i]);  // U ≥ 1e-12
+    for (int i = 0; i < 3; ++i) vcap = std::min(vcap, V[i] / Uw[i]);  // U ≥ 1e-12
     // a gentle turn: the centripetal part takes little of the budget at full speed; one piece
-    if (K.maxCoeff() * vcap * vcap <= 0.02 * A.minCoeff()) {
+    if (std::max({Kw[0], Kw[1], Kw[2]}) * vcap * vcap <= 0.02 * A.minCoeff()) {
       np = 1;
       cut = cuts_one;
-      Up[0] = U;
-      Kp[0] = K;
+      Up[0] = Uw;
+      Kp[0] = Kw;
     }
   }
   // the axes that move on the blend (Segment::moving_axes) and the smallest of their accelerations
@@ -564,42 +598,63 @@ void Planner::push_line_blend(long source, long psource, const Vec3& p0, const V
   for (int i = 0; i < 3; ++i)
     if (std::abs(d * u1[i]) > 1e-12 || std::abs(d * u2[i]) > 1e-12) amin_blend = std::min(amin_blend, A[i]);
   if (!std::isfinite(amin_blend)) amin_blend = A.minCoeff();
+  // one node for the whole blend, its pieces in the record
+  const std::size_t slot = static_cast<std::size_t>(tail_ % cap_);
+  const std::size_t ri = static_cast<std::size_t>(source % static_cast<long>(recs_.size()));
+  BlendRec& r = recs_[ri];
+  Node& bn = ring_[slot];
+  init_blend_piece(bn, whole, 0, 16, source, vfeed, true);
+  bn.multi = true;
+  bn.curved = true;
+  bn.j = inf;
+  bn.a = amin_blend;
+  bn.U = Vec3(Uw[0], Uw[1], Uw[2]);
+  bn.K = Vec3(Kw[0], Kw[1], Kw[2]);
+  const Lane A4(A[0], A[1], A[2], 1.0), V4(V[0], V[1], V[2], inf);
+  r.np = np;
+  r.cursor = 0;
+  double v_entry = 0.0;
   for (int k = 0; k < np; ++k) {
     const int i0 = cut[k], i1 = cut[k + 1];
-    const std::size_t slot = static_cast<std::size_t>(tail_ % cap_);
-    Node& bn = ring_[slot];
-    init_blend_piece(bn, whole, i0, i1, source, vfeed, true);
-    bn.pre = true;
-    bn.U = Up[k];
-    bn.K = Kp[k];
-    bn.curved = true;
-    bn.j = inf;
-    bn.a = amin_blend;
-    const double L = std::max(0.0, bn.seg.full_length - bn.seg.trim_start - bn.seg.trim_end);
-    double vmax = vfeed, wk = inf;
-    Quick& x = quick_[slot];
+    r.trim_s[k] = whole.table[static_cast<std::size_t>(i0)];
+    r.trim_e[k] = whole.full_length - whole.table[static_cast<std::size_t>(i1)];
+    const double L = std::max(0.0, whole.full_length - r.trim_s[k] - r.trim_e[k]);
+    r.len[k] = L;
+    // per axis, all at once (lane 3: padding with K = 0, V = inf)
+    const Lane& U = Up[k];
+    const Lane& K = Kp[k];
+    const Lane iu = U.inverse(), r1 = (U + L * K).inverse(), r2 = (U + 2.0 * L * K).inverse();
+    const Lane p1 = 0.5 * U * r1, p0 = L * A4 * r1;  // peak: w = min_i (U_i·(vs² + ve²)/2 + L·A_i)/(U_i + L·K_i)
+    const Lane al = U * r2, be = 2.0 * L * A4 * r2;   // reach: w = min_i (U_i·w0 + 2·L·A_i)/(U_i + 2·L·K_i)
+    const Lane wk4 = (K > 0).select(A4 / (K > 0).select(K, 1.0), inf);
     for (int i = 0; i < 3; ++i) {
-      const double U = bn.U[i], K = bn.K[i];
-      const double iu = 1.0 / U, r1 = 1.0 / (U + L * K), r2 = 1.0 / (U + 2.0 * L * K);
-      vmax = std::min(vmax, V[i] * iu);
-      if (K > 0) wk = std::min(wk, A[i] / K);
-      bn.iu[i] = iu;
-      bn.p1[i] = 0.5 * U * r1;  // peak: w = min_i (U_i·(vs² + ve²)/2 + L·A_i)/(U_i + L·K_i)
-      bn.p0[i] = L * A[i] * r1;
-      x.alpha[i] = U * r2;  // reach: w = min_i (U_i·w0 + 2·L·A_i)/(U_i + 2·L·K_i)
-      x.beta[i] = 2.0 * L * A[i] * r2;
+      r.iu[i][k] = iu[i];
+      r.K[i][k] = K[i];
+      r.p1[i][k] = p1[i];
+      r.p0[i][k] = p0[i];
+      r.alpha[i][k] = al[i];
+      r.beta[i][k] = be[i];
     }
+    double vmax = std::min(vfeed, (V4 * iu).minCoeff());
+    const double wk = wk4.minCoeff();
     if (wk < inf) vmax = std::min(vmax, std::sqrt(wk));
-    bn.vmax = vmax;
-    bn.v_lim = bn.v_corner = std::min(v_prev, vmax);
+    r.vmax[k] = vmax;
+    const double v_lim = std::min(v_prev, vmax);
+    if (k == 0) v_entry = v_lim;
+    r.w_lim[k] = v_lim * v_lim;
+    r.wb[k] = 0.0;
     v_prev = vmax;
-    x.w_lim = bn.v_lim * bn.v_lim;
-    x.len = L;
-    x.a = bn.a;
-    x.j = inf;
-    x.wb = 0.0;
-    ++tail_;
   }
+  bn.vmax = v_prev;
+  bn.v_lim = bn.v_corner = v_entry;
+  Quick& x = quick_[slot];
+  x.w_lim = v_entry * v_entry;
+  x.len = whole.full_length;
+  x.a = bn.a;
+  x.j = inf;
+  x.wb = 0.0;
+  x.rec = static_cast<int>(ri);
+  ++tail_;
 }
 
 Status Planner::push(const toolpath::Block& b) noexcept {
@@ -768,6 +823,7 @@ Status Planner::push(const toolpath::Block& b) noexcept {
       x.j = bn.j;
       set_reach(x, bn.curved, bn.U, bn.K);
       x.wb = 0.0;
+      x.rec = -1;
       ++tail_;
     }
     nn.v_corner = v_prev;
@@ -875,11 +931,23 @@ void Planner::back_pass(long dirty_from) noexcept {
   std::size_t slot = static_cast<std::size_t>((tail_ - 1) % cap_);  // one modulo, then wrap by hand
   for (long k = tail_ - 1; k >= frozen_; --k, slot = slot == 0 ? static_cast<std::size_t>(cap_ - 1) : slot - 1) {
     Quick& n = quick_[slot];
-    // seeds/002 eq. 3 (trapezoid; on curves the axis box), capped by the junction limit (without
-    // jerk limits reach_sq is the min of three affine terms, inlined here)
-    const double w = jerk_ ? std::min(n.w_lim, reach_sq(n, w_next))
-                           : std::min(std::min(n.w_lim, n.alpha[0] * w_next + n.beta[0]),
-                                      std::min(n.alpha[1] * w_next + n.beta[1], n.alpha[2] * w_next + n.beta[2]));
+    double w;
+    if (n.rec >= 0) {
+      // a multi node: its pieces from the last to the first
+      BlendRec& r = recs_[static_cast<std::size_t>(n.rec)];
+      w = w_next;
+      for (int p = r.np - 1; p >= 0; --p) {
+        w = std::min(std::min(r.w_lim[p], r.alpha[0][p] * w + r.beta[0][p]),
+                     std::min(r.alpha[1][p] * w + r.beta[1][p], r.alpha[2][p] * w + r.beta[2][p]));
+        r.wb[p] = w;
+      }
+    } else {
+      // seeds/002 eq. 3 (trapezoid; on curves the axis box), capped by the junction limit (without
+      // jerk limits reach_sq is the min of three affine terms, inlined here)
+      w = jerk_ ? std::min(n.w_lim, reach_sq(n, w_next))
+                : std::min(std::min(n.w_lim, n.alpha[0] * w_next + n.beta[0]),
+                           std::min(n.alpha[1] * w_next + n.beta[1], n.alpha[2] * w_next + n.beta[2]));
+    }
     if (k < dirty_from && w == n.wb) break;  // nothing changes further back
     n.wb = w;
     w_next = w;
@@ -896,24 +964,15 @@ bool Planner::freeze_next() noexcept {
   const Quick& qn = quick_[slot];
   const double vs = v_frozen_end_;
   const double wt = is_tail ? 0.0 : quick_[slot + 1 == static_cast<std::size_t>(cap_) ? 0 : slot + 1].wb;
+  if (qn.rec >= 0) {
+    freeze_multi(n, recs_[static_cast<std::size_t>(qn.rec)], vs, wt);
+    return true;
+  }
   const double ve = std::sqrt(std::min(wt, reach_sq(qn, vs * vs)));
   const double wf = window_periods();
   const double ws = n.jump_s ? wf * opt_.ts2 * vs : 0.0, we = n.jump_e ? wf * opt_.ts2 * ve : 0.0;
   const double len = n.seg.length();
-  if (n.pre) {
-    // blend piece between lines (push_line_blend): the same as below with the coefficients
-    // precomputed (no windows on blend pieces)
-    const double S = vs * vs + ve * ve;
-    double wp = n.vmax * n.vmax;
-    for (int i = 0; i < 3; ++i) wp = std::min(wp, n.p1[i] * S + n.p0[i]);
-    wp = std::max(wp, std::max(vs * vs, ve * ve));
-    double a = inf;
-    for (int i = 0; i < 3; ++i) a = std::min(a, (limits_.acceleration[i] - n.K[i] * wp) * n.iu[i]);
-    const double amin = limits_.acceleration.minCoeff();
-    if (!(a > 1e-6 * amin)) a = 1e-6 * amin;
-    if (!std::isfinite(a)) a = amin;
-    n.prof = Profile::make(len, vs, ve, std::sqrt(wp), a, inf, 0.0, 0.0);
-  } else if (n.curved && !std::isfinite(qn.j)) {
+  if (n.curved && !std::isfinite(qn.j)) {
     // peak speed and tangential acceleration from the axis box at that speed:
     // 2·w − vs² − ve² = 2·L·(A_i − K_i·w)/U_i for the binding axis
     const double lr = std::max(0.0, len - std::min(ws, len) - std::min(we, len));
@@ -941,6 +1000,88 @@ bool Planner::freeze_next() noexcept {
   v_frozen_end_ = ve;
   ++frozen_;
   return true;
+}
+
+// The pieces of a multi node one after the other, as freeze_next() does for single nodes: each
+// piece's end speed is the smaller of the backward speed of the next piece (of the next node: wt) and
+// what it reaches from its start speed; its peak speed and tangential budget from the precomputed
+// coefficients (no windows on blend pieces).
+void Planner::freeze_multi(Node& n, BlendRec& r, double vs, double wt) noexcept {
+  using Arr = Eigen::Array<double, rec_pieces, 1>;
+  using Map = Eigen::Map<const Arr>;
+  const int np = r.np;
+  // the chain of end speeds (sequential); unused lanes repeat the last piece
+  Arr VS, VE;
+  for (int k = 0; k < np; ++k) {
+    const double w_end = k + 1 < np ? r.wb[k + 1] : wt;
+    const double w0 = vs * vs;
+    const double reach = std::min({r.alpha[0][k] * w0 + r.beta[0][k], r.alpha[1][k] * w0 + r.beta[1][k],
+                                   r.alpha[2][k] * w0 + r.beta[2][k]});
+    VS[k] = vs;
+    vs = std::sqrt(std::min(w_end, reach));
+    VE[k] = vs;
+  }
+  for (int k = np; k < rec_pieces; ++k) {
+    VS[k] = VS[np - 1];
+    VE[k] = VE[np - 1];
+  }
+  // then all pieces at once: peak squared speed, tangential budget at that speed and the trapezoid
+  // (Profile::make without windows, the same arithmetic lane by lane)
+  const Arr L = Map(r.len), S = VS * VS + VE * VE;
+  const Arr vlow = VS.max(VE);
+  Arr wp = Map(r.vmax) * Map(r.vmax);
+  for (int i = 0; i < 3; ++i) wp = wp.min(Map(r.p1[i]) * S + Map(r.p0[i]));
+  wp = wp.max((VS * VS).max(VE * VE));
+  Arr a = Arr::Constant(inf);
+  for (int i = 0; i < 3; ++i) a = a.min((limits_.acceleration[i] - Map(r.K[i]) * wp) * Map(r.iu[i]));
+  const double amin = limits_.acceleration.minCoeff();
+  a = (a > 1e-6 * amin).select(a, 1e-6 * amin);
+  a = a.isFinite().select(a, amin);
+  const Arr vmax = wp.sqrt();
+  Arr vp = ((2.0 * a * L + S) / 2.0).max(0.0).sqrt();
+  vp = vlow.max(vp.min(vmax.max(vlow)));
+  // rounding (or the speed-dependent a chosen at the peak): make both ramps fit
+  const Arr need = 2.0 * vp * vp - S;
+  a = (L > 0 && need > 2.0 * L * a).select(need / (2.0 * L).max(1e-300), a);
+  const Arr ia = a.inverse();
+  const Arr t1 = (vp - VS) * ia, d1 = 0.5 * (VS + vp) * t1;
+  const Arr t3 = (vp - VE) * ia, d3 = 0.5 * (vp + VE) * t3;
+  // the cruise takes what is left, so that the distances add up to the length exactly
+  Arr d2 = (L - d1 - d3).max(0.0);
+  d2 = (vp > 0).select((d2 + (L - (d1 + d2 + d3))).max(0.0), d2);
+  const Arr t2 = (vp > 0).select(d2 / (vp > 0).select(vp, 1.0), 0.0);
+  const Arr dur = t1 + t2 + t3;
+  double t = t_frozen_end_;
+  for (int k = 0; k < np; ++k) {
+    Profile& p = r.prof[k];
+    p.vs = VS[k];
+    p.ve = VE[k];
+    p.vp = vp[k];
+    p.a = a[k];
+    p.j = inf;
+    p.t[0] = 0.0;
+    p.t[1] = t1[k];
+    p.t[2] = t2[k];
+    p.t[3] = t3[k];
+    p.t[4] = 0.0;
+    p.d[0] = 0.0;
+    p.d[1] = d1[k];
+    p.d[2] = d2[k];
+    p.d[3] = d3[k];
+    p.d[4] = 0.0;
+    p.duration = dur[k];
+    r.t0[k] = t;
+    t += dur[k];
+  }
+  r.cursor = 0;
+  n.prof = Profile{};
+  n.prof.vs = r.prof[0].vs;
+  n.prof.ve = vs;
+  n.prof.duration = t - t_frozen_end_;
+  n.t0 = t_frozen_end_;
+  t_frozen_end_ = t;
+  v_frozen_end_ = vs;
+  ++frozen_;
 }
 
 Status Planner::ensure_frozen_until(double t) noexcept {
@@ -979,8 +1120,24 @@ Status Planner::next(Sample& out) noexcept {
   }
   while (head_ < frozen_ - 1 && at(head_).t0 + at(head_).prof.duration <= t) ++head_;
   Node& n = at(head_);
-  const Segment& sg = seg_of(n);
   double s, v, acc;
+  if (n.multi) {
+    // the piece of the blend that runs at t, on the whole blend (trims 0) at the piece's offset
+    BlendRec& r = recs_[static_cast<std::size_t>(n.blk % static_cast<long>(recs_.size()))];
+    int k = r.cursor;
+    while (k + 1 < r.np && r.t0[k] + r.prof[k].duration <= t) ++k;
+    r.cursor = k;
+    r.prof[k].eval(t - r.t0[k], s, v, acc);
+    const Segment& g = blend_of(n.blk);
+    out.position = g.point_at(r.trim_s[k] + s);
+    out.velocity = v * g.tangent_at(r.trim_s[k] + s);
+    out.feed = v;
+    out.path_acceleration = acc;
+    out.block = g.source;
+    ++sample_;
+    return Status::ok;
+  }
+  const Segment& sg = seg_of(n);
   n.prof.eval(t - n.t0, s, v, acc);
   out.position = sg.point_at(s);
   out.velocity = v * sg.tangent_at(s);
@@ -997,6 +1154,23 @@ Status Planner::next_segment(PlannedSegment& out) noexcept {
     if (!freeze_next()) return Status::need_blocks;
   }
   const Node& n = at(head_);
+  if (n.multi) {
+    BlendRec& r = recs_[static_cast<std::size_t>(n.blk % static_cast<long>(recs_.size()))];
+    const Segment& g = blend_of(n.blk);
+    const int k = r.cursor;
+    put_blend(g, out.segment);
+    out.segment.trim_start = r.trim_s[k];
+    out.segment.trim_end = r.trim_e[k];
+    out.segment.curvature = g.curvature;
+    out.segment.curvature_rate = g.curvature_rate;
+    out.profile = r.prof[k];
+    out.t0 = r.t0[k];
+    if (++r.cursor == r.np) {
+      r.cursor = 0;
+      ++head_;
+    }
+    return Status::ok;
+  }
   copy_segment(n, out.segment);
   out.profile = n.prof;
   out.t0 = n.t0;

@@ -108,10 +108,10 @@ class Planner {
     // blend pieces: seg holds kind, trims, lengths, curvature and source only; the Bézier (ctrl,
     // table) stays once per blend in blends_[blk % size] until seg_of() copies it in (sampling)
     bool slim = false;
-    // blend pieces between lines (push_line_blend): freeze_next() finds the peak squared speed as
-    // min_i p1_i·(vs² + ve²) + p0_i and the tangential budget as min_i (A_i − K_i·w)·iu_i
-    bool pre = false;
-    double p1[3] = {0, 0, 0}, p0[3] = {0, 0, 0}, iu[3] = {0, 0, 0};
+    // a blend between two lines without jerk limits (push_line_blend) is one node whose pieces are
+    // kept in recs_[blk % size]: the passes and the freeze loop over them, next() and next_segment()
+    // hand them out one by one
+    bool multi = false;
     Profile prof;
     double t0 = 0;
   };
@@ -122,6 +122,23 @@ class Planner {
   struct Quick {
     double w_lim = 0, wb = 0, len = 0, a = 1, j = 0;  // squared junction limit and backward speed [mm²/s²]
     double alpha[3] = {1, 0, 0}, beta[3] = {0, 0, 0};
+    int rec = -1;  // multi node: its BlendRec in recs_, else −1
+  };
+  // The pieces of a blend between two lines (one multi node). Per piece: trims of the whole blend,
+  // length, squared speed cap (piece 0: with the junction cap), reach w = min_i alpha_i·w0 + beta_i,
+  // the coefficients of the peak squared speed min_i p1_i·(vs² + ve²) + p0_i and of the tangential
+  // budget min_i (A_i − K_i·w)·iu_i (so that neither pass divides), the backward squared speed at
+  // its start, and once frozen its profile and start time.
+  static constexpr int rec_pieces = 6;
+  struct BlendRec {
+    int np = 0, cursor = 0;  // pieces; next piece to hand out / sample
+    double trim_s[rec_pieces] = {}, trim_e[rec_pieces] = {}, len[rec_pieces] = {}, vmax[rec_pieces] = {};
+    double w_lim[rec_pieces] = {}, wb[rec_pieces] = {};
+    // per axis i and piece k: [i][k] (the freeze runs over the pieces as arrays)
+    double alpha[3][rec_pieces] = {}, beta[3][rec_pieces] = {};
+    double p1[3][rec_pieces] = {}, p0[3][rec_pieces] = {}, iu[3][rec_pieces] = {}, K[3][rec_pieces] = {};
+    Profile prof[rec_pieces];
+    double t0[rec_pieces] = {};
   };
   Quick& q(long k) noexcept { return quick_[static_cast<std::size_t>(k % cap_)]; }
   void sync(long k) noexcept;
@@ -156,6 +173,9 @@ class Planner {
   std::vector<Node> ring_;
   std::vector<Quick> quick_;
   std::vector<Segment> blends_;  // whole blend of each block in the buffer, by blk % size
+  std::vector<BlendRec> recs_;   // pieces of the multi node of each block in the buffer, by blk % size
+  void freeze_multi(Node& n, BlendRec& r, double vs, double wt) noexcept;
+  void put_blend(const Segment& whole, Segment& out) const noexcept;
   Segment& blend_of(long blk) noexcept { return blends_[static_cast<std::size_t>(blk % static_cast<long>(blends_.size()))]; }
   /// The node's segment with its geometry (blend pieces: copied in from blends_ on first use).
   const Segment& seg_of(Node& n) noexcept;
