@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -12,6 +13,8 @@ namespace netshape::motion {
 namespace {
 constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr double tangent_angle = 1e-6;  // [rad] below this a junction counts as tangent
+// the blend rule blends turns with tangent_angle < θ < π − 1e-3, told apart by sin(θ/2)
+const double sin_half_tangent = std::sin(0.5 * tangent_angle), sin_half_reversal = std::cos(0.5e-3);
 constexpr int max_arc_pieces = 64;      // an arc is cut into at most this many pieces ...
 constexpr double arc_piece_angle = pi / 32;  // ... of at most this sweep [rad] (when it can)
 constexpr int blend_pieces = 8;         // most pieces of a corner blend
@@ -229,24 +232,32 @@ void blend_lines(Segment& s, const Vec3& p0, const Vec3& vtx, const Vec3& p3, co
 struct NodeBounds {
   using Lane = Eigen::Array4d;  // axes x, y, z and a padding lane (Eigen vectorises fixed-size arrays)
   Lane t[17], k[17];            // |u_c| and |κ n_c| at the table nodes
-  Lane dt[17], dk[17];          // a quarter of their second differences (0 at the two end nodes)
-  void second_differences() noexcept {
-    dt[0] = dk[0] = dt[16] = dk[16] = Lane::Zero();
-    for (int i = 1; i <= 15; ++i) {
-      dt[i] = 0.25 * (t[i - 1] - 2.0 * t[i] + t[i + 1]).abs();
-      dk[i] = 0.25 * (k[i - 1] - 2.0 * k[i] + k[i + 1]).abs();
-    }
-  }
-  void bounds(int i0, int i1, Lane& U, Lane& K) const noexcept {
-    Lane a = t[i0], b = k[i0], e = dt[i0], f = dk[i0];
-    for (int i = i0 + 1; i <= i1; ++i) {
+  // Bounds of the pieces between the nodes cut[0] = 0 < cut[1] < ... < cut[np] = 16 in one pass over
+  // the nodes (the second differences are formed on the way and not stored; a node where two pieces
+  // meet counts for both)
+  void bounds(const int* cut, int np, Lane* U, Lane* K) const noexcept {
+    Lane a = t[0], b = k[0], e = Lane::Zero(), f = Lane::Zero();
+    int p = 0;
+    for (int i = 1; i <= 16; ++i) {
+      Lane di = Lane::Zero(), dj = Lane::Zero();
+      if (i < 16) {
+        di = 0.25 * (t[i - 1] - 2.0 * t[i] + t[i + 1]).abs();
+        dj = 0.25 * (k[i - 1] - 2.0 * k[i] + k[i + 1]).abs();
+      }
       a = a.max(t[i]);
       b = b.max(k[i]);
-      e = e.max(dt[i]);
-      f = f.max(dk[i]);
+      e = e.max(di);
+      f = f.max(dj);
+      if (i == cut[p + 1]) {
+        U[p] = (a + e + 1e-12).min(1.0);
+        K[p] = b * (1.0 + 1e-9) + f;
+        if (++p == np) break;
+        a = t[i];
+        b = k[i];
+        e = di;
+        f = dj;
+      }
     }
-    U = (a + e + 1e-12).min(1.0);
-    K = b * (1.0 + 1e-9) + f;
   }
 };
 
@@ -299,9 +310,10 @@ Planner::Planner(const AxisLimits& limits, const PlanOptions& options) : limits_
 
 void Planner::put_blend(const Segment& g, Segment& out) const noexcept {
   // the pieces of a blend come one after the other: the caller's segment often holds this blend's
-  // geometry already (same control points, length and source); then only the trims change
+  // geometry already (same control points bit for bit, length and source); then only the trims change
+  static_assert(sizeof(g.ctrl) == 12 * sizeof(double), "control points are 12 packed doubles");
   if (!(out.kind == SegmentKind::blend && out.source == g.source && out.full_length == g.full_length &&
-        out.ctrl[0] == g.ctrl[0] && out.ctrl[1] == g.ctrl[1] && out.ctrl[2] == g.ctrl[2] && out.ctrl[3] == g.ctrl[3]))
+        std::memcmp(out.ctrl.data(), g.ctrl.data(), sizeof(g.ctrl)) == 0))
     out = g;
 }
 
@@ -567,7 +579,6 @@ void Planner::push_line_blend(long source, long psource, const Vec3& p0, const V
   Segment& whole = blend_of(source);
   NodeBounds nb;
   blend_lines(whole, p0, vtx, p3, u1, u2, d, psource, nb.t, nb.k);
-  nb.second_differences();
   const Vec3& A = limits_.acceleration;
   const Vec3& V = limits_.velocity;
   const int* cut = cuts_lines;
@@ -577,8 +588,8 @@ void Planner::push_line_blend(long source, long psource, const Vec3& p0, const V
   using Lane = NodeBounds::Lane;
   Lane Up[n_cuts_lines], Kp[n_cuts_lines];
   Lane Uw = Lane::Zero(), Kw = Lane::Zero();
+  nb.bounds(cut, np, Up, Kp);
   for (int k = 0; k < np; ++k) {
-    nb.bounds(cut[k], cut[k + 1], Up[k], Kp[k]);
     Uw = Uw.max(Up[k]);
     Kw = Kw.max(Kp[k]);
   }
@@ -701,16 +712,19 @@ Status Planner::push(const toolpath::Block& b) noexcept {
     return Status::ok;
   }
   const Vec3 u1 = end_tangent(at(first).seg), u2 = start_tangent(nn.seg);
-  const double theta = turn_angle(u1, u2);
+  // sin(θ/2) = |u2 − u1|/2 for unit tangents: the blend rule needs no angle (no atan2 per block)
+  const double sin_half = 0.5 * (u2 - u1).norm();
+  const bool blend_here = opt_.rule == CornerRule::blend && sin_half > sin_half_tangent && sin_half < sin_half_reversal;
+  const double theta = blend_here ? 0.0 : turn_angle(u1, u2);  // (the blend branch below returns)
   const double amin = moving_axes_min(limits_.acceleration, u1, u2);
 
-  if (opt_.rule == CornerRule::blend && theta > tangent_angle && theta < pi - 1e-3) {
+  if (blend_here) {
     const Segment& pseg = at(first).seg;  // the whole previous block (trim_start already final)
     const long psource = pseg.source;
     const bool lines = pseg.kind == SegmentKind::line && nn.seg.kind == SegmentKind::line;
     // corner blend: P0 on the previous piece, P3 on the next, both at distance d from the vertex
     const double dmax = 0.45 * std::min(pseg.full_length, nn.seg.full_length);
-    double d = std::min(dmax, 4.0 * opt_.tolerance / std::sin(0.5 * theta));
+    double d = std::min(dmax, 4.0 * opt_.tolerance / sin_half);
     std::array<Vec3, 4> bl;
     for (int it = 0; it < 40; ++it) {
       const double sp = pseg.full_length - d;
