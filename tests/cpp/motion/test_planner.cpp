@@ -145,3 +145,80 @@ TEST_CASE("bad options and limits throw invalid_argument naming the field") {
   CHECK_THROWS_AS(parse_rule("fast"), std::invalid_argument);
   CHECK(parse_rule("per_axis") == CornerRule::per_axis);
 }
+
+TEST_CASE("blend rule: the segments next_segment hands out chain up and agree with next() sampling") {
+  // corners between lines (one ring node whose pieces are handed out one by one) and corners next to
+  // an arc (pieces as separate nodes) in one program
+  PlanOptions o;
+  o.rule = CornerRule::blend;
+  o.lookahead = 8;
+  o.tolerance = 0.01;
+  const AxisLimits lim = AxisLimits::uniform(250, 3000);
+  std::vector<toolpath::Block> prog;
+  Vec3 p(0, 0, 0);
+  for (int i = 0; i < 60; ++i) {
+    const Vec3 q = p + Vec3(0.4 + 0.3 * std::cos(1.7 * i), 0.5 * std::sin(2.3 * i), 0.02 * ((i % 3) - 1));
+    prog.push_back(line(p, q, 400));
+    p = q;
+  }
+  toolpath::Block arc;
+  arc.kind = toolpath::MotionKind::arc;
+  arc.start = p;
+  arc.center = p + Vec3(2, 0, 0);
+  arc.end = p + Vec3(4, 0, 0);
+  arc.clockwise = true;
+  arc.feed = 400;
+  prog.push_back(arc);
+  prog.push_back(line(arc.end, arc.end + Vec3(0, -3, 0), 400));
+
+  auto drive = [&](Planner& pl, auto&& take) {
+    std::size_t i = 0;
+    for (;;) {
+      const Status st = take();
+      if (st == Status::finished) break;
+      if (st == Status::need_blocks) {
+        while (i < prog.size() && pl.push(prog[i]) == Status::ok) ++i;
+        if (i == prog.size()) pl.finish();
+      }
+    }
+  };
+  Planner a(lim, o);
+  std::vector<PlannedSegment> segs;
+  PlannedSegment ps;
+  drive(a, [&] {
+    const Status st = a.next_segment(ps);
+    if (st == Status::ok) segs.push_back(ps);
+    return st;
+  });
+  REQUIRE(segs.size() > 2 * prog.size());  // the blends are cut into pieces
+  int blend_pieces = 0;
+  for (std::size_t k = 0; k + 1 < segs.size(); ++k) {
+    const PlannedSegment& s = segs[k];
+    const PlannedSegment& n = segs[k + 1];
+    if (s.segment.kind == SegmentKind::blend) ++blend_pieces;
+    CHECK(std::abs(s.t0 + s.profile.duration - n.t0) <= 1e-12 * (1 + n.t0));
+    CHECK(std::abs(s.profile.ve - n.profile.vs) <= 1e-9 * (1 + n.profile.vs));
+    CHECK((s.segment.point_at(s.segment.length()) - n.segment.point_at(0.0)).norm() <= 1e-9);
+  }
+  CHECK(blend_pieces > 3 * 60);
+  CHECK((segs.back().segment.point_at(segs.back().segment.length()) - prog.back().end).norm() <= 1e-9);
+
+  // sampling: every fine sample lies where the handed-out segment running at that time puts it
+  Planner b(lim, o);
+  Sample smp;
+  std::size_t k = 0;
+  double worst = 0;
+  long samples = 0;
+  drive(b, [&] {
+    const Status st = b.next(smp);
+    if (st != Status::ok) return st;
+    while (k + 1 < segs.size() && segs[k].t0 + segs[k].profile.duration <= smp.t) ++k;
+    double s, v, acc;
+    segs[k].profile.eval(smp.t - segs[k].t0, s, v, acc);
+    worst = std::max(worst, (segs[k].segment.point_at(s) - smp.position).norm());
+    ++samples;
+    return st;
+  });
+  CHECK(samples > 1000);
+  CHECK(worst <= 1e-9);
+}
