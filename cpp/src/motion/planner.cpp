@@ -214,8 +214,9 @@ void blend_lines(Segment& s, const Vec3& p0, const Vec3& vtx, const Vec3& p3, co
     t[i] = (tb[16 - i] * x1 + ta[16 - i] * x2).abs();
     k[i] = (cb[16 - i] * x1 + ca[16 - i] * x2).abs();
   }
-  // largest curvature (at node 8 up to rounding) and |dκ/ds| between neighbouring nodes (the second half mirrors the
-  // first); the largest quotient equals the quotient of the largest fraction (rounding is monotone)
+  // largest curvature (at node 8 up to rounding) and |dκ/ds| between neighbouring nodes (the second
+  // half mirrors the first); the largest quotient equals the quotient of the largest fraction
+  // (rounding is monotone)
   s.curvature = kat.maxCoeff();
   Eigen::Array<double, 8, 1> dk, ds;
   for (int i = 0; i < 8; ++i) {
@@ -570,10 +571,11 @@ void Planner::init_blend_piece(Node& bn, const Segment& whole, int i0, int i1, l
 }
 
 // The blend of a corner between two lines without jerk limits (blend_lines), cut into pieces at the
-// table nodes cuts_lines; each piece is written in place in the ring with its bounds, its reach
-// coefficients (Quick) and the coefficients freeze_next() needs for its peak speed and tangential
-// acceleration (Node::pre), so neither pass divides. v_prev: the speed cap before the blend on
-// entry, the cap of its last piece on return [mm/s].
+// table nodes cuts_lines (one piece for a gentle turn) and written as ONE node of the ring: the
+// pieces' trims, lengths, speed caps, reach coefficients (back_pass) and the coefficients of their
+// peak speed and tangential budget (freeze_multi) go to the record recs_[source % size], so neither
+// pass divides. v_prev: the speed cap before the blend on entry, the cap of its last piece on return
+// [mm/s].
 void Planner::push_line_blend(long source, long psource, const Vec3& p0, const Vec3& vtx, const Vec3& p3, const Vec3& u1,
                               const Vec3& u2, double d, double vfeed, double& v_prev) noexcept {
   Segment& whole = blend_of(source);
