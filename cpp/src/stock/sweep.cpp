@@ -1069,6 +1069,19 @@ SweepStats sweep_line(ZMap& zmap, const cutter::Cutter& cutter, const Vec3& a, c
   return sweep_line_impl(zmap, TipProfile::of(cutter), kind_of(cutter), a, b);
 }
 
+namespace {
+// Every entry of an (n, 3) array finite; the error names the entry ("starts[1, 2] = nan: …").
+template <class M>
+void check_finite_rows(const char* name, const M& m) {
+  for (Eigen::Index k = 0; k < m.rows(); ++k)
+    for (Eigen::Index c = 0; c < m.cols(); ++c)
+      if (!std::isfinite(m(k, c))) {
+        const std::string f = std::string(name) + "[" + std::to_string(k) + ", " + std::to_string(c) + "]";
+        NETSHAPE_CHECK_FINITE(f.c_str(), m(k, c));
+      }
+}
+}  // namespace
+
 SweepStats sweep_lines(ZMap& zmap, const cutter::Cutter& cutter, const Eigen::Ref<const MatrixXdR>& starts,
                        const Eigen::Ref<const MatrixXdR>& ends) {
   cutter.validate();
@@ -1078,18 +1091,9 @@ SweepStats sweep_lines(ZMap& zmap, const cutter::Cutter& cutter, const Eigen::Re
     const std::string req = "must equal starts.shape[0] = " + std::to_string(starts.rows());
     NETSHAPE_CHECK(false, "ends.shape[0]", ends.rows(), req.c_str());
   }
+  check_finite_rows("starts", starts);
+  check_finite_rows("ends", ends);
   const Eigen::Index n = starts.rows();
-  for (Eigen::Index k = 0; k < n; ++k)
-    for (int c = 0; c < 3; ++c) {
-      if (!std::isfinite(starts(k, c))) {
-        const std::string f = "starts[" + std::to_string(k) + ", " + std::to_string(c) + "]";
-        NETSHAPE_CHECK_FINITE(f.c_str(), starts(k, c));
-      }
-      if (!std::isfinite(ends(k, c))) {
-        const std::string f = "ends[" + std::to_string(k) + ", " + std::to_string(c) + "]";
-        NETSHAPE_CHECK_FINITE(f.c_str(), ends(k, c));
-      }
-    }
   const TipProfile p = TipProfile::of(cutter);
   const ProfileKind kind = kind_of(cutter);
   SweepStats st;
@@ -1105,8 +1109,7 @@ SweepStats sweep_polyline(ZMap& zmap, const cutter::Cutter& cutter, const Eigen:
                           bool merge_collinear) {
   cutter.validate();
   NETSHAPE_CHECK(points.rows() >= 1, "points.shape[0]", points.rows(), "needs at least one point");
-  for (Eigen::Index k = 0; k < points.rows(); ++k)
-    for (int c = 0; c < 3; ++c) NETSHAPE_CHECK_FINITE("points", points(k, c));
+  check_finite_rows("points", points);
   const TipProfile p = TipProfile::of(cutter);
   const ProfileKind kind = kind_of(cutter);
   SweepStats st;

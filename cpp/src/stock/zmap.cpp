@@ -47,10 +47,7 @@ ZMap::ZMap(double x0, double x1, double y0, double y1, double spacing, double to
   dy_ = (y1 - y0) / ny_;
   bottom_ = bottom;
   heights_.setConstant(ny_, nx_, top);
-  band_rows_ = nx_ >= 64 ? 1 : (64 + nx_ - 1) / nx_;  // as init_bounds, without the pass over the heights
-  band_max_.assign(static_cast<std::size_t>((ny_ + band_rows_ - 1) / band_rows_), top);
-  band_work_.assign(band_max_.size(), 0);
-  bounds_stale_ = false;
+  size_bands(top);  // every height is top: the bounds are exact without a pass over the heights
 }
 
 ZMap ZMap::from_heights(const MatrixXdR& heights, double x0, double x1, double y0, double y1, double bottom) {
@@ -86,13 +83,17 @@ void ZMap::set_heights(const MatrixXdR& heights) {
   init_bounds();
 }
 
-void ZMap::init_bounds() {
+void ZMap::size_bands(double bound) {
   band_rows_ = nx_ >= 64 ? 1 : (64 + nx_ - 1) / nx_;
-  const int nb = (ny_ + band_rows_ - 1) / band_rows_;
-  band_max_.assign(static_cast<std::size_t>(nb), 0.0);
-  band_work_.assign(static_cast<std::size_t>(nb), 0);
-  for (int b = 0; b < nb; ++b) refresh_band(b);
+  const auto nb = static_cast<std::size_t>((ny_ + band_rows_ - 1) / band_rows_);
+  band_max_.assign(nb, bound);
+  band_work_.assign(nb, 0);
   bounds_stale_ = false;
+}
+
+void ZMap::init_bounds() {
+  size_bands(0.0);
+  for (int b = 0; b < static_cast<int>(band_max_.size()); ++b) refresh_band(b);
 }
 
 void ZMap::refresh_band(int b) {

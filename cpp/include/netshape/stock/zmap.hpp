@@ -102,6 +102,7 @@ class ZMap {
  private:
   friend struct SweepAccess;  // the sweeps (sweep.cpp): heights without staling the bounds, bounds
   ZMap() = default;
+  void size_bands(double bound);  // band sizes (≥ 64 nodes per band), every band's bound set to `bound`
   void init_bounds();           // band sizes and exact bounds from the heights
   void refresh_band(int b);     // exact bound of band b
   int band_rows_ = 1;
