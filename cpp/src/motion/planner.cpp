@@ -214,17 +214,9 @@ void blend_lines(Segment& s, const Vec3& p0, const Vec3& vtx, const Vec3& p3, co
     t[i] = (tb[16 - i] * x1 + ta[16 - i] * x2).abs();
     k[i] = (cb[16 - i] * x1 + ca[16 - i] * x2).abs();
   }
-  // largest curvature (at node 8 up to rounding) and |dκ/ds| between neighbouring nodes (the second
-  // half mirrors the first); the largest quotient equals the quotient of the largest fraction
-  // (rounding is monotone)
-  s.curvature = kat.maxCoeff();
-  Eigen::Array<double, 8, 1> dk, ds;
-  for (int i = 0; i < 8; ++i) {
-    dk[i] = std::abs(kat[i + 1] - kat[i]);
-    ds[i] = piece[i];
-  }
-  s.curvature_rate = (ds > 0).select(dk / ds, 0.0).maxCoeff();
-  s.full_length = s.table[16];
+  double k_at[17];
+  for (int i = 0; i <= 8; ++i) k_at[i] = k_at[16 - i] = kat[i];
+  finish_blend(s, k_at);
 }
 
 // Bounds of a blend piece over the table nodes i0..i1 from per-axis node values t, k (as BlendBounds:

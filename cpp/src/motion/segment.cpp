@@ -115,19 +115,13 @@ Segment Segment::blend(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec
 }
 
 void finish_blend(Segment& s, const double (&k_at)[17]) noexcept {
-  // largest curvature and |dκ/ds| between neighbouring nodes (fractions compared by cross-multiplying,
-  // one division)
-  double rn = 0.0, rd = 1.0;
-  s.curvature = k_at[0];
-  for (int i = 1; i <= 16; ++i) {
-    s.curvature = std::max(s.curvature, k_at[i]);
-    const double ds = s.table[i] - s.table[i - 1], dk = std::abs(k_at[i] - k_at[i - 1]);
-    if (ds > 0 && dk * rd > rn * ds) {
-      rn = dk;
-      rd = ds;
-    }
-  }
-  s.curvature_rate = rn / rd;
+  // largest curvature and |dκ/ds| between neighbouring nodes, as arrays (Eigen vectorises the 16
+  // divisions); the largest quotient is the quotient of the largest fraction, since rounding is monotone
+  using A16 = Eigen::Array<double, 16, 1>;
+  const Eigen::Map<const Eigen::Array<double, 17, 1>> k(k_at), t(s.table.data());
+  const A16 dk = (k.tail<16>() - k.head<16>()).abs(), ds = t.tail<16>() - t.head<16>();
+  s.curvature = k.maxCoeff();
+  s.curvature_rate = (ds > 0).select(dk / (ds > 0).select(ds, 1.0), 0.0).maxCoeff();
   s.full_length = s.table[16];
 }
 
