@@ -613,8 +613,6 @@ void Planner::push_line_blend(long source, long psource, const Vec3& p0, const V
   bn.curved = true;
   bn.j = inf;
   bn.a = amin_blend;
-  bn.U = Vec3(Uw[0], Uw[1], Uw[2]);
-  bn.K = Vec3(Kw[0], Kw[1], Kw[2]);
   const Lane A4(A[0], A[1], A[2], 1.0), V4(V[0], V[1], V[2], inf);
   r.np = np;
   r.cursor = 0;
@@ -1129,6 +1127,7 @@ Status Planner::next(Sample& out) noexcept {
   while (head_ < frozen_ - 1 && at(head_).t0 + at(head_).prof.duration <= t) ++head_;
   Node& n = at(head_);
   double s, v, acc;
+  const Segment* sg;
   if (n.multi) {
     // the piece of the blend that runs at t, on the whole blend (trims 0) at the piece's offset
     BlendRec& r = recs_[static_cast<std::size_t>(n.blk % static_cast<long>(recs_.size()))];
@@ -1136,22 +1135,17 @@ Status Planner::next(Sample& out) noexcept {
     while (k + 1 < r.np && r.t0[k] + r.prof[k].duration <= t) ++k;
     r.cursor = k;
     r.prof[k].eval(t - r.t0[k], s, v, acc);
-    const Segment& g = blend_of(n.blk);
-    out.position = g.point_at(r.trim_s[k] + s);
-    out.velocity = v * g.tangent_at(r.trim_s[k] + s);
-    out.feed = v;
-    out.path_acceleration = acc;
-    out.block = g.source;
-    ++sample_;
-    return Status::ok;
+    sg = &blend_of(n.blk);
+    s += r.trim_s[k];
+  } else {
+    sg = &seg_of(n);
+    n.prof.eval(t - n.t0, s, v, acc);
   }
-  const Segment& sg = seg_of(n);
-  n.prof.eval(t - n.t0, s, v, acc);
-  out.position = sg.point_at(s);
-  out.velocity = v * sg.tangent_at(s);
+  out.position = sg->point_at(s);
+  out.velocity = v * sg->tangent_at(s);
   out.feed = v;
   out.path_acceleration = acc;
-  out.block = sg.source;
+  out.block = sg->source;
   ++sample_;
   return Status::ok;
 }
