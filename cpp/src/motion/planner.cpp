@@ -215,8 +215,8 @@ void blend_lines(Segment& s, const Vec3& p0, const Vec3& vtx, const Vec3& p3, co
     k[i] = (cb[16 - i] * x1 + ca[16 - i] * x2).abs();
   }
   double k_at[17];
-  for (int i = 0; i <= 8; ++i) k_at[i] = k_at[16 - i] = kat[i];
-  finish_blend(s, k_at);
+  for (int i = 0; i <= 8; ++i) k_at[i] = kat[i];  // finish_blend reads the first half only
+  finish_blend(s, k_at, true);
 }
 
 // Bounds of a blend piece over the table nodes i0..i1 from per-axis node values t, k (as BlendBounds:

@@ -110,17 +110,19 @@ Segment Segment::blend(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec
     if (tangent) (*tangent)[static_cast<std::size_t>(i)] = tn;
     if (curvature_vector) (*curvature_vector)[static_cast<std::size_t>(i)] = kv;
   }
-  finish_blend(s, k_at);
+  finish_blend(s, k_at, symmetric);
   return s;
 }
 
-void finish_blend(Segment& s, const double (&k_at)[17]) noexcept {
-  // largest curvature and |dκ/ds| between neighbouring nodes, as arrays (Eigen vectorises the 16
-  // divisions); the largest quotient is the quotient of the largest fraction, since rounding is monotone
-  using A16 = Eigen::Array<double, 16, 1>;
+void finish_blend(Segment& s, const double (&k_at)[17], bool symmetric) noexcept {
+  // largest curvature and |dκ/ds| between neighbouring nodes, as arrays (Eigen vectorises the
+  // divisions); the largest quotient is the quotient of the largest fraction, since rounding is
+  // monotone. A symmetric blend's second half mirrors its first: nodes 0..8 and intervals 0..7 suffice.
   const Eigen::Map<const Eigen::Array<double, 17, 1>> k(k_at), t(s.table.data());
-  const A16 dk = (k.tail<16>() - k.head<16>()).abs(), ds = t.tail<16>() - t.head<16>();
-  s.curvature = k.maxCoeff();
+  const int n = symmetric ? 8 : 16;
+  using A = Eigen::Array<double, Eigen::Dynamic, 1, 0, 16, 1>;  // at most 16, no allocation
+  const A dk = (k.segment(1, n) - k.head(n)).abs(), ds = t.segment(1, n) - t.head(n);
+  s.curvature = k.head(n + 1).maxCoeff();
   s.curvature_rate = (ds > 0).select(dk / (ds > 0).select(ds, 1.0), 0.0).maxCoeff();
   s.full_length = s.table[16];
 }

@@ -52,7 +52,8 @@ struct Segment {
 
 /// Blend `s` with its arc-length table filled: sets its largest curvature, largest |dκ/ds| between
 /// neighbouring table nodes and its length, from the curvature at the 17 table nodes [1/mm].
-void finish_blend(Segment& s, const double (&k_at)[17]) noexcept;
+/// `symmetric`: the second half of the table and of k_at mirrors the first (only it is scanned).
+void finish_blend(Segment& s, const double (&k_at)[17], bool symmetric = false) noexcept;
 
 /// Bézier point and first two derivatives with respect to u.
 Vec3 bezier_point(const std::array<Vec3, 4>& c, double u) noexcept;
