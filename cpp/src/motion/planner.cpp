@@ -139,14 +139,14 @@ struct BlendBounds {
 };
 
 // What blend_lines needs at fixed parameter values, computed once: with a = (1 − u)², b = u²,
-// e = −(1 − u), f = u, |B'|²/(9d²) = g2(u) = P + Q·c (P = a² + b², Q = 2ab) at the 3-point
-// Gauss-Legendre points of the first 8 table intervals (3i, 3i + 1, 3i + 2: centre, left, right) and
-// at the nodes 0..8, and m = e·a + f·b + (e·b + f·a)·c = M0 + M1·c at the nodes.
+// |B'|²/(9d²) = g2(u) = P + Q·c (P = a² + b², Q = 2ab) at the 3-point Gauss-Legendre points of the
+// first 8 table intervals (3i, 3i + 1, 3i + 2: centre, left, right) and at the nodes 0..8, where also
+// w = u·(1 − u).
 struct LineBlendTables {
   using A24 = Eigen::Array<double, 24, 1>;
   using A9 = Eigen::Array<double, 9, 1>;
   A24 gp, gq;
-  A9 np, nq, a, b, e, f, m0, m1;
+  A9 np, nq, a, b, w;
   LineBlendTables() {
     const double gx = 0.7745966692414834, h = 0.5 / 16.0;
     for (int i = 0; i < 8; ++i) {
@@ -158,35 +158,38 @@ struct LineBlendTables {
       }
     }
     for (int i = 0; i <= 8; ++i) {
-      const double u = i / 16.0, aa = (1 - u) * (1 - u), bb = u * u, ee = -(1 - u), ff = u;
+      const double u = i / 16.0, aa = (1 - u) * (1 - u), bb = u * u;
       np[i] = aa * aa + bb * bb;
       nq[i] = 2.0 * aa * bb;
       a[i] = aa;
       b[i] = bb;
-      e[i] = ee;
-      f[i] = ff;
-      m0[i] = ee * aa + ff * bb;
-      m1[i] = ee * bb + ff * aa;
+      w[i] = u * (1 - u);
     }
   }
 };
 const LineBlendTables line_blend_tables;
 
+// The symmetric blend between two lines at its table nodes 0..8: unit tangent ta·u1 + tb·u2 and
+// curvature κ [1/mm]. Node 16 − i mirrors node i: tangent tb·u1 + ta·u2, the same κ.
+struct LineBlendNodes {
+  LineBlendTables::A9 ta, tb, kappa;
+  double c = 1.0, inv_sin = 0.0;  // cos θ and 1/sin θ of the turn
+};
+
 // The symmetric blend between two lines: P0 = V − d·u1, P1 = P2 = V, P3 = V + d·u2 (u1, u2 unit).
-// Its hodograph is B'(u) = 3d·((1 − u)²·u1 + u²·u2) and B''(u) = 6d·(−(1 − u)·u1 + u·u2), so the
-// unit tangent and the curvature vector are combinations a·u1 + b·u2 whose scalar coefficients depend
-// on u and cos θ = u1·u2 only (|B'|² = 9d²·(a² + b² + 2ab·cos θ)); the node 16 − i mirrors node i with
-// u1 and u2 swapped. The curvature κ ∝ u(1 − u)/g2^{3/2} peaks at u = 1/2 (node 8). Fills s in place
-// (the fields of Segment::blend) and, per axis c and table node i, |u_c| in t[i][c] and |κ n_c| in
-// k[i][c] (lane 3: padding). The scalar work runs on whole arrays (Eigen vectorises it).
+// Its hodograph is B'(u) = 3d·((1 − u)²·u1 + u²·u2) and B''(u) = 6d·(−(1 − u)·u1 + u·u2), so
+// |B'|² = 9d²·g2 with g2 = a² + b² + 2ab·cos θ, B' × B'' = 18d²·u(1 − u)·(u1 × u2) and the curvature
+// is κ = (2 sin θ/(3d))·u(1 − u)/g2^{3/2}: everything depends on u and θ only, and node 16 − i mirrors
+// node i. Fills s in place (the fields of Segment::blend) and the node values nd; the scalar work runs
+// on whole arrays (Eigen vectorises it).
 void blend_lines(Segment& s, const Vec3& p0, const Vec3& vtx, const Vec3& p3, const Vec3& u1, const Vec3& u2,
-                 double d, long source, Eigen::Array4d t[17], Eigen::Array4d k[17]) {
+                 double d, long source, LineBlendNodes& nd) {
   const LineBlendTables& T = line_blend_tables;
   s.kind = SegmentKind::blend;
   s.ctrl = {p0, vtx, vtx, p3};
   s.source = source;
   s.trim_start = s.trim_end = 0.0;
-  const double c = u1.dot(u2);
+  const double c = u1.dot(u2), sn = u1.cross(u2).norm();  // |u1 × u2| keeps small turns accurate
   // arc length: 3-point Gauss-Legendre per interval of |B'| = 3d·sqrt(g2); first half, mirrored
   constexpr double w0 = 8.0 / 9.0, w1 = 5.0 / 9.0, h = 0.5 / 16.0;
   const LineBlendTables::A24 sp = (T.gp + T.gq * c).max(0.0).sqrt();
@@ -196,63 +199,54 @@ void blend_lines(Segment& s, const Vec3& p0, const Vec3& vtx, const Vec3& p3, co
   s.table[0] = 0;
   for (int i = 1; i <= 8; ++i) s.table[i] = s.table[i - 1] + piece[i - 1];
   for (int i = 9; i <= 16; ++i) s.table[i] = s.table[i - 1] + piece[16 - i];
-  // nodes 0..8: tangent (ta·u1 + tb·u2) and curvature vector (ka·u1 + kb·u2); node 16 − i: tangent
-  // tb·u1 + ta·u2, curvature vector −(kb·u1 + ka·u2)
-  const double k_scale = 2.0 / (3.0 * d);
   using A9 = LineBlendTables::A9;
   const A9 G = (T.np + T.nq * c).max(1e-300), iG = G.inverse(), ig = iG.sqrt();
-  const A9 m = T.m0 + T.m1 * c;
-  const A9 ca = k_scale * iG * (T.e - m * T.a * iG), cb = k_scale * iG * (T.f - m * T.b * iG);
-  const A9 ta = T.a * ig, tb = T.b * ig;
-  const A9 kat = (ca * ca + cb * cb + 2.0 * ca * cb * c).max(0.0).sqrt();
-  const Eigen::Array4d x1(u1[0], u1[1], u1[2], 0.0), x2(u2[0], u2[1], u2[2], 0.0);  // lane 3: padding
-  for (int i = 0; i <= 8; ++i) {
-    t[i] = (ta[i] * x1 + tb[i] * x2).abs();
-    k[i] = (ca[i] * x1 + cb[i] * x2).abs();
-  }
-  for (int i = 9; i <= 16; ++i) {
-    t[i] = (tb[16 - i] * x1 + ta[16 - i] * x2).abs();
-    k[i] = (cb[16 - i] * x1 + ca[16 - i] * x2).abs();
-  }
+  nd.ta = T.a * ig;
+  nd.tb = T.b * ig;
+  nd.kappa = (2.0 * sn / (3.0 * d)) * T.w * iG * ig;
+  nd.c = c;
+  nd.inv_sin = 1.0 / sn;
   double k_at[17];
-  for (int i = 0; i <= 8; ++i) k_at[i] = kat[i];  // finish_blend reads the first half only
+  for (int i = 0; i <= 8; ++i) k_at[i] = nd.kappa[i];  // finish_blend reads the first half only
   finish_blend(s, k_at, true);
 }
 
-// Bounds of a blend piece over the table nodes i0..i1 from per-axis node values t, k (as BlendBounds:
-// the largest node value plus a quarter of the largest second difference of the node values, which
-// are 0 at the two end nodes)
-struct NodeBounds {
-  using Lane = Eigen::Array4d;  // axes x, y, z and a padding lane (Eigen vectorises fixed-size arrays)
-  Lane t[17], k[17];            // |u_c| and |κ n_c| at the table nodes
-  // Bounds of the pieces between the nodes cut[0] = 0 < cut[1] < ... < cut[np] = 16 in one pass over
-  // the nodes (the second differences are formed on the way and not stored; a node where two pieces
-  // meet counts for both)
-  void bounds(const int* cut, int np, Lane* U, Lane* K) const noexcept {
-    Lane a = t[0], b = k[0], e = Lane::Zero(), f = Lane::Zero();
-    int p = 0;
-    for (int i = 1; i <= 16; ++i) {
-      Lane di = Lane::Zero(), dj = Lane::Zero();
-      if (i < 16) {
-        di = 0.25 * (t[i - 1] - 2.0 * t[i] + t[i + 1]).abs();
-        dj = 0.25 * (k[i - 1] - 2.0 * k[i] + k[i + 1]).abs();
-      }
-      a = a.max(t[i]);
-      b = b.max(k[i]);
-      e = e.max(di);
-      f = f.max(dj);
-      if (i == cut[p + 1]) {
-        U[p] = (a + e + 1e-12).min(1.0);
-        K[p] = b * (1.0 + 1e-9) + f;
-        if (++p == np) break;
-        a = t[i];
-        b = k[i];
-        e = di;
-        f = dj;
-      }
-    }
+// per piece of a blend between two lines (a lane each)
+using PieceArr = Eigen::Array<double, n_cuts_lines, 1>;
+
+// Exact per-axis bounds of |u_c| (U) and |κ n_c| (K) [1/mm] over the pieces of the symmetric line
+// blend between the table nodes cut[0] = 0 < ... < cut[np] = 16 (np ≤ n_cuts_lines; lanes k ≥ np
+// hold the empty piece at node 16). The tangent turns monotonically by φ ∈ [0, θ] in the plane of u1
+// and u2 (B' is a positive combination of them whose ratio u²/(1 − u)² rises), and with N the tangent
+// turned by +90° in that plane, dT/dφ = N and dN/dφ = −T. So per axis T_c = R_c·cos(φ − ψ_c) and
+// N_c = −R_c·sin(φ − ψ_c), R_c the length of the axis' projection on the plane: over a piece
+// (|Δφ| < π) |T_c| reaches R_c inside iff N_c changes sign, else its largest value is at an end;
+// likewise |N_c| with T_c. κ rises monotonically up to node 8 and falls after it (u(1 − u)/g2^{3/2}:
+// checked for cos θ over (−1, 1)), so on a piece κ is at most its larger end value, and |κ n_c| at
+// most that times the largest |N_c|. In the plane T = ta·u1 + tb·u2 gives
+// N = (−(tb + c·ta)·u1 + (ta + c·tb)·u2)/sin θ.
+void line_blend_bounds(const LineBlendNodes& nd, const Vec3& u1, const Vec3& u2, const int* cut, int np,
+                       PieceArr (&U)[3], PieceArr (&K)[3]) {
+  constexpr int n = n_cuts_lines;
+  using NodeArr = Eigen::Array<double, n + 1, 1>;  // at the piece ends
+  NodeArr ta, tb, kn;
+  for (int m = 0; m <= n; ++m) {
+    const int i = cut[std::min(m, np)], half = std::min(i, 16 - i);
+    const double x = nd.ta[half], y = nd.tb[half];
+    ta[m] = i <= 8 ? x : y;
+    tb[m] = i <= 8 ? y : x;
+    kn[m] = nd.kappa[half];
   }
-};
+  const NodeArr na = -(tb + nd.c * ta) * nd.inv_sin, nb = (ta + nd.c * tb) * nd.inv_sin;
+  const PieceArr kmax = kn.head<n>().max(kn.tail<n>()) * (1.0 + 1e-9);
+  for (int c = 0; c < 3; ++c) {
+    const NodeArr t = ta * u1[c] + tb * u2[c], nn = na * u1[c] + nb * u2[c];
+    const double r = std::sqrt(t[0] * t[0] + nn[0] * nn[0]);  // R_c (rotation leaves it unchanged)
+    const PieceArr t0 = t.head<n>(), t1 = t.tail<n>(), n0 = nn.head<n>(), n1 = nn.tail<n>();
+    U[c] = ((n0 * n1 < 0).select(r, t0.abs().max(t1.abs())) + 1e-12).min(1.0);
+    K[c] = kmax * (t0 * t1 < 0).select(r, n0.abs().max(n1.abs()));
+  }
+}
 
 // curvature vector κ·n [1/mm] at the start or the end of a segment (0 on lines)
 Vec3 curvature_vector(const Segment& s, bool at_end) {
@@ -570,32 +564,36 @@ void Planner::init_blend_piece(Node& bn, const Segment& whole, int i0, int i1, l
 // [mm/s].
 void Planner::push_line_blend(long source, long psource, const Vec3& p0, const Vec3& vtx, const Vec3& p3, const Vec3& u1,
                               const Vec3& u2, double d, double vfeed, double& v_prev) noexcept {
+  static_assert(rec_pieces == n_cuts_lines, "one lane of the record per piece of a line blend");
+  using Map = Eigen::Map<PieceArr>;
   Segment& whole = blend_of(source);
-  NodeBounds nb;
-  blend_lines(whole, p0, vtx, p3, u1, u2, d, psource, nb.t, nb.k);
+  LineBlendNodes nd;
+  blend_lines(whole, p0, vtx, p3, u1, u2, d, psource, nd);
   const Vec3& A = limits_.acceleration;
   const Vec3& V = limits_.velocity;
-  const int* cut = cuts_lines;
   int np = n_cuts_lines;
-  // bounds of every piece (per axis; lane 3 is padding); those of the whole blend are their largest
-  // (max and min(1, ·) commute)
-  using Lane = NodeBounds::Lane;
-  Lane Up[n_cuts_lines], Kp[n_cuts_lines];
-  Lane Uw = Lane::Zero(), Kw = Lane::Zero();
-  nb.bounds(cut, np, Up, Kp);
+  PieceArr U[3], K[3], ts, te;  // per axis bounds; trims of the whole blend
+  line_blend_bounds(nd, u1, u2, cuts_lines, np, U, K);
   for (int k = 0; k < np; ++k) {
-    Uw = Uw.max(Up[k]);
-    Kw = Kw.max(Kp[k]);
+    ts[k] = whole.table[static_cast<std::size_t>(cuts_lines[k])];
+    te[k] = whole.full_length - whole.table[static_cast<std::size_t>(cuts_lines[k + 1])];
   }
   {
-    double vcap = vfeed;
-    for (int i = 0; i < 3; ++i) vcap = std::min(vcap, V[i] / Uw[i]);  // U ≥ 1e-12
-    // a gentle turn: the centripetal part takes little of the budget at full speed; one piece
-    if (std::max({Kw[0], Kw[1], Kw[2]}) * vcap * vcap <= 0.02 * A.minCoeff()) {
+    // a gentle turn: the centripetal part takes little of the budget at full speed; one piece whose
+    // bounds are the largest of the pieces' (every lane holds it)
+    double vcap = vfeed, kw = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      vcap = std::min(vcap, V[i] / U[i].maxCoeff());  // U ≥ 1e-12
+      kw = std::max(kw, K[i].maxCoeff());
+    }
+    if (kw * vcap * vcap <= 0.02 * A.minCoeff()) {
       np = 1;
-      cut = cuts_one;
-      Up[0] = Uw;
-      Kp[0] = Kw;
+      for (int i = 0; i < 3; ++i) {
+        U[i].setConstant(U[i].maxCoeff());
+        K[i].setConstant(K[i].maxCoeff());
+      }
+      ts.setZero();
+      te.setZero();
     }
   }
   // the axes that move on the blend (Segment::moving_axes) and the smallest of their accelerations
@@ -613,45 +611,41 @@ void Planner::push_line_blend(long source, long psource, const Vec3& p0, const V
   bn.curved = true;
   bn.j = inf;
   bn.a = amin_blend;
-  const Lane A4(A[0], A[1], A[2], 1.0), V4(V[0], V[1], V[2], inf);
   r.np = np;
   r.cursor = 0;
-  double v_entry = 0.0;
-  for (int k = 0; k < np; ++k) {
-    const int i0 = cut[k], i1 = cut[k + 1];
-    r.trim_s[k] = whole.table[static_cast<std::size_t>(i0)];
-    r.trim_e[k] = whole.full_length - whole.table[static_cast<std::size_t>(i1)];
-    const double L = std::max(0.0, whole.full_length - r.trim_s[k] - r.trim_e[k]);
-    r.len[k] = L;
-    // per axis, all at once (lane 3: padding with K = 0, V = inf)
-    const Lane& U = Up[k];
-    const Lane& K = Kp[k];
-    const Lane iu = U.inverse(), r1 = (U + L * K).inverse(), r2 = (U + 2.0 * L * K).inverse();
-    const Lane p1 = 0.5 * U * r1, p0 = L * A4 * r1;  // peak: w = min_i (U_i·(vs² + ve²)/2 + L·A_i)/(U_i + L·K_i)
-    const Lane al = U * r2, be = 2.0 * L * A4 * r2;   // reach: w = min_i (U_i·w0 + 2·L·A_i)/(U_i + 2·L·K_i)
-    const Lane wk4 = (K > 0).select(A4 / (K > 0).select(K, 1.0), inf);
-    for (int i = 0; i < 3; ++i) {
-      r.iu[i][k] = iu[i];
-      r.K[i][k] = K[i];
-      r.p1[i][k] = p1[i];
-      r.p0[i][k] = p0[i];
-      r.alpha[i][k] = al[i];
-      r.beta[i][k] = be[i];
-    }
-    double vmax = std::min(vfeed, (V4 * iu).minCoeff());
-    const double wk = wk4.minCoeff();
-    if (wk < inf) vmax = std::min(vmax, std::sqrt(wk));
-    r.vmax[k] = vmax;
-    const double v_lim = std::min(v_prev, vmax);
-    if (k == 0) v_entry = v_lim;
-    r.w_lim[k] = v_lim * v_lim;
-    r.wb[k] = 0.0;
-    v_prev = vmax;
+  // all pieces at once, per axis: the coefficients of the peak w = min_i (U_i·(vs² + ve²)/2 + L·A_i)/
+  // (U_i + L·K_i), of the reach w = min_i (U_i·w0 + 2·L·A_i)/(U_i + 2·L·K_i) and of the tangential
+  // budget, and the caps |u_i|·v ≤ V_i, K_i·v² ≤ A_i
+  const PieceArr L = (whole.full_length - ts - te).max(0.0);
+  PieceArr vmax = PieceArr::Constant(vfeed), wk = PieceArr::Constant(inf);
+  for (int i = 0; i < 3; ++i) {
+    const PieceArr iu = U[i].inverse(), r1 = (U[i] + L * K[i]).inverse(), r2 = (U[i] + 2.0 * L * K[i]).inverse();
+    Map(r.iu[i]) = iu;
+    Map(r.K[i]) = K[i];
+    Map(r.p1[i]) = 0.5 * U[i] * r1;
+    Map(r.p0[i]) = L * A[i] * r1;
+    Map(r.alpha[i]) = U[i] * r2;
+    Map(r.beta[i]) = 2.0 * L * A[i] * r2;
+    vmax = vmax.min(V[i] * iu);
+    wk = wk.min(A[i] / K[i]);  // +inf where K = 0 (A > 0)
   }
+  vmax = vmax.min(wk.sqrt());
+  // the junction limit of piece k is the smaller cap of pieces k − 1 and k (piece 0: the cap before)
+  PieceArr before;
+  before[0] = v_prev;
+  before.tail<n_cuts_lines - 1>() = vmax.head<n_cuts_lines - 1>();
+  const PieceArr v_lim = before.min(vmax);
+  Map(r.vmax) = vmax;
+  Map(r.len) = L;
+  Map(r.trim_s) = ts;
+  Map(r.trim_e) = te;
+  Map(r.w_lim) = v_lim * v_lim;
+  Map(r.wb).setZero();
+  v_prev = vmax[np - 1];
   bn.vmax = v_prev;
-  bn.v_lim = bn.v_corner = v_entry;
+  bn.v_lim = bn.v_corner = v_lim[0];
   Quick& x = quick_[slot];
-  x.w_lim = v_entry * v_entry;
+  x.w_lim = v_lim[0] * v_lim[0];
   x.len = whole.full_length;
   x.a = bn.a;
   x.j = inf;
