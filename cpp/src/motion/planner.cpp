@@ -24,7 +24,7 @@ constexpr int n_cuts_general = 8;
 const int cuts_jerk[5] = {0, 4, 8, 12, 16};
 constexpr int n_cuts_jerk = 4;
 // between two lines (symmetric blends, curvature peak at node 8) six pieces, narrow around the peak
-const int cuts_lines[7] = {0, 4, 6, 8, 10, 12, 16};
+constexpr int cuts_lines[7] = {0, 4, 6, 8, 10, 12, 16};
 constexpr int n_cuts_lines = 6;
 const int cuts_one[2] = {0, 16};
 // nodes one push may add: the previous arc's pieces, the blend pieces, the new block
@@ -140,13 +140,15 @@ struct BlendBounds {
 
 // What blend_lines needs at fixed parameter values, computed once: with a = (1 − u)², b = u²,
 // |B'|²/(9d²) = g2(u) = P + Q·c (P = a² + b², Q = 2ab) at the 3-point Gauss-Legendre points of the
-// first 8 table intervals (3i, 3i + 1, 3i + 2: centre, left, right) and at the nodes 0..8, where also
-// w = u·(1 − u).
+// first 8 table intervals (3i, 3i + 1, 3i + 2: centre, left, right), at the nodes 0..8 (with
+// w = u·(1 − u)) and at the piece ends cuts_lines (lane 7 repeats node 16), where also a and b.
 struct LineBlendTables {
   using A24 = Eigen::Array<double, 24, 1>;
   using A9 = Eigen::Array<double, 9, 1>;
+  using A8 = Eigen::Array<double, 8, 1>;
   A24 gp, gq;
-  A9 np, nq, a, b, w;
+  A9 np, nq, w;
+  A8 cp, cq, ca, cb, cw;
   LineBlendTables() {
     const double gx = 0.7745966692414834, h = 0.5 / 16.0;
     for (int i = 0; i < 8; ++i) {
@@ -161,18 +163,24 @@ struct LineBlendTables {
       const double u = i / 16.0, aa = (1 - u) * (1 - u), bb = u * u;
       np[i] = aa * aa + bb * bb;
       nq[i] = 2.0 * aa * bb;
-      a[i] = aa;
-      b[i] = bb;
       w[i] = u * (1 - u);
+    }
+    for (int m = 0; m < 8; ++m) {
+      const double u = cuts_lines[std::min(m, n_cuts_lines)] / 16.0, aa = (1 - u) * (1 - u), bb = u * u;
+      cp[m] = aa * aa + bb * bb;
+      cq[m] = 2.0 * aa * bb;
+      ca[m] = aa;
+      cb[m] = bb;
+      cw[m] = u * (1 - u);
     }
   }
 };
 const LineBlendTables line_blend_tables;
 
-// The symmetric blend between two lines at its table nodes 0..8: unit tangent ta·u1 + tb·u2 and
-// curvature κ [1/mm]. Node 16 − i mirrors node i: tangent tb·u1 + ta·u2, the same κ.
+// The symmetric blend between two lines at its piece ends cuts_lines (lane 7: node 16 again): unit
+// tangent ta·u1 + tb·u2 and curvature κ [1/mm].
 struct LineBlendNodes {
-  LineBlendTables::A9 ta, tb, kappa;
+  LineBlendTables::A8 ta, tb, kappa;
   double c = 1.0, inv_sin = 0.0;  // cos θ and 1/sin θ of the turn
 };
 
@@ -180,8 +188,8 @@ struct LineBlendNodes {
 // Its hodograph is B'(u) = 3d·((1 − u)²·u1 + u²·u2) and B''(u) = 6d·(−(1 − u)·u1 + u·u2), so
 // |B'|² = 9d²·g2 with g2 = a² + b² + 2ab·cos θ, B' × B'' = 18d²·u(1 − u)·(u1 × u2) and the curvature
 // is κ = (2 sin θ/(3d))·u(1 − u)/g2^{3/2}: everything depends on u and θ only, and node 16 − i mirrors
-// node i. Fills s in place (the fields of Segment::blend) and the node values nd; the scalar work runs
-// on whole arrays (Eigen vectorises it).
+// node i. Fills s in place (the fields of Segment::blend) and the piece-end values nd; the scalar
+// work runs on whole arrays (Eigen vectorises it).
 void blend_lines(Segment& s, const Vec3& p0, const Vec3& vtx, const Vec3& p3, const Vec3& u1, const Vec3& u2,
                  double d, long source, LineBlendNodes& nd) {
   const LineBlendTables& T = line_blend_tables;
@@ -199,52 +207,53 @@ void blend_lines(Segment& s, const Vec3& p0, const Vec3& vtx, const Vec3& p3, co
   s.table[0] = 0;
   for (int i = 1; i <= 8; ++i) s.table[i] = s.table[i - 1] + piece[i - 1];
   for (int i = 9; i <= 16; ++i) s.table[i] = s.table[i - 1] + piece[16 - i];
+  // curvature at the nodes 0..8 (finish_blend reads the first half only) and at the piece ends
+  const double ks = 2.0 * sn / (3.0 * d);
   using A9 = LineBlendTables::A9;
-  const A9 G = (T.np + T.nq * c).max(1e-300), iG = G.inverse(), ig = iG.sqrt();
-  nd.ta = T.a * ig;
-  nd.tb = T.b * ig;
-  nd.kappa = (2.0 * sn / (3.0 * d)) * T.w * iG * ig;
+  using A8 = LineBlendTables::A8;
+  const A9 iG = (T.np + T.nq * c).max(1e-300).inverse();
+  double k_at[17];
+  Eigen::Map<A9> k_half(k_at);
+  k_half = ks * T.w * iG * iG.sqrt();
+  finish_blend(s, k_at, true);
+  const A8 iGc = (T.cp + T.cq * c).max(1e-300).inverse(), igc = iGc.sqrt();
+  nd.ta = T.ca * igc;
+  nd.tb = T.cb * igc;
+  nd.kappa = ks * T.cw * iGc * igc;
   nd.c = c;
   nd.inv_sin = 1.0 / sn;
-  double k_at[17];
-  for (int i = 0; i <= 8; ++i) k_at[i] = nd.kappa[i];  // finish_blend reads the first half only
-  finish_blend(s, k_at, true);
 }
 
 // per piece of a blend between two lines (a lane each)
 using PieceArr = Eigen::Array<double, n_cuts_lines, 1>;
 
 // Exact per-axis bounds of |u_c| (U) and |κ n_c| (K) [1/mm] over the pieces of the symmetric line
-// blend between the table nodes cut[0] = 0 < ... < cut[np] = 16 (np ≤ n_cuts_lines; lanes k ≥ np
-// hold the empty piece at node 16). The tangent turns monotonically by φ ∈ [0, θ] in the plane of u1
-// and u2 (B' is a positive combination of them whose ratio u²/(1 − u)² rises), and with N the tangent
-// turned by +90° in that plane, dT/dφ = N and dN/dφ = −T. So per axis T_c = R_c·cos(φ − ψ_c) and
-// N_c = −R_c·sin(φ − ψ_c), R_c the length of the axis' projection on the plane: over a piece
-// (|Δφ| < π) |T_c| reaches R_c inside iff N_c changes sign, else its largest value is at an end;
-// likewise |N_c| with T_c. κ rises monotonically up to node 8 and falls after it (u(1 − u)/g2^{3/2}:
-// checked for cos θ over (−1, 1)), so on a piece κ is at most its larger end value, and |κ n_c| at
-// most that times the largest |N_c|. In the plane T = ta·u1 + tb·u2 gives
-// N = (−(tb + c·ta)·u1 + (ta + c·tb)·u2)/sin θ.
-void line_blend_bounds(const LineBlendNodes& nd, const Vec3& u1, const Vec3& u2, const int* cut, int np,
-                       PieceArr (&U)[3], PieceArr (&K)[3]) {
+// blend between the table nodes cuts_lines. The tangent turns monotonically by φ ∈ [0, θ] in the
+// plane of u1 and u2 (B' is a positive combination of them whose ratio u²/(1 − u)² rises), and with
+// N the tangent turned by +90° in that plane, dT/dφ = N and dN/dφ = −T. So per axis
+// T_c = R_c·cos(φ − ψ_c) and N_c = −R_c·sin(φ − ψ_c), R_c the length of the axis' projection on the
+// plane: over a piece (|Δφ| < π) |T_c| reaches R_c inside iff N_c changes sign, else its largest
+// value is at an end; likewise |N_c| with T_c. κ rises monotonically up to node 8 and falls after it
+// (u(1 − u)/g2^{3/2}: checked for cos θ over (−1, 1)), so on a piece that ends at or before node 8
+// or starts at or after it κ is at most its larger end value, and |κ n_c| at most that times the
+// largest |N_c|. In the plane T = ta·u1 + tb·u2 gives N = (−(tb + c·ta)·u1 + (ta + c·tb)·u2)/sin θ.
+void line_blend_bounds(const LineBlendNodes& nd, const Vec3& u1, const Vec3& u2, PieceArr (&U)[3],
+                       PieceArr (&K)[3]) {
+  static_assert(cuts_lines[n_cuts_lines / 2] == 8, "no piece of a line blend straddles its middle node");
   constexpr int n = n_cuts_lines;
-  using NodeArr = Eigen::Array<double, n + 1, 1>;  // at the piece ends
-  NodeArr ta, tb, kn;
-  for (int m = 0; m <= n; ++m) {
-    const int i = cut[std::min(m, np)], half = std::min(i, 16 - i);
-    const double x = nd.ta[half], y = nd.tb[half];
-    ta[m] = i <= 8 ? x : y;
-    tb[m] = i <= 8 ? y : x;
-    kn[m] = nd.kappa[half];
-  }
-  const NodeArr na = -(tb + nd.c * ta) * nd.inv_sin, nb = (ta + nd.c * tb) * nd.inv_sin;
-  const PieceArr kmax = kn.head<n>().max(kn.tail<n>()) * (1.0 + 1e-9);
+  using A8 = LineBlendTables::A8;
+  const A8 na = -(nd.tb + nd.c * nd.ta) * nd.inv_sin, nb = (nd.ta + nd.c * nd.tb) * nd.inv_sin;
+  const PieceArr kmax = nd.kappa.head<n>().max(nd.kappa.segment<n>(1)) * (1.0 + 1e-9);
   for (int c = 0; c < 3; ++c) {
-    const NodeArr t = ta * u1[c] + tb * u2[c], nn = na * u1[c] + nb * u2[c];
+    const A8 t = nd.ta * u1[c] + nd.tb * u2[c], nn = na * u1[c] + nb * u2[c];
     const double r = std::sqrt(t[0] * t[0] + nn[0] * nn[0]);  // R_c (rotation leaves it unchanged)
-    const PieceArr t0 = t.head<n>(), t1 = t.tail<n>(), n0 = nn.head<n>(), n1 = nn.tail<n>();
-    U[c] = ((n0 * n1 < 0).select(r, t0.abs().max(t1.abs())) + 1e-12).min(1.0);
-    K[c] = kmax * (t0 * t1 < 0).select(r, n0.abs().max(n1.abs()));
+    const PieceArr t0 = t.head<n>(), t1 = t.segment<n>(1), n0 = nn.head<n>(), n1 = nn.segment<n>(1);
+    // "x changes sign over the piece" without select() (Eigen 3.4 does not vectorise it):
+    // q = min(max(x0, x1), −min(x0, x1)) is positive exactly then, and min(r, 1e12·q) is r unless
+    // |x| < 1e-12·r at an end, where the end value of the other component is within 1e-24·r of r
+    const PieceArr qn = n0.max(n1).min(-n0.min(n1)), qt = t0.max(t1).min(-t0.min(t1));
+    U[c] = (t0.abs().max(t1.abs()).max((1e12 * qn).min(r)) + 1e-12).min(1.0);
+    K[c] = kmax * n0.abs().max(n1.abs()).max((1e12 * qt).min(r));
   }
 }
 
@@ -573,7 +582,7 @@ void Planner::push_line_blend(long source, long psource, const Vec3& p0, const V
   const Vec3& V = limits_.velocity;
   int np = n_cuts_lines;
   PieceArr U[3], K[3], ts, te;  // per axis bounds; trims of the whole blend
-  line_blend_bounds(nd, u1, u2, cuts_lines, np, U, K);
+  line_blend_bounds(nd, u1, u2, U, K);
   for (int k = 0; k < np; ++k) {
     ts[k] = whole.table[static_cast<std::size_t>(cuts_lines[k])];
     te[k] = whole.full_length - whole.table[static_cast<std::size_t>(cuts_lines[k + 1])];
@@ -1009,7 +1018,9 @@ bool Planner::freeze_next() noexcept {
 void Planner::freeze_multi(Node& n, BlendRec& r, double vs, double wt) noexcept {
   using Arr = Eigen::Array<double, rec_pieces, 1>;
   using Map = Eigen::Map<const Arr>;
+  using Out = Eigen::Map<Arr>;
   const int np = r.np;
+  const double v_start = vs;
   // the chain of end speeds (sequential); unused lanes repeat the last piece
   Arr VS, VE;
   for (int k = 0; k < np; ++k) {
@@ -1026,7 +1037,8 @@ void Planner::freeze_multi(Node& n, BlendRec& r, double vs, double wt) noexcept 
     VE[k] = VE[np - 1];
   }
   // then all pieces at once: peak squared speed, tangential budget at that speed and the trapezoid
-  // (Profile::make without windows, the same arithmetic lane by lane)
+  // (Profile::make without windows, the same arithmetic lane by lane; written without select(),
+  // which Eigen 3.4 does not vectorise)
   const Arr L = Map(r.len), S = VS * VS + VE * VE;
   const Arr vlow = VS.max(VE);
   Arr wp = Map(r.vmax) * Map(r.vmax);
@@ -1034,54 +1046,69 @@ void Planner::freeze_multi(Node& n, BlendRec& r, double vs, double wt) noexcept 
   wp = wp.max((VS * VS).max(VE * VE));
   Arr a = Arr::Constant(inf);
   for (int i = 0; i < 3; ++i) a = a.min((limits_.acceleration[i] - Map(r.K[i]) * wp) * Map(r.iu[i]));
-  const double amin = limits_.acceleration.minCoeff();
-  a = (a > 1e-6 * amin).select(a, 1e-6 * amin);
-  a = a.isFinite().select(a, amin);
+  // a floor of 1e-6·A (as freeze_next: at the curvature cap the budget is 0); a stays finite since
+  // every iu ≤ 1e12
+  a = a.max(1e-6 * limits_.acceleration.minCoeff());
   const Arr vmax = wp.sqrt();
   Arr vp = ((2.0 * a * L + S) / 2.0).max(0.0).sqrt();
   vp = vlow.max(vp.min(vmax.max(vlow)));
-  // rounding (or the speed-dependent a chosen at the peak): make both ramps fit
+  // rounding (or the speed-dependent a chosen at the peak): make both ramps fit, a = need/(2L) where
+  // that is larger (on a piece of length 0, L·1e300 = 0 keeps a)
   const Arr need = 2.0 * vp * vp - S;
-  a = (L > 0 && need > 2.0 * L * a).select(need / (2.0 * L).max(1e-300), a);
+  a = a.max((need / (2.0 * L).max(1e-300)).min(L * 1e300));
   const Arr ia = a.inverse();
   const Arr t1 = (vp - VS) * ia, d1 = 0.5 * (VS + vp) * t1;
   const Arr t3 = (vp - VE) * ia, d3 = 0.5 * (vp + VE) * t3;
-  // the cruise takes what is left, so that the distances add up to the length exactly
+  // the cruise takes what is left, so that the distances add up to the length exactly (all 0 when
+  // vp = 0: then L = 0)
   Arr d2 = (L - d1 - d3).max(0.0);
-  d2 = (vp > 0).select((d2 + (L - (d1 + d2 + d3))).max(0.0), d2);
-  const Arr t2 = (vp > 0).select(d2 / (vp > 0).select(vp, 1.0), 0.0);
+  d2 = (d2 + (L - (d1 + d2 + d3))).max(0.0);
+  const Arr t2 = d2 / vp.max(1e-300);
   const Arr dur = t1 + t2 + t3;
+  Out(r.vs) = VS;
+  Out(r.ve) = VE;
+  Out(r.vp) = vp;
+  Out(r.acc) = a;
+  Out(r.t1) = t1;
+  Out(r.t2) = t2;
+  Out(r.t3) = t3;
+  Out(r.d1) = d1;
+  Out(r.d2) = d2;
+  Out(r.d3) = d3;
+  Out(r.dur) = dur;
   double t = t_frozen_end_;
   for (int k = 0; k < np; ++k) {
-    Profile& p = r.prof[k];
-    p.vs = VS[k];
-    p.ve = VE[k];
-    p.vp = vp[k];
-    p.a = a[k];
-    p.j = inf;
-    p.t[0] = 0.0;
-    p.t[1] = t1[k];
-    p.t[2] = t2[k];
-    p.t[3] = t3[k];
-    p.t[4] = 0.0;
-    p.d[0] = 0.0;
-    p.d[1] = d1[k];
-    p.d[2] = d2[k];
-    p.d[3] = d3[k];
-    p.d[4] = 0.0;
-    p.duration = dur[k];
     r.t0[k] = t;
     t += dur[k];
   }
   r.cursor = 0;
   n.prof = Profile{};
-  n.prof.vs = r.prof[0].vs;
+  n.prof.vs = v_start;
   n.prof.ve = vs;
   n.prof.duration = t - t_frozen_end_;
   n.t0 = t_frozen_end_;
   t_frozen_end_ = t;
   v_frozen_end_ = vs;
   ++frozen_;
+}
+
+void Planner::BlendRec::profile(int k, Profile& p) const noexcept {
+  p.vs = vs[k];
+  p.ve = ve[k];
+  p.vp = vp[k];
+  p.a = acc[k];
+  p.j = inf;
+  p.t[0] = 0.0;
+  p.t[1] = t1[k];
+  p.t[2] = t2[k];
+  p.t[3] = t3[k];
+  p.t[4] = 0.0;
+  p.d[0] = 0.0;
+  p.d[1] = d1[k];
+  p.d[2] = d2[k];
+  p.d[3] = d3[k];
+  p.d[4] = 0.0;
+  p.duration = dur[k];
 }
 
 Status Planner::ensure_frozen_until(double t) noexcept {
@@ -1126,9 +1153,11 @@ Status Planner::next(Sample& out) noexcept {
     // the piece of the blend that runs at t, on the whole blend (trims 0) at the piece's offset
     BlendRec& r = recs_[static_cast<std::size_t>(n.blk % static_cast<long>(recs_.size()))];
     int k = r.cursor;
-    while (k + 1 < r.np && r.t0[k] + r.prof[k].duration <= t) ++k;
+    while (k + 1 < r.np && r.t0[k] + r.dur[k] <= t) ++k;
     r.cursor = k;
-    r.prof[k].eval(t - r.t0[k], s, v, acc);
+    Profile pk;
+    r.profile(k, pk);
+    pk.eval(t - r.t0[k], s, v, acc);
     sg = &blend_of(n.blk);
     s += r.trim_s[k];
   } else {
@@ -1159,7 +1188,7 @@ Status Planner::next_segment(PlannedSegment& out) noexcept {
     out.segment.trim_end = r.trim_e[k];
     out.segment.curvature = g.curvature;
     out.segment.curvature_rate = g.curvature_rate;
-    out.profile = r.prof[k];
+    r.profile(k, out.profile);
     out.t0 = r.t0[k];
     if (++r.cursor == r.np) {
       r.cursor = 0;

@@ -128,17 +128,23 @@ class Planner {
   // length, squared speed cap (piece 0: with the junction cap), reach w = min_i alpha_i·w0 + beta_i,
   // the coefficients of the peak squared speed min_i p1_i·(vs² + ve²) + p0_i and of the tangential
   // budget min_i (A_i − K_i·w)·iu_i (so that neither pass divides), the backward squared speed at
-  // its start, and once frozen its profile and start time.
+  // its start, and once frozen its trapezoid (speeds, acceleration, phase times and distances) and
+  // start time. Every field is an array over the pieces: the freeze computes all of them at once.
   static constexpr int rec_pieces = 6;
   struct BlendRec {
     int np = 0, cursor = 0;  // pieces; next piece to hand out / sample
     double trim_s[rec_pieces] = {}, trim_e[rec_pieces] = {}, len[rec_pieces] = {}, vmax[rec_pieces] = {};
     double w_lim[rec_pieces] = {}, wb[rec_pieces] = {};
-    // per axis i and piece k: [i][k] (the freeze runs over the pieces as arrays)
+    // per axis i and piece k: [i][k]
     double alpha[3][rec_pieces] = {}, beta[3][rec_pieces] = {};
     double p1[3][rec_pieces] = {}, p0[3][rec_pieces] = {}, iu[3][rec_pieces] = {}, K[3][rec_pieces] = {};
-    Profile prof[rec_pieces];
-    double t0[rec_pieces] = {};
+    // frozen: speed-up, cruise, slow-down
+    double vs[rec_pieces] = {}, ve[rec_pieces] = {}, vp[rec_pieces] = {}, acc[rec_pieces] = {};
+    double t1[rec_pieces] = {}, t2[rec_pieces] = {}, t3[rec_pieces] = {};
+    double d1[rec_pieces] = {}, d2[rec_pieces] = {}, d3[rec_pieces] = {};
+    double dur[rec_pieces] = {}, t0[rec_pieces] = {};
+    /// The frozen profile of piece k (a trapezoid without windows).
+    void profile(int k, Profile& p) const noexcept;
   };
   Quick& q(long k) noexcept { return quick_[static_cast<std::size_t>(k % cap_)]; }
   void sync(long k) noexcept;
