@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -308,9 +307,13 @@ void Planner::put_blend(const Segment& g, Segment& out) const noexcept {
   // the pieces of a blend come one after the other: the caller's segment often holds this blend's
   // geometry already (same control points bit for bit, length and source); then only the trims change
   static_assert(sizeof(g.ctrl) == 12 * sizeof(double), "control points are 12 packed doubles");
-  if (!(out.kind == SegmentKind::blend && out.source == g.source && out.full_length == g.full_length &&
-        std::memcmp(out.ctrl.data(), g.ctrl.data(), sizeof(g.ctrl)) == 0))
-    out = g;
+  using C = Eigen::Array<double, 12, 1>;
+  if (out.kind == SegmentKind::blend && out.source == g.source && out.full_length == g.full_length) {
+    // equal control points: the sum of the absolute differences is 0 (NaN is never equal)
+    const double diff = (Eigen::Map<const C>(out.ctrl[0].data()) - Eigen::Map<const C>(g.ctrl[0].data())).abs().sum();
+    if (diff == 0.0) return;
+  }
+  out = g;
 }
 
 void Planner::copy_segment(const Node& n, Segment& out) noexcept {
@@ -425,12 +428,12 @@ double Planner::plan_length(const Node& n) const noexcept {
   return std::max(0.0, s.full_length - s.trim_start - te - n.res_s - n.res_e);
 }
 
-void Planner::set_params(Node& n) const noexcept {
+void Planner::set_params(Node& n, const Vec3* line_dir) const noexcept {
   // n.vmax holds the programmed feed cap on entry
   const Segment& s = n.seg;
   if (s.kind == SegmentKind::line && !jerk_ && opt_.rule != CornerRule::paper) {
     // the common case below without the moving-axes minima it does not use
-    const Vec3 u = s.block.tangent_at(0.0);
+    const Vec3 u = line_dir ? *line_dir : s.block.tangent_at(0.0);
     n.curved = false;
     n.vmax = std::min(n.vmax, along(limits_.velocity, u));
     n.a = along(limits_.acceleration, u);
@@ -689,12 +692,24 @@ Status Planner::push(const toolpath::Block& b) noexcept {
 
   // the new node (not yet in the ring): the whole block, bounds over all of it, until its end is known
   Node nn;
-  nn.seg = arc ? Segment::arc(b, source) : Segment::line(b, source);
+  if (arc) {
+    nn.seg = Segment::arc(b, source);
+  } else {  // Segment::line in place (nn.seg is a default Segment)
+    nn.seg.kind = SegmentKind::line;
+    nn.seg.block = b;
+    nn.seg.full_length = len;
+    nn.seg.source = source;
+  }
   nn.blk = source;
   nn.fcap = (rapid || b.feed <= 0) ? inf : b.feed;
   nn.vmax = nn.fcap;
+  // a line's unit direction (Block::tangent_at's arithmetic), found once: set_params, the corner
+  // here and the next block's corner read it
+  const Vec3 dir = arc ? Vec3::Zero() : Vec3((b.end - b.start) / nn.seg.full_length);
+  const Vec3 prev_dir = last_dir_;
+  last_dir_ = dir;
   if (arc) arc_bounds(nn.seg, 0.0, nn.seg.full_length, nn.U, nn.K);
-  set_params(nn);
+  set_params(nn, arc ? nullptr : &dir);
   nn.provisional = true;
   const double first_piece = arc ? nn.seg.full_length / arc_piece_count(nn.seg) : nn.seg.full_length;
   if (jump_rule) nn.res_e = wf * ts2 * std::min(nn.vmax, first_piece / (4.0 * wf * ts2));
@@ -706,7 +721,8 @@ Status Planner::push(const toolpath::Block& b) noexcept {
     back_pass(tail_ - 1);
     return Status::ok;
   }
-  const Vec3 u1 = end_tangent(at(first).seg), u2 = start_tangent(nn.seg);
+  const Vec3 u1 = at(first).seg.kind == SegmentKind::line ? prev_dir : end_tangent(at(first).seg);
+  const Vec3 u2 = arc ? start_tangent(nn.seg) : dir;
   // sin(θ/2) = |u2 − u1|/2 for unit tangents: the blend rule needs no angle (no atan2 per block)
   const double sin_half = 0.5 * (u2 - u1).norm();
   const bool blend_here = opt_.rule == CornerRule::blend && sin_half > sin_half_tangent && sin_half < sin_half_reversal;
@@ -948,6 +964,10 @@ void Planner::back_pass(long dirty_from) noexcept {
       for (int p = r.np - 1; p >= 0; --p) {
         w = std::min(std::min(r.w_lim[p], r.alpha[0][p] * w + r.beta[0][p]),
                      std::min(r.alpha[1][p] * w + r.beta[1][p], r.alpha[2][p] * w + r.beta[2][p]));
+        if (k < dirty_from && w == r.wb[p]) {  // so are the pieces before it (and w == n.wb below)
+          w = r.wb[0];
+          break;
+        }
         r.wb[p] = w;
       }
     } else {
@@ -1178,10 +1198,11 @@ Status Planner::next_segment(PlannedSegment& out) noexcept {
     if (frozen_ == tail_) return finished_ ? Status::finished : Status::need_blocks;
     if (!freeze_next()) return Status::need_blocks;
   }
-  const Node& n = at(head_);
+  const std::size_t slot = static_cast<std::size_t>(head_ % cap_);
+  const Node& n = ring_[slot];
   if (n.multi) {
-    BlendRec& r = recs_[static_cast<std::size_t>(n.blk % static_cast<long>(recs_.size()))];
-    const Segment& g = blend_of(n.blk);
+    BlendRec& r = recs_[static_cast<std::size_t>(quick_[slot].rec)];  // recs_ and blends_ by the same index
+    const Segment& g = blends_[static_cast<std::size_t>(quick_[slot].rec)];
     const int k = r.cursor;
     put_blend(g, out.segment);
     out.segment.trim_start = r.trim_s[k];

@@ -152,7 +152,7 @@ class Planner {
   Node& at(long k) noexcept { return ring_[static_cast<std::size_t>(k % cap_)]; }
   const Node& at(long k) const noexcept { return ring_[static_cast<std::size_t>(k % cap_)]; }
   double plan_length(const Node& n) const noexcept;
-  void set_params(Node& n) const noexcept;
+  void set_params(Node& n, const Vec3* line_dir = nullptr) const noexcept;
   double reach_sq(const Quick& n, double w0) const noexcept;
   void split_tail() noexcept;
   void init_blend_piece(Node& bn, const Segment& whole, int i0, int i1, long source, double vfeed, bool slim) noexcept;
@@ -200,10 +200,7 @@ class Planner {
   double v_frozen_end_ = 0;  // speed at the end of the frozen prefix [mm/s]
   Vec3 last_point_ = Vec3::Zero();
   bool have_last_ = false;
-  Vec3 last_dir_ = Vec3::Zero();
-  double last_feed_ = 0;
-  bool last_rapid_ = false;
-  long last_source_ = -1;
+  Vec3 last_dir_ = Vec3::Zero();  // unit direction of the last block pushed (lines)
   const char* error_ = "";
 };
 
