@@ -22,12 +22,15 @@ const int cuts_general[9] = {0, 2, 4, 6, 8, 10, 12, 14, 16};
 constexpr int n_cuts_general = 8;
 const int cuts_jerk[5] = {0, 4, 8, 12, 16};
 constexpr int n_cuts_jerk = 4;
-// between two lines (symmetric blends, curvature peak at node 8) six pieces, narrow around the peak
-constexpr int cuts_lines[7] = {0, 4, 6, 8, 10, 12, 16};
-constexpr int n_cuts_lines = 6;
+// between two lines (symmetric blends, curvature peak at node 8) four pieces, narrower around the
+// peak: with the exact piece bounds of line_blend_bounds they come within 1.05 of toppra's optimum
+// on the bench paths (1.042 / 1.047; six pieces 1.030 / 1.045 at ~1 000 more instructions per block)
+constexpr int cuts_lines[5] = {0, 5, 8, 11, 16};
+constexpr int n_cuts_lines = 4;
 const int cuts_one[2] = {0, 16};
 // nodes one push may add: the previous arc's pieces, the blend pieces, the new block
 constexpr long per_block = max_arc_pieces + blend_pieces + 2;
+
 
 bool finite3(const Vec3& v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
 
@@ -140,14 +143,14 @@ struct BlendBounds {
 // What blend_lines needs at fixed parameter values, computed once: with a = (1 − u)², b = u²,
 // |B'|²/(9d²) = g2(u) = P + Q·c (P = a² + b², Q = 2ab) at the 3-point Gauss-Legendre points of the
 // first 8 table intervals (3i, 3i + 1, 3i + 2: centre, left, right), at the nodes 0..8 (with
-// w = u·(1 − u)) and at the piece ends cuts_lines (lane 7 repeats node 16), where also a and b.
+// w = u·(1 − u)) and at the piece ends cuts_lines (padding lanes repeat node 16), where also a and b.
 struct LineBlendTables {
   using A24 = Eigen::Array<double, 24, 1>;
   using A9 = Eigen::Array<double, 9, 1>;
-  using A8 = Eigen::Array<double, 8, 1>;
+  using AN = Eigen::Array<double, (n_cuts_lines + 2) / 2 * 2, 1>;  // piece ends, padded to whole packets
   A24 gp, gq;
   A9 np, nq, w;
-  A8 cp, cq, ca, cb, cw;
+  AN cp, cq, ca, cb, cw;
   LineBlendTables() {
     const double gx = 0.7745966692414834, h = 0.5 / 16.0;
     for (int i = 0; i < 8; ++i) {
@@ -164,7 +167,7 @@ struct LineBlendTables {
       nq[i] = 2.0 * aa * bb;
       w[i] = u * (1 - u);
     }
-    for (int m = 0; m < 8; ++m) {
+    for (int m = 0; m < AN::SizeAtCompileTime; ++m) {
       const double u = cuts_lines[std::min(m, n_cuts_lines)] / 16.0, aa = (1 - u) * (1 - u), bb = u * u;
       cp[m] = aa * aa + bb * bb;
       cq[m] = 2.0 * aa * bb;
@@ -176,10 +179,11 @@ struct LineBlendTables {
 };
 const LineBlendTables line_blend_tables;
 
-// The symmetric blend between two lines at its piece ends cuts_lines (lane 7: node 16 again): unit
+// The symmetric blend between two lines at its piece ends cuts_lines (padding lanes: node 16 again): unit
 // tangent ta·u1 + tb·u2 and curvature κ [1/mm].
 struct LineBlendNodes {
-  LineBlendTables::A8 ta, tb, kappa;
+  LineBlendTables::AN ta, tb, kappa;
+  double kappa_mid = 0.0;         // κ at node 8 (the largest)
   double c = 1.0, inv_sin = 0.0;  // cos θ and 1/sin θ of the turn
 };
 
@@ -209,13 +213,14 @@ void blend_lines(Segment& s, const Vec3& p0, const Vec3& vtx, const Vec3& p3, co
   // curvature at the nodes 0..8 (finish_blend reads the first half only) and at the piece ends
   const double ks = 2.0 * sn / (3.0 * d);
   using A9 = LineBlendTables::A9;
-  using A8 = LineBlendTables::A8;
+  using AN = LineBlendTables::AN;
   const A9 iG = (T.np + T.nq * c).max(1e-300).inverse();
   double k_at[17];
   Eigen::Map<A9> k_half(k_at);
   k_half = ks * T.w * iG * iG.sqrt();
   finish_blend(s, k_at, true);
-  const A8 iGc = (T.cp + T.cq * c).max(1e-300).inverse(), igc = iGc.sqrt();
+  nd.kappa_mid = k_at[8];
+  const AN iGc = (T.cp + T.cq * c).max(1e-300).inverse(), igc = iGc.sqrt();
   nd.ta = T.ca * igc;
   nd.tb = T.cb * igc;
   nd.kappa = ks * T.cw * iGc * igc;
@@ -238,13 +243,15 @@ using PieceArr = Eigen::Array<double, n_cuts_lines, 1>;
 // largest |N_c|. In the plane T = ta·u1 + tb·u2 gives N = (−(tb + c·ta)·u1 + (ta + c·tb)·u2)/sin θ.
 void line_blend_bounds(const LineBlendNodes& nd, const Vec3& u1, const Vec3& u2, PieceArr (&U)[3],
                        PieceArr (&K)[3]) {
-  static_assert(cuts_lines[n_cuts_lines / 2] == 8, "no piece of a line blend straddles its middle node");
   constexpr int n = n_cuts_lines;
-  using A8 = LineBlendTables::A8;
-  const A8 na = -(nd.tb + nd.c * nd.ta) * nd.inv_sin, nb = (nd.ta + nd.c * nd.tb) * nd.inv_sin;
-  const PieceArr kmax = nd.kappa.head<n>().max(nd.kappa.segment<n>(1)) * (1.0 + 1e-9);
+  using AN = LineBlendTables::AN;
+  const AN na = -(nd.tb + nd.c * nd.ta) * nd.inv_sin, nb = (nd.ta + nd.c * nd.tb) * nd.inv_sin;
+  PieceArr kmax = nd.kappa.head<n>().max(nd.kappa.segment<n>(1));
+  for (int k = 0; k < n; ++k)  // a piece across the middle node has its largest κ there
+    if (cuts_lines[k] < 8 && cuts_lines[k + 1] > 8) kmax[k] = nd.kappa_mid;
+  kmax *= 1.0 + 1e-9;
   for (int c = 0; c < 3; ++c) {
-    const A8 t = nd.ta * u1[c] + nd.tb * u2[c], nn = na * u1[c] + nb * u2[c];
+    const AN t = nd.ta * u1[c] + nd.tb * u2[c], nn = na * u1[c] + nb * u2[c];
     const double r = std::sqrt(t[0] * t[0] + nn[0] * nn[0]);  // R_c (rotation leaves it unchanged)
     const PieceArr t0 = t.head<n>(), t1 = t.segment<n>(1), n0 = nn.head<n>(), n1 = nn.segment<n>(1);
     // "x changes sign over the piece" without select() (Eigen 3.4 does not vectorise it):
@@ -295,11 +302,21 @@ Planner::Planner(const AxisLimits& limits, const PlanOptions& options) : limits_
   limits_.validate();
   opt_.validate();
   jerk_ = limits_.jerk_limited();
-  cap_ = per_block + 16 * (opt_.lookahead + 2) + 3;
+  inv_acc_ = limits_.acceleration.cwiseInverse();
+  // power-of-two sizes (see slot()): the ring holds at least one push's nodes plus 12 per block of
+  // look-ahead (rounded up: 14 for look-ahead 64)
+  const auto pow2 = [](long n) {
+    long p = 1;
+    while (p < n) p *= 2;
+    return p;
+  };
+  cap_ = pow2(per_block + 12 * (opt_.lookahead + 2) + 3);
+  mask_ = static_cast<std::size_t>(cap_ - 1);
   ring_.resize(static_cast<std::size_t>(cap_));
   quick_.resize(static_cast<std::size_t>(cap_));
   // blocks from the head's to the newest: at most lookahead + 2 (push refuses beyond)
-  blends_.resize(static_cast<std::size_t>(opt_.lookahead + 4));
+  blends_.resize(static_cast<std::size_t>(pow2(opt_.lookahead + 4)));
+  rec_mask_ = blends_.size() - 1;
   recs_.resize(blends_.size());
 }
 
@@ -321,7 +338,7 @@ void Planner::copy_segment(const Node& n, Segment& out) noexcept {
     out = n.seg;
     return;
   }
-  put_blend(blends_[static_cast<std::size_t>(n.blk % static_cast<long>(blends_.size()))], out);
+  put_blend(blends_[rec_slot(n.blk)], out);
   out.trim_start = n.seg.trim_start;
   out.trim_end = n.seg.trim_end;
   out.curvature = n.seg.curvature;
@@ -614,8 +631,8 @@ void Planner::push_line_blend(long source, long psource, const Vec3& p0, const V
     if (std::abs(d * u1[i]) > 1e-12 || std::abs(d * u2[i]) > 1e-12) amin_blend = std::min(amin_blend, A[i]);
   if (!std::isfinite(amin_blend)) amin_blend = A.minCoeff();
   // one node for the whole blend, its pieces in the record
-  const std::size_t slot = static_cast<std::size_t>(tail_ % cap_);
-  const std::size_t ri = static_cast<std::size_t>(source % static_cast<long>(recs_.size()));
+  const std::size_t slot = this->slot(tail_);
+  const std::size_t ri = rec_slot(source);
   BlendRec& r = recs_[ri];
   Node& bn = ring_[slot];
   init_blend_piece(bn, whole, 0, 16, source, vfeed, true);
@@ -629,9 +646,12 @@ void Planner::push_line_blend(long source, long psource, const Vec3& p0, const V
   // (U_i + L·K_i), of the reach w = min_i (U_i·w0 + 2·L·A_i)/(U_i + 2·L·K_i) and of the tangential
   // budget, and the caps |u_i|·v ≤ V_i, K_i·v² ≤ A_i
   const PieceArr L = (whole.full_length - ts - te).max(0.0);
-  PieceArr vmax = PieceArr::Constant(vfeed), wk = PieceArr::Constant(inf);
+  // (the three reciprocals from one division: 1/U = e1·e2/(U·e1·e2), ...; U ≥ 1e-12, so no underflow)
+  PieceArr vmax = PieceArr::Constant(vfeed), kr = PieceArr::Zero();  // kr = max_i K_i/A_i
   for (int i = 0; i < 3; ++i) {
-    const PieceArr iu = U[i].inverse(), r1 = (U[i] + L * K[i]).inverse(), r2 = (U[i] + 2.0 * L * K[i]).inverse();
+    const PieceArr e1 = U[i] + L * K[i], e2 = U[i] + 2.0 * L * K[i];
+    const PieceArr inv = (U[i] * e1 * e2).inverse();
+    const PieceArr iu = e1 * e2 * inv, r1 = U[i] * e2 * inv, r2 = U[i] * e1 * inv;
     Map(r.iu[i]) = iu;
     Map(r.K[i]) = K[i];
     Map(r.p1[i]) = 0.5 * U[i] * r1;
@@ -639,9 +659,9 @@ void Planner::push_line_blend(long source, long psource, const Vec3& p0, const V
     Map(r.alpha[i]) = U[i] * r2;
     Map(r.beta[i]) = 2.0 * L * A[i] * r2;
     vmax = vmax.min(V[i] * iu);
-    wk = wk.min(A[i] / K[i]);  // +inf where K = 0 (A > 0)
+    kr = kr.max(K[i] * inv_acc_[i]);
   }
-  vmax = vmax.min(wk.sqrt());
+  vmax = vmax.min(kr.inverse().sqrt());  // K_i·v² ≤ A_i (+inf where every K is 0)
   // the junction limit of piece k is the smaller cap of pieces k − 1 and k (piece 0: the cap before)
   PieceArr before;
   before[0] = v_prev;
@@ -807,7 +827,7 @@ Status Planner::push(const toolpath::Block& b) noexcept {
     for (int k = 0; k < np; ++k) {
       const int i0 = cut[k], i1 = cut[k + 1];
       // built in place in the ring (a Node is large: no temporary and copy)
-      const std::size_t slot = static_cast<std::size_t>(tail_ % cap_);
+      const std::size_t slot = this->slot(tail_);
       Node& bn = ring_[slot];
       // jerk mode: the node keeps the whole geometry; else it stays in blends_ (copy_segment / seg_of)
       init_blend_piece(bn, whole, i0, i1, source, vfeed, !jerk_mode);
@@ -953,9 +973,8 @@ void Planner::finish() noexcept {
 void Planner::back_pass(long dirty_from) noexcept {
   double w_next = 0.0;  // the buffer always ends at rest (squared speeds: no root per node)
   if (tail_ <= frozen_) return;
-  std::size_t slot = static_cast<std::size_t>((tail_ - 1) % cap_);  // one modulo, then wrap by hand
-  for (long k = tail_ - 1; k >= frozen_; --k, slot = slot == 0 ? static_cast<std::size_t>(cap_ - 1) : slot - 1) {
-    Quick& n = quick_[slot];
+  for (long k = tail_ - 1; k >= frozen_; --k) {
+    Quick& n = quick_[slot(k)];
     double w;
     if (n.rec >= 0) {
       // a multi node: its pieces from the last to the first
@@ -988,11 +1007,11 @@ bool Planner::freeze_next() noexcept {
   const bool is_tail = frozen_ == tail_ - 1;
   if (is_tail && !finished_) return false;
   if (!buffer_ready()) return false;
-  const std::size_t slot = static_cast<std::size_t>(frozen_ % cap_);
+  const std::size_t slot = this->slot(frozen_);
   Node& n = ring_[slot];
   const Quick& qn = quick_[slot];
   const double vs = v_frozen_end_;
-  const double wt = is_tail ? 0.0 : quick_[slot + 1 == static_cast<std::size_t>(cap_) ? 0 : slot + 1].wb;
+  const double wt = is_tail ? 0.0 : quick_[(slot + 1) & mask_].wb;
   if (qn.rec >= 0) {
     freeze_multi(n, recs_[static_cast<std::size_t>(qn.rec)], vs, wt);
     return true;
@@ -1041,21 +1060,23 @@ void Planner::freeze_multi(Node& n, BlendRec& r, double vs, double wt) noexcept 
   using Out = Eigen::Map<Arr>;
   const int np = r.np;
   const double v_start = vs;
-  // the chain of end speeds (sequential); unused lanes repeat the last piece
-  Arr VS, VE;
+  // the chain of end speeds (sequential, in squared speeds: no root in the chain); unused lanes
+  // repeat the last piece
+  Arr WE;
+  double w = vs * vs;
   for (int k = 0; k < np; ++k) {
     const double w_end = k + 1 < np ? r.wb[k + 1] : wt;
-    const double w0 = vs * vs;
-    const double reach = std::min({r.alpha[0][k] * w0 + r.beta[0][k], r.alpha[1][k] * w0 + r.beta[1][k],
-                                   r.alpha[2][k] * w0 + r.beta[2][k]});
-    VS[k] = vs;
-    vs = std::sqrt(std::min(w_end, reach));
-    VE[k] = vs;
+    const double reach = std::min({r.alpha[0][k] * w + r.beta[0][k], r.alpha[1][k] * w + r.beta[1][k],
+                                   r.alpha[2][k] * w + r.beta[2][k]});
+    w = std::min(w_end, reach);
+    WE[k] = w;
   }
-  for (int k = np; k < rec_pieces; ++k) {
-    VS[k] = VS[np - 1];
-    VE[k] = VE[np - 1];
-  }
+  for (int k = np; k < rec_pieces; ++k) WE[k] = WE[np - 1];
+  const Arr VE = WE.sqrt();
+  Arr VS;  // piece k starts at the end speed of piece k − 1 (piece 0: the given speed)
+  VS[0] = vs;
+  VS.tail<rec_pieces - 1>() = VE.head<rec_pieces - 1>();
+  vs = VE[np - 1];
   // then all pieces at once: peak squared speed, tangential budget at that speed and the trapezoid
   // (Profile::make without windows, the same arithmetic lane by lane; written without select(),
   // which Eigen 3.4 does not vectorise)
@@ -1171,7 +1192,7 @@ Status Planner::next(Sample& out) noexcept {
   const Segment* sg;
   if (n.multi) {
     // the piece of the blend that runs at t, on the whole blend (trims 0) at the piece's offset
-    BlendRec& r = recs_[static_cast<std::size_t>(n.blk % static_cast<long>(recs_.size()))];
+    BlendRec& r = recs_[rec_slot(n.blk)];
     int k = r.cursor;
     while (k + 1 < r.np && r.t0[k] + r.dur[k] <= t) ++k;
     r.cursor = k;
@@ -1198,7 +1219,7 @@ Status Planner::next_segment(PlannedSegment& out) noexcept {
     if (frozen_ == tail_) return finished_ ? Status::finished : Status::need_blocks;
     if (!freeze_next()) return Status::need_blocks;
   }
-  const std::size_t slot = static_cast<std::size_t>(head_ % cap_);
+  const std::size_t slot = this->slot(head_);
   const Node& n = ring_[slot];
   if (n.multi) {
     BlendRec& r = recs_[static_cast<std::size_t>(quick_[slot].rec)];  // recs_ and blends_ by the same index

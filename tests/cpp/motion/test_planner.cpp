@@ -222,3 +222,59 @@ TEST_CASE("blend rule: the segments next_segment hands out chain up and agree wi
   CHECK(samples > 1000);
   CHECK(worst <= 1e-9);
 }
+
+TEST_CASE("blend rule: every blend piece's peak speed keeps each axis within its limits along the piece") {
+  // The pieces of a blend between two lines get per-axis bounds of |u_c| and |κ n_c| from their end
+  // nodes only (planner.cpp line_blend_bounds). Sample every handed-out piece densely and check that
+  // at its peak speed vp the axis velocity |u_c|·vp and centripetal acceleration |κ n_c|·vp² stay
+  // within V_c and A_c: a bound that missed an interior maximum would show here. Corners turn in
+  // all three axes, and the limits differ per axis.
+  PlanOptions o;
+  o.rule = CornerRule::blend;
+  o.lookahead = 16;
+  o.tolerance = 0.02;
+  AxisLimits lim;
+  lim.velocity = Vec3(120, 80, 50);
+  lim.acceleration = Vec3(2500, 1500, 700);
+  std::vector<toolpath::Block> prog;
+  Vec3 p(0, 0, 0);
+  for (int i = 0; i < 80; ++i) {
+    const Vec3 q = p + Vec3(2.0 * std::cos(2.1 * i), 2.0 * std::sin(1.3 * i), 1.2 * std::sin(0.7 * i + 1.0));
+    prog.push_back(line(p, q, 1e6));
+    p = q;
+  }
+  Planner pl(lim, o);
+  PlannedSegment ps;
+  std::size_t i = 0;
+  int pieces = 0;
+  double worst_v = 0, worst_a = 0;  // largest |u_c|·vp/V_c and |κ n_c|·vp²/A_c
+  for (;;) {
+    const Status st = pl.next_segment(ps);
+    if (st == Status::finished) break;
+    if (st == Status::need_blocks) {
+      while (i < prog.size() && pl.push(prog[i]) == Status::ok) ++i;
+      if (i == prog.size()) pl.finish();
+      continue;
+    }
+    if (ps.segment.kind != SegmentKind::blend) continue;
+    ++pieces;
+    const Segment& s = ps.segment;
+    const double L = s.length(), vp = ps.profile.vp, h = 1e-4 * L;
+    for (int k = 0; k <= 400; ++k) {
+      const double at = L * k / 400.0;
+      const Vec3 u = s.tangent_at(at);
+      // curvature vector du/ds by central differences inside the whole blend (the ends of a piece
+      // are interior points of the blend, except at the blend's own ends)
+      const double a0 = std::max(-s.trim_start, at - h), a1 = std::min(L + s.trim_end, at + h);
+      const Vec3 kv = (s.tangent_at(a1) - s.tangent_at(a0)) / (a1 - a0);
+      for (int c = 0; c < 3; ++c) {
+        worst_v = std::max(worst_v, std::abs(u[c]) * vp / lim.velocity[c]);
+        worst_a = std::max(worst_a, std::abs(kv[c]) * vp * vp / lim.acceleration[c]);
+      }
+    }
+  }
+  REQUIRE(pieces > 100);
+  CHECK(worst_v <= 1.0 + 1e-9);
+  CHECK(worst_a <= 1.0 + 1e-3);  // finite differences of the tangent
+  CHECK(worst_a > 0.5);          // the check bites: some piece runs near its centripetal limit
+}

@@ -130,7 +130,7 @@ class Planner {
   // budget min_i (A_i − K_i·w)·iu_i (so that neither pass divides), the backward squared speed at
   // its start, and once frozen its trapezoid (speeds, acceleration, phase times and distances) and
   // start time. Every field is an array over the pieces: the freeze computes all of them at once.
-  static constexpr int rec_pieces = 6;
+  static constexpr int rec_pieces = 4;
   struct BlendRec {
     int np = 0, cursor = 0;  // pieces; next piece to hand out / sample
     double trim_s[rec_pieces] = {}, trim_e[rec_pieces] = {}, len[rec_pieces] = {}, vmax[rec_pieces] = {};
@@ -146,11 +146,15 @@ class Planner {
     /// The frozen profile of piece k (a trapezoid without windows).
     void profile(int k, Profile& p) const noexcept;
   };
-  Quick& q(long k) noexcept { return quick_[static_cast<std::size_t>(k % cap_)]; }
+  // ring slot of segment k / record slot of block k: the sizes are powers of two, so a mask (an
+  // integer division per lookup costs tens of cycles)
+  std::size_t slot(long k) const noexcept { return static_cast<std::size_t>(k) & mask_; }
+  std::size_t rec_slot(long blk) const noexcept { return static_cast<std::size_t>(blk) & rec_mask_; }
+  Quick& q(long k) noexcept { return quick_[slot(k)]; }
   void sync(long k) noexcept;
   void set_reach(Quick& x, bool curved, const Vec3& U, const Vec3& K) const noexcept;
-  Node& at(long k) noexcept { return ring_[static_cast<std::size_t>(k % cap_)]; }
-  const Node& at(long k) const noexcept { return ring_[static_cast<std::size_t>(k % cap_)]; }
+  Node& at(long k) noexcept { return ring_[slot(k)]; }
+  const Node& at(long k) const noexcept { return ring_[slot(k)]; }
   double plan_length(const Node& n) const noexcept;
   void set_params(Node& n, const Vec3* line_dir = nullptr) const noexcept;
   double reach_sq(const Quick& n, double w0) const noexcept;
@@ -182,13 +186,15 @@ class Planner {
   std::vector<BlendRec> recs_;   // pieces of the multi node of each block in the buffer, by blk % size
   void freeze_multi(Node& n, BlendRec& r, double vs, double wt) noexcept;
   void put_blend(const Segment& whole, Segment& out) const noexcept;
-  Segment& blend_of(long blk) noexcept { return blends_[static_cast<std::size_t>(blk % static_cast<long>(blends_.size()))]; }
+  Segment& blend_of(long blk) noexcept { return blends_[rec_slot(blk)]; }
   /// The node's segment with its geometry (blend pieces: copied in from blends_ on first use).
   const Segment& seg_of(Node& n) noexcept;
   /// Copy of the node's full segment (blend pieces: the blend with the piece's trims).
   void copy_segment(const Node& n, Segment& out) noexcept;
   bool jerk_ = false;  // limits_.jerk_limited()
+  Vec3 inv_acc_ = Vec3::Zero();  // 1/A_i
   long cap_ = 0;
+  std::size_t mask_ = 0, rec_mask_ = 0;  // cap_ − 1, blends_.size() − 1
   long head_ = 0;      // first segment in the buffer
   long frozen_ = 0;    // segments [head_, frozen_) are frozen
   long tail_ = 0;      // one past the last
