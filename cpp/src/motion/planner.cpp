@@ -31,7 +31,6 @@ const int cuts_one[2] = {0, 16};
 // nodes one push may add: the previous arc's pieces, the blend pieces, the new block
 constexpr long per_block = max_arc_pieces + blend_pieces + 2;
 
-
 bool finite3(const Vec3& v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
 
 double min_over(const Vec3& per_axis, const Vec3& moving) {
@@ -215,11 +214,14 @@ void blend_lines(Segment& s, const Vec3& p0, const Vec3& vtx, const Vec3& p3, co
   using A9 = LineBlendTables::A9;
   using AN = LineBlendTables::AN;
   const A9 iG = (T.np + T.nq * c).max(1e-300).inverse();
-  double k_at[17];
-  Eigen::Map<A9> k_half(k_at);
-  k_half = ks * T.w * iG * iG.sqrt();
-  finish_blend(s, k_at, true);
-  nd.kappa_mid = k_at[8];
+  const A9 k_half = ks * T.w * iG * iG.sqrt();
+  // finish_blend's fields without its general case: κ rises monotonically to node 8 (see
+  // line_blend_bounds), so the largest curvature is κ(8) and every table interval has Δκ ≥ 0, Δs > 0
+  using A8 = Eigen::Array<double, 8, 1>;
+  s.curvature = k_half[8];
+  s.curvature_rate = ((k_half.tail<8>() - k_half.head<8>()) / Eigen::Map<const A8>(piece)).maxCoeff();
+  s.full_length = s.table[16];
+  nd.kappa_mid = k_half[8];
   const AN iGc = (T.cp + T.cq * c).max(1e-300).inverse(), igc = iGc.sqrt();
   nd.ta = T.ca * igc;
   nd.tb = T.cb * igc;
