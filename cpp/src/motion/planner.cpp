@@ -209,7 +209,7 @@ void blend_lines(Segment& s, const Vec3& p0, const Vec3& vtx, const Vec3& p3, co
   s.table[0] = 0;
   for (int i = 1; i <= 8; ++i) s.table[i] = s.table[i - 1] + piece[i - 1];
   for (int i = 9; i <= 16; ++i) s.table[i] = s.table[i - 1] + piece[16 - i];
-  // curvature at the nodes 0..8 (finish_blend reads the first half only) and at the piece ends
+  // curvature at the nodes 0..8 (the second half mirrors them) and at the piece ends
   const double ks = 2.0 * sn / (3.0 * d);
   using A9 = LineBlendTables::A9;
   using AN = LineBlendTables::AN;
