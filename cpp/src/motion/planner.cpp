@@ -336,6 +336,21 @@ void Planner::put_blend(const Segment& g, Segment& out) const noexcept {
 }
 
 void Planner::copy_segment(const Node& n, Segment& out) noexcept {
+  if (n.seg.kind == SegmentKind::line) {
+    // the fields of a line (push writes only these into the ring); its control points and table are 0
+    const Segment& s = n.seg;
+    out.kind = SegmentKind::line;
+    out.block = s.block;
+    out.ctrl = {};
+    out.table = {};
+    out.full_length = s.full_length;
+    out.trim_start = s.trim_start;
+    out.trim_end = s.trim_end;
+    out.curvature = s.curvature;
+    out.curvature_rate = s.curvature_rate;
+    out.source = s.source;
+    return;
+  }
   if (!n.slim) {
     out = n.seg;
     return;
@@ -504,7 +519,7 @@ double Planner::reach_sq(const Quick& n, double w0) const noexcept {
 }
 
 void Planner::append(const Node& n) noexcept {
-  at(tail_) = n;
+  if (&n != &at(tail_)) at(tail_) = n;  // (push builds most lines in place)
   sync(tail_);
   q(tail_).wb = 0.0;
   ++tail_;
@@ -712,25 +727,52 @@ Status Planner::push(const toolpath::Block& b) noexcept {
   const bool jump_rule = opt_.rule == CornerRule::vector || opt_.rule == CornerRule::per_axis;
   const double wf = window_periods();  // constant-speed window on each side of a velocity jump [ts2]
 
-  // the new node (not yet in the ring): the whole block, bounds over all of it, until its end is known
-  Node nn;
+  // a line's unit direction (Block::tangent_at's arithmetic), found once: set_params, the corner
+  // here and the next block's corner read it
+  const Vec3 dir = arc ? Vec3::Zero() : Vec3((b.end - b.start) / len);
+  const Vec3 prev_dir = last_dir_;
+  last_dir_ = dir;
+  // the junction with the previous block (its node is final up to its end trim)
+  Vec3 u1 = Vec3::Zero(), u2 = Vec3::Zero();
+  double sin_half = 0.0;
+  bool blend_here = false;
+  const bool prev_line = has_prev && at(first).seg.kind == SegmentKind::line;
+  if (has_prev) {
+    u1 = prev_line ? prev_dir : end_tangent(at(first).seg);
+    u2 = arc ? b.tangent_at(0.0) : dir;
+    // sin(θ/2) = |u2 − u1|/2 for unit tangents: the blend rule needs no angle (no atan2 per block)
+    sin_half = 0.5 * (u2 - u1).norm();
+    blend_here = opt_.rule == CornerRule::blend && sin_half > sin_half_tangent && sin_half < sin_half_reversal;
+  }
+  // The new node: the whole block, bounds over all of it, until its end is known. A Node is large
+  // (~700 bytes): a line is built in the ring slot where it will stay when what goes in before it is
+  // known now: nothing, or the one node of a blend between two lines (push_line_blend). Else (arcs,
+  // an arc before, blends in jerk mode) it is built in scratch_ and copied in by append().
+  const bool in_place = !arc && (!has_prev || (prev_line && (!blend_here || !jerk_mode)));
+  Node& nn = in_place ? ring_[slot(tail_ + (blend_here ? 1 : 0))] : scratch_;
   if (arc) {
+    nn = Node{};
     nn.seg = Segment::arc(b, source);
-  } else {  // Segment::line in place (nn.seg is a default Segment)
+    arc_bounds(nn.seg, 0.0, nn.seg.full_length, nn.U, nn.K);
+  } else {
+    // Segment::line field by field (a line's ctrl and table are never read: copy_segment hands
+    // them out as zeros); then every field of the Node the planner reads before the freeze
+    if (!in_place) nn = Node{};
     nn.seg.kind = SegmentKind::line;
     nn.seg.block = b;
     nn.seg.full_length = len;
+    nn.seg.trim_start = nn.seg.trim_end = 0.0;
+    nn.seg.curvature = nn.seg.curvature_rate = 0.0;
     nn.seg.source = source;
+    nn.U.setZero();
+    nn.K.setZero();
+    nn.res_s = nn.res_e = 0.0;
+    nn.jump_s = nn.jump_e = nn.spike_s = nn.spike_e = false;
+    nn.slim = nn.multi = false;
   }
   nn.blk = source;
   nn.fcap = (rapid || b.feed <= 0) ? inf : b.feed;
   nn.vmax = nn.fcap;
-  // a line's unit direction (Block::tangent_at's arithmetic), found once: set_params, the corner
-  // here and the next block's corner read it
-  const Vec3 dir = arc ? Vec3::Zero() : Vec3((b.end - b.start) / nn.seg.full_length);
-  const Vec3 prev_dir = last_dir_;
-  last_dir_ = dir;
-  if (arc) arc_bounds(nn.seg, 0.0, nn.seg.full_length, nn.U, nn.K);
   set_params(nn, arc ? nullptr : &dir);
   nn.provisional = true;
   const double first_piece = arc ? nn.seg.full_length / arc_piece_count(nn.seg) : nn.seg.full_length;
@@ -743,11 +785,6 @@ Status Planner::push(const toolpath::Block& b) noexcept {
     back_pass(tail_ - 1);
     return Status::ok;
   }
-  const Vec3 u1 = at(first).seg.kind == SegmentKind::line ? prev_dir : end_tangent(at(first).seg);
-  const Vec3 u2 = arc ? start_tangent(nn.seg) : dir;
-  // sin(θ/2) = |u2 − u1|/2 for unit tangents: the blend rule needs no angle (no atan2 per block)
-  const double sin_half = 0.5 * (u2 - u1).norm();
-  const bool blend_here = opt_.rule == CornerRule::blend && sin_half > sin_half_tangent && sin_half < sin_half_reversal;
   const double theta = blend_here ? 0.0 : turn_angle(u1, u2);  // (the blend branch below returns)
   const double amin = moving_axes_min(limits_.acceleration, u1, u2);
 

@@ -181,6 +181,7 @@ class Planner {
   AxisLimits limits_;
   PlanOptions opt_;
   std::vector<Node> ring_;
+  Node scratch_;  // a new node push() cannot build in place (see push)
   std::vector<Quick> quick_;
   std::vector<Segment> blends_;  // whole blend of each block in the buffer, by blk % size
   std::vector<BlendRec> recs_;   // pieces of the multi node of each block in the buffer, by blk % size
