@@ -5,6 +5,7 @@
 #include <limits>
 #include <utility>
 
+#include "line_blend.hpp"
 #include "netshape/motion/corner.hpp"
 
 namespace netshape::motion {
@@ -22,11 +23,7 @@ const int cuts_general[9] = {0, 2, 4, 6, 8, 10, 12, 14, 16};
 constexpr int n_cuts_general = 8;
 const int cuts_jerk[5] = {0, 4, 8, 12, 16};
 constexpr int n_cuts_jerk = 4;
-// between two lines (symmetric blends, curvature peak at node 8) four pieces, narrower around the
-// peak: with the exact piece bounds of line_blend_bounds they come within 1.05 of toppra's optimum
-// on the bench paths (1.042 / 1.047; six pieces 1.030 / 1.045 at ~1 000 more instructions per block)
-constexpr int cuts_lines[5] = {0, 5, 8, 11, 16};
-constexpr int n_cuts_lines = 4;
+// between two lines: detail::cuts_lines (line_blend.hpp)
 const int cuts_one[2] = {0, 16};
 // nodes one push may add: the previous arc's pieces, the blend pieces, the new block
 constexpr long per_block = max_arc_pieces + blend_pieces + 2;
@@ -42,9 +39,6 @@ double min_over(const Vec3& per_axis, const Vec3& moving) {
 
 Vec3 end_tangent(const Segment& s) {
   return s.kind == SegmentKind::blend ? Vec3((s.ctrl[3] - s.ctrl[2]).normalized()) : s.block.tangent_at(1.0);
-}
-Vec3 start_tangent(const Segment& s) {
-  return s.kind == SegmentKind::blend ? Vec3((s.ctrl[1] - s.ctrl[0]).normalized()) : s.block.tangent_at(0.0);
 }
 // point and tangent at arc length s along the untrimmed programmed piece
 Vec3 piece_point(const Segment& s, double at) {
@@ -139,132 +133,6 @@ struct BlendBounds {
   }
 };
 
-// What blend_lines needs at fixed parameter values, computed once: with a = (1 − u)², b = u²,
-// |B'|²/(9d²) = g2(u) = P + Q·c (P = a² + b², Q = 2ab) at the 3-point Gauss-Legendre points of the
-// first 8 table intervals (3i, 3i + 1, 3i + 2: centre, left, right), at the nodes 0..8 (with
-// w = u·(1 − u)) and at the piece ends cuts_lines (padding lanes repeat node 16), where also a and b.
-struct LineBlendTables {
-  using A24 = Eigen::Array<double, 24, 1>;
-  using A9 = Eigen::Array<double, 9, 1>;
-  using AN = Eigen::Array<double, (n_cuts_lines + 2) / 2 * 2, 1>;  // piece ends, padded to whole packets
-  A24 gp, gq;
-  A9 np, nq, w;
-  AN cp, cq, ca, cb, cw;
-  LineBlendTables() {
-    const double gx = 0.7745966692414834, h = 0.5 / 16.0;
-    for (int i = 0; i < 8; ++i) {
-      const double m = (i + 0.5) / 16.0, us[3] = {m, m - h * gx, m + h * gx};
-      for (int j = 0; j < 3; ++j) {
-        const double u = us[j], aa = (1 - u) * (1 - u), bb = u * u;
-        gp[3 * i + j] = aa * aa + bb * bb;
-        gq[3 * i + j] = 2.0 * aa * bb;
-      }
-    }
-    for (int i = 0; i <= 8; ++i) {
-      const double u = i / 16.0, aa = (1 - u) * (1 - u), bb = u * u;
-      np[i] = aa * aa + bb * bb;
-      nq[i] = 2.0 * aa * bb;
-      w[i] = u * (1 - u);
-    }
-    for (int m = 0; m < AN::SizeAtCompileTime; ++m) {
-      const double u = cuts_lines[std::min(m, n_cuts_lines)] / 16.0, aa = (1 - u) * (1 - u), bb = u * u;
-      cp[m] = aa * aa + bb * bb;
-      cq[m] = 2.0 * aa * bb;
-      ca[m] = aa;
-      cb[m] = bb;
-      cw[m] = u * (1 - u);
-    }
-  }
-};
-const LineBlendTables line_blend_tables;
-
-// The symmetric blend between two lines at its piece ends cuts_lines (padding lanes: node 16 again): unit
-// tangent ta·u1 + tb·u2 and curvature κ [1/mm].
-struct LineBlendNodes {
-  LineBlendTables::AN ta, tb, kappa;
-  double kappa_mid = 0.0;         // κ at node 8 (the largest)
-  double c = 1.0, inv_sin = 0.0;  // cos θ and 1/sin θ of the turn
-};
-
-// The symmetric blend between two lines: P0 = V − d·u1, P1 = P2 = V, P3 = V + d·u2 (u1, u2 unit).
-// Its hodograph is B'(u) = 3d·((1 − u)²·u1 + u²·u2) and B''(u) = 6d·(−(1 − u)·u1 + u·u2), so
-// |B'|² = 9d²·g2 with g2 = a² + b² + 2ab·cos θ, B' × B'' = 18d²·u(1 − u)·(u1 × u2) and the curvature
-// is κ = (2 sin θ/(3d))·u(1 − u)/g2^{3/2}: everything depends on u and θ only, and node 16 − i mirrors
-// node i. Fills s in place (the fields of Segment::blend) and the piece-end values nd; the scalar
-// work runs on whole arrays (Eigen vectorises it).
-void blend_lines(Segment& s, const Vec3& p0, const Vec3& vtx, const Vec3& p3, const Vec3& u1, const Vec3& u2,
-                 double d, long source, LineBlendNodes& nd) {
-  const LineBlendTables& T = line_blend_tables;
-  s.kind = SegmentKind::blend;
-  s.ctrl = {p0, vtx, vtx, p3};
-  s.source = source;
-  s.trim_start = s.trim_end = 0.0;
-  const double c = u1.dot(u2), sn = u1.cross(u2).norm();  // |u1 × u2| keeps small turns accurate
-  // arc length: 3-point Gauss-Legendre per interval of |B'| = 3d·sqrt(g2); first half, mirrored
-  constexpr double w0 = 8.0 / 9.0, w1 = 5.0 / 9.0, h = 0.5 / 16.0;
-  const LineBlendTables::A24 sp = (T.gp + T.gq * c).max(0.0).sqrt();
-  const double scale = 3.0 * d * h;
-  double piece[8];
-  for (int i = 0; i < 8; ++i) piece[i] = scale * (w0 * sp[3 * i] + w1 * (sp[3 * i + 1] + sp[3 * i + 2]));
-  s.table[0] = 0;
-  for (int i = 1; i <= 8; ++i) s.table[i] = s.table[i - 1] + piece[i - 1];
-  for (int i = 9; i <= 16; ++i) s.table[i] = s.table[i - 1] + piece[16 - i];
-  // curvature at the nodes 0..8 (the second half mirrors them) and at the piece ends
-  const double ks = 2.0 * sn / (3.0 * d);
-  using A9 = LineBlendTables::A9;
-  using AN = LineBlendTables::AN;
-  const A9 iG = (T.np + T.nq * c).max(1e-300).inverse();
-  const A9 k_half = ks * T.w * iG * iG.sqrt();
-  // finish_blend's fields without its general case: κ rises monotonically to node 8 (see
-  // line_blend_bounds), so the largest curvature is κ(8) and every table interval has Δκ ≥ 0, Δs > 0
-  using A8 = Eigen::Array<double, 8, 1>;
-  s.curvature = k_half[8];
-  s.curvature_rate = ((k_half.tail<8>() - k_half.head<8>()) / Eigen::Map<const A8>(piece)).maxCoeff();
-  s.full_length = s.table[16];
-  nd.kappa_mid = k_half[8];
-  const AN iGc = (T.cp + T.cq * c).max(1e-300).inverse(), igc = iGc.sqrt();
-  nd.ta = T.ca * igc;
-  nd.tb = T.cb * igc;
-  nd.kappa = ks * T.cw * iGc * igc;
-  nd.c = c;
-  nd.inv_sin = 1.0 / sn;
-}
-
-// per piece of a blend between two lines (a lane each)
-using PieceArr = Eigen::Array<double, n_cuts_lines, 1>;
-
-// Exact per-axis bounds of |u_c| (U) and |κ n_c| (K) [1/mm] over the pieces of the symmetric line
-// blend between the table nodes cuts_lines. The tangent turns monotonically by φ ∈ [0, θ] in the
-// plane of u1 and u2 (B' is a positive combination of them whose ratio u²/(1 − u)² rises), and with
-// N the tangent turned by +90° in that plane, dT/dφ = N and dN/dφ = −T. So per axis
-// T_c = R_c·cos(φ − ψ_c) and N_c = −R_c·sin(φ − ψ_c), R_c the length of the axis' projection on the
-// plane: over a piece (|Δφ| < π) |T_c| reaches R_c inside iff N_c changes sign, else its largest
-// value is at an end; likewise |N_c| with T_c. κ rises monotonically up to node 8 and falls after it
-// (u(1 − u)/g2^{3/2}: checked for cos θ over (−1, 1)), so on a piece that ends at or before node 8
-// or starts at or after it κ is at most its larger end value, and |κ n_c| at most that times the
-// largest |N_c|. In the plane T = ta·u1 + tb·u2 gives N = (−(tb + c·ta)·u1 + (ta + c·tb)·u2)/sin θ.
-void line_blend_bounds(const LineBlendNodes& nd, const Vec3& u1, const Vec3& u2, PieceArr (&U)[3],
-                       PieceArr (&K)[3]) {
-  constexpr int n = n_cuts_lines;
-  using AN = LineBlendTables::AN;
-  const AN na = -(nd.tb + nd.c * nd.ta) * nd.inv_sin, nb = (nd.ta + nd.c * nd.tb) * nd.inv_sin;
-  PieceArr kmax = nd.kappa.head<n>().max(nd.kappa.segment<n>(1));
-  for (int k = 0; k < n; ++k)  // a piece across the middle node has its largest κ there
-    if (cuts_lines[k] < 8 && cuts_lines[k + 1] > 8) kmax[k] = nd.kappa_mid;
-  kmax *= 1.0 + 1e-9;
-  for (int c = 0; c < 3; ++c) {
-    const AN t = nd.ta * u1[c] + nd.tb * u2[c], nn = na * u1[c] + nb * u2[c];
-    const double r = std::sqrt(t[0] * t[0] + nn[0] * nn[0]);  // R_c (rotation leaves it unchanged)
-    const PieceArr t0 = t.head<n>(), t1 = t.segment<n>(1), n0 = nn.head<n>(), n1 = nn.segment<n>(1);
-    // "x changes sign over the piece" without select() (Eigen 3.4 does not vectorise it):
-    // q = min(max(x0, x1), −min(x0, x1)) is positive exactly then, and min(r, 1e12·q) is r unless
-    // |x| < 1e-12·r at an end, where the end value of the other component is within 1e-24·r of r
-    const PieceArr qn = n0.max(n1).min(-n0.min(n1)), qt = t0.max(t1).min(-t0.min(t1));
-    U[c] = (t0.abs().max(t1.abs()).max((1e12 * qn).min(r)) + 1e-12).min(1.0);
-    K[c] = kmax * n0.abs().max(n1.abs()).max((1e12 * qt).min(r));
-  }
-}
-
 // curvature vector κ·n [1/mm] at the start or the end of a segment (0 on lines)
 Vec3 curvature_vector(const Segment& s, bool at_end) {
   if (s.kind == SegmentKind::line) return Vec3::Zero();
@@ -305,6 +173,8 @@ Planner::Planner(const AxisLimits& limits, const PlanOptions& options) : limits_
   opt_.validate();
   jerk_ = limits_.jerk_limited();
   inv_acc_ = limits_.acceleration.cwiseInverse();
+  lb_ = &detail::line_blend_kernels();
+  lb_tables_ = &detail::line_blend_tables();
   // power-of-two sizes (see slot()): the ring holds at least one push's nodes plus 12 per block of
   // look-ahead (rounded up: 14 for look-ahead 64)
   const auto pow2 = [](long n) {
@@ -602,99 +472,38 @@ void Planner::init_blend_piece(Node& bn, const Segment& whole, int i0, int i1, l
   bn.jump_s = bn.jump_e = bn.spike_s = bn.spike_e = bn.tail_trim = bn.provisional = false;
 }
 
-// The blend of a corner between two lines without jerk limits (blend_lines), cut into pieces at the
-// table nodes cuts_lines (one piece for a gentle turn) and written as ONE node of the ring: the
-// pieces' trims, lengths, speed caps, reach coefficients (back_pass) and the coefficients of their
-// peak speed and tangential budget (freeze_multi) go to the record recs_[source % size], so neither
-// pass divides. v_prev: the speed cap before the blend on entry, the cap of its last piece on return
-// [mm/s].
+// The blend of a corner between two lines without jerk limits, cut into pieces at the table nodes
+// detail::cuts_lines (one piece for a gentle turn) and written as ONE node of the ring: the kernel
+// (line_blend.hpp) fills the whole blend into blends_ and the pieces' trims, lengths, speed caps,
+// reach coefficients (back_pass) and the coefficients of their peak speed and tangential budget
+// (freeze_multi) into the record recs_[source % size], so neither pass divides. v_prev: the speed cap
+// before the blend on entry, the cap of its last piece on return [mm/s].
 void Planner::push_line_blend(long source, long psource, const Vec3& p0, const Vec3& vtx, const Vec3& p3, const Vec3& u1,
                               const Vec3& u2, double d, double vfeed, double& v_prev) noexcept {
-  static_assert(rec_pieces == n_cuts_lines, "one lane of the record per piece of a line blend");
-  using Map = Eigen::Map<PieceArr>;
-  Segment& whole = blend_of(source);
-  LineBlendNodes nd;
-  blend_lines(whole, p0, vtx, p3, u1, u2, d, psource, nd);
   const Vec3& A = limits_.acceleration;
-  const Vec3& V = limits_.velocity;
-  int np = n_cuts_lines;
-  PieceArr U[3], K[3], ts, te;  // per axis bounds; trims of the whole blend
-  line_blend_bounds(nd, u1, u2, U, K);
-  for (int k = 0; k < np; ++k) {
-    ts[k] = whole.table[static_cast<std::size_t>(cuts_lines[k])];
-    te[k] = whole.full_length - whole.table[static_cast<std::size_t>(cuts_lines[k + 1])];
-  }
-  {
-    // a gentle turn: the centripetal part takes little of the budget at full speed; one piece whose
-    // bounds are the largest of the pieces' (every lane holds it)
-    double vcap = vfeed, kw = 0.0;
-    for (int i = 0; i < 3; ++i) {
-      vcap = std::min(vcap, V[i] / U[i].maxCoeff());  // U ≥ 1e-12
-      kw = std::max(kw, K[i].maxCoeff());
-    }
-    if (kw * vcap * vcap <= 0.02 * A.minCoeff()) {
-      np = 1;
-      for (int i = 0; i < 3; ++i) {
-        U[i].setConstant(U[i].maxCoeff());
-        K[i].setConstant(K[i].maxCoeff());
-      }
-      ts.setZero();
-      te.setZero();
-    }
-  }
+  const std::size_t slot = this->slot(tail_);
+  const std::size_t ri = rec_slot(source);
+  BlendRec& r = recs_[ri];
+  Segment& whole = blends_[ri];
+  const int np = lb_->build(*lb_tables_, whole, p0, vtx, p3, u1, u2, d, psource, A, limits_.velocity, inv_acc_, vfeed,
+                            v_prev, r);
   // the axes that move on the blend (Segment::moving_axes) and the smallest of their accelerations
   double amin_blend = inf;
   for (int i = 0; i < 3; ++i)
     if (std::abs(d * u1[i]) > 1e-12 || std::abs(d * u2[i]) > 1e-12) amin_blend = std::min(amin_blend, A[i]);
   if (!std::isfinite(amin_blend)) amin_blend = A.minCoeff();
   // one node for the whole blend, its pieces in the record
-  const std::size_t slot = this->slot(tail_);
-  const std::size_t ri = rec_slot(source);
-  BlendRec& r = recs_[ri];
   Node& bn = ring_[slot];
   init_blend_piece(bn, whole, 0, 16, source, vfeed, true);
   bn.multi = true;
   bn.curved = true;
   bn.j = inf;
   bn.a = amin_blend;
-  r.np = np;
-  r.cursor = 0;
-  // all pieces at once, per axis: the coefficients of the peak w = min_i (U_i·(vs² + ve²)/2 + L·A_i)/
-  // (U_i + L·K_i), of the reach w = min_i (U_i·w0 + 2·L·A_i)/(U_i + 2·L·K_i) and of the tangential
-  // budget, and the caps |u_i|·v ≤ V_i, K_i·v² ≤ A_i
-  const PieceArr L = (whole.full_length - ts - te).max(0.0);
-  // (the three reciprocals from one division: 1/U = e1·e2/(U·e1·e2), ...; U ≥ 1e-12, so no underflow)
-  PieceArr vmax = PieceArr::Constant(vfeed), kr = PieceArr::Zero();  // kr = max_i K_i/A_i
-  for (int i = 0; i < 3; ++i) {
-    const PieceArr e1 = U[i] + L * K[i], e2 = U[i] + 2.0 * L * K[i];
-    const PieceArr inv = (U[i] * e1 * e2).inverse();
-    const PieceArr iu = e1 * e2 * inv, r1 = U[i] * e2 * inv, r2 = U[i] * e1 * inv;
-    Map(r.iu[i]) = iu;
-    Map(r.K[i]) = K[i];
-    Map(r.p1[i]) = 0.5 * U[i] * r1;
-    Map(r.p0[i]) = L * A[i] * r1;
-    Map(r.alpha[i]) = U[i] * r2;
-    Map(r.beta[i]) = 2.0 * L * A[i] * r2;
-    vmax = vmax.min(V[i] * iu);
-    kr = kr.max(K[i] * inv_acc_[i]);
-  }
-  vmax = vmax.min(kr.inverse().sqrt());  // K_i·v² ≤ A_i (+inf where every K is 0)
-  // the junction limit of piece k is the smaller cap of pieces k − 1 and k (piece 0: the cap before)
-  PieceArr before;
-  before[0] = v_prev;
-  before.tail<n_cuts_lines - 1>() = vmax.head<n_cuts_lines - 1>();
-  const PieceArr v_lim = before.min(vmax);
-  Map(r.vmax) = vmax;
-  Map(r.len) = L;
-  Map(r.trim_s) = ts;
-  Map(r.trim_e) = te;
-  Map(r.w_lim) = v_lim * v_lim;
-  Map(r.wb).setZero();
-  v_prev = vmax[np - 1];
+  bn.v_lim = bn.v_corner = std::min(v_prev, r.vmax[0]);  // (its square is r.w_lim[0])
+  v_prev = r.vmax[np - 1];
   bn.vmax = v_prev;
-  bn.v_lim = bn.v_corner = v_lim[0];
   Quick& x = quick_[slot];
-  x.w_lim = v_lim[0] * v_lim[0];
+  x.w_lim = r.w_lim[0];
   x.len = whole.full_length;
   x.a = bn.a;
   x.j = inf;
@@ -1089,90 +898,22 @@ bool Planner::freeze_next() noexcept {
   return true;
 }
 
-// The pieces of a multi node one after the other, as freeze_next() does for single nodes: each
-// piece's end speed is the smaller of the backward speed of the next piece (of the next node: wt) and
-// what it reaches from its start speed; its peak speed and tangential budget from the precomputed
-// coefficients (no windows on blend pieces).
+// The pieces of a multi node one after the other (the freeze kernel, line_blend.hpp), as
+// freeze_next() does for single nodes.
 void Planner::freeze_multi(Node& n, BlendRec& r, double vs, double wt) noexcept {
-  using Arr = Eigen::Array<double, rec_pieces, 1>;
-  using Map = Eigen::Map<const Arr>;
-  using Out = Eigen::Map<Arr>;
-  const int np = r.np;
-  const double v_start = vs;
-  // the chain of end speeds (sequential, in squared speeds: no root in the chain); unused lanes
-  // repeat the last piece
-  Arr WE;
-  double w = vs * vs;
-  for (int k = 0; k < np; ++k) {
-    const double w_end = k + 1 < np ? r.wb[k + 1] : wt;
-    const double reach = std::min({r.alpha[0][k] * w + r.beta[0][k], r.alpha[1][k] * w + r.beta[1][k],
-                                   r.alpha[2][k] * w + r.beta[2][k]});
-    w = std::min(w_end, reach);
-    WE[k] = w;
-  }
-  for (int k = np; k < rec_pieces; ++k) WE[k] = WE[np - 1];
-  const Arr VE = WE.sqrt();
-  Arr VS;  // piece k starts at the end speed of piece k − 1 (piece 0: the given speed)
-  VS[0] = vs;
-  VS.tail<rec_pieces - 1>() = VE.head<rec_pieces - 1>();
-  vs = VE[np - 1];
-  // then all pieces at once: peak squared speed, tangential budget at that speed and the trapezoid
-  // (Profile::make without windows, the same arithmetic lane by lane; written without select(),
-  // which Eigen 3.4 does not vectorise)
-  const Arr L = Map(r.len), S = VS * VS + VE * VE;
-  const Arr vlow = VS.max(VE);
-  Arr wp = Map(r.vmax) * Map(r.vmax);
-  for (int i = 0; i < 3; ++i) wp = wp.min(Map(r.p1[i]) * S + Map(r.p0[i]));
-  wp = wp.max((VS * VS).max(VE * VE));
-  Arr a = Arr::Constant(inf);
-  for (int i = 0; i < 3; ++i) a = a.min((limits_.acceleration[i] - Map(r.K[i]) * wp) * Map(r.iu[i]));
-  // a floor of 1e-6·A (as freeze_next: at the curvature cap the budget is 0); a stays finite since
-  // every iu ≤ 1e12
-  a = a.max(1e-6 * limits_.acceleration.minCoeff());
-  const Arr vmax = wp.sqrt();
-  Arr vp = ((2.0 * a * L + S) / 2.0).max(0.0).sqrt();
-  vp = vlow.max(vp.min(vmax.max(vlow)));
-  // rounding (or the speed-dependent a chosen at the peak): make both ramps fit, a = need/(2L) where
-  // that is larger (on a piece of length 0, L·1e300 = 0 keeps a)
-  const Arr need = 2.0 * vp * vp - S;
-  a = a.max((need / (2.0 * L).max(1e-300)).min(L * 1e300));
-  const Arr ia = a.inverse();
-  const Arr t1 = (vp - VS) * ia, d1 = 0.5 * (VS + vp) * t1;
-  const Arr t3 = (vp - VE) * ia, d3 = 0.5 * (vp + VE) * t3;
-  // the cruise takes what is left, so that the distances add up to the length exactly (all 0 when
-  // vp = 0: then L = 0)
-  Arr d2 = (L - d1 - d3).max(0.0);
-  d2 = (d2 + (L - (d1 + d2 + d3))).max(0.0);
-  const Arr t2 = d2 / vp.max(1e-300);
-  const Arr dur = t1 + t2 + t3;
-  Out(r.vs) = VS;
-  Out(r.ve) = VE;
-  Out(r.vp) = vp;
-  Out(r.acc) = a;
-  Out(r.t1) = t1;
-  Out(r.t2) = t2;
-  Out(r.t3) = t3;
-  Out(r.d1) = d1;
-  Out(r.d2) = d2;
-  Out(r.d3) = d3;
-  Out(r.dur) = dur;
-  double t = t_frozen_end_;
-  for (int k = 0; k < np; ++k) {
-    r.t0[k] = t;
-    t += dur[k];
-  }
-  r.cursor = 0;
+  const double v_end = lb_->freeze(r, vs, wt, limits_.acceleration, t_frozen_end_);
+  const double t = r.t0[r.np - 1] + r.dur[r.np - 1];
   n.prof = Profile{};
-  n.prof.vs = v_start;
-  n.prof.ve = vs;
+  n.prof.vs = vs;
+  n.prof.ve = v_end;
   n.prof.duration = t - t_frozen_end_;
   n.t0 = t_frozen_end_;
   t_frozen_end_ = t;
-  v_frozen_end_ = vs;
+  v_frozen_end_ = v_end;
   ++frozen_;
 }
 
-void Planner::BlendRec::profile(int k, Profile& p) const noexcept {
+void detail::LineBlendRecord::profile(int k, Profile& p) const noexcept {
   p.vs = vs[k];
   p.ve = ve[k];
   p.vp = vp[k];

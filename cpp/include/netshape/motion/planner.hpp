@@ -60,6 +60,36 @@ struct PlannedSegment {
   double t0 = 0;  ///< start time [s]
 };
 
+namespace detail {
+struct LineBlendKernels;
+struct LineBlendTables;
+
+/// The pieces of a corner blend between two lines, kept once per blend by the Planner (internal).
+/// Per piece: trims of the whole blend, length, speed cap, squared junction limit (piece 0: with the
+/// cap before the blend), the reach w = min_i alpha_i·w0 + beta_i in squared speeds, the coefficients
+/// of the peak squared speed min_i p1_i·(vs² + ve²) + p0_i and of the tangential budget
+/// min_i (A_i − K_i·w)·iu_i (so that neither pass divides), the backward squared speed at its start,
+/// and once frozen its trapezoid (speeds, acceleration, phase times and distances) and start time.
+/// Every field is an array over the pieces (plain doubles: the kernels that fill it are compiled
+/// once per instruction set, see src/motion/line_blend.hpp).
+struct LineBlendRecord {
+  static constexpr int pieces = 4;
+  int np = 0, cursor = 0;  // pieces; next piece to hand out / sample
+  double trim_s[pieces] = {}, trim_e[pieces] = {}, len[pieces] = {}, vmax[pieces] = {};
+  double w_lim[pieces] = {}, wb[pieces] = {};
+  // per axis i and piece k: [i][k]
+  double alpha[3][pieces] = {}, beta[3][pieces] = {};
+  double p1[3][pieces] = {}, p0[3][pieces] = {}, iu[3][pieces] = {}, K[3][pieces] = {};
+  // frozen: speed-up, cruise, slow-down
+  double vs[pieces] = {}, ve[pieces] = {}, vp[pieces] = {}, acc[pieces] = {};
+  double t1[pieces] = {}, t2[pieces] = {}, t3[pieces] = {};
+  double d1[pieces] = {}, d2[pieces] = {}, d3[pieces] = {};
+  double dur[pieces] = {}, t0[pieces] = {};
+  /// The frozen profile of piece k (a trapezoid without windows).
+  void profile(int k, Profile& p) const noexcept;
+};
+}  // namespace detail
+
 class Planner {
  public:
   /// Validates limits and options (throws std::invalid_argument) and allocates the ring buffer.
@@ -124,28 +154,8 @@ class Planner {
     double alpha[3] = {1, 0, 0}, beta[3] = {0, 0, 0};
     int rec = -1;  // multi node: its BlendRec in recs_, else −1
   };
-  // The pieces of a blend between two lines (one multi node). Per piece: trims of the whole blend,
-  // length, squared speed cap (piece 0: with the junction cap), reach w = min_i alpha_i·w0 + beta_i,
-  // the coefficients of the peak squared speed min_i p1_i·(vs² + ve²) + p0_i and of the tangential
-  // budget min_i (A_i − K_i·w)·iu_i (so that neither pass divides), the backward squared speed at
-  // its start, and once frozen its trapezoid (speeds, acceleration, phase times and distances) and
-  // start time. Every field is an array over the pieces: the freeze computes all of them at once.
-  static constexpr int rec_pieces = 4;
-  struct BlendRec {
-    int np = 0, cursor = 0;  // pieces; next piece to hand out / sample
-    double trim_s[rec_pieces] = {}, trim_e[rec_pieces] = {}, len[rec_pieces] = {}, vmax[rec_pieces] = {};
-    double w_lim[rec_pieces] = {}, wb[rec_pieces] = {};
-    // per axis i and piece k: [i][k]
-    double alpha[3][rec_pieces] = {}, beta[3][rec_pieces] = {};
-    double p1[3][rec_pieces] = {}, p0[3][rec_pieces] = {}, iu[3][rec_pieces] = {}, K[3][rec_pieces] = {};
-    // frozen: speed-up, cruise, slow-down
-    double vs[rec_pieces] = {}, ve[rec_pieces] = {}, vp[rec_pieces] = {}, acc[rec_pieces] = {};
-    double t1[rec_pieces] = {}, t2[rec_pieces] = {}, t3[rec_pieces] = {};
-    double d1[rec_pieces] = {}, d2[rec_pieces] = {}, d3[rec_pieces] = {};
-    double dur[rec_pieces] = {}, t0[rec_pieces] = {};
-    /// The frozen profile of piece k (a trapezoid without windows).
-    void profile(int k, Profile& p) const noexcept;
-  };
+  static constexpr int rec_pieces = detail::LineBlendRecord::pieces;
+  using BlendRec = detail::LineBlendRecord;
   // ring slot of segment k / record slot of block k: the sizes are powers of two, so a mask (an
   // integer division per lookup costs tens of cycles)
   std::size_t slot(long k) const noexcept { return static_cast<std::size_t>(k) & mask_; }
@@ -209,6 +219,9 @@ class Planner {
   bool have_last_ = false;
   Vec3 last_dir_ = Vec3::Zero();  // unit direction of the last block pushed (lines)
   const char* error_ = "";
+  // the array work of blends between two lines, for the best instruction set the CPU has
+  const detail::LineBlendKernels* lb_ = nullptr;
+  const detail::LineBlendTables* lb_tables_ = nullptr;
 };
 
 }  // namespace netshape::motion

@@ -1,0 +1,59 @@
+#pragma once
+/// \file line_blend.hpp
+/// Internal: the array work of a corner blend between two lines (the planner's common case), in two
+/// kernels compiled once per instruction set (line_blend_kernels.inc): plain x86-64 (SSE2) in
+/// line_blend.cpp, AVX2 in line_blend_avx2.cpp. Everything here is 4 lanes wide (one per piece),
+/// which AVX2 runs as one packet instead of two (-10 % instructions per block on the blend rule). The
+/// AVX2 build has no FMA, so both give the same bits. Only plain doubles and Vec3 (no vectorisable
+/// Eigen type, whose alignment would differ between the two builds) cross between the kernels and
+/// the rest of the library, and the kernels are flattened: no Eigen function is left out of line in
+/// the AVX2 object for the linker to share with plain code.
+
+#include "netshape/motion/planner.hpp"
+
+namespace netshape::motion::detail {
+
+// Between two lines (symmetric blends, curvature peak at node 8) four pieces, narrower around the
+// peak: with the exact piece bounds they come within 1.05 of toppra's optimum on the bench paths
+// (1.042 / 1.047; six pieces 1.030 / 1.045 at ~1 000 more instructions per block).
+constexpr int n_cuts_lines = LineBlendRecord::pieces;
+constexpr int cuts_lines[n_cuts_lines + 1] = {0, 5, 8, 11, 16};
+// lanes of the per-piece-end arrays: the n + 1 piece ends padded to whole AVX packets
+constexpr int n_cut_lanes = (n_cuts_lines + 1 + 3) / 4 * 4;
+
+/// What the kernels need at fixed parameter values, computed once (line_blend.cpp): with
+/// a = (1 − u)², b = u², |B'|²/(9d²) = g2(u) = P + Q·c (P = a² + b², Q = 2ab) at the 3-point
+/// Gauss-Legendre points of the first 8 table intervals (3i, 3i + 1, 3i + 2: centre, left, right), at
+/// the nodes 0..8 (with w = u·(1 − u)) and at the piece ends cuts_lines (padding lanes repeat node 16),
+/// where also a and b. Plain arrays (see the file comment).
+struct LineBlendTables {
+  alignas(32) double gp[24], gq[24];
+  alignas(32) double np[12], nq[12], w[12];  // nodes 0..8, padded
+  alignas(32) double cp[n_cut_lanes], cq[n_cut_lanes], ca[n_cut_lanes], cb[n_cut_lanes], cw[n_cut_lanes];
+  LineBlendTables();
+};
+const LineBlendTables& line_blend_tables();
+
+/// The kernels of one instruction set.
+struct LineBlendKernels {
+  /// The symmetric blend P0 = V − d·u1, P1 = P2 = V, P3 = V + d·u2 between two lines (u1, u2 unit)
+  /// into `whole` (the fields of Segment::blend, source `source`) and its pieces into `r`: trims,
+  /// lengths, caps (|u_i|·v ≤ V_i, K_i·v² ≤ A_i, the feed vfeed), junction limits (piece 0: also
+  /// v_prev, the cap before the blend), reach, peak and budget coefficients; wb = 0. A gentle turn
+  /// (the centripetal part takes at most 2 % of the smallest A at full speed) is one piece. Returns
+  /// the number of pieces. A, V: per-axis accelerations and velocities, inv_acc = 1/A.
+  int (*build)(const LineBlendTables& T, Segment& whole, const Vec3& p0, const Vec3& vtx, const Vec3& p3,
+               const Vec3& u1, const Vec3& u2, double d, long source, const Vec3& A, const Vec3& V,
+               const Vec3& inv_acc, double vfeed, double v_prev, LineBlendRecord& r);
+  /// Freeze the pieces of r one after the other from speed vs [mm/s], the piece after the blend
+  /// allowing squared speed wt: trapezoids, and start times from t_start [s]. Returns the end speed.
+  double (*freeze)(LineBlendRecord& r, double vs, double wt, const Vec3& A, double t_start);
+  const char* isa;  ///< "plain" or "avx2"
+};
+/// The kernels for the best instruction set the CPU has, chosen once; NETSHAPE_MOTION_ISA=plain
+/// forces the plain ones (tests, benchmarks).
+const LineBlendKernels& line_blend_kernels();
+/// The plain kernels (tests compare them with the chosen ones).
+const LineBlendKernels& line_blend_kernels_plain();
+
+}  // namespace netshape::motion::detail
