@@ -254,6 +254,7 @@ void Planner::sync(long k) noexcept {
 }
 
 void Planner::set_reach(Quick& x, bool curved, const Vec3& U, const Vec3& K) const noexcept {
+  x.straight = !curved;
   if (!curved) {
     x.alpha[0] = 1.0;
     x.beta[0] = 2.0 * x.a * x.len;
@@ -508,6 +509,7 @@ void Planner::push_line_blend(long source, long psource, const Vec3& p0, const V
   x.a = bn.a;
   x.j = inf;
   x.wb = 0.0;
+  x.straight = false;
   x.rec = static_cast<int>(ri);
   ++tail_;
 }
@@ -595,7 +597,6 @@ Status Planner::push(const toolpath::Block& b) noexcept {
     return Status::ok;
   }
   const double theta = blend_here ? 0.0 : turn_angle(u1, u2);  // (the blend branch below returns)
-  const double amin = moving_axes_min(limits_.acceleration, u1, u2);
 
   if (blend_here) {
     const Segment& pseg = at(first).seg;  // the whole previous block (trim_start already final)
@@ -730,6 +731,7 @@ Status Planner::push(const toolpath::Block& b) noexcept {
     return Status::ok;
   }
 
+  const double amin = moving_axes_min(limits_.acceleration, u1, u2);
   split_tail();
   Node& p = at(tail_ - 1);  // the previous block's last piece
   const double vcap = std::min(p.vmax, nn.fcap);
@@ -839,10 +841,12 @@ void Planner::back_pass(long dirty_from) noexcept {
       }
     } else {
       // seeds/002 eq. 3 (trapezoid; on curves the axis box), capped by the junction limit (without
-      // jerk limits reach_sq is the min of three affine terms, inlined here)
-      w = jerk_ ? std::min(n.w_lim, reach_sq(n, w_next))
-                : std::min(std::min(n.w_lim, n.alpha[0] * w_next + n.beta[0]),
-                           std::min(n.alpha[1] * w_next + n.beta[1], n.alpha[2] * w_next + n.beta[2]));
+      // jerk limits reach_sq is the min of three affine terms, inlined here; on a line only the first
+      // is finite: the same value with half the latency in the chain)
+      w = jerk_        ? std::min(n.w_lim, reach_sq(n, w_next))
+          : n.straight ? std::min(n.w_lim, w_next + n.beta[0])
+                       : std::min(std::min(n.w_lim, n.alpha[0] * w_next + n.beta[0]),
+                                  std::min(n.alpha[1] * w_next + n.beta[1], n.alpha[2] * w_next + n.beta[2]));
     }
     if (k < dirty_from && w == n.wb) break;  // nothing changes further back
     n.wb = w;
@@ -887,9 +891,11 @@ bool Planner::freeze_next() noexcept {
     const double amin = limits_.acceleration.minCoeff();
     if (!(a > 1e-6 * amin)) a = 1e-6 * amin;
     if (!std::isfinite(a)) a = amin;
-    n.prof = Profile::make(len, vs, ve, std::sqrt(wp), a, inf, ws, we);
+    n.prof = detail::make_trapezoid(len, vs, ve, std::sqrt(wp), a, ws, we);
   } else {
-    n.prof = Profile::make(len, vs, ve, std::max(n.vmax, std::max(vs, ve)), n.a, n.j, ws, we);
+    const double vcap = std::max(n.vmax, std::max(vs, ve));
+    n.prof = std::isfinite(n.j) ? Profile::make(len, vs, ve, vcap, n.a, n.j, ws, we)
+                                : detail::make_trapezoid(len, vs, ve, vcap, n.a, ws, we);
   }
   n.t0 = t_frozen_end_;
   t_frozen_end_ += n.prof.duration;
@@ -903,7 +909,7 @@ bool Planner::freeze_next() noexcept {
 void Planner::freeze_multi(Node& n, BlendRec& r, double vs, double wt) noexcept {
   const double v_end = lb_->freeze(r, vs, wt, limits_.acceleration, t_frozen_end_);
   const double t = r.t0[r.np - 1] + r.dur[r.np - 1];
-  n.prof = Profile{};
+  // of the node's profile only the end speeds and the duration are read (the pieces have their own)
   n.prof.vs = vs;
   n.prof.ve = v_end;
   n.prof.duration = t - t_frozen_end_;

@@ -30,61 +30,15 @@ double reach_speed(double v, double length, double a, double j) noexcept {
   return lo;
 }
 
-namespace {
-// The constant-speed windows at the ends (a window only where that end speed is > 0, the start's
-// first, together at most the length) clipped in place; returns the length left for the ramps [mm].
-inline double fit_windows(double length, double vs, double ve, double& ws, double& we) noexcept {
-  ws = vs > 0 ? std::min(ws, length) : 0.0;
-  we = ve > 0 ? std::min(we, length - ws) : 0.0;
-  return std::max(0.0, length - ws - we);
-}
-
-// Profile::make for the trapezoid (j = +inf): the same construction with a reciprocal of a and one
-// division for the cruise, since this runs for every segment (and blend piece) at freeze time
-Profile make_trapezoid(double length, double vs, double ve, double vmax, double a, double ws, double we) noexcept {
-  Profile p;
-  p.vs = vs;
-  p.ve = ve;
-  const double lr = fit_windows(length, vs, ve, ws, we);
-  const double vlow = std::max(vs, ve);
-  const double s2 = vs * vs + ve * ve;
-  double vp = std::sqrt(std::max(0.0, (2.0 * a * lr + s2) / 2.0));
-  vp = std::max(vlow, std::min(vp, std::max(vmax, vlow)));
-  p.vp = vp;
-  // rounding (or a speed-dependent a chosen by the caller at the peak): make both ramps fit
-  if (lr > 0 && 2.0 * vp * vp - s2 > 2.0 * lr * a) a = (2.0 * vp * vp - s2) / (2.0 * lr);
-  p.a = a;
-  const double ia = 1.0 / a;
-  p.d[0] = ws;
-  p.t[0] = ws > 0 ? ws / vs : 0.0;
-  p.t[1] = (vp - vs) * ia;  // vp ≥ max(vs, ve)
-  p.d[1] = 0.5 * (vs + vp) * p.t[1];
-  p.t[3] = (vp - ve) * ia;
-  p.d[3] = 0.5 * (vp + ve) * p.t[3];
-  p.d[4] = we;
-  p.t[4] = we > 0 ? we / ve : 0.0;
-  // the cruise takes what is left, so that the distances add up to the length exactly
-  double d2 = std::max(0.0, lr - p.d[1] - p.d[3]);
-  if (vp > 0) {
-    d2 += length - (p.d[0] + p.d[1] + d2 + p.d[3] + p.d[4]);
-    if (d2 < 0) d2 = 0;
-    p.t[2] = d2 / vp;
-  }
-  p.d[2] = d2;
-  p.duration = p.t[0] + p.t[1] + p.t[2] + p.t[3] + p.t[4];
-  return p;
-}
-}  // namespace
-
 Profile Profile::make(double length, double vs, double ve, double vmax, double a, double j, double ws,
                       double we) noexcept {
-  if (!std::isfinite(j)) return make_trapezoid(length, vs, ve, vmax, a, ws, we);
+  if (!std::isfinite(j)) return detail::make_trapezoid(length, vs, ve, vmax, a, ws, we);
   Profile p;
   p.vs = vs;
   p.ve = ve;
   p.a = a;
   p.j = j;
-  const double lr = fit_windows(length, vs, ve, ws, we);
+  const double lr = detail::fit_windows(length, vs, ve, ws, we);
   const double vlow = std::max(vs, ve);
   // jerk-limited: the largest peak whose two S-curve ramps fit in lr (bisection)
   double lo = vlow, hi = std::sqrt(vs * vs + ve * ve + 2.0 * a * lr) + 1e-9;

@@ -153,6 +153,7 @@ class Planner {
     double w_lim = 0, wb = 0, len = 0, a = 1, j = 0;  // squared junction limit and backward speed [mm²/s²]
     double alpha[3] = {1, 0, 0}, beta[3] = {0, 0, 0};
     int rec = -1;  // multi node: its BlendRec in recs_, else −1
+    bool straight = false;  // a line: alpha = (1, 0, 0), beta = (2·a·L, inf, inf), so w = w0 + beta[0]
   };
   static constexpr int rec_pieces = detail::LineBlendRecord::pieces;
   using BlendRec = detail::LineBlendRecord;

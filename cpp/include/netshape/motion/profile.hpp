@@ -5,6 +5,8 @@
 /// jerk-limited S-curve whose speed changes follow v0 + Δv·(3x² − 2x³), x = τ/T, with
 /// T = max(1.5|Δv|/a, √(6|Δv|/j)) (peak acceleration 1.5|Δv|/T ≤ a, peak jerk 6|Δv|/T² ≤ j).
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace netshape::motion {
@@ -32,5 +34,52 @@ struct Profile {
   /// Distance s [mm], speed v [mm/s] and path acceleration acc [mm/s^2] at time tau ∈ [0, duration].
   void eval(double tau, double& s, double& v, double& acc) const noexcept;
 };
+
+namespace detail {
+// The constant-speed windows at the ends (a window only where that end speed is > 0, the start's
+// first, together at most the length) clipped in place; returns the length left for the ramps [mm].
+inline double fit_windows(double length, double vs, double ve, double& ws, double& we) noexcept {
+  ws = vs > 0 ? std::min(ws, length) : 0.0;
+  we = ve > 0 ? std::min(we, length - ws) : 0.0;
+  return std::max(0.0, length - ws - we);
+}
+
+// Profile::make for the trapezoid (j = +inf): the same construction with a reciprocal of a and one
+// division for the cruise; inline, since the planner's freeze runs it for every segment
+inline Profile make_trapezoid(double length, double vs, double ve, double vmax, double a, double ws, double we) noexcept {
+  Profile p;
+  p.vs = vs;
+  p.ve = ve;
+  const double lr = fit_windows(length, vs, ve, ws, we);
+  const double vlow = std::max(vs, ve);
+  const double s2 = vs * vs + ve * ve;
+  double vp = std::sqrt(std::max(0.0, (2.0 * a * lr + s2) / 2.0));
+  vp = std::max(vlow, std::min(vp, std::max(vmax, vlow)));
+  p.vp = vp;
+  // rounding (or a speed-dependent a chosen by the caller at the peak): make both ramps fit
+  if (lr > 0 && 2.0 * vp * vp - s2 > 2.0 * lr * a) a = (2.0 * vp * vp - s2) / (2.0 * lr);
+  p.a = a;
+  const double ia = 1.0 / a;
+  p.d[0] = ws;
+  p.t[0] = ws > 0 ? ws / vs : 0.0;
+  p.t[1] = (vp - vs) * ia;  // vp ≥ max(vs, ve)
+  p.d[1] = 0.5 * (vs + vp) * p.t[1];
+  p.t[3] = (vp - ve) * ia;
+  p.d[3] = 0.5 * (vp + ve) * p.t[3];
+  p.d[4] = we;
+  p.t[4] = we > 0 ? we / ve : 0.0;
+  // the cruise takes what is left, so that the distances add up to the length exactly
+  double d2 = std::max(0.0, lr - p.d[1] - p.d[3]);
+  if (vp > 0) {
+    d2 += length - (p.d[0] + p.d[1] + d2 + p.d[3] + p.d[4]);
+    if (d2 < 0) d2 = 0;
+    p.t[2] = d2 / vp;
+  }
+  p.d[2] = d2;
+  p.duration = p.t[0] + p.t[1] + p.t[2] + p.t[3] + p.t[4];
+  return p;
+}
+}  // namespace detail
+
 
 }  // namespace netshape::motion
