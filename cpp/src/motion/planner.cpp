@@ -516,9 +516,11 @@ void Planner::push_line_blend(long source, long psource, const Vec3& p0, const V
 
 Status Planner::push(const toolpath::Block& b) noexcept {
   if (finished_) return fail("push() after finish()");
+  // a full buffer first: a streaming caller pushes until buffer_full, so every block meets this
+  // test once more than the others (a bad block is reported when there is room for it)
+  if (cap_ - (tail_ - head_) < per_block || blocks_in_buffer() > opt_.lookahead) return Status::buffer_full;
   if (!finite3(b.start) || !finite3(b.end) || !finite3(b.center) || !std::isfinite(b.feed) || b.feed < 0)
     return fail("block has a non-finite coordinate or a negative feed");
-  if (cap_ - (tail_ - head_) < per_block || blocks_in_buffer() > opt_.lookahead) return Status::buffer_full;
   const bool arc = b.kind == toolpath::MotionKind::arc;
   if (arc && !(b.radius() > 0)) return fail("arc radius must be positive");
   if (arc && b.turns < 1) return fail("arc turns must be at least 1");
