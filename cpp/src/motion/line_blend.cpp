@@ -20,8 +20,8 @@ LineBlendTables::LineBlendTables() {
     const double m = (i + 0.5) / 16.0, us[3] = {m, m - h * gx, m + h * gx};
     for (int j = 0; j < 3; ++j) {
       const double u = us[j], aa = (1 - u) * (1 - u), bb = u * u;
-      gp[3 * i + j] = aa * aa + bb * bb;
-      gq[3 * i + j] = 2.0 * aa * bb;
+      gp[8 * j + i] = aa * aa + bb * bb;
+      gq[8 * j + i] = 2.0 * aa * bb;
     }
   }
   for (int i = 0; i < 12; ++i) {

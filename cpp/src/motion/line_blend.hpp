@@ -23,7 +23,7 @@ constexpr int n_cut_lanes = (n_cuts_lines + 1 + 3) / 4 * 4;
 
 /// What the kernels need at fixed parameter values, computed once (line_blend.cpp): with
 /// a = (1 − u)², b = u², |B'|²/(9d²) = g2(u) = P + Q·c (P = a² + b², Q = 2ab) at the 3-point
-/// Gauss-Legendre points of the first 8 table intervals (3i, 3i + 1, 3i + 2: centre, left, right), at
+/// Gauss-Legendre points of the first 8 table intervals (i, 8 + i, 16 + i: centre, left, right), at
 /// the nodes 0..8 (with w = u·(1 − u)) and at the piece ends cuts_lines (padding lanes repeat node 16),
 /// where also a and b. Plain arrays (see the file comment).
 struct LineBlendTables {
