@@ -81,5 +81,4 @@ inline Profile make_trapezoid(double length, double vs, double ve, double vmax, 
 }
 }  // namespace detail
 
-
 }  // namespace netshape::motion
