@@ -893,11 +893,9 @@ bool Planner::freeze_next() noexcept {
     const double amin = limits_.acceleration.minCoeff();
     if (!(a > 1e-6 * amin)) a = 1e-6 * amin;
     if (!std::isfinite(a)) a = amin;
-    n.prof = detail::make_trapezoid(len, vs, ve, std::sqrt(wp), a, ws, we);
+    n.prof = Profile::make(len, vs, ve, std::sqrt(wp), a, inf, ws, we);
   } else {
-    const double vcap = std::max(n.vmax, std::max(vs, ve));
-    n.prof = std::isfinite(n.j) ? Profile::make(len, vs, ve, vcap, n.a, n.j, ws, we)
-                                : detail::make_trapezoid(len, vs, ve, vcap, n.a, ws, we);
+    n.prof = Profile::make(len, vs, ve, std::max(n.vmax, std::max(vs, ve)), n.a, n.j, ws, we);
   }
   n.t0 = t_frozen_end_;
   t_frozen_end_ += n.prof.duration;

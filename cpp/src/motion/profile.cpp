@@ -30,9 +30,8 @@ double reach_speed(double v, double length, double a, double j) noexcept {
   return lo;
 }
 
-Profile Profile::make(double length, double vs, double ve, double vmax, double a, double j, double ws,
-                      double we) noexcept {
-  if (!std::isfinite(j)) return detail::make_trapezoid(length, vs, ve, vmax, a, ws, we);
+Profile detail::make_scurve(double length, double vs, double ve, double vmax, double a, double j, double ws,
+                           double we) noexcept {
   Profile p;
   p.vs = vs;
   p.ve = ve;

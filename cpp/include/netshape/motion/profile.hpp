@@ -36,6 +36,10 @@ struct Profile {
 };
 
 namespace detail {
+/// Profile::make with finite jerk (the S-curve; profile.cpp).
+Profile make_scurve(double length, double vs, double ve, double vmax, double a, double j, double ws,
+                    double we) noexcept;
+
 // The constant-speed windows at the ends (a window only where that end speed is > 0, the start's
 // first, together at most the length) clipped in place; returns the length left for the ramps [mm].
 inline double fit_windows(double length, double vs, double ve, double& ws, double& we) noexcept {
@@ -45,7 +49,8 @@ inline double fit_windows(double length, double vs, double ve, double& ws, doubl
 }
 
 // Profile::make for the trapezoid (j = +inf): the same construction with a reciprocal of a and one
-// division for the cruise; inline, since the planner's freeze runs it for every segment
+// division for the cruise; inline (as is Profile::make), since the planner's freeze runs it for every
+// segment
 inline Profile make_trapezoid(double length, double vs, double ve, double vmax, double a, double ws, double we) noexcept {
   Profile p;
   p.vs = vs;
@@ -80,5 +85,11 @@ inline Profile make_trapezoid(double length, double vs, double ve, double vmax, 
   return p;
 }
 }  // namespace detail
+
+inline Profile Profile::make(double length, double vs, double ve, double vmax, double a, double j, double ws,
+                             double we) noexcept {
+  return std::isfinite(j) ? detail::make_scurve(length, vs, ve, vmax, a, j, ws, we)
+                          : detail::make_trapezoid(length, vs, ve, vmax, a, ws, we);
+}
 
 }  // namespace netshape::motion
