@@ -18,6 +18,18 @@ toolpath::Block line(const Vec3& a, const Vec3& b, double feed) {
   blk.feed = feed;
   return blk;
 }
+// A polyline of n lines from the origin, step(i) the i-th displacement [mm], at feed [mm/s].
+template <class Step>
+std::vector<toolpath::Block> polyline(int n, double feed, Step step) {
+  std::vector<toolpath::Block> out;
+  Vec3 p(0, 0, 0);
+  for (int i = 0; i < n; ++i) {
+    const Vec3 q = p + step(i);
+    out.push_back(line(p, q, feed));
+    p = q;
+  }
+  return out;
+}
 std::vector<toolpath::Block> square(double feed) {
   const Vec3 p[5] = {{0, 0, 0}, {20, 0, 0}, {20, 20, 0}, {0, 20, 0}, {0, 0, 0}};
   std::vector<toolpath::Block> out;
@@ -119,13 +131,9 @@ TEST_CASE("vector, per-axis and blend rules respect axis limits by finite differ
     AxisLimits lim;
     lim.velocity = Vec3(100, 80, 50);
     lim.acceleration = Vec3(2000, 1500, 1000);
-    std::vector<toolpath::Block> b;
-    Vec3 p(0, 0, 0);
-    for (int i = 0; i < 30; ++i) {
-      const Vec3 q = p + Vec3(std::cos(1.3 * i) * (0.3 + 0.1 * (i % 7)), std::sin(2.1 * i) * 0.5, 0.05 * ((i % 3) - 1));
-      b.push_back(line(p, q, 200));
-      p = q;
-    }
+    const auto b = polyline(30, 200, [](int i) {
+      return Vec3(std::cos(1.3 * i) * (0.3 + 0.1 * (i % 7)), std::sin(2.1 * i) * 0.5, 0.05 * ((i % 3) - 1));
+    });
     const auto tr = plan(b, lim, o);
     for (int i = 0; i < 3; ++i) {
       CHECK(tr.stats.axis_velocity[i] <= lim.velocity[i] * (1 + 1e-6));
@@ -154,13 +162,10 @@ TEST_CASE("blend rule: the segments next_segment hands out chain up and agree wi
   o.lookahead = 8;
   o.tolerance = 0.01;
   const AxisLimits lim = AxisLimits::uniform(250, 3000);
-  std::vector<toolpath::Block> prog;
-  Vec3 p(0, 0, 0);
-  for (int i = 0; i < 60; ++i) {
-    const Vec3 q = p + Vec3(0.4 + 0.3 * std::cos(1.7 * i), 0.5 * std::sin(2.3 * i), 0.02 * ((i % 3) - 1));
-    prog.push_back(line(p, q, 400));
-    p = q;
-  }
+  auto prog = polyline(60, 400, [](int i) {
+    return Vec3(0.4 + 0.3 * std::cos(1.7 * i), 0.5 * std::sin(2.3 * i), 0.02 * ((i % 3) - 1));
+  });
+  const Vec3 p = prog.back().end;
   toolpath::Block arc;
   arc.kind = toolpath::MotionKind::arc;
   arc.start = p;
@@ -225,7 +230,7 @@ TEST_CASE("blend rule: the segments next_segment hands out chain up and agree wi
 
 TEST_CASE("blend rule: every blend piece's peak speed keeps each axis within its limits along the piece") {
   // The pieces of a blend between two lines get per-axis bounds of |u_c| and |κ n_c| from their end
-  // nodes only (planner.cpp line_blend_bounds). Sample every handed-out piece densely and check that
+  // nodes only (the `bounds` of line_blend_kernels.inc). Sample every handed-out piece densely and check that
   // at its peak speed vp the axis velocity |u_c|·vp and centripetal acceleration |κ n_c|·vp² stay
   // within V_c and A_c: a bound that missed an interior maximum would show here. Corners turn in
   // all three axes, and the limits differ per axis.
@@ -236,13 +241,9 @@ TEST_CASE("blend rule: every blend piece's peak speed keeps each axis within its
   AxisLimits lim;
   lim.velocity = Vec3(120, 80, 50);
   lim.acceleration = Vec3(2500, 1500, 700);
-  std::vector<toolpath::Block> prog;
-  Vec3 p(0, 0, 0);
-  for (int i = 0; i < 80; ++i) {
-    const Vec3 q = p + Vec3(2.0 * std::cos(2.1 * i), 2.0 * std::sin(1.3 * i), 1.2 * std::sin(0.7 * i + 1.0));
-    prog.push_back(line(p, q, 1e6));
-    p = q;
-  }
+  const auto prog = polyline(80, 1e6, [](int i) {
+    return Vec3(2.0 * std::cos(2.1 * i), 2.0 * std::sin(1.3 * i), 1.2 * std::sin(0.7 * i + 1.0));
+  });
   Planner pl(lim, o);
   PlannedSegment ps;
   std::size_t i = 0;
