@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# README command 1: install everything, then run the main job on the bundled default.
+# README command 1: install netshape with its run-time dependencies only, then run the main job on the
+# bundled default.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh

@@ -5,7 +5,7 @@
 #      examples/consumer against the installed C++ library.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+bash scripts/setup.sh test
 PY="${NETSHAPE_PYTHON:-${VIRTUAL_ENV:+$VIRTUAL_ENV/bin/python}}"; PY="${PY:-.venv/bin/python}"
 PY="$(cd "$(dirname "$PY")" && pwd)/$(basename "$PY")"
 
