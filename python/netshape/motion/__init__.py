@@ -43,7 +43,8 @@ RULES = ("paper", "vector", "per-axis", "junction-deviation", "blend")
 JUNCTION_ACCELS = ("min-moving-axis", "along-change")
 
 __all__ = [
-    "AxisLimits", "PlanOptions", "CornerRule", "JunctionAccel", "Planner", "Sample", "Status", "Trajectory", "plan",
+    "AxisLimits", "PlanOptions", "CornerRule", "JunctionAccel", "Planner", "Sample", "Status", "Trajectory",
+    "plan",
     "make_options", "path_points", "blocks_to_arrays", "polyline_arrays", "rule_name", "parse_rule", "turn_angle",
     "paper_corner_speed", "vector_corner_speed", "per_axis_corner_speed", "junction_deviation_speed",
     "klipper_junction_deviation", "junction_acceleration", "junction_deviation_corner_speed",

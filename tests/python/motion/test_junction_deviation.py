@@ -69,7 +69,8 @@ def _corner(rng, phi, three_d):
 def test_random_corners_match_grbl(three_d, mode):
     rng = np.random.default_rng(21 + 2 * three_d + (mode == "along-change"))
     compared = 0
-    for phi in np.concatenate([rng.uniform(0, math.pi, 400), [0.0, 1e-4, math.pi / 2, math.pi - 1e-4, math.pi]]):
+    edges = [0.0, 1e-4, math.pi / 2, math.pi - 1e-4, math.pi]
+    for phi in np.concatenate([rng.uniform(0, math.pi, 400), edges]):
         acc = rng.uniform(500, 5000, 3)
         u1, u2 = _corner(rng, phi, three_d)
         ours = nm.junction_deviation_corner_speed(u1, u2, acc, DEV, nm.parse_junction_accel(mode))
@@ -91,11 +92,12 @@ def test_right_angle_is_klippers_square_corner_velocity():
     u1, u2 = np.array([1.0, 0, 0]), np.array([0, 1.0, 0])
     acc = np.array([3000.0, 3000.0, 3000.0])
     d = nm.klipper_junction_deviation(8.51, 3000.0)
-    assert nm.junction_deviation_corner_speed(u1, u2, acc, d, nm.JunctionAccel.min_moving_axis) == pytest.approx(8.51)
-    assert nm.junction_deviation_corner_speed(u1, u2, acc, DEV, nm.JunctionAccel.along_change) == pytest.approx(
+    ja = nm.JunctionAccel
+    assert nm.junction_deviation_corner_speed(u1, u2, acc, d, ja.min_moving_axis) == pytest.approx(8.51)
+    assert nm.junction_deviation_corner_speed(u1, u2, acc, DEV, ja.along_change) == pytest.approx(
         grbl_junction_speed(u1, u2, acc, DEV))
     # grbl's acceleration along unit(u2 − u1) = (−1, 1, 0)/√2 is √2·3000
-    assert nm.junction_acceleration(acc, u1, u2, nm.JunctionAccel.along_change) == pytest.approx(3000 * math.sqrt(2))
+    assert nm.junction_acceleration(acc, u1, u2, ja.along_change) == pytest.approx(3000 * math.sqrt(2))
 
 
 FOUR_LINES = """G21 G90 G17
