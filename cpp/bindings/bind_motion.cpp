@@ -71,6 +71,11 @@ void bind_motion(py::module_& m) {
       .value("blend", CornerRule::blend);
   m.def("rule_name", &rule_name);
   m.def("parse_rule", &parse_rule, py::arg("name"));
+  py::enum_<JunctionAccel>(m, "JunctionAccel")
+      .value("min_moving_axis", JunctionAccel::min_moving_axis)
+      .value("along_change", JunctionAccel::along_change);
+  m.def("junction_accel_name", &junction_accel_name);
+  m.def("parse_junction_accel", &parse_junction_accel, py::arg("name"));
 
   py::class_<PlanOptions>(m, "PlanOptions", "Planner options (periods [s], look-ahead [blocks], tolerances [mm]).")
       .def(py::init<>())
@@ -82,6 +87,7 @@ void bind_motion(py::module_& m) {
       .def_readwrite("tolerance", &PlanOptions::tolerance)
       .def_readwrite("junction_deviation", &PlanOptions::junction_deviation)
       .def_readwrite("square_corner_velocity", &PlanOptions::square_corner_velocity)
+      .def_readwrite("junction_accel", &PlanOptions::junction_accel)
       .def_readwrite("centripetal_fraction", &PlanOptions::centripetal_fraction)
       .def("validate", &PlanOptions::validate)
       .def("fine_steps", &PlanOptions::fine_steps);
@@ -90,7 +96,11 @@ void bind_motion(py::module_& m) {
   m.def("paper_corner_speed", &paper_corner_speed, py::arg("acc"), py::arg("ts"), py::arg("theta"));
   m.def("vector_corner_speed", &vector_corner_speed, py::arg("u1"), py::arg("u2"), py::arg("acc"), py::arg("ts"));
   m.def("per_axis_corner_speed", &per_axis_corner_speed, py::arg("u1"), py::arg("u2"), py::arg("acc"), py::arg("ts"));
-  m.def("junction_deviation_speed", &junction_deviation_speed, py::arg("acc"), py::arg("deviation"), py::arg("theta"));
+  m.def("junction_deviation_speed", &junction_deviation_speed, py::arg("acc"), py::arg("deviation"), py::arg("turn"));
+  m.def("junction_acceleration", &junction_acceleration, py::arg("acc"), py::arg("u1"), py::arg("u2"),
+        py::arg("mode"));
+  m.def("junction_deviation_corner_speed", &junction_deviation_corner_speed, py::arg("u1"), py::arg("u2"),
+        py::arg("acc"), py::arg("deviation"), py::arg("mode"));
   m.def("klipper_junction_deviation", &klipper_junction_deviation, py::arg("square_corner_velocity"), py::arg("acc"));
   m.def("reach_speed", &reach_speed, py::arg("v"), py::arg("length"), py::arg("a"),
         py::arg("j") = std::numeric_limits<double>::infinity());

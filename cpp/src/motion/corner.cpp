@@ -34,11 +34,28 @@ double per_axis_corner_speed(const Vec3& u1, const Vec3& u2, const Vec3& acc, do
   return v;
 }
 
-double junction_deviation_speed(double acc, double deviation, double theta) noexcept {
-  const double s = std::sin(0.5 * theta);
-  if (s <= 0) return inf;
-  if (s >= 1.0 - 1e-12) return 0.0;  // reversal: stop
-  return std::sqrt(acc * deviation * s / (1.0 - s));
+double junction_deviation_speed(double acc, double deviation, double turn) noexcept {
+  // v² = a·δ·c/(1 − c), c = cos(φ/2); 1 − c = 2·sin²(φ/4) keeps the gentle turns accurate
+  const double c = std::cos(0.5 * turn);
+  const double s = std::sin(0.25 * turn);
+  const double one_minus_c = 2.0 * s * s;
+  if (!(one_minus_c > 0)) return inf;  // straight on
+  if (!(c > 1e-12)) return 0.0;        // reversal (cos(π/2) rounds to 6e-17): stop
+  return std::sqrt(acc * deviation * c / one_minus_c);
+}
+
+double junction_acceleration(const Vec3& per_axis, const Vec3& u1, const Vec3& u2, JunctionAccel mode) noexcept {
+  if (mode == JunctionAccel::along_change) {
+    const Vec3 d = u2 - u1;
+    const double n = d.norm();
+    if (n > 0) return along(per_axis, Vec3(d / n));
+  }
+  return moving_axes_min(per_axis, u1, u2);
+}
+
+double junction_deviation_corner_speed(const Vec3& u1, const Vec3& u2, const Vec3& per_axis, double deviation,
+                                       JunctionAccel mode) noexcept {
+  return junction_deviation_speed(junction_acceleration(per_axis, u1, u2, mode), deviation, turn_angle(u1, u2));
 }
 
 double klipper_junction_deviation(double square_corner_velocity, double acc) noexcept {

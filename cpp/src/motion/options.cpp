@@ -28,6 +28,24 @@ CornerRule parse_rule(const std::string& name) {
   return CornerRule::vector;
 }
 
+const char* junction_accel_name(JunctionAccel mode) noexcept {
+  switch (mode) {
+    case JunctionAccel::min_moving_axis: return "min-moving-axis";
+    case JunctionAccel::along_change: return "along-change";
+  }
+  return "?";
+}
+
+JunctionAccel parse_junction_accel(const std::string& name) {
+  std::string n = name;
+  for (char& c : n)
+    if (c == '_') c = '-';
+  for (JunctionAccel m : {JunctionAccel::min_moving_axis, JunctionAccel::along_change})
+    if (n == junction_accel_name(m)) return m;
+  NETSHAPE_CHECK(false, "junction_accel", name, "must be min-moving-axis or along-change");
+  return JunctionAccel::min_moving_axis;
+}
+
 int PlanOptions::fine_steps() const noexcept {
   return static_cast<int>(std::lround(ts1 / ts2));
 }
@@ -49,6 +67,8 @@ void PlanOptions::validate() const {
   NETSHAPE_CHECK(rule != CornerRule::junction_deviation || junction_deviation > 0 || square_corner_velocity > 0,
                  "junction_deviation", junction_deviation,
                  "junction-deviation rule needs junction_deviation > 0 or square_corner_velocity > 0");
+  NETSHAPE_CHECK(junction_accel == JunctionAccel::min_moving_axis || junction_accel == JunctionAccel::along_change,
+                 "junction_accel", static_cast<int>(junction_accel), "must be min_moving_axis or along_change");
   NETSHAPE_CHECK(std::isfinite(centripetal_fraction) && centripetal_fraction > 0 && centripetal_fraction < 1,
                  "centripetal_fraction", centripetal_fraction, "must be in (0, 1)");
 }

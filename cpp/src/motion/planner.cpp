@@ -767,10 +767,14 @@ Status Planner::push(const toolpath::Block& b) noexcept {
         jump = true;
         break;
       case CornerRule::junction_deviation: {
+        // theta is the turn between the tangents; Klipper's δ maps scv with the moving-axes minimum
         const double dev = opt_.square_corner_velocity > 0
                                ? klipper_junction_deviation(opt_.square_corner_velocity, amin)
                                : opt_.junction_deviation;
-        v = junction_deviation_speed(amin, dev, theta);
+        const double aj = opt_.junction_accel == JunctionAccel::along_change
+                              ? junction_acceleration(limits_.acceleration, u1, u2, opt_.junction_accel)
+                              : amin;
+        v = junction_deviation_speed(aj, dev, theta);
         break;
       }
       case CornerRule::blend: v = 0.0; break;  // reversal: stop

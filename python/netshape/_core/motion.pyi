@@ -2,7 +2,7 @@ from __future__ import annotations
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AxisLimits', 'CornerRule', 'PlanOptions', 'Planner', 'Sample', 'Status', 'junction_deviation_speed', 'klipper_junction_deviation', 'paper_corner_speed', 'parse_rule', 'per_axis_corner_speed', 'reach_speed', 'rule_name', 'turn_angle', 'vector_corner_speed']
+__all__: list[str] = ['AxisLimits', 'CornerRule', 'JunctionAccel', 'PlanOptions', 'Planner', 'Sample', 'Status', 'junction_accel_name', 'junction_acceleration', 'junction_deviation_corner_speed', 'junction_deviation_speed', 'klipper_junction_deviation', 'paper_corner_speed', 'parse_junction_accel', 'parse_rule', 'per_axis_corner_speed', 'reach_speed', 'rule_name', 'turn_angle', 'vector_corner_speed']
 class AxisLimits:
     """
     Per-axis limits: velocity [mm/s], acceleration [mm/s^2], jerk [mm/s^3] (inf: none).
@@ -92,10 +92,56 @@ class CornerRule:
     @property
     def value(self) -> int:
         ...
+class JunctionAccel:
+    """
+    Members:
+    
+      min_moving_axis
+    
+      along_change
+    """
+    __members__: typing.ClassVar[dict[str, JunctionAccel]]
+    along_change: typing.ClassVar[JunctionAccel]
+    min_moving_axis: typing.ClassVar[JunctionAccel]
+    @typing.overload
+    def __eq__(self, other: JunctionAccel) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: JunctionAccel) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
 class PlanOptions:
     """
     Planner options (periods [s], look-ahead [blocks], tolerances [mm]).
     """
+    junction_accel: JunctionAccel
     rule: CornerRule
     def __init__(self) -> None:
         ...
@@ -252,11 +298,19 @@ def _plan_arrays(kind: typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 
     ...
 def _throughput(points: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], feed: typing.SupportsFloat | typing.SupportsIndex, limits: AxisLimits, options: PlanOptions, repeat: typing.SupportsInt | typing.SupportsIndex = 1) -> tuple[int, float]:
     ...
-def junction_deviation_speed(acc: typing.SupportsFloat | typing.SupportsIndex, deviation: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex) -> float:
+def junction_accel_name(arg0: JunctionAccel) -> str:
+    ...
+def junction_acceleration(acc: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], u1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], u2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], mode: JunctionAccel) -> float:
+    ...
+def junction_deviation_corner_speed(u1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], u2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], acc: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], deviation: typing.SupportsFloat | typing.SupportsIndex, mode: JunctionAccel) -> float:
+    ...
+def junction_deviation_speed(acc: typing.SupportsFloat | typing.SupportsIndex, deviation: typing.SupportsFloat | typing.SupportsIndex, turn: typing.SupportsFloat | typing.SupportsIndex) -> float:
     ...
 def klipper_junction_deviation(square_corner_velocity: typing.SupportsFloat | typing.SupportsIndex, acc: typing.SupportsFloat | typing.SupportsIndex) -> float:
     ...
 def paper_corner_speed(acc: typing.SupportsFloat | typing.SupportsIndex, ts: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex) -> float:
+    ...
+def parse_junction_accel(name: str) -> JunctionAccel:
     ...
 def parse_rule(name: str) -> CornerRule:
     ...

@@ -16,7 +16,9 @@ Corner rules:
   paper               seeds/002 eq. 4, Acc*Ts1/(1-cos θ) floored by the allowable speed difference
   vector              velocity vector jump |Δv| <= Acc*Ts2 (feasible by construction)
   per-axis            each axis' jump |Δv_i| <= A_i*Ts2 (feasible by construction)
-  junction-deviation  grbl/Klipper (Klipper's square corner velocity, --scv)
+  junction-deviation  grbl/Klipper: v² = a·δ·cos(φ/2)/(1-cos(φ/2)) at a turn φ, δ from
+                      --junction-deviation (grbl $11) or Klipper's --scv (default 5 mm/s);
+                      a per --junction-accel
   blend               a G2 Bézier blend within --tolerance at each corner (feasible, no jump)
 """
 
@@ -47,8 +49,14 @@ def register(sub) -> None:
     p.add_argument("--lookahead", type=int, default=64, metavar="N", help="look-ahead depth in blocks (64)")
     p.add_argument("--allowable", type=float, default=100.0, metavar="MM_PER_MIN",
                    help="paper rule: allowable speed difference [mm/min] (100)")
-    p.add_argument("--scv", type=float, default=5.0, metavar="MM_PER_S",
-                   help="junction-deviation rule: Klipper square corner velocity [mm/s] (5)")
+    p.add_argument("--scv", type=float, default=None, metavar="MM_PER_S",
+                   help="junction-deviation rule: Klipper square corner velocity [mm/s], "
+                        "δ = scv²·(√2-1)/a (5 unless --junction-deviation is given)")
+    p.add_argument("--junction-deviation", type=float, default=None, metavar="MM",
+                   help="junction-deviation rule: δ [mm] as grbl's $11 (instead of --scv)")
+    p.add_argument("--junction-accel", choices=("min-moving-axis", "along-change"), default="min-moving-axis",
+                   help="junction-deviation rule: acceleration at a corner, the smallest limit of the moving "
+                        "axes (default) or grbl's axis-limited value along the velocity change")
     p.add_argument("--feed-scale", type=float, default=1.0, metavar="K", help="multiply programmed feeds by K")
     p.add_argument("--json", required=True, metavar="OUT.json", help="summary (written atomically)")
     p.add_argument("--samples", metavar="OUT.csv", help="fine samples: t_s,x_mm,...,vx_mm_s,...,feed_mm_s,block")
@@ -79,6 +87,7 @@ def run(args) -> int:
 
     from netshape import toolpath
     from netshape._atomic import atomic_write
+    from netshape.cli import CliError
     from netshape.motion import make_options, plan
 
     limits = _limits(args)
@@ -86,8 +95,20 @@ def run(args) -> int:
         raise ValueError(f"--feed-scale = {args.feed_scale}: must be positive")
     if not (args.allowable >= 0 and math.isfinite(args.allowable)):
         raise ValueError(f"--allowable = {args.allowable}: must be >= 0 [mm/min]")
+    if args.junction_deviation is not None and args.scv is not None:
+        raise CliError("give either --junction-deviation or --scv, not both")
+    if args.junction_deviation is not None:
+        if not (args.junction_deviation > 0 and math.isfinite(args.junction_deviation)):
+            raise ValueError(f"--junction-deviation = {args.junction_deviation}: must be positive [mm]")
+        deviation, scv = args.junction_deviation, 0.0
+    else:
+        scv = 5.0 if args.scv is None else args.scv
+        if not (scv > 0 and math.isfinite(scv)):
+            raise ValueError(f"--scv = {scv}: must be positive [mm/s]")
+        deviation = 0.0
     options = make_options(args.rule, ts1=args.ts1, ts2=args.ts2, lookahead=args.lookahead, tolerance=args.tolerance,
-                           allowable_speed_difference=args.allowable / 60.0, square_corner_velocity=args.scv)
+                           allowable_speed_difference=args.allowable / 60.0, junction_deviation=deviation,
+                           square_corner_velocity=scv, junction_accel=args.junction_accel)
     arrays = toolpath.read_gcode_arrays(args.program)
     arrays = {k: np.asarray(v) for k, v in arrays.items()}
     arrays["feed"] = arrays["feed"] * args.feed_scale
@@ -99,6 +120,10 @@ def run(args) -> int:
         "ts1_s": args.ts1,
         "ts2_s": args.ts2,
         "lookahead": args.lookahead,
+        "junction_deviation_mm": ((deviation if deviation > 0 else None) if args.rule == "junction-deviation"
+                                  else None),
+        "scv_mm_s": (scv if scv > 0 else None) if args.rule == "junction-deviation" else None,
+        "junction_accel": args.junction_accel if args.rule == "junction-deviation" else None,
         "limits": {
             "vmax_mm_s": list(limits.velocity),
             "amax_mm_s2": list(limits.acceleration),

@@ -21,26 +21,34 @@ from .._core import motion as _m
 AxisLimits = _m.AxisLimits
 PlanOptions = _m.PlanOptions
 CornerRule = _m.CornerRule
+JunctionAccel = _m.JunctionAccel
 Planner = _m.Planner
 Sample = _m.Sample
 Status = _m.Status
 rule_name = _m.rule_name
 parse_rule = _m.parse_rule
+junction_accel_name = _m.junction_accel_name
+parse_junction_accel = _m.parse_junction_accel
 turn_angle = _m.turn_angle
 paper_corner_speed = _m.paper_corner_speed
 vector_corner_speed = _m.vector_corner_speed
 per_axis_corner_speed = _m.per_axis_corner_speed
 junction_deviation_speed = _m.junction_deviation_speed
 klipper_junction_deviation = _m.klipper_junction_deviation
+junction_acceleration = _m.junction_acceleration
+junction_deviation_corner_speed = _m.junction_deviation_corner_speed
 reach_speed = _m.reach_speed
 
 RULES = ("paper", "vector", "per-axis", "junction-deviation", "blend")
+JUNCTION_ACCELS = ("min-moving-axis", "along-change")
 
 __all__ = [
-    "AxisLimits", "PlanOptions", "CornerRule", "Planner", "Sample", "Status", "Trajectory", "plan",
+    "AxisLimits", "PlanOptions", "CornerRule", "JunctionAccel", "Planner", "Sample", "Status", "Trajectory",
+    "plan",
     "make_options", "path_points", "blocks_to_arrays", "polyline_arrays", "rule_name", "parse_rule", "turn_angle",
     "paper_corner_speed", "vector_corner_speed", "per_axis_corner_speed", "junction_deviation_speed",
-    "klipper_junction_deviation", "reach_speed", "RULES",
+    "klipper_junction_deviation", "junction_acceleration", "junction_deviation_corner_speed",
+    "junction_accel_name", "parse_junction_accel", "reach_speed", "RULES", "JUNCTION_ACCELS",
 ]
 
 
@@ -68,8 +76,15 @@ def make_options(rule: str | CornerRule = "vector", *, ts1: float = 1e-3, ts2: f
                  lookahead: int = 64, tolerance: float = 0.01,
                  allowable_speed_difference: float = 100.0 / 60.0,
                  junction_deviation: float = 0.0, square_corner_velocity: float = 5.0,
+                 junction_accel: str | JunctionAccel = "min-moving-axis",
                  centripetal_fraction: float = 0.8) -> PlanOptions:
-    """PlanOptions from keywords (periods [s], tolerance [mm], speeds [mm/s]); validated."""
+    """PlanOptions from keywords (periods [s], tolerance [mm], speeds [mm/s]); validated.
+
+    junction-deviation rule: `junction_deviation` δ [mm] (grbl's $11) is used when
+    `square_corner_velocity` is 0, else δ comes from Klipper's square corner velocity [mm/s];
+    `junction_accel` is "min-moving-axis" (smallest limit of the moving axes) or "along-change"
+    (grbl: the axis-limited acceleration along the velocity change).
+    """
     o = PlanOptions()
     o.rule = rule if isinstance(rule, CornerRule) else parse_rule(str(rule))
     o.ts1, o.ts2, o.lookahead = float(ts1), float(ts2), int(lookahead)
@@ -77,6 +92,8 @@ def make_options(rule: str | CornerRule = "vector", *, ts1: float = 1e-3, ts2: f
     o.allowable_speed_difference = float(allowable_speed_difference)
     o.junction_deviation = float(junction_deviation)
     o.square_corner_velocity = float(square_corner_velocity)
+    o.junction_accel = (junction_accel if isinstance(junction_accel, JunctionAccel)
+                        else parse_junction_accel(str(junction_accel)))
     o.centripetal_fraction = float(centripetal_fraction)
     o.validate()
     return o

@@ -63,6 +63,95 @@ TEST_CASE("corner rules: eq. 4 against the velocity-jump bound (issue's 23x at 5
   CHECK(junction_deviation_speed(3000.0, d, pi / 2) == doctest::Approx(5.0));
 }
 
+TEST_CASE("junction deviation: corner speed from the turn angle (grbl's formula with θ = π − φ)") {
+  // grbl (planner.c): cos θ = −u1·u2 is the angle between the two moves at the vertex and
+  // v² = a·δ·sin(θ/2)/(1 − sin(θ/2)); written here from that form, at the issue's turns φ
+  const double a = 3000.0, dev = 0.01;
+  auto grbl = [&](double phi) {
+    const double s = std::sqrt(0.5 * (1.0 + std::cos(phi)));  // sin(θ/2), cos θ = −cos φ
+    return std::sqrt(a * dev * s / (1.0 - s));
+  };
+  for (const double deg : {0.5, 5.7, 45.0, 84.3, 90.0, 135.0, 174.3, 179.5})
+    CHECK(junction_deviation_speed(a, dev, deg2rad(deg)) == doctest::Approx(grbl(deg2rad(deg))).epsilon(1e-12));
+  // gentle turns run fast, near-reversals crawl
+  CHECK(junction_deviation_speed(a, dev, deg2rad(5.7)) > 150.0);
+  CHECK(junction_deviation_speed(a, dev, deg2rad(174.3)) < 1.3);
+  CHECK(std::isinf(junction_deviation_speed(a, dev, 0.0)));
+  CHECK(junction_deviation_speed(a, dev, pi) == 0.0);
+  // tiny turns: 1 − cos(φ/2) ≈ φ²/8, so v² ≈ 8·a·δ/φ²
+  CHECK(junction_deviation_speed(a, dev, 1e-7) == doctest::Approx(std::sqrt(8 * a * dev) / 1e-7).epsilon(1e-6));
+  // acceleration: grbl's along unit(u2 − u1) against the smallest moving-axis limit
+  const Vec3 acc(3000, 1000, 500), u1(1, 0, 0), u2(0, 1, 0);
+  CHECK(junction_acceleration(acc, u1, u2, JunctionAccel::min_moving_axis) == doctest::Approx(1000.0));
+  CHECK(junction_acceleration(acc, u1, u2, JunctionAccel::along_change) == doctest::Approx(1000.0 * std::sqrt(2.0)));
+  CHECK(junction_acceleration(Vec3::Constant(3000), u1, u2, JunctionAccel::along_change) ==
+        doctest::Approx(3000.0 * std::sqrt(2.0)));
+  CHECK(junction_deviation_corner_speed(u1, u2, acc, dev, JunctionAccel::along_change) ==
+        doctest::Approx(std::sqrt(1000.0 * std::sqrt(2.0) * dev * std::sqrt(0.5) / (1 - std::sqrt(0.5)))));
+  CHECK(parse_junction_accel("along_change") == JunctionAccel::along_change);
+  CHECK_THROWS_AS(parse_junction_accel("grbl"), std::invalid_argument);
+}
+
+TEST_CASE("junction deviation: the issue's four-line program runs its corners at grbl's speeds") {
+  // G1 X10 Y0 F60000, X20 Y1, X20 Y11, X19 Y1; vmax 250, amax 3000, δ = 0.01 mm: turns of 5.7°, 84.3°
+  // and 174.3°, at 155.4, 9.3 and 1.25 mm/s by grbl's formula (issue 21)
+  std::vector<toolpath::Block> prog;
+  const Vec3 p[5] = {{0, 0, 0}, {10, 0, 0}, {20, 1, 0}, {20, 11, 0}, {19, 1, 0}};
+  for (int i = 0; i < 4; ++i) prog.push_back(line(p[i], p[i + 1], 1000.0));
+  const double want[3] = {155.4, 9.3, 1.25}, tol[3] = {0.05, 0.05, 0.005};
+  for (const bool klipper : {false, true}) {
+    PlanOptions o;
+    o.rule = CornerRule::junction_deviation;
+    o.junction_deviation = 0.01;
+    // Klipper's mapping: scv = √(δ·a/(√2 − 1)) gives the same δ (the issue's --scv 8.51)
+    o.square_corner_velocity = klipper ? std::sqrt(0.01 * 3000.0 / (std::sqrt(2.0) - 1.0)) : 0.0;
+    Planner pl(AxisLimits::uniform(250, 3000), o);
+    PlannedSegment ps;
+    std::size_t i = 0;
+    std::vector<double> ve(4, -1.0);
+    for (;;) {
+      const Status st = pl.next_segment(ps);
+      if (st == Status::finished) break;
+      if (st == Status::need_blocks) {
+        while (i < prog.size() && pl.push(prog[i]) == Status::ok) ++i;
+        if (i == prog.size()) pl.finish();
+        continue;
+      }
+      ve[static_cast<std::size_t>(ps.segment.source)] = ps.profile.ve;  // the last piece of the block
+    }
+    for (int k = 0; k < 3; ++k) CHECK(ve[k] == doctest::Approx(want[k]).epsilon(tol[k] / want[k]));
+    CHECK(ve[3] == 0.0);
+  }
+}
+
+TEST_CASE("junction deviation: the corner speed is capped by both blocks' nominal speeds") {
+  // a 1° turn allows ~3 m/s; the entry of the second block is capped by the slower of the two feeds
+  for (const double f2 : {40.0, 200.0}) {
+    PlanOptions o;
+    o.rule = CornerRule::junction_deviation;
+    o.junction_deviation = 0.01;
+    o.square_corner_velocity = 0.0;
+    const std::vector<toolpath::Block> prog = {
+        line(Vec3(0, 0, 0), Vec3(50, 0, 0), 100.0),
+        line(Vec3(50, 0, 0), Vec3(50 + 50 * std::cos(deg2rad(1.0)), 50 * std::sin(deg2rad(1.0)), 0), f2)};
+    Planner pl(AxisLimits::uniform(250, 3000), o);
+    PlannedSegment ps;
+    std::size_t i = 0;
+    double v_vertex = -1;
+    for (;;) {
+      const Status st = pl.next_segment(ps);
+      if (st == Status::finished) break;
+      if (st == Status::need_blocks) {
+        while (i < prog.size() && pl.push(prog[i]) == Status::ok) ++i;
+        if (i == prog.size()) pl.finish();
+        continue;
+      }
+      if (ps.segment.source == 0) v_vertex = ps.profile.ve;
+    }
+    CHECK(v_vertex == doctest::Approx(std::min(100.0, f2)));
+  }
+}
+
 TEST_CASE("seeds/002 Fig. 12: four 20 mm blocks at right angles, corner feed = allowable difference") {
   PlanOptions o;
   o.rule = CornerRule::paper;
