@@ -1,0 +1,535 @@
+"""The stages of the main job, one function each. They take and return plain objects (no file
+writes); :mod:`netshape.job.run` calls them in order, times them and writes the outputs.
+
+Frames: the stock and the force/deflection stages work in the work coordinates of G54 (the
+program's coordinates when it selects no other offset); the machine stages work in machine
+coordinates, program point + active work offset (G54–G59 from the job), with the job's tool length.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .spec import WORK_OFFSETS, Job
+
+NOT_AVAILABLE = "not available in this build"
+
+# ---------------------------------------------------------------------------------------------- program
+
+
+@dataclass
+class Program:
+    """The job's program: blocks in work coordinates (G54 frame) and per block the offset to machine
+    coordinates [mm]."""
+
+    toolpath: object                 # netshape.toolpath.Toolpath, program coordinates, feeds scaled
+    offset_index: np.ndarray         # (n,) index into WORK_OFFSETS of the offset active at each block
+    offsets: np.ndarray              # (6, 3) work offsets [mm]
+    lines: np.ndarray                # (n,) source line of each block
+
+    def block_offsets(self) -> np.ndarray:
+        """(n, 3) offset program → machine of each block [mm]."""
+        return self.offsets[self.offset_index]
+
+    @property
+    def uses_one_offset(self) -> bool:
+        return len(np.unique(self.offset_index)) <= 1
+
+
+_COMMENT = re.compile(r"\([^)]*\)|;.*$")
+_G5X = re.compile(r"G\s*0*5\s*([4-9])(\s*\.\s*\d)?", re.IGNORECASE)
+
+
+def active_work_offsets(path) -> np.ndarray:
+    """Index into WORK_OFFSETS (0 = G54) of the work offset in force on each source line (1-based;
+    entry 0 unused). G59.1–G59.3 are refused: the job has no values for them."""
+    states = [0]
+    cur = 0
+    with open(path, encoding="utf-8", errors="replace") as fh:
+        for no, raw in enumerate(fh, start=1):
+            text = _COMMENT.sub("", raw)
+            for m in _G5X.finditer(text):
+                if m.group(2):
+                    raise ValueError(f"{path}:{no}: G5{m.group(1)}{m.group(2).replace(' ', '')}: this work "
+                                     "offset has no key in the job (offsets.G54_mm … G59_mm)")
+                cur = int(m.group(1)) - 4
+            states.append(cur)
+    return np.asarray(states, dtype=np.int64)
+
+
+def _copy_block(tpm, b):
+    nb = tpm.Block()
+    for a in ("kind", "start", "end", "center", "clockwise", "plane", "turns", "feed", "spindle_rpm", "tool", "line"):
+        setattr(nb, a, getattr(b, a))
+    return nb
+
+
+def shift_toolpath(tp, delta: np.ndarray):
+    """A copy of ``tp`` with block ``i`` moved by ``delta[i]`` [mm] (start, end and arc centre)."""
+    from netshape import toolpath as tpm
+
+    out = []
+    for b, d in zip(tp.blocks, np.asarray(delta, dtype=float)):
+        nb = _copy_block(tpm, b)
+        nb.start = np.asarray(b.start) + d
+        nb.end = np.asarray(b.end) + d
+        nb.center = np.asarray(b.center) + d
+        out.append(nb)
+    res = tpm.Toolpath()
+    res.blocks = out
+    return res
+
+
+def stage_program(job: Job) -> Program:
+    """Read the program (arcs kept), scale its feeds by ``cutting.feed_scale`` and find the work offset
+    of every block."""
+    from netshape import toolpath as tpm
+
+    tp = tpm.read_gcode(job.program, arcs="keep")
+    if len(tp.blocks) == 0:
+        raise ValueError(f"program = {str(job.program)!r}: no motion blocks")
+    scale = job.cutting["feed_scale"]
+    if scale != 1.0:
+        blocks = []
+        for b in tp.blocks:
+            nb = _copy_block(tpm, b)
+            nb.feed = b.feed * scale
+            blocks.append(nb)
+        tp = tpm.Toolpath()
+        tp.blocks = blocks
+    lines = np.array([b.line for b in tp.blocks], dtype=np.int64)
+    per_line = active_work_offsets(job.program)
+    idx = per_line[np.clip(lines, 0, len(per_line) - 1)]
+    offsets = np.array([job.offsets[g] for g in WORK_OFFSETS], dtype=float)
+    return Program(toolpath=tp, offset_index=idx, offsets=offsets, lines=lines)
+
+
+def stock_frame_toolpath(prog: Program):
+    """The program in the stock's frame (G54 work coordinates)."""
+    if prog.uses_one_offset and prog.offset_index[0] == 0:
+        return prog.toolpath
+    return shift_toolpath(prog.toolpath, prog.block_offsets() - prog.offsets[0])
+
+
+def machine_frame_toolpath(prog: Program):
+    """The program in machine coordinates (program point + active work offset)."""
+    return shift_toolpath(prog.toolpath, prog.block_offsets())
+
+
+# ---------------------------------------------------------------------------------------------- stock
+
+
+def make_cutter(tool: dict):
+    from netshape.cutter import cutter_from_dict
+
+    return cutter_from_dict(tool, source="tool")
+
+
+def stage_stock(job: Job):
+    """The stock before the program: a box or a heights file, then every ``[[stock.pre_cut]]`` swept in
+    order. Returns a netshape.stock.ZMap."""
+    from netshape import stock as ns
+    from netshape import toolpath as tpm
+
+    s = job.stock
+    lo, hi = s["min_mm"], s["max_mm"]
+    if s["heights"] is not None:
+        path = s["heights"]
+        if path.suffix.lower() == ".npy":
+            h = np.load(path, allow_pickle=False)
+        else:
+            h = np.loadtxt(path, delimiter=",", ndmin=2)
+        h = np.asarray(h, dtype=float)
+        if h.ndim != 2 or min(h.shape) < 2:
+            raise ValueError(f"stock.heights = {str(path)!r}: shape {h.shape}, must be (ny, nx) with ny, nx ≥ 2")
+        if not np.isfinite(h).all():
+            raise ValueError(f"stock.heights = {str(path)!r}: heights must be finite [mm]")
+        if h.min() < lo[2]:
+            raise ValueError(f"stock.heights = {str(path)!r}: height {h.min():g} below stock.min_mm[2] = {lo[2]:g}")
+        z = ns.from_heights(h, lo[0], hi[0], lo[1], hi[1], lo[2])
+    else:
+        z = ns.ZMap(lo[0], hi[0], lo[1], hi[1], s["spacing_mm"], hi[2], lo[2])
+    for pc in s["pre_cut"]:
+        ns.sweep(z, make_cutter(pc.tool), tpm.read_gcode(pc.program, arcs="keep"))
+    return z
+
+
+def stage_cut(job: Job, stock0, prog: Program):
+    """The stock after the program (Z-map material removal). Returns (ZMap, removed volume [mm³])."""
+    from netshape import stock as ns
+
+    z = stock0.copy()
+    stats = ns.sweep(z, make_cutter(job.tool), stock_frame_toolpath(prog))
+    return z, float(getattr(stats, "removed_volume", float("nan")))
+
+
+# ---------------------------------------------------------------------------------------------- forces
+
+
+def coefficients_for(job: Job, cutter):
+    """Force coefficients of the job for its cutter (linear edge for flat/bull, the ball model for ball)."""
+    from netshape import force as nf
+
+    c = job.coefficients
+    is_ball = cutter.kind == nf_kind_ball()
+    if isinstance(c, dict):
+        vals = {k.split("_")[0].lower(): v for k, v in c.items()}
+        if is_ball:
+            raise ValueError("coefficients: a ball end mill takes a named ball set (e.g. kim_zas_ball12)")
+        return nf.LinearEdgeCoefficients(**vals)
+    if "=" in c:
+        if is_ball:
+            raise ValueError(f"coefficients = {c!r}: a ball end mill takes a named ball set (e.g. kim_zas_ball12)")
+        return nf.parse_coefficients(c)
+    if c in nf.ball_end_coefficient_set_names():
+        if not is_ball:
+            raise ValueError(f"coefficients = {c!r}: a ball-end set, but tool.kind is not ball")
+        return nf.ball_end_coefficient_set(c).coefficients
+    if is_ball:
+        raise ValueError(f"coefficients = {c!r}: a flat-end set, but tool.kind = ball")
+    return nf.linear_edge_coefficient_set(c).coefficients
+
+
+def nf_kind_ball():
+    from netshape.cutter import CutterKind
+
+    return CutterKind.ball
+
+
+def stage_forces(job: Job, stock0, prog: Program):
+    """Per-revolution forces on the cutter along the program, cut through a copy of the stock
+    (netshape.force.simulate_program). Returns a ProgramForceResult."""
+    from netshape.force import simulate_program
+
+    cutter = make_cutter(job.tool)
+    c = job.cutting
+    return simulate_program(stock0, cutter, stock_frame_toolpath(prog), coefficients_for(job, cutter),
+                            step=c["step_mm"], samples_per_revolution=c["samples_per_revolution"],
+                            disk_height=c["disk_height_mm"],
+                            feed_per_tooth=c["feed_per_tooth_mm"] or 0.0, spindle_rpm=c["spindle_rpm"] or 0.0,
+                            copy_stock=True)
+
+
+# ---------------------------------------------------------------------------------------------- deflection
+
+
+@dataclass
+class DeflectionResult:
+    """Wall error along the path [mm] before and after deflection compensation, or why there is none."""
+
+    available: bool
+    reason: str = ""
+    s_mm: np.ndarray = field(default_factory=lambda: np.zeros(0))       # path distance of each point
+    before_mm: np.ndarray = field(default_factory=lambda: np.zeros(0))  # signed wall error
+    after_mm: np.ndarray | None = None
+    compensated: object = None                                          # Toolpath (G54 frame) or None
+    info: dict = field(default_factory=dict)
+
+
+def deflection_api():
+    """The path-prediction and path-compensation functions of netshape.deflection /
+    netshape.compensation, or None where this build lacks them."""
+    try:
+        from netshape import compensation as ncomp
+        from netshape import deflection as nd
+    except ImportError:  # pragma: no cover - the package always has both modules
+        return None
+    predict = getattr(nd, "predict_path", None) or getattr(nd, "wall_error_along_path", None)
+    compensate = getattr(ncomp, "compensate_deflection", None)
+    if predict is None:
+        return None
+    return {"predict": predict, "compensate": compensate}
+
+
+def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> DeflectionResult:
+    """Wall error from tool deflection along the program (seeds/000) and, when asked, the deflection-
+    compensated program. Where netshape.deflection has no path prediction in this build, the result
+    says so (``available`` False) instead of reporting zero error."""
+    api = deflection_api()
+    if api is None:
+        return DeflectionResult(available=False, reason=f"deflection wall-error prediction {NOT_AVAILABLE}")
+    cutter = make_cutter(job.tool)
+    coeffs = coefficients_for(job, cutter)
+    tp = stock_frame_toolpath(prog)
+    c = job.cutting
+    kw = dict(spacing=c["error_spacing_mm"])
+    if c["spindle_rpm"]:
+        kw["spindle_rpm"] = c["spindle_rpm"]
+    if c["feed_per_tooth_mm"]:
+        kw["feed_per_tooth"] = c["feed_per_tooth_mm"]
+    level = job.compensate["deflection_level"]
+    pred = api["predict"](stock0, cutter, tp, coeffs, **kw)
+    s_mm, before = _wall_error_arrays(pred, level)
+    res = DeflectionResult(available=True, s_mm=s_mm, before_mm=before)
+    if compensate:
+        if api["compensate"] is None:
+            res.reason = f"deflection path compensation {NOT_AVAILABLE}"
+            return res
+        comp = api["compensate"](stock0, cutter, tp, coeffs, scheme=job.compensate["deflection_scheme"],
+                                 level=level, **kw)
+        res.compensated = getattr(comp, "toolpath", None) or getattr(comp, "program", None)
+        after = getattr(comp, "after", None)
+        if after is None and res.compensated is not None:
+            _, after = _wall_error_arrays(api["predict"](stock0, cutter, res.compensated, coeffs, **kw), level)
+        res.after_mm = None if after is None else np.asarray(_level_of(after, level), dtype=float)
+        res.info = {k: getattr(comp, k) for k in ("iterations", "scheme") if hasattr(comp, k)}
+    return res
+
+
+def _level_of(obj, level: str):
+    if isinstance(obj, dict):
+        return obj.get(level, obj.get(f"{level}_mm"))
+    return getattr(obj, level, obj)
+
+
+def _wall_error_arrays(pred, level: str):
+    """(path distance [mm], wall error at ``level`` [mm]) from a deflection prediction result, which may
+    be an object with attributes or a dict."""
+    get = (lambda k: pred.get(k)) if isinstance(pred, dict) else (lambda k: getattr(pred, k, None))
+    err = get("wall_error_mm") or get("wall_error") or get("error_mm")
+    err = np.asarray(_level_of(err, level), dtype=float)
+    s = get("s_mm") or get("distance_mm")
+    if s is None:
+        pos = get("positions")
+        s = (np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(np.asarray(pos), axis=0), axis=1))])
+             if pos is not None else np.arange(len(err), dtype=float))
+    return np.asarray(s, dtype=float), err
+
+
+# ---------------------------------------------------------------------------------------------- machine
+
+
+def load_job_machine(job: Job):
+    """The job's machine with its errors scaled by ``machine.error_scale`` and its tool length from
+    ``offsets.tool_length_mm`` when given."""
+    from netshape import machine as nm
+
+    m = nm.load_machine(job.machine)
+    if job.offsets.get("tool_length_mm") is not None:
+        m.tool_length = job.offsets["tool_length_mm"]
+    if job.error_scale != 1.0:
+        scale_machine_errors(m, job.error_scale)
+    m.validate()
+    return m
+
+
+def scale_machine_errors(m, s: float) -> None:
+    """Multiply every geometric error of ``m`` (the 18 error motions, squareness, spindle tilt) by ``s``."""
+    axes = []
+    for ax in m.axes:
+        funcs = []
+        for f in ax.errors:
+            kind = f.kind.name
+            if kind == "polynomial":
+                f.coefficients = [s * c for c in f.coefficients]
+            elif kind == "table":
+                f.values = [s * v for v in f.values]
+            funcs.append(f)
+        ax.errors = funcs
+        axes.append(ax)
+    m.axes = axes
+    m.ec0y, m.eb0z, m.ea0z = s * m.ec0y, s * m.eb0z, s * m.ea0z
+    m.spindle_tilt_a, m.spindle_tilt_b = s * m.spindle_tilt_a, s * m.spindle_tilt_b
+
+
+def feed_segments(tp, chord_tolerance: float = 1e-4) -> tuple[np.ndarray, np.ndarray]:
+    """Start and end points (m, 3) of the feed moves of ``tp`` with arcs split into chords [mm]."""
+    from netshape import toolpath as tpm
+
+    split = tp.split_arcs(chord_tolerance)
+    a, b = [], []
+    for blk in split.blocks:
+        if blk.kind == tpm.MotionKind.rapid:
+            continue
+        a.append(blk.start)
+        b.append(blk.end)
+    if not a:
+        return np.zeros((0, 3)), np.zeros((0, 3))
+    return np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+
+
+def sample_segments(a: np.ndarray, b: np.ndarray, spacing: float) -> tuple[np.ndarray, np.ndarray]:
+    """Points every ≤ ``spacing`` mm along the segments (ends included) and their path distance [mm]."""
+    if len(a) == 0:
+        return np.zeros((0, 3)), np.zeros(0)
+    L = np.linalg.norm(b - a, axis=1)
+    n = np.maximum(1, np.ceil(L / spacing).astype(np.int64))
+    seg = np.repeat(np.arange(len(a)), n)
+    first = np.concatenate([[0], np.cumsum(n)[:-1]])
+    k = np.arange(seg.size) - np.repeat(first, n)
+    t = k / np.repeat(n, n)
+    pts = a[seg] + t[:, None] * (b[seg] - a[seg])
+    s0 = np.concatenate([[0.0], np.cumsum(L)[:-1]])
+    s = s0[seg] + t * L[seg]
+    pts = np.vstack([pts, b[-1:]])
+    s = np.concatenate([s, [s0[-1] + L[-1]]])
+    return pts, s
+
+
+def distance_to_path(points: np.ndarray, a: np.ndarray, b: np.ndarray, spacing: float) -> np.ndarray:
+    """Distance [mm] of each point to the polyline segments (a[i], b[i]): candidate segments from a
+    k-d tree of points every ``spacing`` mm along them, then the exact point-to-segment distance."""
+    from scipy.spatial import cKDTree
+
+    if len(points) == 0:
+        return np.zeros(0)
+    L = np.linalg.norm(b - a, axis=1)
+    n = np.maximum(1, np.ceil(L / spacing).astype(np.int64)) + 1
+    owner = np.repeat(np.arange(len(a)), n)
+    first = np.concatenate([[0], np.cumsum(n)[:-1]])
+    t = (np.arange(owner.size) - np.repeat(first, n)) / np.repeat(n - 1, n)
+    samples = a[owner] + t[:, None] * (b[owner] - a[owner])
+    k = min(16, len(samples))
+    _, idx = cKDTree(samples).query(points, k=k)
+    idx = np.atleast_2d(idx).reshape(len(points), -1)
+    segs = owner[idx]                                     # (p, k)
+    A, B = a[segs], b[segs]                               # (p, k, 3)
+    AB = B - A
+    L2 = np.einsum("pkj,pkj->pk", AB, AB)
+    tt = np.einsum("pkj,pkj->pk", points[:, None, :] - A, AB) / np.where(L2 > 0, L2, 1.0)
+    tt = np.clip(np.where(L2 > 0, tt, 0.0), 0.0, 1.0)
+    d = np.linalg.norm(points[:, None, :] - (A + tt[..., None] * AB), axis=2)
+    return d.min(axis=1)
+
+
+@dataclass
+class VolumetricResult:
+    """Deviation of the actual tool-tip path from the nominal path [mm] (machine frame)."""
+
+    s_before_mm: np.ndarray
+    before_mm: np.ndarray
+    points_mm: np.ndarray                 # nominal sample points, machine frame
+    error_vectors_mm: np.ndarray          # tip error e(p) at them
+    s_after_mm: np.ndarray | None = None
+    after_mm: np.ndarray | None = None
+    compensated: object = None            # Toolpath, machine frame
+    report: dict = field(default_factory=dict)
+
+
+def stage_volumetric(job: Job, machine, tp_machine) -> VolumetricResult:
+    """Volumetric error along the feed moves: at points every ``cutting.error_spacing_mm`` the actual tip
+    p + e(p) and its distance to the nominal path (machine frame)."""
+    from netshape import machine as nm
+
+    a, b = feed_segments(tp_machine)
+    pts, s = sample_segments(a, b, job.cutting["error_spacing_mm"])
+    if len(pts) == 0:
+        raise ValueError(f"program = {str(job.program)!r}: no feed moves to predict the volumetric error of")
+    e = nm.tip_error(machine, pts)
+    dev = distance_to_path(pts + e, a, b, job.cutting["error_spacing_mm"])
+    return VolumetricResult(s_before_mm=s, before_mm=dev, points_mm=pts, error_vectors_mm=e)
+
+
+def stage_volumetric_compensation(job: Job, machine, tp_machine, vol: VolumetricResult) -> VolumetricResult:
+    """Compensate the program (machine frame) so the actual tip lands on the nominal path
+    (netshape.compensation.compensate_program), then re-predict: sample the compensated program, move
+    every point by the machine's error and measure its distance to the nominal path."""
+    from netshape import compensation as nc
+    from netshape import machine as nm
+
+    comp, report = nc.compensate_program(machine, tp_machine, job.compensate["chord_tolerance_mm"])
+    a, b = feed_segments(tp_machine)
+    ca, cb = feed_segments(comp)
+    pts, s = sample_segments(ca, cb, job.cutting["error_spacing_mm"])
+    actual = pts + nm.tip_error(machine, pts)
+    vol.after_mm = distance_to_path(actual, a, b, job.cutting["error_spacing_mm"])
+    vol.s_after_mm = s
+    vol.compensated = comp
+    vol.report = report.to_dict()
+    return vol
+
+
+def to_program_frame(tp_machine, prog: Program):
+    """Blocks in machine coordinates back into the program's coordinates, block by block with the work
+    offset active at the block's source line."""
+    per_line = np.zeros(int(prog.lines.max()) + 2, dtype=np.int64)
+    per_line[prog.lines] = prog.offset_index
+    lines = np.array([b.line for b in tp_machine.blocks], dtype=np.int64)
+    idx = per_line[np.clip(lines, 0, len(per_line) - 1)]
+    return shift_toolpath(tp_machine, -prog.offsets[idx]), idx
+
+
+def write_program_text(tp, idx: np.ndarray, header: str) -> str:
+    """G-code of ``tp`` (program coordinates); where the work offset changes between blocks, the block
+    runs are written with their G54–G59 word so each runs under the offset it was written for."""
+    from netshape import toolpath as tpm
+
+    blocks = tp.blocks
+    if len(blocks) == 0:
+        return tpm.format_gcode(tp, header_comment=header)
+    cuts = [0] + [i for i in range(1, len(blocks)) if idx[i] != idx[i - 1]] + [len(blocks)]
+    parts = []
+    for r, (i0, i1) in enumerate(zip(cuts[:-1], cuts[1:])):
+        sub = tpm.Toolpath()
+        sub.blocks = blocks[i0:i1]
+        text = tpm.format_gcode(sub, header_comment=header if r == 0 else "")
+        lines = text.splitlines()
+        if r > 0:  # drop the repeated header lines and program end of the later runs
+            lines = [ln for ln in lines if ln.strip() and not ln.startswith(("(", "%"))]
+            lines = [ln for ln in lines if not re.fullmatch(r"\s*G21 G90 G17 G94( G91\.1)?\s*", ln)]
+        if True:  # each run names its work offset, as the original program selected it
+            word = WORK_OFFSETS[int(idx[i0])]
+            k = 0
+            while k < len(lines) and (lines[k].startswith(("(", "%")) or lines[k].startswith("G21")):
+                k += 1
+            lines.insert(k, word)
+        if r < len(cuts) - 2:
+            lines = [ln for ln in lines if ln.strip() not in ("M30", "M2", "%")]
+        parts.extend(lines)
+    return "\n".join(parts) + "\n"
+
+
+# ---------------------------------------------------------------------------------------------- motion
+
+
+def stage_feed_plan(job: Job, tp):
+    """Look-ahead feed plan and interpolation of ``tp`` under the job's limits. Returns a
+    netshape.motion.Trajectory (``stats['cycle_time_s']``)."""
+    from netshape import motion as nmo
+
+    lim = job.limits
+    jerk = lim.get("jmax_mm_s3", [math.inf] * 3)
+    limits = nmo.AxisLimits(lim["vmax_mm_s"], lim["amax_mm_s2"], jerk)
+    options = nmo.make_options(lim["rule"], ts1=lim["ts1_s"], ts2=lim["ts2_s"], lookahead=lim["lookahead"],
+                               tolerance=lim["tolerance_mm"])
+    return nmo.plan(tp, limits, options, with_deviation=False)
+
+
+# ---------------------------------------------------------------------------------------------- errors
+
+
+def error_stats(before, after) -> dict:
+    """max and RMS [mm] of |error| before and after (None where there is no value)."""
+
+    def mx(v):
+        return None if v is None or len(v) == 0 else float(np.max(np.abs(v)))
+
+    def rms(v):
+        return None if v is None or len(v) == 0 else float(np.sqrt(np.mean(np.square(v))))
+
+    return {"max_before_mm": mx(before), "max_after_mm": mx(after),
+            "rms_before_mm": rms(before), "rms_after_mm": rms(after)}
+
+
+def total_error(defl: DeflectionResult | None, vol: VolumetricResult | None, which: str):
+    """Total error along the path [mm] from the sources predicted: the root sum of squares of the
+    deflection wall error (interpolated onto the volumetric samples by path distance) and the
+    volumetric path deviation; one source alone is the total."""
+    d_s = d_v = None
+    if defl is not None and defl.available:
+        d_s, d_v = defl.s_mm, (defl.before_mm if which == "before" else defl.after_mm)
+    v_s = v_v = None
+    if vol is not None:
+        v_s, v_v = (vol.s_before_mm, vol.before_mm) if which == "before" else (vol.s_after_mm, vol.after_mm)
+    if d_v is None and v_v is None:
+        return None
+    if d_v is None:
+        return v_v
+    if v_v is None:
+        return d_v
+    d_on_v = np.interp(v_s, d_s, d_v)
+    return np.sqrt(d_on_v**2 + v_v**2)

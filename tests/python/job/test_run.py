@@ -1,0 +1,180 @@
+"""`netshape run` / `netshape demo` end to end on the bundled demo job: the summary's keys, the
+compensated errors below the uncompensated ones, the compensated program checked against the machine
+model point by point, the report's links, the STL, work offsets, and a failing stage."""
+
+from __future__ import annotations
+
+import json
+import re
+import shutil
+import sys
+
+import numpy as np
+import pytest
+
+import netshape as ns
+from netshape.job import StageFailed, job_from_dict, load_job, run_job
+from netshape.job.stages import deflection_api
+
+from .conftest import DEMO
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+ERROR_KEYS = {"max_before_mm", "max_after_mm", "rms_before_mm", "rms_after_mm"}
+
+
+def test_demo_runs_in_under_a_minute(demo_run):
+    _, _, wall = demo_run
+    assert wall < 60.0
+
+
+def test_summary_keys(demo_run):
+    _, s, _ = demo_run
+    assert set(s["errors"]) == {"deflection", "volumetric", "total"}
+    for src in s["errors"].values():
+        assert set(src) == ERROR_KEYS
+    assert set(s["cycle_time_s"]) == {"original", "compensated"}
+    assert {"program", "stock", "cut", "forces", "deflection", "volumetric", "volumetric_compensation",
+            "feed_plan", "feed_plan_compensated", "report"} <= set(s["run_time_s"])
+    assert all(v >= 0 for v in s["run_time_s"].values())
+    assert s["versions"]["netshape"] == ns.__version__
+    # the pocket at F900 mm/min: the planned time is at least the time at programmed feed
+    info = ns.toolpath.summary(DEMO / "part.ngc")
+    assert s["cycle_time_s"]["original"] >= info.feed_time
+    assert s["cycle_time_s"]["original"] < 3 * info.feed_time + 10
+
+
+def test_compensated_errors_below_uncompensated(demo_run):
+    _, s, _ = demo_run
+    e = s["errors"]
+    for src in ("volumetric", "total"):
+        assert e[src]["max_after_mm"] < e[src]["max_before_mm"]
+        assert e[src]["rms_after_mm"] < e[src]["rms_before_mm"]
+    # machine errors of micrometres (docs of examples/demo/machine.toml) ...
+    assert 1e-3 < e["volumetric"]["max_before_mm"] < 0.1
+    # ... compensated to within the job's chord tolerance (0.001 mm)
+    assert e["volumetric"]["max_after_mm"] <= 0.001
+    if deflection_api() is None:
+        assert all(v is None for v in e["deflection"].values())
+        assert "not available in this build" in s["stages"]["deflection"]
+        assert s["job"]["compensations"] == ["volumetric"]
+    else:
+        assert e["deflection"]["max_after_mm"] < e["deflection"]["max_before_mm"]
+
+
+def test_compensated_program_lands_on_the_nominal_points(demo_run):
+    """Independent of the job's own re-prediction: every end point of the original program's feed
+    moves is reached, within 1e-6 mm, by the actual tip (machine model) at some end point of the
+    compensated program, both placed in the machine by the job's G54 offset."""
+    out, s, _ = demo_run
+    job = load_job(DEMO / "job.toml")
+    comp_text = (out / s["files"]["compensated_program"]).read_text()
+    assert "G54" in comp_text
+    comp = ns.toolpath.parse_gcode(comp_text)
+    orig = ns.toolpath.read_gcode(DEMO / "part.ngc")
+    m = ns.machine.load_machine(DEMO / "machine.toml")
+    m.tool_length = job.offsets["tool_length_mm"]
+    g54 = np.array(job.offsets["G54"])
+    cmd = np.array([b.end for b in comp.blocks]) + g54
+    actual = ns.machine.actual_points(m, cmd) - g54
+    nominal = np.array([b.end for b in orig.blocks if b.kind != ns.toolpath.MotionKind.rapid])
+    d = np.min(np.linalg.norm(nominal[:, None, :] - actual[None, :, :], axis=2), axis=1)
+    assert d.max() < 1e-6
+    # without compensation the same points are off by the machine's error (micrometres)
+    raw = ns.machine.actual_points(m, nominal + g54) - g54
+    assert np.linalg.norm(raw - nominal, axis=1).max() > 1e-3
+
+
+def test_report_references_only_existing_files(demo_run):
+    out, s, _ = demo_run
+    page = (out / "report.html").read_text()
+    refs = re.findall(r'(?:src|href)="([^"]+)"', page)
+    assert refs and not any("://" in r or r.startswith("//") for r in refs)
+    for r in refs:
+        assert (out / r).is_file() and (out / r).stat().st_size > 0, r
+    for name in ("force.png", "wall_error.png", "volumetric_error.png", "feed.png", "zmap.png"):
+        assert name in refs
+    for name in s["files"].values():
+        assert (out / name).is_file(), name
+    assert not list(out.glob(".*.tmp"))
+
+
+def test_zmap_stl_is_the_cut_stock(demo_run):
+    out, _, _ = demo_run
+    _, tris = ns.stock.read_stl(out / "zmap.stl")
+    z = tris[..., 2]
+    assert len(tris) > 1000
+    assert z.min() == pytest.approx(-20.0) and z.max() == pytest.approx(0.0)
+    # the pocket floor, 6 mm deep, is in the solid
+    assert np.any(np.isclose(z, -6.0, atol=1e-4))
+
+
+def _demo_copy(tmp_path):
+    shutil.copytree(DEMO, tmp_path / "demo")
+    return tmp_path / "demo"
+
+
+def _volumetric_only(doc):
+    doc["predict"] = {"forces": False, "deflection": False, "volumetric": True, "feed_plan": False}
+    doc["compensate"] = {"volumetric": True, "chord_tolerance_mm": 0.001}
+    doc["report"] = {"dpi": 40, "zmap_stl": False}
+    doc["stock"]["spacing_mm"] = 1.0
+    return doc
+
+
+def test_work_offset_g55_places_the_program_like_g54(tmp_path, demo_run):
+    """The same program under G55 with G55_mm = the demo's G54 gives the demo's volumetric errors; with
+    the offset left at zero (identity) it does not."""
+    _, s, _ = demo_run
+    d = _demo_copy(tmp_path)
+    (d / "part.ngc").write_text((d / "part.ngc").read_text().replace("G40 G49 G54", "G40 G49 G55"))
+    doc = _volumetric_only(tomllib.loads((d / "job.toml").read_text()))
+    doc["offsets"] = {"G55_mm": [-150.0, 80.0, -300.0], "tool_length_mm": 100.0}
+    r = run_job(job_from_dict(doc, source="job.toml", base_dir=d), tmp_path / "g55")
+    assert r["errors"]["volumetric"]["max_before_mm"] == pytest.approx(s["errors"]["volumetric"]["max_before_mm"],
+                                                                       rel=1e-9)
+    assert "G55" in (tmp_path / "g55" / "part_compensated.ngc").read_text()
+    doc["offsets"] = {"G55_mm": [-150.0, 80.0, -290.0], "tool_length_mm": 100.0}
+    r2 = run_job(job_from_dict(doc, source="job.toml", base_dir=d), tmp_path / "g55b")
+    assert r2["errors"]["volumetric"]["max_before_mm"] != pytest.approx(s["errors"]["volumetric"]["max_before_mm"],
+                                                                        rel=1e-6)
+
+
+def test_failed_stage_is_named_and_writes_nothing_half(tmp_path, capsys):
+    """G54 at Z = 0 puts the program above the Z travel [-450, 0] mm: the volumetric compensation
+    refuses it; the run stops naming that stage and leaves no report, summary or temporary file."""
+    d = _demo_copy(tmp_path)
+    doc = _volumetric_only(tomllib.loads((d / "job.toml").read_text()))
+    doc["offsets"]["G54_mm"] = [0.0, 0.0, 0.0]
+    job = job_from_dict(doc, source="job.toml", base_dir=d)
+    with pytest.raises(StageFailed) as exc:
+        run_job(job, tmp_path / "out")
+    assert exc.value.stage == "volumetric_compensation" and "travel" in str(exc.value)
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == []
+    from netshape.cli import main
+
+    text = (d / "job.toml").read_text().replace("G54_mm = [-150.0, 80.0, -300.0]", "G54_mm = [0.0, 0.0, 0.0]")
+    (d / "job.toml").write_text(text)
+    assert main(["run", str(d / "job.toml"), "--out", str(tmp_path / "cli"), "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "stage volumetric_compensation failed" in err
+
+
+def test_machine_error_scale_scales_the_error(tmp_path, demo_run):
+    """machine.error_scale multiplies every error: 0 leaves an exact machine, 2 doubles the deviation
+    (the errors are micrometres and microradians, so the synthesis is linear to ~1e-3)."""
+    _, s, _ = demo_run
+    d = _demo_copy(tmp_path)
+    doc = _volumetric_only(tomllib.loads((d / "job.toml").read_text()))
+    doc["machine"]["error_scale"] = 0.0
+    r = run_job(job_from_dict(doc, source="job.toml", base_dir=d), tmp_path / "zero")
+    assert r["errors"]["volumetric"]["max_before_mm"] < 1e-12
+    summary = json.loads((tmp_path / "zero" / "summary.json").read_text())
+    assert summary["errors"] == r["errors"]
+    doc["machine"]["error_scale"] = 2.0
+    r = run_job(job_from_dict(doc, source="job.toml", base_dir=d), tmp_path / "two")
+    assert r["errors"]["volumetric"]["rms_before_mm"] == pytest.approx(
+        2 * s["errors"]["volumetric"]["rms_before_mm"], rel=2e-3)
