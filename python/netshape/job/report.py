@@ -21,7 +21,10 @@ PLOTS = {
 def _figure(w=8.0, h=3.6):
     from matplotlib.figure import Figure
 
-    return Figure(figsize=(w, h), layout="constrained")
+    fig = Figure(figsize=(w, h))
+    fig.subplots_adjust(left=0.1, right=0.97, bottom=0.14 if h < 5 else 0.09, top=0.9 if h < 5 else 0.93,
+                        hspace=0.45)
+    return fig
 
 
 def _note(ax, text):
@@ -83,6 +86,7 @@ def plot_wall_error(defl, vol, order_text):
 def plot_volumetric_map(vol):
     """Volumetric error |e| [µm] at the sampled path points, seen from above (machine frame)."""
     fig = _figure(8.0, 4.2)
+    fig.subplots_adjust(right=0.9)
     if vol is None:
         _note(fig.add_subplot(), "volumetric error not predicted")
         return fig

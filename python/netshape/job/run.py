@@ -117,10 +117,14 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True) -> d
     # the program handed to the volumetric stage: deflection-compensated where that was applied
     target_g54 = defl.compensated if (defl is not None and defl.compensated is not None) else None
     if target_g54 is not None:
-        # deflection compensation works in the G54 frame; back to per-block program frames
-        target_prog = st.Program(toolpath=st.shift_toolpath(target_g54, np.zeros((len(target_g54.blocks), 3))),
-                                 offset_index=np.zeros(len(target_g54.blocks), np.int64), offsets=prog.offsets,
-                                 lines=np.array([b.line for b in target_g54.blocks], np.int64))
+        # deflection compensation works in the G54 frame: each block back into the frame of the work
+        # offset its source line runs under
+        per_line = np.zeros(int(prog.lines.max()) + 2, dtype=np.int64)
+        per_line[prog.lines] = prog.offset_index
+        t_lines = np.array([b.line for b in target_g54.blocks], np.int64)
+        t_idx = per_line[np.clip(t_lines, 0, len(per_line) - 1)]
+        target_prog = st.Program(toolpath=st.shift_toolpath(target_g54, prog.offsets[0] - prog.offsets[t_idx]),
+                                 offset_index=t_idx, offsets=prog.offsets, lines=t_lines)
     else:
         target_prog = prog
 
@@ -136,7 +140,7 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True) -> d
             target_machine = st.machine_frame_toolpath(target_prog)
             vol = S.run("volumetric_compensation", st.stage_volumetric_compensation, job, machine,
                         target_machine, vol)
-            compensated_program = st.to_program_frame(vol.compensated, prog)
+            compensated_program = st.to_program_frame(vol.compensated, target_prog)
         else:
             vol.after_mm, vol.s_after_mm = vol.before_mm, vol.s_before_mm
     if compensated_program is None and target_g54 is not None:

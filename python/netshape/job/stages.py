@@ -230,16 +230,30 @@ class DeflectionResult:
     info: dict = field(default_factory=dict)
 
 
+#: Python functions the deflection stage uses when this build has them (the first name found):
+#: a path prediction ``predict(stock, cutter, program, coefficients, *, spacing, spindle_rpm=…,
+#: feed_per_tooth=…)`` in netshape.deflection, returning per path point the wall error at the bottom,
+#: middle and top of the cut (``wall_error_mm`` / ``error``: (n, 3) or a dict by level) and the path
+#: distance ``s_mm`` or ``positions``; and a program compensation with the same arguments plus
+#: ``scheme`` and ``level`` in netshape.compensation, returning the compensated ``toolpath`` (or
+#: ``program``) and the error ``after``. (The C++ core's compensation.path_wall_errors /
+#: compensate_deflection work on one 2-D contour polyline; the program-level wrappers above are the
+#: deflection area's.)
+DEFLECTION_PREDICT_NAMES = ("predict_program", "predict_path", "wall_error_along_path")
+DEFLECTION_COMPENSATE_NAMES = ("compensate_deflection_program", "compensate_program_deflection")
+
+
 def deflection_api():
-    """The path-prediction and path-compensation functions of netshape.deflection /
-    netshape.compensation, or None where this build lacks them."""
+    """The path-prediction and program-compensation functions of netshape.deflection /
+    netshape.compensation, or None where this build lacks the prediction."""
     try:
         from netshape import compensation as ncomp
         from netshape import deflection as nd
     except ImportError:  # pragma: no cover - the package always has both modules
         return None
-    predict = getattr(nd, "predict_path", None) or getattr(nd, "wall_error_along_path", None)
-    compensate = getattr(ncomp, "compensate_deflection", None)
+    predict = next((getattr(nd, n) for n in DEFLECTION_PREDICT_NAMES if callable(getattr(nd, n, None))), None)
+    compensate = next((getattr(ncomp, n) for n in DEFLECTION_COMPENSATE_NAMES
+                       if callable(getattr(ncomp, n, None))), None)
     if predict is None:
         return None
     return {"predict": predict, "compensate": compensate}
@@ -281,18 +295,28 @@ def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> De
 
 
 def _level_of(obj, level: str):
+    """The error at ``level`` from a dict by level, an object with level attributes, or an (n, 3)
+    array with the columns bottom, middle, top."""
     if isinstance(obj, dict):
         return obj.get(level, obj.get(f"{level}_mm"))
-    return getattr(obj, level, obj)
+    if hasattr(obj, level):
+        return getattr(obj, level)
+    a = np.asarray(getattr(obj, "error", obj), dtype=float)
+    if a.ndim == 2 and a.shape[1] == 3:
+        return a[:, ("bottom", "middle", "top").index(level)]
+    return a
 
 
 def _wall_error_arrays(pred, level: str):
     """(path distance [mm], wall error at ``level`` [mm]) from a deflection prediction result, which may
     be an object with attributes or a dict."""
     get = (lambda k: pred.get(k)) if isinstance(pred, dict) else (lambda k: getattr(pred, k, None))
-    err = get("wall_error_mm") or get("wall_error") or get("error_mm")
+    err = next((v for v in (get("wall_error_mm"), get("wall_error"), get("error_mm"), get("error"))
+                if v is not None), None)
+    if err is None:
+        raise ValueError("deflection prediction: no wall error in the result")
     err = np.asarray(_level_of(err, level), dtype=float)
-    s = get("s_mm") or get("distance_mm")
+    s = next((v for v in (get("s_mm"), get("distance_mm")) if v is not None), None)
     if s is None:
         pos = get("positions")
         s = (np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(np.asarray(pos), axis=0), axis=1))])
