@@ -106,9 +106,10 @@ def _client(scheduler: str | None, workers: int):
 
 
 def run_specs(specs: list[dict], out_dir, *, scheduler: str | None = None, workers: int = 2,
-              progress: bool = False) -> list[dict]:
+              progress: bool = False, client=None) -> list[dict]:
     """Rows of ``specs`` run on Dask (LocalCluster of ``workers`` by default, or the scheduler at
-    ``scheduler``; ``"none"`` runs them here one by one), in the order of ``specs``."""
+    ``scheduler``, or an open dask.distributed ``client``, which is left open; ``"none"`` runs them
+    here one by one), in the order of ``specs``."""
     out_dir = os.fspath(out_dir)
     Path(out_dir).mkdir(parents=True, exist_ok=True)
     if scheduler == "none":
@@ -120,7 +121,10 @@ def run_specs(specs: list[dict], out_dir, *, scheduler: str | None = None, worke
         return [run_one(s, out_dir) for s in it]
     if not isinstance(workers, int) or workers < 1:
         raise ValueError(f"workers = {workers!r}: must be a positive integer")
-    client, cluster = _client(scheduler, workers)
+    own = client is None
+    cluster = None
+    if own:
+        client, cluster = _client(scheduler, workers)
     try:
         futures = client.map(run_one, specs, out_dir=out_dir, key=[f"netshape-{s['run']}" for s in specs],
                              pure=False)
@@ -133,9 +137,10 @@ def run_specs(specs: list[dict], out_dir, *, scheduler: str | None = None, worke
                     bar.update(1)
         return client.gather(futures)
     finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
+        if own:
+            client.close()
+            if cluster is not None:
+                cluster.close()
 
 
 def columns(rows: list[dict]) -> list[str]:
