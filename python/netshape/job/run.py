@@ -206,9 +206,11 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True) -> d
         from . import report as rp
 
         order = "compensations: " + (" → ".join(applied) or "none")
-        figs = {"force": rp.plot_force(forces), "wall_error": rp.plot_wall_error(defl, vol, order),
-                "volumetric": rp.plot_volumetric_map(vol), "feed": rp.plot_feed(traj, traj_c),
-                "zmap": rp.plot_zmap(zfinal)}
+        figs = {}
+        if job.report["plots"]:
+            figs = {"force": rp.plot_force(forces), "wall_error": rp.plot_wall_error(defl, vol, order),
+                    "volumetric": rp.plot_volumetric_map(vol), "feed": rp.plot_feed(traj, traj_c),
+                    "zmap": rp.plot_zmap(zfinal)}
         for key, fig in figs.items():
             atomic_save_figure(fig, folder / rp.PLOTS[key], dpi=job.report["dpi"])
             files[f"plot_{key}"] = rp.PLOTS[key]
@@ -219,7 +221,8 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True) -> d
     rp = S.run("report", _outputs)
     summary["run_time_s"]["report"] = S.times["report"]
     summary["run_time_s"]["total"] = round(time.perf_counter() - t_start, 4)
-    rp.write_html(folder / "report.html", summary, {k: rp.PLOTS[k] for k in rp.PLOTS})
+    rp.write_html(folder / "report.html", summary,
+                  {k: rp.PLOTS[k] for k in rp.PLOTS} if job.report["plots"] else {})
     from netshape._atomic import atomic_write
 
     with atomic_write(folder / "summary.json", "w") as fh:

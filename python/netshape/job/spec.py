@@ -39,7 +39,7 @@ _LIMIT_KEYS = {"vmax_mm_s", "amax_mm_s2", "jmax_mm_s3", "rule", "tolerance_mm", 
 _CUTTING_KEYS = {"spindle_rpm", "feed_per_tooth_mm", "feed_scale", "step_mm", "samples_per_revolution",
                  "disk_height_mm", "error_spacing_mm"}
 _COMP_KEYS = {"deflection", "volumetric", "chord_tolerance_mm", "deflection_scheme", "deflection_level"}
-_REPORT_KEYS = {"dpi", "zmap_stl"}
+_REPORT_KEYS = {"dpi", "zmap_stl", "plots"}
 _COEFF_KEYS = ("Ktc", "Krc", "Kac", "Kte", "Kre", "Kae")
 _RULES = ("paper", "vector", "per-axis", "junction-deviation", "blend")
 
@@ -371,14 +371,15 @@ def job_from_dict(doc: dict, *, source: str | os.PathLike = "<job>", base_dir: s
                                                  "deflection": True}))
     compensate = _compensate(src, doc.get("compensate", {}))
     rep = _check_keys(src, "report", doc.get("report", {}), _REPORT_KEYS)
-    report = {"dpi": 100, "zmap_stl": True}
+    report = {"dpi": 100, "zmap_stl": True, "plots": True}
     if "dpi" in rep:
         d = rep["dpi"]
         if isinstance(d, bool) or not isinstance(d, int) or not 30 <= d <= 600:
             raise _err(src, "report.dpi", d, "must be an integer in 30..600")
         report["dpi"] = d
-    if "zmap_stl" in rep:
-        report["zmap_stl"] = _bool(src, "report.zmap_stl", rep["zmap_stl"])
+    for key in ("zmap_stl", "plots"):
+        if key in rep:
+            report[key] = _bool(src, f"report.{key}", rep[key])
     # what each prediction and compensation needs
     if (predict["forces"] or predict["deflection"]) and coefficients is None:
         which = "forces" if predict["forces"] else "deflection"

@@ -25,7 +25,7 @@ def _study(tmp_path):
     text = (d / "job.toml").read_text()
     text = text.replace("spacing_mm = 0.25", "spacing_mm = 1.0").replace("deflection = true", "deflection = false")
     text = text.replace("forces = true", "forces = false")
-    text = text.replace("[cutting]", "[report]\ndpi = 30\nzmap_stl = false\n\n[cutting]")
+    text = text.replace("[cutting]", "[report]\nplots = false\nzmap_stl = false\n\n[cutting]")
     (d / "study.toml").write_text(text + GRID)
     return d / "study.toml"
 
