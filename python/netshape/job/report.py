@@ -170,9 +170,10 @@ def write_html(path, summary: dict, images: dict[str, str]) -> None:
         ".note{color:#a40}</style></head><body>",
         f"<h1>{html.escape(title)}</h1>",
         f"<p>Program <code>{html.escape(summary['job']['program'])}</code>; predictions: "
-        f"{html.escape(', '.join(summary['job']['predictions']) or 'none')}; compensations applied in this order: "
-        f"<b>{html.escape(' → '.join(summary['job']['compensations']) or 'none')}</b> "
-        "(deflection first, then volumetric).</p>",
+        f"{html.escape(', '.join(summary['job']['predictions']) or 'none')}.</p>",
+        f"<p>Compensations applied, in this order: <b>{html.escape(' → '.join(summary['job']['compensations']) or 'none')}"
+        f"</b> (requested: {html.escape(', '.join(summary['job'].get('requested_compensations', [])) or 'none')}; "
+        "deflection is always applied first, then volumetric on the deflection-compensated path).</p>",
     ]
     notes = [f"{k}: {v}" for k, v in summary.get("stages", {}).items() if v != "ok"]
     if notes:

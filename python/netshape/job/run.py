@@ -132,9 +132,11 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True) -> d
     machine = None
     compensated_program = None   # (Toolpath in program frame, offset index per block)
     if p["volumetric"]:
-        machine = st.load_job_machine(job)
-        tp_machine = st.machine_frame_toolpath(prog)
-        vol = S.run("volumetric", st.stage_volumetric, job, machine, tp_machine)
+        def _volumetric():
+            m = st.load_job_machine(job)
+            return m, st.stage_volumetric(job, m, st.machine_frame_toolpath(prog))
+
+        machine, vol = S.run("volumetric", _volumetric)
         status["volumetric"] = "ok"
         if c["volumetric"]:
             target_machine = st.machine_frame_toolpath(target_prog)
@@ -214,8 +216,6 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True) -> d
         for key, fig in figs.items():
             atomic_save_figure(fig, folder / rp.PLOTS[key], dpi=job.report["dpi"])
             files[f"plot_{key}"] = rp.PLOTS[key]
-        summary["run_time_s"]["report"] = 0.0
-        summary["run_time_s"]["total"] = 0.0
         return rp
 
     rp = S.run("report", _outputs)

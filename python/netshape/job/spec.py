@@ -364,6 +364,12 @@ def job_from_dict(doc: dict, *, source: str | os.PathLike = "<job>", base_dir: s
         if "file" not in m:
             raise _err(src, "machine.file", _MISSING, "missing (a machine TOML, docs/machine.md)")
         machine = _path(src, base, "machine.file", m["file"])
+        from netshape.machine import load_machine
+
+        try:
+            load_machine(machine)
+        except ValueError as exc:
+            raise _err(src, "machine.file", m["file"], " ".join(str(exc).split())) from None
         scale = _number(src, "machine.error_scale", m.get("error_scale", 1.0), nonneg=True)
     limits = _limits(src, doc["limits"]) if "limits" in doc else None
     cutting = _cutting(src, doc.get("cutting", {}))

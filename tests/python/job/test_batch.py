@@ -4,6 +4,7 @@ as the same runs one by one in this process."""
 from __future__ import annotations
 
 import csv
+import sys
 import shutil
 
 import pytest
@@ -68,3 +69,28 @@ def test_local_cluster_equals_one_by_one(tmp_path):
     assert "batch.png" in page and (tmp_path / "dask" / "batch.png").stat().st_size > 0
     for r in rows:
         assert (tmp_path / "dask" / r["run"] / "report.html").is_file()
+
+
+def test_bundled_study_expands_to_twelve_runs():
+    specs = expand([DEMO / "study.toml"])
+    assert len(specs) == 12
+    assert specs[-1]["params"] == {"cutting.feed_scale": 1.5, "tool.stick_out_mm": 40.0, "machine.error_scale": 3.0}
+    assert specs[-1]["doc"]["tool"] == {"file": "tool.toml", "stick_out_mm": 40.0}
+
+
+def test_cli_batch_here_and_missing_dask(tmp_path, monkeypatch, capsys):
+    from netshape.cli import main
+
+    study = _study(tmp_path)
+    study.write_text(study.read_text().replace('"cutting.feed_scale" = [0.5, 1.0]', '"cutting.feed_scale" = [1.0]')
+                     .replace('"machine.error_scale" = [0.5, 2.0]', '"machine.error_scale" = [1.0]'))
+    assert main(["batch", str(study), "--scheduler", "none", "--out", str(tmp_path / "b"), "--quiet"]) == 0
+    assert "1 runs, 0 failed" in capsys.readouterr().out
+    with open(tmp_path / "b" / "batch.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    assert rows[0]["status"] == "ok" and float(rows[0]["volumetric_max_after_mm"]) < 1e-3
+    # without dask.distributed: one line naming what to install, exit 2
+    monkeypatch.setitem(sys.modules, "dask.distributed", None)
+    assert main(["batch", str(study), "--out", str(tmp_path / "c"), "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "netshape[batch]" in err

@@ -144,3 +144,13 @@ def test_cli_bad_job_exits_2_with_one_line(tmp_path, capsys):
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "stock.spacing_mm = 0" in err
     assert not (tmp_path / "demo" / "netshape-demo").exists()
+
+
+def test_bad_machine_file_is_a_job_error(tmp_path):
+    import shutil
+
+    shutil.copytree(DEMO, tmp_path / "demo")
+    m = tmp_path / "demo" / "machine.toml"
+    m.write_text(m.read_text().replace("[axes.X]\n", "[axes.X]\nspeed = 3\n"))
+    with pytest.raises(JobError, match=r"machine\.file = 'machine\.toml': .*speed"):
+        load_job(tmp_path / "demo" / "job.toml")
