@@ -3,7 +3,8 @@
 Every key and its unit is documented in docs/job.md. :func:`load_job` reads a file and returns a
 validated :class:`Job`; any unknown key or bad value raises one ValueError whose message starts
 with the file and names the key (``job.toml: stock.spacing_mm = -1: must be positive [mm]``).
-Relative paths inside the job are resolved against the job file's folder.
+Relative input paths inside the job are resolved against the job file's folder; the output folder
+against the current directory.
 """
 
 from __future__ import annotations
@@ -352,7 +353,7 @@ def job_from_dict(doc: dict, *, source: str | os.PathLike = "<job>", base_dir: s
     out = doc.get("output", "out")
     if not isinstance(out, str) or not out:
         raise _err(src, "output", out, "must be a folder path (string)")
-    output = Path(out) if Path(out).is_absolute() else base / out
+    output = Path(out) if Path(out).is_absolute() else Path.cwd() / out  # outputs: where the user runs
     offsets = _offsets(src, doc.get("offsets", {}))
     coefficients = _coefficients(src, doc.get("coefficients"))
     machine, scale = None, 1.0
