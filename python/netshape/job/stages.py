@@ -173,9 +173,10 @@ def stage_cut(job: Job, stock0, prog: Program):
 def coefficients_for(job: Job, cutter):
     """Force coefficients of the job for its cutter (linear edge for flat/bull, the ball model for ball)."""
     from netshape import force as nf
+    from netshape.cutter import CutterKind
 
     c = job.coefficients
-    is_ball = cutter.kind == nf_kind_ball()
+    is_ball = cutter.kind == CutterKind.ball
     if isinstance(c, dict):
         vals = {k.split("_")[0].lower(): v for k, v in c.items()}
         if is_ball:
@@ -192,12 +193,6 @@ def coefficients_for(job: Job, cutter):
     if is_ball:
         raise ValueError(f"coefficients = {c!r}: a flat-end set, but tool.kind = ball")
     return nf.linear_edge_coefficient_set(c).coefficients
-
-
-def nf_kind_ball():
-    from netshape.cutter import CutterKind
-
-    return CutterKind.ball
 
 
 def stage_forces(job: Job, stock0, prog: Program):
@@ -495,12 +490,11 @@ def write_program_text(tp, idx: np.ndarray, header: str) -> str:
         if r > 0:  # drop the repeated header lines and program end of the later runs
             lines = [ln for ln in lines if ln.strip() and not ln.startswith(("(", "%"))]
             lines = [ln for ln in lines if not re.fullmatch(r"\s*G21 G90 G17 G94( G91\.1)?\s*", ln)]
-        if True:  # each run names its work offset, as the original program selected it
-            word = WORK_OFFSETS[int(idx[i0])]
-            k = 0
-            while k < len(lines) and (lines[k].startswith(("(", "%")) or lines[k].startswith("G21")):
-                k += 1
-            lines.insert(k, word)
+        # each run names its work offset, as the original program selected it
+        k = 0
+        while k < len(lines) and (lines[k].startswith(("(", "%")) or lines[k].startswith("G21")):
+            k += 1
+        lines.insert(k, WORK_OFFSETS[int(idx[i0])])
         if r < len(cuts) - 2:
             lines = [ln for ln in lines if ln.strip() not in ("M30", "M2", "%")]
         parts.extend(lines)

@@ -187,3 +187,39 @@ def test_example_job_api_runs(tmp_path, capsys):
     # machine.error_scale = 2 doubles the deviation (micrometre errors: the synthesis is linear to ~1e-3)
     assert b["max_before_mm"] == pytest.approx(2 * a["max_before_mm"], rel=5e-3)
     assert "volumetric error" in capsys.readouterr().out
+
+
+def test_program_switching_work_offsets_is_compensated_in_each_frame(tmp_path):
+    """A program that cuts under G54, then under G55: the compensated program switches offsets at the
+    same place, and read back with the job's offsets every nominal point is reached in the machine."""
+    from netshape.job.stages import active_work_offsets
+
+    d = _demo_copy(tmp_path)
+    (d / "two.ngc").write_text(
+        "G21 G90 G17 G94\nG54\nG0 Z5\nG0 X-10 Y-5\nG1 Z-1 F300\nG1 X10 F900\nG2 X10 Y5 I0 J5\nG1 X-10\nG0 Z5\n"
+        "G55\nG0 X-10 Y-5\nG1 Z-1 F300\nG1 X10 F900\nG3 X10 Y5 I0 J5\nG0 Z5\nM30\n")
+    doc = _volumetric_only(tomllib.loads((d / "job.toml").read_text()))
+    doc["program"] = "two.ngc"
+    doc["stock"].pop("pre_cut")
+    doc["offsets"] = {"G54_mm": [-150.0, 80.0, -300.0], "G55_mm": [120.0, -60.0, -280.0], "tool_length_mm": 100.0}
+    job = job_from_dict(doc, source="job.toml", base_dir=d)
+    s = run_job(job, tmp_path / "out")
+    assert s["errors"]["volumetric"]["max_after_mm"] < 1e-3 < s["errors"]["volumetric"]["max_before_mm"]
+    comp_path = tmp_path / "out" / "two_compensated.ngc"
+    text = comp_path.read_text()
+    assert text.index("G54") < text.index("G55")
+    offsets = np.array([job.offsets[g] for g in ("G54", "G55", "G56", "G57", "G58", "G59")])
+    m = ns.machine.load_machine(d / "machine.toml")
+    m.tool_length = 100.0
+
+    def machine_ends(path):
+        tp = ns.toolpath.read_gcode(path)
+        idx = active_work_offsets(path)[[b.line for b in tp.blocks]]
+        return np.array([b.end for b in tp.blocks]) + offsets[idx], [b.kind for b in tp.blocks]
+
+    cmd, _ = machine_ends(comp_path)
+    actual = ns.machine.actual_points(m, cmd)
+    nominal, kinds = machine_ends(d / "two.ngc")
+    nominal = nominal[[k != ns.toolpath.MotionKind.rapid for k in kinds]]
+    dist = np.min(np.linalg.norm(nominal[:, None, :] - actual[None, :, :], axis=2), axis=1)
+    assert dist.max() < 1e-6

@@ -6,7 +6,6 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 from netshape.job import JobError, job_from_dict, load_job, set_dotted
