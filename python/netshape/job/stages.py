@@ -223,100 +223,145 @@ class DeflectionResult:
     after_mm: np.ndarray | None = None
     compensated: object = None                                          # Toolpath (G54 frame) or None
     info: dict = field(default_factory=dict)
+    ranges: list = field(default_factory=list)                          # (s0, s1) [mm] of each contour
 
 
-#: Python functions the deflection stage uses when this build has them (the first name found):
-#: a path prediction ``predict(stock, cutter, program, coefficients, *, spacing, spindle_rpm=…,
-#: feed_per_tooth=…)`` in netshape.deflection, returning per path point the wall error at the bottom,
-#: middle and top of the cut (``wall_error_mm`` / ``error``: (n, 3) or a dict by level) and the path
-#: distance ``s_mm`` or ``positions``; and a program compensation with the same arguments plus
-#: ``scheme`` and ``level`` in netshape.compensation, returning the compensated ``toolpath`` (or
-#: ``program``) and the error ``after``. (The C++ core's compensation.path_wall_errors /
-#: compensate_deflection work on one 2-D contour polyline; the program-level wrappers above are the
-#: deflection area's.)
-DEFLECTION_PREDICT_NAMES = ("predict_program", "predict_path", "wall_error_along_path")
-DEFLECTION_COMPENSATE_NAMES = ("compensate_deflection_program", "compensate_program_deflection")
+#: The functions of netshape.deflection the deflection stage drives, all needed (the deflection
+#: area's contour API): ``setup_path(program, cutter, stock, *, coefficients, rpm, spacing)`` for one
+#: contiguous 2-D contour, ``predict_path(setup)`` → wall errors (``error`` (n, 3): bottom, middle,
+#: top [mm]), ``compensate_path(setup, *, scheme, level)`` → ``converged``, ``message``, ``positions``,
+#: ``after``, ``iterations``, and ``compensated_program(setup, positions)`` → Toolpath.
+DEFLECTION_API = ("setup_path", "predict_path", "compensate_path", "compensated_program")
 
 
 def deflection_api():
-    """The path-prediction and program-compensation functions of netshape.deflection /
-    netshape.compensation, or None where this build lacks the prediction."""
+    """The contour functions of netshape.deflection (dict by name), or None where this build lacks any."""
     try:
-        from netshape import compensation as ncomp
         from netshape import deflection as nd
-    except ImportError:  # pragma: no cover - the package always has both modules
+    except ImportError:  # pragma: no cover - the package always has the module
         return None
-    predict = next((getattr(nd, n) for n in DEFLECTION_PREDICT_NAMES if callable(getattr(nd, n, None))), None)
-    compensate = next((getattr(ncomp, n) for n in DEFLECTION_COMPENSATE_NAMES
-                       if callable(getattr(ncomp, n, None))), None)
-    if predict is None:
+    funcs = {n: getattr(nd, n, None) for n in DEFLECTION_API}
+    if not all(callable(f) for f in funcs.values()):
         return None
-    return {"predict": predict, "compensate": compensate}
+    return funcs
+
+
+def contour_runs(tp) -> list[tuple[int, int]]:
+    """(first, last) block indices of the runs of XY cutting moves at one constant Z (lines, and arcs in
+    G17), in program order: the 2-D contours whose walls tool deflection shapes."""
+    from netshape import toolpath as tpm
+
+    runs: list[tuple[int, int]] = []
+    cur: list[int] = []
+    z = None
+    for i, b in enumerate(tp.blocks):
+        st_, en = np.asarray(b.start), np.asarray(b.end)
+        ok = (b.kind != tpm.MotionKind.rapid and math.hypot(en[0] - st_[0], en[1] - st_[1]) > 1e-9
+              and abs(en[2] - st_[2]) <= 1e-6
+              and (b.kind != tpm.MotionKind.arc or b.plane == tpm.Plane.xy))
+        if ok and cur and z is not None and abs(st_[2] - z) <= 1e-6:
+            cur.append(i)
+            continue
+        if cur:
+            runs.append((cur[0], cur[-1]))
+        cur, z = ([i], float(st_[2])) if ok else ([], None)
+    if cur:
+        runs.append((cur[0], cur[-1]))
+    return runs
+
+
+def _sub_toolpath(tp, blocks):
+    from netshape import toolpath as tpm
+
+    sub = tpm.Toolpath()
+    sub.blocks = list(blocks)
+    sub.source = tp.source
+    return sub
 
 
 def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> DeflectionResult:
-    """Wall error from tool deflection along the program (seeds/000) and, when asked, the deflection-
-    compensated program. Where netshape.deflection has no path prediction in this build, the result
-    says so (``available`` False) instead of reporting zero error."""
+    """Wall error from tool deflection along the program (seeds/000: cantilever tool, surface
+    generation, Z-map engagement) and, when asked, the deflection-compensated program.
+
+    The program is cut in order on a copy of the stock; every contour (a run of XY cutting moves at one
+    Z, :func:`contour_runs`) is evaluated on the stock as the moves before it left it, compensated with
+    the job's scheme and reference level, and replaced by its compensated moves. A contour the model
+    cannot evaluate (it never touches the stock, say) keeps its moves and is listed in ``info``. Where
+    netshape.deflection lacks the contour API, or the tool is not a flat end mill, the result says so
+    (``available`` False) instead of reporting zero error."""
     api = deflection_api()
     if api is None:
         return DeflectionResult(available=False, reason=f"deflection wall-error prediction {NOT_AVAILABLE}")
+    from netshape import stock as nst
+    from netshape.cutter import CutterKind
+    from netshape.errors import Error
+
     cutter = make_cutter(job.tool)
+    if cutter.kind != CutterKind.flat:
+        return DeflectionResult(available=False, reason="deflection wall error: the model needs a flat end mill "
+                                f"(tool.kind = {job.tool['kind']})")
     coeffs = coefficients_for(job, cutter)
     tp = stock_frame_toolpath(prog)
-    c = job.cutting
-    kw = dict(spacing=c["error_spacing_mm"])
-    if c["spindle_rpm"]:
-        kw["spindle_rpm"] = c["spindle_rpm"]
-    if c["feed_per_tooth_mm"]:
-        kw["feed_per_tooth"] = c["feed_per_tooth_mm"]
-    level = job.compensate["deflection_level"]
-    pred = api["predict"](stock0, cutter, tp, coeffs, **kw)
-    s_mm, before = _wall_error_arrays(pred, level)
-    res = DeflectionResult(available=True, s_mm=s_mm, before_mm=before)
+    blocks = list(tp.blocks)
+    level = ("bottom", "middle", "top").index(job.compensate["deflection_level"])
+    spacing = job.cutting["error_spacing_mm"]
+    # path distance along the feed moves at the start of every block (the volumetric samples' measure)
+    lengths = np.array([0.0 if b.kind == 0 else float(b.length()) for b in blocks])
+    s_start = np.concatenate([[0.0], np.cumsum(lengths)])
+    z = stock0.copy()
+    out_blocks, s_all, before_all, after_all, skipped = [], [], [], [], []
+    iterations = 0
+    done = 0
+    for first, last in contour_runs(tp):
+        if first > done:
+            nst.sweep(z, cutter, _sub_toolpath(tp, blocks[done:first]))
+            out_blocks.extend(blocks[done:first])
+        run = blocks[first:last + 1]
+        sub = _sub_toolpath(tp, run)
+        rpm = job.cutting["spindle_rpm"] or abs(float(run[0].spindle_rpm))
+        try:
+            setup = api["setup_path"](sub, cutter, z, coefficients=coeffs, rpm=rpm, spacing=spacing)
+            pred = api["predict_path"](setup)
+        except ValueError as exc:
+            skipped.append(f"line {run[0].line}: {' '.join(str(exc).split())}")
+            out_blocks.extend(run)
+        else:
+            nominal = np.asarray(setup.nominal, dtype=float)
+            arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(nominal[:, :2], axis=0), axis=1))])
+            s_all.append(s_start[first] + arc)
+            before = np.asarray(pred.error, dtype=float)[:, level]
+            before_all.append(before)
+            if compensate:
+                res = api["compensate_path"](setup, scheme=job.compensate["deflection_scheme"],
+                                             level=job.compensate["deflection_level"])
+                if not res.converged:
+                    raise Error(f"deflection compensation of the contour from line {run[0].line}: {res.message}")
+                iterations = max(iterations, int(res.iterations))
+                after_all.append(np.asarray(res.after.error, dtype=float)[:, level])
+                new = list(api["compensated_program"](setup, np.asarray(res.positions, dtype=float)).blocks)
+                for b in new:  # keep the source line (work offset, reports) of the contour
+                    if b.line <= 0:
+                        b.line = run[0].line
+                out_blocks.extend(new)
+            else:
+                after_all.append(before)
+                out_blocks.extend(run)
+        nst.sweep(z, cutter, sub)
+        done = last + 1
+    out_blocks.extend(blocks[done:])
+    info = {"contours": len(s_all), "contours_skipped": skipped}
     if compensate:
-        if api["compensate"] is None:
-            res.reason = f"deflection path compensation {NOT_AVAILABLE}"
-            return res
-        comp = api["compensate"](stock0, cutter, tp, coeffs, scheme=job.compensate["deflection_scheme"],
-                                 level=level, **kw)
-        res.compensated = getattr(comp, "toolpath", None) or getattr(comp, "program", None)
-        after = getattr(comp, "after", None)
-        if after is None and res.compensated is not None:
-            _, after = _wall_error_arrays(api["predict"](stock0, cutter, res.compensated, coeffs, **kw), level)
-        res.after_mm = None if after is None else np.asarray(_level_of(after, level), dtype=float)
-        res.info = {k: getattr(comp, k) for k in ("iterations", "scheme") if hasattr(comp, k)}
+        info["iterations"] = iterations
+    if not s_all:
+        why = skipped[0] if skipped else "the program has no 2-D contour (XY moves at one Z)"
+        return DeflectionResult(available=False, reason=f"deflection wall error: no contour evaluated ({why})",
+                                info=info)
+    res = DeflectionResult(available=True, s_mm=np.concatenate(s_all), before_mm=np.concatenate(before_all),
+                           after_mm=np.concatenate(after_all), info=info,
+                           ranges=[(float(a[0]), float(a[-1])) for a in s_all])
+    if compensate:
+        res.compensated = _sub_toolpath(tp, out_blocks)
     return res
-
-
-def _level_of(obj, level: str):
-    """The error at ``level`` from a dict by level, an object with level attributes, or an (n, 3)
-    array with the columns bottom, middle, top."""
-    if isinstance(obj, dict):
-        return obj.get(level, obj.get(f"{level}_mm"))
-    if hasattr(obj, level):
-        return getattr(obj, level)
-    a = np.asarray(getattr(obj, "error", obj), dtype=float)
-    if a.ndim == 2 and a.shape[1] == 3:
-        return a[:, ("bottom", "middle", "top").index(level)]
-    return a
-
-
-def _wall_error_arrays(pred, level: str):
-    """(path distance [mm], wall error at ``level`` [mm]) from a deflection prediction result, which may
-    be an object with attributes or a dict."""
-    get = (lambda k: pred.get(k)) if isinstance(pred, dict) else (lambda k: getattr(pred, k, None))
-    err = next((v for v in (get("wall_error_mm"), get("wall_error"), get("error_mm"), get("error"))
-                if v is not None), None)
-    if err is None:
-        raise ValueError("deflection prediction: no wall error in the result")
-    err = np.asarray(_level_of(err, level), dtype=float)
-    s = next((v for v in (get("s_mm"), get("distance_mm")) if v is not None), None)
-    if s is None:
-        pos = get("positions")
-        s = (np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(np.asarray(pos), axis=0), axis=1))])
-             if pos is not None else np.arange(len(err), dtype=float))
-    return np.asarray(s, dtype=float), err
 
 
 # ---------------------------------------------------------------------------------------------- machine
@@ -550,4 +595,9 @@ def total_error(defl: DeflectionResult | None, vol: VolumetricResult | None, whi
     if v_v is None:
         return d_v
     d_on_v = np.interp(v_s, d_s, d_v)
+    if defl.ranges:  # no wall error between contours (plunges, links, rapids)
+        inside = np.zeros(len(v_s), dtype=bool)
+        for s0, s1 in defl.ranges:
+            inside |= (v_s >= s0) & (v_s <= s1)
+        d_on_v = np.where(inside, d_on_v, 0.0)
     return np.sqrt(d_on_v**2 + v_v**2)
