@@ -223,3 +223,23 @@ def test_program_switching_work_offsets_is_compensated_in_each_frame(tmp_path):
     nominal = nominal[[k != ns.toolpath.MotionKind.rapid for k in kinds]]
     dist = np.min(np.linalg.norm(nominal[:, None, :] - actual[None, :, :], axis=2), axis=1)
     assert dist.max() < 1e-6
+
+
+def test_demo_program_clears_the_drawn_pocket():
+    """The bundled pocket (drawing: 40 x 30 mm, 8 mm corner radii, 6 mm deep, centred at the origin)
+    cut from the pre-shaped stock: every Z-map node 0.3 mm inside the drawn outline is at the floor,
+    every node 0.3 mm outside it is untouched stock (no island left, no gouge)."""
+    from netshape.job import stages as st
+
+    job = load_job(DEMO / "job.toml")
+    prog = st.stage_program(job)
+    z, removed = st.stage_cut(job, st.stage_stock(job), prog)
+    xs, ys = ns.stock.node_coordinates(z)
+    X, Y = np.meshgrid(xs, ys)
+    # signed distance to the drawn rounded rectangle (negative inside)
+    qx, qy = np.abs(X) - (20.0 - 8.0), np.abs(Y) - (15.0 - 8.0)
+    sd = np.hypot(np.maximum(qx, 0), np.maximum(qy, 0)) + np.minimum(np.maximum(qx, qy), 0) - 8.0
+    h = np.asarray(z.heights)
+    assert np.all(np.abs(h[sd < -0.3] + 6.0) < 1e-9)
+    assert np.all(np.abs(h[sd > 0.3]) < 1e-9)
+    assert removed > 0
