@@ -69,7 +69,27 @@ class _Stages:
             self.bar.update(1)
         return out
 
+    def sub_progress(self, name: str, total: int, unit: str):
+        """A callable ``f(done)`` that shows the progress inside a long stage on a second bar (None when
+        quiet or when the stage is short)."""
+        if self.bar is None or total <= 1000:
+            return None
+        from tqdm import tqdm
+
+        self.sub = tqdm(total=total, unit=unit, file=sys.stderr, leave=False, desc=f"  {name}")
+
+        def update(done: int) -> None:
+            self.sub.update(done - self.sub.n)
+
+        return update
+
+    def close_sub(self):
+        if getattr(self, "sub", None) is not None:
+            self.sub.close()
+            self.sub = None
+
     def close(self):
+        self.close_sub()
         if self.bar is not None:
             self.bar.close()
             self.bar = None
@@ -106,7 +126,11 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True) -> d
     stock0 = S.run("stock", st.stage_stock, job)
     zfinal, removed = S.run("cut", st.stage_cut, job, stock0, prog)
 
-    forces = S.run("forces", st.stage_forces, job, stock0, prog) if p["forces"] else None
+    forces = None
+    if p["forces"]:
+        forces = S.run("forces", st.stage_forces, job, stock0, prog, progress=S.sub_progress(
+            "forces", len(prog.toolpath.blocks), "block"))
+        S.close_sub()
 
     defl = None
     if p["deflection"]:

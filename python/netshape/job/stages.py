@@ -195,18 +195,40 @@ def coefficients_for(job: Job, cutter):
     return nf.linear_edge_coefficient_set(c).coefficients
 
 
-def stage_forces(job: Job, stock0, prog: Program):
+#: Blocks per call of the force simulation: the stage reports progress between calls. The Z-map is
+#: carried from call to call; each call starts its sampling at its first block.
+FORCE_CHUNK_BLOCKS = 250
+
+
+def stage_forces(job: Job, stock0, prog: Program, progress=None):
     """Per-revolution forces on the cutter along the program, cut through a copy of the stock
-    (netshape.force.simulate_program). Returns a ProgramForceResult."""
-    from netshape.force import simulate_program
+    (netshape.force.simulate_program, :data:`FORCE_CHUNK_BLOCKS` blocks per call; ``progress(k)`` is
+    called with the blocks done after each call). Returns a ProgramForceResult."""
+    from netshape.force import ProgramForceResult, simulate_program
 
     cutter = make_cutter(job.tool)
     c = job.cutting
-    return simulate_program(stock0, cutter, stock_frame_toolpath(prog), coefficients_for(job, cutter),
-                            step=c["step_mm"], samples_per_revolution=c["samples_per_revolution"],
-                            disk_height=c["disk_height_mm"],
-                            feed_per_tooth=c["feed_per_tooth_mm"] or 0.0, spindle_rpm=c["spindle_rpm"] or 0.0,
-                            copy_stock=True)
+    coeffs = coefficients_for(job, cutter)
+    tp = stock_frame_toolpath(prog)
+    blocks = list(tp.blocks)
+    z = stock0.copy()
+    parts = []
+    for i0 in range(0, len(blocks), FORCE_CHUNK_BLOCKS):
+        chunk = _sub_toolpath(tp, blocks[i0:i0 + FORCE_CHUNK_BLOCKS])
+        r = simulate_program(z, cutter, chunk, coeffs, step=c["step_mm"],
+                             samples_per_revolution=c["samples_per_revolution"], disk_height=c["disk_height_mm"],
+                             feed_per_tooth=c["feed_per_tooth_mm"] or 0.0, spindle_rpm=c["spindle_rpm"] or 0.0,
+                             copy_stock=False)
+        r.block = np.asarray(r.block) + i0
+        parts.append(r)
+        if progress is not None:
+            progress(min(len(blocks), i0 + FORCE_CHUNK_BLOCKS))
+    if len(parts) == 1:
+        return parts[0]
+    fields = ("positions", "block", "feed_direction", "mean", "peak", "peak_resultant", "mean_resultant",
+              "engaged_fraction")
+    merged = {f: np.concatenate([np.asarray(getattr(p, f)) for p in parts]) for f in fields}
+    return ProgramForceResult(**merged, removed_volume=float(sum(p.removed_volume for p in parts)))
 
 
 # ---------------------------------------------------------------------------------------------- deflection

@@ -243,3 +243,24 @@ def test_demo_program_clears_the_drawn_pocket():
     assert np.all(np.abs(h[sd < -0.3] + 6.0) < 1e-9)
     assert np.all(np.abs(h[sd > 0.3]) < 1e-9)
     assert removed > 0
+
+
+def test_force_stage_in_chunks_cuts_the_same_stock(monkeypatch):
+    """The force stage simulates the program a chunk of blocks at a time (for its progress bar), the
+    Z-map carried over: the material it removes equals the plain sweep's, and the forces match those of
+    one call to within the sampling restart at chunk starts."""
+    from netshape.job import stages as st
+
+    job = load_job(DEMO / "job.toml")
+    prog = st.stage_program(job)
+    stock0 = st.stage_stock(job)
+    _, removed = st.stage_cut(job, stock0, prog)
+    whole = st.stage_forces(job, stock0, prog)
+    monkeypatch.setattr(st, "FORCE_CHUNK_BLOCKS", 7)
+    done = []
+    parts = st.stage_forces(job, stock0, prog, progress=done.append)
+    assert done[-1] == len(prog.toolpath.blocks) and len(done) == -(-len(prog.toolpath.blocks) // 7)
+    assert whole.removed_volume == pytest.approx(removed, rel=1e-9)
+    assert parts.removed_volume == pytest.approx(removed, rel=1e-9)
+    assert np.max(parts.peak_resultant) == pytest.approx(np.max(whole.peak_resultant), rel=0.03)
+    assert np.all(np.diff(parts.block) >= 0)
