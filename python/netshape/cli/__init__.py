@@ -11,11 +11,13 @@ import sys
 from importlib import import_module
 
 # name of the module in netshape.cli, in the order they appear in --help
-_COMMANDS = ("info", "forces", "volumetric", "plan", "demo")
+_COMMANDS = ("info", "forces", "volumetric", "plan", "run", "batch", "demo")
 
 _EPILOG = """\
 examples:
-  netshape demo                              run the bundled default job
+  netshape demo                              run the bundled default job into ./netshape-demo/
+  netshape run job.toml --out results/       predictions, compensated program and report of a job
+  netshape batch study.toml                  a job over a parameter grid on Dask, one table
   netshape info part.ngc --json              block counts, lengths, bounding box, time
   netshape <command> --help                  what a command does and its options
 

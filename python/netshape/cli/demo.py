@@ -1,5 +1,4 @@
-"""`netshape demo`: run the bundled default job (until the end-to-end job exists: `info` on the
-bundled program examples/demo/part.ngc)."""
+"""`netshape demo`: run the bundled default job (examples/demo/job.toml) into ./netshape-demo/."""
 
 from __future__ import annotations
 
@@ -10,29 +9,34 @@ def bundled_dir() -> Path:
     """Folder with the bundled demo files: the installed package's copy, else the source tree's."""
     here = Path(__file__).resolve().parent.parent
     for candidate in (here / "examples" / "demo", here.parents[1] / "examples" / "demo"):
-        if (candidate / "part.ngc").is_file():
+        if (candidate / "job.toml").is_file():
             return candidate
-    raise FileNotFoundError(2, "bundled demo program not found", str(here / "examples" / "demo" / "part.ngc"))
+    raise FileNotFoundError(2, "bundled demo job not found", str(here / "examples" / "demo" / "job.toml"))
 
 
 def register(sub) -> None:
     p = sub.add_parser(
         "demo",
         help="run the bundled default job",
-        description="Run the bundled default job with no arguments. For now this prints `netshape info` "
-        "of the bundled program examples/demo/part.ngc (a 40 x 30 mm pocket with arcs, in mm) and "
-        "where the bundled files are.",
+        description="Run the bundled default job with no arguments: a 40 x 30 mm pocket with 8 mm corner "
+        "radii milled in stock that a round roughing pass has pre-shaped with arcs, on a vertical machining "
+        "centre with geometric errors of a realistic size. Writes the compensated program, summary.json, "
+        "plots and report.html into ./netshape-demo/ (or --out) and prints where the report is.",
     )
-    p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    p.add_argument("--out", metavar="DIR", default="netshape-demo", help="output folder (default ./netshape-demo)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    from netshape.cli import info
+    from netshape.cli.run import execute, print_summary
 
     folder = bundled_dir()
-    program = folder / "part.ngc"
-    print(f"netshape demo: bundled files in {folder}")
-    print(f"netshape demo: netshape info {program}\n")
-    args.program = str(program)
-    return info.run(args)
+    job = folder / "job.toml"
+    out = Path(args.out)
+    print(f"netshape demo: bundled job {job}")
+    code, summary = execute(job, out, args.quiet)
+    if code == 0:
+        print_summary(summary, out.resolve())
+        print(f"netshape demo: open {(out / 'report.html').resolve()}")
+    return code

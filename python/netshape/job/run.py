@@ -1,0 +1,256 @@
+"""Run a job: the stages in order (each timed), then the outputs, each written whole or not at all.
+
+Stages: program → stock (box/heights + pre-cuts) → cut (Z-map removal) → forces → deflection (wall
+error; compensation) → volumetric (error; compensation) → feed plan (original and compensated) →
+outputs (compensated program, summary.json, Z-map STL, PNG plots, report.html).
+
+A stage that raises stops the run with :class:`StageFailed` naming the stage; files already written
+are whole (every file goes through a temporary file and a rename) and no later file is written.
+"""
+
+from __future__ import annotations
+
+import json
+import platform
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from . import stages as st
+from .spec import Job
+
+
+class StageFailed(Exception):
+    """A stage of the job failed; ``stage`` names it, ``cause`` is the original exception."""
+
+    def __init__(self, stage: str, cause: BaseException):
+        super().__init__(f"stage {stage} failed: {' '.join(str(cause).split()) or type(cause).__name__}")
+        self.stage = stage
+        self.cause = cause
+
+
+def versions() -> dict:
+    import matplotlib
+    import scipy
+
+    import netshape
+
+    return {"netshape": netshape.__version__, "python": platform.python_version(), "numpy": np.__version__,
+            "scipy": scipy.__version__, "matplotlib": matplotlib.__version__}
+
+
+class _Stages:
+    """Times stages, advances the progress bar and turns an exception into StageFailed."""
+
+    def __init__(self, names: list[str], quiet: bool):
+        self.times: dict[str, float] = {}
+        self.bar = None
+        if not quiet:
+            from tqdm import tqdm
+
+            self.bar = tqdm(total=len(names), unit="stage", file=sys.stderr, leave=True,
+                            bar_format="{desc:<44}{bar}| {n_fmt}/{total_fmt} [{elapsed}]")
+
+    def run(self, name: str, fn, *args, **kwargs):
+        if self.bar is not None:
+            self.bar.set_description_str(f"netshape run: {name}")
+        t0 = time.perf_counter()
+        try:
+            out = fn(*args, **kwargs)
+        except (KeyboardInterrupt, SystemExit):
+            raise
+        except BaseException as exc:
+            self.close()
+            raise StageFailed(name, exc) from exc
+        self.times[name] = round(time.perf_counter() - t0, 4)
+        if self.bar is not None:
+            self.bar.update(1)
+        return out
+
+    def sub_progress(self, name: str, total: int, unit: str):
+        """A callable ``f(done)`` that shows the progress inside a long stage on a second bar (None when
+        quiet or when the stage is short)."""
+        if self.bar is None or total <= 1000:
+            return None
+        from tqdm import tqdm
+
+        self.sub = tqdm(total=total, unit=unit, file=sys.stderr, leave=False, desc=f"  {name}")
+
+        def update(done: int) -> None:
+            self.sub.update(done - self.sub.n)
+
+        return update
+
+    def close_sub(self):
+        if getattr(self, "sub", None) is not None:
+            self.sub.close()
+            self.sub = None
+
+    def close(self):
+        self.close_sub()
+        if self.bar is not None:
+            self.bar.close()
+            self.bar = None
+
+
+def stage_names(job: Job) -> list[str]:
+    p, c = job.predict, job.compensate
+    names = ["program", "stock", "cut"]
+    if p["forces"]:
+        names.append("forces")
+    if p["deflection"]:
+        names.append("deflection")
+    if p["volumetric"]:
+        names.append("volumetric")
+    if c["volumetric"]:
+        names.append("volumetric_compensation")
+    if p["feed_plan"]:
+        names += ["feed_plan", "feed_plan_compensated"]
+    names.append("report")
+    return names
+
+
+def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True) -> dict:
+    """Run ``job`` writing into ``out`` (default ``job.output``); returns the summary (also in
+    summary.json). Raises StageFailed naming the stage that failed."""
+    t_start = time.perf_counter()
+    folder = Path(out) if out is not None else job.output
+    folder.mkdir(parents=True, exist_ok=True)
+    S = _Stages(stage_names(job), quiet)
+    p, c = job.predict, job.compensate
+    status: dict[str, str] = {}
+
+    prog = S.run("program", st.stage_program, job)
+    stock0 = S.run("stock", st.stage_stock, job)
+    zfinal, removed = S.run("cut", st.stage_cut, job, stock0, prog)
+
+    forces = None
+    if p["forces"]:
+        forces = S.run("forces", st.stage_forces, job, stock0, prog, progress=S.sub_progress(
+            "forces", len(prog.toolpath.blocks), "block"))
+        S.close_sub()
+
+    defl = None
+    if p["deflection"]:
+        defl = S.run("deflection", st.stage_deflection, job, stock0, prog, compensate=c["deflection"])
+        status["deflection"] = "ok" if defl.available and not defl.reason else defl.reason
+        if defl.available and defl.after_mm is None:
+            defl.after_mm = defl.before_mm  # program not changed for deflection: the same error after
+    # the program handed to the volumetric stage: deflection-compensated where that was applied
+    target_g54 = defl.compensated if (defl is not None and defl.compensated is not None) else None
+    if target_g54 is not None:
+        # deflection compensation works in the G54 frame: each block back into the frame of the work
+        # offset its source line runs under
+        per_line = np.zeros(int(prog.lines.max()) + 2, dtype=np.int64)
+        per_line[prog.lines] = prog.offset_index
+        t_lines = np.array([b.line for b in target_g54.blocks], np.int64)
+        t_idx = per_line[np.clip(t_lines, 0, len(per_line) - 1)]
+        target_prog = st.Program(toolpath=st.shift_toolpath(target_g54, prog.offsets[0] - prog.offsets[t_idx]),
+                                 offset_index=t_idx, offsets=prog.offsets, lines=t_lines)
+    else:
+        target_prog = prog
+
+    vol = None
+    machine = None
+    compensated_program = None   # (Toolpath in program frame, offset index per block)
+    if p["volumetric"]:
+        def _volumetric():
+            m = st.load_job_machine(job)
+            return m, st.stage_volumetric(job, m, st.machine_frame_toolpath(prog))
+
+        machine, vol = S.run("volumetric", _volumetric)
+        status["volumetric"] = "ok"
+        if c["volumetric"]:
+            target_machine = st.machine_frame_toolpath(target_prog)
+            vol = S.run("volumetric_compensation", st.stage_volumetric_compensation, job, machine,
+                        target_machine, vol)
+            compensated_program = st.to_program_frame(vol.compensated, target_prog)
+        else:
+            vol.after_mm, vol.s_after_mm = vol.before_mm, vol.s_before_mm
+    if compensated_program is None and target_g54 is not None:
+        compensated_program = (target_prog.toolpath, target_prog.offset_index)
+
+    traj = traj_c = None
+    if p["feed_plan"]:
+        traj = S.run("feed_plan", st.stage_feed_plan, job, prog.toolpath)
+        traj_c = (S.run("feed_plan_compensated", st.stage_feed_plan, job, compensated_program[0])
+                  if compensated_program is not None else None)
+        if traj_c is None:
+            S.times["feed_plan_compensated"] = 0.0
+            if S.bar is not None:
+                S.bar.update(1)
+
+    # ---- summary
+    errors = {
+        "deflection": st.error_stats(*((defl.before_mm, defl.after_mm) if defl is not None and defl.available
+                                       else (None, None))),
+        "volumetric": st.error_stats(*((vol.before_mm, vol.after_mm) if vol is not None else (None, None))),
+        "total": st.error_stats(st.total_error(defl, vol, "before"), st.total_error(defl, vol, "after")),
+    }
+    applied = job.compensations
+    if defl is not None and defl.compensated is None and "deflection" in applied:
+        applied = [a for a in applied if a != "deflection"]
+    stem = job.program.stem
+    files = {"summary": "summary.json", "report": "report.html"}
+    if compensated_program is not None:
+        files["compensated_program"] = f"{stem}_compensated.ngc"
+    if job.report["zmap_stl"]:
+        files["zmap_stl"] = "zmap.stl"
+    summary = {
+        "job": {"name": job.name, "source": str(job.source), "program": str(job.program),
+                "predictions": [k for k, v in p.items() if v], "compensations": applied,
+                "requested_compensations": job.compensations},
+        "errors": errors,
+        "cycle_time_s": {"original": traj.stats["cycle_time_s"] if traj is not None else None,
+                         "compensated": (traj_c.stats["cycle_time_s"] if traj_c is not None
+                                         else (traj.stats["cycle_time_s"] if traj is not None else None))},
+        "run_time_s": S.times,
+        "stages": status,
+        "removed_volume_mm3": removed,
+        "versions": versions(),
+        "files": files,
+    }
+    if forces is not None:
+        summary["forces"] = {"max_peak_resultant_N": float(np.max(forces.peak_resultant, initial=0.0)),
+                             "samples": int(len(forces.peak_resultant))}
+    if vol is not None and vol.report:
+        summary["volumetric_compensation"] = {k: v for k, v in vol.report.items() if isinstance(v, (int, float, str))}
+
+    def _outputs():
+        from netshape._atomic import atomic_save_figure, atomic_write
+
+        if compensated_program is not None:
+            tp, idx = compensated_program
+            header = (f"netshape compensated {job.program.name}: {' then '.join(applied)}; "
+                      f"run with the work offsets of the original")
+            with atomic_write(folder / files["compensated_program"], "w") as fh:
+                fh.write(st.write_program_text(tp, idx, header))
+        if job.report["zmap_stl"]:
+            zfinal.to_stl(folder / "zmap.stl")
+        from . import report as rp
+
+        order = "compensations: " + (" → ".join(applied) or "none")
+        figs = {}
+        if job.report["plots"]:
+            figs = {"force": rp.plot_force(forces), "wall_error": rp.plot_wall_error(defl, vol, order),
+                    "volumetric": rp.plot_volumetric_map(vol), "feed": rp.plot_feed(traj, traj_c),
+                    "zmap": rp.plot_zmap(zfinal)}
+        for key, fig in figs.items():
+            atomic_save_figure(fig, folder / rp.PLOTS[key], dpi=job.report["dpi"])
+            files[f"plot_{key}"] = rp.PLOTS[key]
+        return rp
+
+    rp = S.run("report", _outputs)
+    summary["run_time_s"]["report"] = S.times["report"]
+    summary["run_time_s"]["total"] = round(time.perf_counter() - t_start, 4)
+    rp.write_html(folder / "report.html", summary,
+                  {k: rp.PLOTS[k] for k in rp.PLOTS} if job.report["plots"] else {})
+    from netshape._atomic import atomic_write
+
+    with atomic_write(folder / "summary.json", "w") as fh:
+        json.dump(summary, fh, indent=2)
+        fh.write("\n")
+    S.close()
+    return summary

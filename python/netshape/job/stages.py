@@ -1,0 +1,625 @@
+"""The stages of the main job, one function each. They take and return plain objects (no file
+writes); :mod:`netshape.job.run` calls them in order, times them and writes the outputs.
+
+Frames: the stock and the force/deflection stages work in the work coordinates of G54 (the
+program's coordinates when it selects no other offset); the machine stages work in machine
+coordinates, program point + active work offset (G54–G59 from the job), with the job's tool length.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .spec import WORK_OFFSETS, Job
+
+NOT_AVAILABLE = "not available in this build"
+
+# ---------------------------------------------------------------------------------------------- program
+
+
+@dataclass
+class Program:
+    """The job's program: blocks in work coordinates (G54 frame) and per block the offset to machine
+    coordinates [mm]."""
+
+    toolpath: object                 # netshape.toolpath.Toolpath, program coordinates, feeds scaled
+    offset_index: np.ndarray         # (n,) index into WORK_OFFSETS of the offset active at each block
+    offsets: np.ndarray              # (6, 3) work offsets [mm]
+    lines: np.ndarray                # (n,) source line of each block
+
+    def block_offsets(self) -> np.ndarray:
+        """(n, 3) offset program → machine of each block [mm]."""
+        return self.offsets[self.offset_index]
+
+    @property
+    def uses_one_offset(self) -> bool:
+        return len(np.unique(self.offset_index)) <= 1
+
+
+_COMMENT = re.compile(r"\([^)]*\)|;.*$")
+_G5X = re.compile(r"G\s*0*5\s*([4-9])(\s*\.\s*\d)?", re.IGNORECASE)
+
+
+def active_work_offsets(path) -> np.ndarray:
+    """Index into WORK_OFFSETS (0 = G54) of the work offset in force on each source line (1-based;
+    entry 0 unused). G59.1–G59.3 are refused: the job has no values for them."""
+    states = [0]
+    cur = 0
+    with open(path, encoding="utf-8", errors="replace") as fh:
+        for no, raw in enumerate(fh, start=1):
+            text = _COMMENT.sub("", raw)
+            for m in _G5X.finditer(text):
+                if m.group(2):
+                    raise ValueError(f"{path}:{no}: G5{m.group(1)}{m.group(2).replace(' ', '')}: this work "
+                                     "offset has no key in the job (offsets.G54_mm … G59_mm)")
+                cur = int(m.group(1)) - 4
+            states.append(cur)
+    return np.asarray(states, dtype=np.int64)
+
+
+def _copy_block(tpm, b):
+    nb = tpm.Block()
+    for a in ("kind", "start", "end", "center", "clockwise", "plane", "turns", "feed", "spindle_rpm", "tool", "line"):
+        setattr(nb, a, getattr(b, a))
+    return nb
+
+
+def shift_toolpath(tp, delta: np.ndarray):
+    """A copy of ``tp`` with block ``i`` moved by ``delta[i]`` [mm] (start, end and arc centre)."""
+    from netshape import toolpath as tpm
+
+    out = []
+    for b, d in zip(tp.blocks, np.asarray(delta, dtype=float)):
+        nb = _copy_block(tpm, b)
+        nb.start = np.asarray(b.start) + d
+        nb.end = np.asarray(b.end) + d
+        nb.center = np.asarray(b.center) + d
+        out.append(nb)
+    res = tpm.Toolpath()
+    res.blocks = out
+    return res
+
+
+def stage_program(job: Job) -> Program:
+    """Read the program (arcs kept), scale its feeds by ``cutting.feed_scale`` and find the work offset
+    of every block."""
+    from netshape import toolpath as tpm
+
+    tp = tpm.read_gcode(job.program, arcs="keep")
+    if len(tp.blocks) == 0:
+        raise ValueError(f"program = {str(job.program)!r}: no motion blocks")
+    scale = job.cutting["feed_scale"]
+    if scale != 1.0:
+        blocks = []
+        for b in tp.blocks:
+            nb = _copy_block(tpm, b)
+            nb.feed = b.feed * scale
+            blocks.append(nb)
+        tp = tpm.Toolpath()
+        tp.blocks = blocks
+    lines = np.array([b.line for b in tp.blocks], dtype=np.int64)
+    per_line = active_work_offsets(job.program)
+    idx = per_line[np.clip(lines, 0, len(per_line) - 1)]
+    offsets = np.array([job.offsets[g] for g in WORK_OFFSETS], dtype=float)
+    return Program(toolpath=tp, offset_index=idx, offsets=offsets, lines=lines)
+
+
+def stock_frame_toolpath(prog: Program):
+    """The program in the stock's frame (G54 work coordinates)."""
+    if prog.uses_one_offset and prog.offset_index[0] == 0:
+        return prog.toolpath
+    return shift_toolpath(prog.toolpath, prog.block_offsets() - prog.offsets[0])
+
+
+def machine_frame_toolpath(prog: Program):
+    """The program in machine coordinates (program point + active work offset)."""
+    return shift_toolpath(prog.toolpath, prog.block_offsets())
+
+
+# ---------------------------------------------------------------------------------------------- stock
+
+
+def make_cutter(tool: dict):
+    from netshape.cutter import cutter_from_dict
+
+    return cutter_from_dict(tool, source="tool")
+
+
+def stage_stock(job: Job):
+    """The stock before the program: a box or a heights file, then every ``[[stock.pre_cut]]`` swept in
+    order. Returns a netshape.stock.ZMap."""
+    from netshape import stock as ns
+    from netshape import toolpath as tpm
+
+    s = job.stock
+    lo, hi = s["min_mm"], s["max_mm"]
+    if s["heights"] is not None:
+        path = s["heights"]
+        if path.suffix.lower() == ".npy":
+            h = np.load(path, allow_pickle=False)
+        else:
+            h = np.loadtxt(path, delimiter=",", ndmin=2)
+        h = np.asarray(h, dtype=float)
+        if h.ndim != 2 or min(h.shape) < 2:
+            raise ValueError(f"stock.heights = {str(path)!r}: shape {h.shape}, must be (ny, nx) with ny, nx ≥ 2")
+        if not np.isfinite(h).all():
+            raise ValueError(f"stock.heights = {str(path)!r}: heights must be finite [mm]")
+        if h.min() < lo[2]:
+            raise ValueError(f"stock.heights = {str(path)!r}: height {h.min():g} below stock.min_mm[2] = {lo[2]:g}")
+        z = ns.from_heights(h, lo[0], hi[0], lo[1], hi[1], lo[2])
+    else:
+        z = ns.ZMap(lo[0], hi[0], lo[1], hi[1], s["spacing_mm"], hi[2], lo[2])
+    for pc in s["pre_cut"]:
+        ns.sweep(z, make_cutter(pc.tool), tpm.read_gcode(pc.program, arcs="keep"))
+    return z
+
+
+def stage_cut(job: Job, stock0, prog: Program):
+    """The stock after the program (Z-map material removal). Returns (ZMap, removed volume [mm³])."""
+    from netshape import stock as ns
+
+    z = stock0.copy()
+    stats = ns.sweep(z, make_cutter(job.tool), stock_frame_toolpath(prog))
+    return z, float(getattr(stats, "removed_volume", float("nan")))
+
+
+# ---------------------------------------------------------------------------------------------- forces
+
+
+def coefficients_for(job: Job, cutter):
+    """Force coefficients of the job for its cutter (linear edge for flat/bull, the ball model for ball)."""
+    from netshape import force as nf
+    from netshape.cutter import CutterKind
+
+    c = job.coefficients
+    is_ball = cutter.kind == CutterKind.ball
+    if isinstance(c, dict):
+        vals = {k.split("_")[0].lower(): v for k, v in c.items()}
+        if is_ball:
+            raise ValueError("coefficients: a ball end mill takes a named ball set (e.g. kim_zas_ball12)")
+        return nf.LinearEdgeCoefficients(**vals)
+    if "=" in c:
+        if is_ball:
+            raise ValueError(f"coefficients = {c!r}: a ball end mill takes a named ball set (e.g. kim_zas_ball12)")
+        return nf.parse_coefficients(c)
+    if c in nf.ball_end_coefficient_set_names():
+        if not is_ball:
+            raise ValueError(f"coefficients = {c!r}: a ball-end set, but tool.kind is not ball")
+        return nf.ball_end_coefficient_set(c).coefficients
+    if is_ball:
+        raise ValueError(f"coefficients = {c!r}: a flat-end set, but tool.kind = ball")
+    return nf.linear_edge_coefficient_set(c).coefficients
+
+
+#: Blocks per call of the force simulation: the stage reports progress between calls. The Z-map is
+#: carried from call to call; each call starts its sampling at its first block.
+FORCE_CHUNK_BLOCKS = 250
+
+
+def stage_forces(job: Job, stock0, prog: Program, progress=None):
+    """Per-revolution forces on the cutter along the program, cut through a copy of the stock
+    (netshape.force.simulate_program, :data:`FORCE_CHUNK_BLOCKS` blocks per call; ``progress(k)`` is
+    called with the blocks done after each call). Returns a ProgramForceResult."""
+    from netshape.force import ProgramForceResult, simulate_program
+
+    cutter = make_cutter(job.tool)
+    c = job.cutting
+    coeffs = coefficients_for(job, cutter)
+    tp = stock_frame_toolpath(prog)
+    blocks = list(tp.blocks)
+    z = stock0.copy()
+    parts = []
+    for i0 in range(0, len(blocks), FORCE_CHUNK_BLOCKS):
+        chunk = _sub_toolpath(tp, blocks[i0:i0 + FORCE_CHUNK_BLOCKS])
+        r = simulate_program(z, cutter, chunk, coeffs, step=c["step_mm"],
+                             samples_per_revolution=c["samples_per_revolution"], disk_height=c["disk_height_mm"],
+                             feed_per_tooth=c["feed_per_tooth_mm"] or 0.0, spindle_rpm=c["spindle_rpm"] or 0.0,
+                             copy_stock=False)
+        r.block = np.asarray(r.block) + i0
+        parts.append(r)
+        if progress is not None:
+            progress(min(len(blocks), i0 + FORCE_CHUNK_BLOCKS))
+    if len(parts) == 1:
+        return parts[0]
+    fields = ("positions", "block", "feed_direction", "mean", "peak", "peak_resultant", "mean_resultant",
+              "engaged_fraction")
+    merged = {f: np.concatenate([np.asarray(getattr(p, f)) for p in parts]) for f in fields}
+    return ProgramForceResult(**merged, removed_volume=float(sum(p.removed_volume for p in parts)))
+
+
+# ---------------------------------------------------------------------------------------------- deflection
+
+
+@dataclass
+class DeflectionResult:
+    """Wall error along the path [mm] before and after deflection compensation, or why there is none."""
+
+    available: bool
+    reason: str = ""
+    s_mm: np.ndarray = field(default_factory=lambda: np.zeros(0))       # path distance of each point
+    before_mm: np.ndarray = field(default_factory=lambda: np.zeros(0))  # signed wall error
+    after_mm: np.ndarray | None = None
+    compensated: object = None                                          # Toolpath (G54 frame) or None
+    info: dict = field(default_factory=dict)
+    ranges: list = field(default_factory=list)                          # (s0, s1) [mm] of each contour
+
+
+#: The functions of netshape.deflection the deflection stage drives, all needed (the deflection
+#: area's contour API): ``setup_path(program, cutter, stock, *, coefficients, rpm, spacing)`` for one
+#: contiguous 2-D contour, ``predict_path(setup)`` → wall errors (``error`` (n, 3): bottom, middle,
+#: top [mm]), ``compensate_path(setup, *, scheme, level)`` → ``converged``, ``message``, ``positions``,
+#: ``after``, ``iterations``, and ``compensated_program(setup, positions)`` → Toolpath.
+DEFLECTION_API = ("setup_path", "predict_path", "compensate_path", "compensated_program")
+
+
+def deflection_api():
+    """The contour functions of netshape.deflection (dict by name), or None where this build lacks any."""
+    try:
+        from netshape import deflection as nd
+    except ImportError:  # pragma: no cover - the package always has the module
+        return None
+    funcs = {n: getattr(nd, n, None) for n in DEFLECTION_API}
+    if not all(callable(f) for f in funcs.values()):
+        return None
+    return funcs
+
+
+def contour_runs(tp) -> list[tuple[int, int]]:
+    """(first, last) block indices of the runs of XY cutting moves at one constant Z (lines, and arcs in
+    G17), in program order: the 2-D contours whose walls tool deflection shapes."""
+    from netshape import toolpath as tpm
+
+    runs: list[tuple[int, int]] = []
+    cur: list[int] = []
+    z = None
+    for i, b in enumerate(tp.blocks):
+        st_, en = np.asarray(b.start), np.asarray(b.end)
+        ok = (b.kind != tpm.MotionKind.rapid and math.hypot(en[0] - st_[0], en[1] - st_[1]) > 1e-9
+              and abs(en[2] - st_[2]) <= 1e-6
+              and (b.kind != tpm.MotionKind.arc or b.plane == tpm.Plane.xy))
+        if ok and cur and z is not None and abs(st_[2] - z) <= 1e-6:
+            cur.append(i)
+            continue
+        if cur:
+            runs.append((cur[0], cur[-1]))
+        cur, z = ([i], float(st_[2])) if ok else ([], None)
+    if cur:
+        runs.append((cur[0], cur[-1]))
+    return runs
+
+
+def _sub_toolpath(tp, blocks):
+    from netshape import toolpath as tpm
+
+    sub = tpm.Toolpath()
+    sub.blocks = list(blocks)
+    sub.source = tp.source
+    return sub
+
+
+def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> DeflectionResult:
+    """Wall error from tool deflection along the program (seeds/000: cantilever tool, surface
+    generation, Z-map engagement) and, when asked, the deflection-compensated program.
+
+    The program is cut in order on a copy of the stock; every contour (a run of XY cutting moves at one
+    Z, :func:`contour_runs`) is evaluated on the stock as the moves before it left it, compensated with
+    the job's scheme and reference level, and replaced by its compensated moves. A contour the model
+    cannot evaluate (it never touches the stock, say) keeps its moves and is listed in ``info``. Where
+    netshape.deflection lacks the contour API, or the tool is not a flat end mill, the result says so
+    (``available`` False) instead of reporting zero error."""
+    api = deflection_api()
+    if api is None:
+        return DeflectionResult(available=False, reason=f"deflection wall-error prediction {NOT_AVAILABLE}")
+    from netshape import stock as nst
+    from netshape.cutter import CutterKind
+    from netshape.errors import Error
+
+    cutter = make_cutter(job.tool)
+    if cutter.kind != CutterKind.flat:
+        return DeflectionResult(available=False, reason="deflection wall error: the model needs a flat end mill "
+                                f"(tool.kind = {job.tool['kind']})")
+    coeffs = coefficients_for(job, cutter)
+    tp = stock_frame_toolpath(prog)
+    blocks = list(tp.blocks)
+    level = ("bottom", "middle", "top").index(job.compensate["deflection_level"])
+    spacing = job.cutting["error_spacing_mm"]
+    # path distance along the feed moves at the start of every block (the volumetric samples' measure)
+    lengths = np.array([0.0 if b.kind == 0 else float(b.length()) for b in blocks])
+    s_start = np.concatenate([[0.0], np.cumsum(lengths)])
+    z = stock0.copy()
+    out_blocks, s_all, before_all, after_all, skipped = [], [], [], [], []
+    iterations = 0
+    done = 0
+    for first, last in contour_runs(tp):
+        if first > done:
+            nst.sweep(z, cutter, _sub_toolpath(tp, blocks[done:first]))
+            out_blocks.extend(blocks[done:first])
+        run = blocks[first:last + 1]
+        sub = _sub_toolpath(tp, run)
+        rpm = job.cutting["spindle_rpm"] or abs(float(run[0].spindle_rpm))
+        try:
+            setup = api["setup_path"](sub, cutter, z, coefficients=coeffs, rpm=rpm, spacing=spacing)
+            pred = api["predict_path"](setup)
+        except ValueError as exc:
+            skipped.append(f"line {run[0].line}: {' '.join(str(exc).split())}")
+            out_blocks.extend(run)
+        else:
+            nominal = np.asarray(setup.nominal, dtype=float)
+            arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(nominal[:, :2], axis=0), axis=1))])
+            s_all.append(s_start[first] + arc)
+            before = np.asarray(pred.error, dtype=float)[:, level]
+            before_all.append(before)
+            if compensate:
+                res = api["compensate_path"](setup, scheme=job.compensate["deflection_scheme"],
+                                             level=job.compensate["deflection_level"])
+                if not res.converged:
+                    raise Error(f"deflection compensation of the contour from line {run[0].line}: {res.message}")
+                iterations = max(iterations, int(res.iterations))
+                after_all.append(np.asarray(res.after.error, dtype=float)[:, level])
+                new = list(api["compensated_program"](setup, np.asarray(res.positions, dtype=float)).blocks)
+                for b in new:  # keep the source line (work offset, reports) of the contour
+                    if b.line <= 0:
+                        b.line = run[0].line
+                out_blocks.extend(new)
+            else:
+                after_all.append(before)
+                out_blocks.extend(run)
+        nst.sweep(z, cutter, sub)
+        done = last + 1
+    out_blocks.extend(blocks[done:])
+    info = {"contours": len(s_all), "contours_skipped": skipped}
+    if compensate:
+        info["iterations"] = iterations
+    if not s_all:
+        why = skipped[0] if skipped else "the program has no 2-D contour (XY moves at one Z)"
+        return DeflectionResult(available=False, reason=f"deflection wall error: no contour evaluated ({why})",
+                                info=info)
+    res = DeflectionResult(available=True, s_mm=np.concatenate(s_all), before_mm=np.concatenate(before_all),
+                           after_mm=np.concatenate(after_all), info=info,
+                           ranges=[(float(a[0]), float(a[-1])) for a in s_all])
+    if compensate:
+        res.compensated = _sub_toolpath(tp, out_blocks)
+    return res
+
+
+# ---------------------------------------------------------------------------------------------- machine
+
+
+def load_job_machine(job: Job):
+    """The job's machine with its errors scaled by ``machine.error_scale`` and its tool length from
+    ``offsets.tool_length_mm`` when given."""
+    from netshape import machine as nm
+
+    m = nm.load_machine(job.machine)
+    if job.offsets.get("tool_length_mm") is not None:
+        m.tool_length = job.offsets["tool_length_mm"]
+    if job.error_scale != 1.0:
+        scale_machine_errors(m, job.error_scale)
+    m.validate()
+    return m
+
+
+def scale_machine_errors(m, s: float) -> None:
+    """Multiply every geometric error of ``m`` (the 18 error motions, squareness, spindle tilt) by ``s``."""
+    axes = []
+    for ax in m.axes:
+        funcs = []
+        for f in ax.errors:
+            kind = f.kind.name
+            if kind == "polynomial":
+                f.coefficients = [s * c for c in f.coefficients]
+            elif kind == "table":
+                f.values = [s * v for v in f.values]
+            funcs.append(f)
+        ax.errors = funcs
+        axes.append(ax)
+    m.axes = axes
+    m.ec0y, m.eb0z, m.ea0z = s * m.ec0y, s * m.eb0z, s * m.ea0z
+    m.spindle_tilt_a, m.spindle_tilt_b = s * m.spindle_tilt_a, s * m.spindle_tilt_b
+
+
+def feed_segments(tp, chord_tolerance: float = 1e-4) -> tuple[np.ndarray, np.ndarray]:
+    """Start and end points (m, 3) of the feed moves of ``tp`` with arcs split into chords [mm]."""
+    from netshape import toolpath as tpm
+
+    split = tp.split_arcs(chord_tolerance)
+    a, b = [], []
+    for blk in split.blocks:
+        if blk.kind == tpm.MotionKind.rapid:
+            continue
+        a.append(blk.start)
+        b.append(blk.end)
+    if not a:
+        return np.zeros((0, 3)), np.zeros((0, 3))
+    return np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+
+
+def sample_segments(a: np.ndarray, b: np.ndarray, spacing: float) -> tuple[np.ndarray, np.ndarray]:
+    """Points every ≤ ``spacing`` mm along the segments (ends included) and their path distance [mm]."""
+    if len(a) == 0:
+        return np.zeros((0, 3)), np.zeros(0)
+    L = np.linalg.norm(b - a, axis=1)
+    n = np.maximum(1, np.ceil(L / spacing).astype(np.int64))
+    seg = np.repeat(np.arange(len(a)), n)
+    first = np.concatenate([[0], np.cumsum(n)[:-1]])
+    k = np.arange(seg.size) - np.repeat(first, n)
+    t = k / np.repeat(n, n)
+    pts = a[seg] + t[:, None] * (b[seg] - a[seg])
+    s0 = np.concatenate([[0.0], np.cumsum(L)[:-1]])
+    s = s0[seg] + t * L[seg]
+    pts = np.vstack([pts, b[-1:]])
+    s = np.concatenate([s, [s0[-1] + L[-1]]])
+    return pts, s
+
+
+def distance_to_path(points: np.ndarray, a: np.ndarray, b: np.ndarray, spacing: float) -> np.ndarray:
+    """Distance [mm] of each point to the polyline segments (a[i], b[i]): candidate segments from a
+    k-d tree of points every ``spacing`` mm along them, then the exact point-to-segment distance."""
+    from scipy.spatial import cKDTree
+
+    if len(points) == 0:
+        return np.zeros(0)
+    L = np.linalg.norm(b - a, axis=1)
+    n = np.maximum(1, np.ceil(L / spacing).astype(np.int64)) + 1
+    owner = np.repeat(np.arange(len(a)), n)
+    first = np.concatenate([[0], np.cumsum(n)[:-1]])
+    t = (np.arange(owner.size) - np.repeat(first, n)) / np.repeat(n - 1, n)
+    samples = a[owner] + t[:, None] * (b[owner] - a[owner])
+    k = min(16, len(samples))
+    _, idx = cKDTree(samples).query(points, k=k)
+    idx = np.atleast_2d(idx).reshape(len(points), -1)
+    segs = owner[idx]                                     # (p, k)
+    A, B = a[segs], b[segs]                               # (p, k, 3)
+    AB = B - A
+    L2 = np.einsum("pkj,pkj->pk", AB, AB)
+    tt = np.einsum("pkj,pkj->pk", points[:, None, :] - A, AB) / np.where(L2 > 0, L2, 1.0)
+    tt = np.clip(np.where(L2 > 0, tt, 0.0), 0.0, 1.0)
+    d = np.linalg.norm(points[:, None, :] - (A + tt[..., None] * AB), axis=2)
+    return d.min(axis=1)
+
+
+@dataclass
+class VolumetricResult:
+    """Deviation of the actual tool-tip path from the nominal path [mm] (machine frame)."""
+
+    s_before_mm: np.ndarray
+    before_mm: np.ndarray
+    points_mm: np.ndarray                 # nominal sample points, machine frame
+    error_vectors_mm: np.ndarray          # tip error e(p) at them
+    s_after_mm: np.ndarray | None = None
+    after_mm: np.ndarray | None = None
+    compensated: object = None            # Toolpath, machine frame
+    report: dict = field(default_factory=dict)
+
+
+def stage_volumetric(job: Job, machine, tp_machine) -> VolumetricResult:
+    """Volumetric error along the feed moves: at points every ``cutting.error_spacing_mm`` the actual tip
+    p + e(p) and its distance to the nominal path (machine frame)."""
+    from netshape import machine as nm
+
+    a, b = feed_segments(tp_machine)
+    pts, s = sample_segments(a, b, job.cutting["error_spacing_mm"])
+    if len(pts) == 0:
+        raise ValueError(f"program = {str(job.program)!r}: no feed moves to predict the volumetric error of")
+    e = nm.tip_error(machine, pts)
+    dev = distance_to_path(pts + e, a, b, job.cutting["error_spacing_mm"])
+    return VolumetricResult(s_before_mm=s, before_mm=dev, points_mm=pts, error_vectors_mm=e)
+
+
+def stage_volumetric_compensation(job: Job, machine, tp_machine, vol: VolumetricResult) -> VolumetricResult:
+    """Compensate the program (machine frame) so the actual tip lands on the nominal path
+    (netshape.compensation.compensate_program), then re-predict: sample the compensated program, move
+    every point by the machine's error and measure its distance to the nominal path."""
+    from netshape import compensation as nc
+    from netshape import machine as nm
+
+    comp, report = nc.compensate_program(machine, tp_machine, job.compensate["chord_tolerance_mm"])
+    a, b = feed_segments(tp_machine)
+    ca, cb = feed_segments(comp)
+    pts, s = sample_segments(ca, cb, job.cutting["error_spacing_mm"])
+    actual = pts + nm.tip_error(machine, pts)
+    vol.after_mm = distance_to_path(actual, a, b, job.cutting["error_spacing_mm"])
+    vol.s_after_mm = s
+    vol.compensated = comp
+    vol.report = report.to_dict()
+    return vol
+
+
+def to_program_frame(tp_machine, prog: Program):
+    """Blocks in machine coordinates back into the program's coordinates, block by block with the work
+    offset active at the block's source line."""
+    per_line = np.zeros(int(prog.lines.max()) + 2, dtype=np.int64)
+    per_line[prog.lines] = prog.offset_index
+    lines = np.array([b.line for b in tp_machine.blocks], dtype=np.int64)
+    idx = per_line[np.clip(lines, 0, len(per_line) - 1)]
+    return shift_toolpath(tp_machine, -prog.offsets[idx]), idx
+
+
+def write_program_text(tp, idx: np.ndarray, header: str) -> str:
+    """G-code of ``tp`` (program coordinates); where the work offset changes between blocks, the block
+    runs are written with their G54–G59 word so each runs under the offset it was written for."""
+    from netshape import toolpath as tpm
+
+    blocks = tp.blocks
+    if len(blocks) == 0:
+        return tpm.format_gcode(tp, header_comment=header)
+    cuts = [0] + [i for i in range(1, len(blocks)) if idx[i] != idx[i - 1]] + [len(blocks)]
+    parts = []
+    for r, (i0, i1) in enumerate(zip(cuts[:-1], cuts[1:])):
+        sub = tpm.Toolpath()
+        sub.blocks = blocks[i0:i1]
+        text = tpm.format_gcode(sub, header_comment=header if r == 0 else "")
+        lines = text.splitlines()
+        if r > 0:  # drop the repeated header lines and program end of the later runs
+            lines = [ln for ln in lines if ln.strip() and not ln.startswith(("(", "%"))]
+            lines = [ln for ln in lines if not re.fullmatch(r"\s*G21 G90 G17 G94( G91\.1)?\s*", ln)]
+        # each run names its work offset, as the original program selected it
+        k = 0
+        while k < len(lines) and (lines[k].startswith(("(", "%")) or lines[k].startswith("G21")):
+            k += 1
+        lines.insert(k, WORK_OFFSETS[int(idx[i0])])
+        if r < len(cuts) - 2:
+            lines = [ln for ln in lines if ln.strip() not in ("M30", "M2", "%")]
+        parts.extend(lines)
+    return "\n".join(parts) + "\n"
+
+
+# ---------------------------------------------------------------------------------------------- motion
+
+
+def stage_feed_plan(job: Job, tp):
+    """Look-ahead feed plan and interpolation of ``tp`` under the job's limits. Returns a
+    netshape.motion.Trajectory (``stats['cycle_time_s']``)."""
+    from netshape import motion as nmo
+
+    lim = job.limits
+    jerk = lim.get("jmax_mm_s3", [math.inf] * 3)
+    limits = nmo.AxisLimits(lim["vmax_mm_s"], lim["amax_mm_s2"], jerk)
+    options = nmo.make_options(lim["rule"], ts1=lim["ts1_s"], ts2=lim["ts2_s"], lookahead=lim["lookahead"],
+                               tolerance=lim["tolerance_mm"])
+    return nmo.plan(tp, limits, options, with_deviation=False)
+
+
+# ---------------------------------------------------------------------------------------------- errors
+
+
+def error_stats(before, after) -> dict:
+    """max and RMS [mm] of |error| before and after (None where there is no value)."""
+
+    def mx(v):
+        return None if v is None or len(v) == 0 else float(np.max(np.abs(v)))
+
+    def rms(v):
+        return None if v is None or len(v) == 0 else float(np.sqrt(np.mean(np.square(v))))
+
+    return {"max_before_mm": mx(before), "max_after_mm": mx(after),
+            "rms_before_mm": rms(before), "rms_after_mm": rms(after)}
+
+
+def total_error(defl: DeflectionResult | None, vol: VolumetricResult | None, which: str):
+    """Total error along the path [mm] from the sources predicted: the root sum of squares of the
+    deflection wall error (interpolated onto the volumetric samples by path distance) and the
+    volumetric path deviation; one source alone is the total."""
+    d_s = d_v = None
+    if defl is not None and defl.available:
+        d_s, d_v = defl.s_mm, (defl.before_mm if which == "before" else defl.after_mm)
+    v_s = v_v = None
+    if vol is not None:
+        v_s, v_v = (vol.s_before_mm, vol.before_mm) if which == "before" else (vol.s_after_mm, vol.after_mm)
+    if d_v is None and v_v is None:
+        return None
+    if d_v is None:
+        return v_v
+    if v_v is None:
+        return d_v
+    d_on_v = np.interp(v_s, d_s, d_v)
+    if defl.ranges:  # no wall error between contours (plunges, links, rapids)
+        inside = np.zeros(len(v_s), dtype=bool)
+        for s0, s1 in defl.ranges:
+            inside |= (v_s >= s0) & (v_s <= s1)
+        d_on_v = np.where(inside, d_on_v, 0.0)
+    return np.sqrt(d_on_v**2 + v_v**2)

@@ -1,0 +1,119 @@
+"""The deflection stage: in a build without netshape.deflection's path prediction it says so (figures
+null, not zero); with a prediction present (here a stand-in with known values) its figures reach the
+summary, the total combines both sources and the compensations are applied deflection first."""
+
+from __future__ import annotations
+
+import math
+import shutil
+import sys
+
+import numpy as np
+import pytest
+
+import netshape
+from netshape.job import job_from_dict, run_job
+from netshape.job import stages as st
+
+from .conftest import DEMO
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+
+def _job(tmp_path):
+    shutil.copytree(DEMO, tmp_path / "demo")
+    doc = tomllib.loads((tmp_path / "demo" / "job.toml").read_text())
+    doc["predict"] = {"forces": True, "deflection": True, "volumetric": True, "feed_plan": False}
+    doc["cutting"].update(step_mm=2.0, samples_per_revolution=12, disk_height_mm=1.0)
+    doc["stock"]["spacing_mm"] = 1.0
+    doc["report"] = {"dpi": 30, "zmap_stl": False}
+    return job_from_dict(doc, source="job.toml", base_dir=tmp_path / "demo")
+
+
+def test_missing_prediction_is_reported_not_zero(tmp_path, monkeypatch):
+    for name in st.DEFLECTION_API:
+        monkeypatch.delattr(netshape.deflection, name, raising=False)
+    s = run_job(_job(tmp_path), tmp_path / "out")
+    assert all(v is None for v in s["errors"]["deflection"].values())
+    assert s["stages"]["deflection"].endswith("not available in this build")
+    assert s["errors"]["total"] == s["errors"]["volumetric"]
+    assert "not available in this build" in (tmp_path / "out" / "report.html").read_text()
+
+
+class _Errors:
+    def __init__(self, n, middle):
+        self.error = np.column_stack([np.full(n, middle / 2), np.full(n, middle), np.full(n, 2 * middle)])
+
+
+def _fake_api(monkeypatch, calls):
+    """Stand-ins for the deflection area's contour API with known answers: 20 µm wall error at the
+    middle level before, 1 µm after; the compensated contour is the nominal one."""
+    from types import SimpleNamespace
+
+    def setup_path(program, cutter, stock, *, coefficients, rpm, spacing):
+        calls.append(("setup", len(program.blocks), rpm))
+        pts = [np.asarray(program.blocks[0].start)]
+        for b in program.blocks:
+            k = max(1, int(np.ceil(b.length() / spacing)))
+            pts += [np.asarray(b.point_at(j / k)) for j in range(1, k + 1)]
+        if stock.max_height() < -5.5 and program.blocks[0].start[2] > -4:
+            raise ValueError("program: the contour never touches the stock")
+        return SimpleNamespace(nominal=np.array(pts), program=program)
+
+    def predict_path(setup):
+        return _Errors(len(setup.nominal), 0.020)
+
+    def compensate_path(setup, *, scheme, level):
+        calls.append(("compensate", scheme, level))
+        return SimpleNamespace(converged=True, message="", iterations=4, positions=setup.nominal,
+                               after=_Errors(len(setup.nominal), 0.001))
+
+    def compensated_program(setup, positions):
+        return setup.program
+
+    for name, f in (("setup_path", setup_path), ("predict_path", predict_path),
+                    ("compensate_path", compensate_path), ("compensated_program", compensated_program)):
+        monkeypatch.setattr(netshape.deflection, name, f, raising=False)
+
+
+def test_contour_runs_of_the_demo_pocket():
+    """The pocket: at each of the two levels the clearing rings and the finishing contour form one run
+    of XY moves at one Z (the plunge, rapids and the ramped lead-out are not contours)."""
+    import netshape.toolpath as tpm
+
+    tp = tpm.read_gcode(DEMO / "part.ngc")
+    runs = st.contour_runs(tp)
+    assert len(runs) == 2
+    for first, last in runs:
+        zs = {round(float(b.start[2]), 9) for b in tp.blocks[first:last + 1]}
+        assert len(zs) == 1 and tp.blocks[first - 1].kind == tpm.MotionKind.line  # after the plunge
+    assert [round(float(tp.blocks[f].start[2]), 6) for f, _ in runs] == [-3.0, -6.0]
+
+
+def test_a_present_prediction_reaches_the_summary(tmp_path, monkeypatch):
+    calls = []
+    _fake_api(monkeypatch, calls)
+    s = run_job(_job(tmp_path), tmp_path / "out")
+    assert [c for c in calls if c[0] == "setup"] == [("setup", 25, 8000.0), ("setup", 25, 8000.0)]
+    assert ("compensate", "integrated", "middle") in calls
+    d = s["errors"]["deflection"]
+    assert d["max_before_mm"] == pytest.approx(0.020) and d["max_after_mm"] == pytest.approx(0.001)
+    v = s["errors"]["volumetric"]
+    t = s["errors"]["total"]
+    # root sum of squares per point: bounded by the sources' maxima
+    assert max(0.020, v["max_before_mm"]) <= t["max_before_mm"] <= math.hypot(0.020, v["max_before_mm"]) + 1e-12
+    assert t["max_after_mm"] < t["max_before_mm"]
+    assert s["job"]["compensations"] == ["deflection", "volumetric"]
+    assert s["stages"]["deflection"] == "ok"
+
+
+def test_ball_end_mill_is_reported_not_available(tmp_path, monkeypatch):
+    _fake_api(monkeypatch, [])
+    job = _job(tmp_path)
+    job.tool = dict(job.tool, kind="ball", corner_radius_mm=3.0)
+    job.coefficients = "kim_zas_ball12"
+    res = st.stage_deflection(job, st.stage_stock(job), st.stage_program(job), compensate=True)
+    assert not res.available and "flat end mill" in res.reason
