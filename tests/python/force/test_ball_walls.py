@@ -179,3 +179,14 @@ def test_flat_end_mill_window_equals_zmap_wall(mode):
     F = nf.flat_end_forces(m, th, ws)
     scale = np.linalg.norm(F[:, :2], axis=1).mean()
     np.testing.assert_allclose(G.mean(axis=0), F.mean(axis=0), atol=0.003 * scale + 0.005)
+
+
+def test_slot_radial_depth_is_the_diameter():
+    """A slot is cut by the whole tool: cutter_forces takes ae = D or None for it and names ae otherwise."""
+    kw = dict(tool="ball", diameter=12.0, flutes=2, helix_deg=30.0, feed_per_tooth=0.05, ap=3.0, mode="slot",
+              samples_per_revolution=36)
+    _, a = nf.cutter_forces(**kw)
+    _, b = nf.cutter_forces(ae=12.0, **kw)
+    np.testing.assert_array_equal(a, b)
+    with pytest.raises(ValueError, match="ae = 6"):
+        nf.cutter_forces(ae=6.0, **kw)
