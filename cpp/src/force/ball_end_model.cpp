@@ -115,7 +115,6 @@ void ball_end_forces(const BallEndModel& model, BallEndWorkspace& ws, const Eige
   const double ap = model.axial_depth * (1.0 + 1e-12);
   const int N = ws.flutes_;
   const int bins = map ? map->bins() : 0;
-  const bool tilted = model.inclination != 0.0;
   for (Eigen::Index a = 0; a < angles.size(); ++a) {
     double fx = 0.0, fy = 0.0;
     for (int i = 0; i < rows; ++i) {
@@ -132,9 +131,10 @@ void ball_end_forces(const BallEndModel& model, BallEndWorkspace& ws, const Eige
           int b = static_cast<int>(ph * bins / two_pi);
           b = b >= bins ? bins - 1 : b;
           in = map->mask(i, b) != 0;
-        } else {  // window on the immersion in the inclined (AA) plane, eq. 4 (= φ when ξ = 0)
-          double az = tilted ? std::atan2(Xp, Y) : ph;
-          az = az < 0.0 ? az + two_pi : az;
+        } else {  // straight walls parallel to the feed (see the header): the element cuts where the
+                  // point of the largest circle (radius R) at its own distance Y from the feed line,
+                  // on the front half, lies in the window
+          const double az = std::acos(std::clamp(Y / R, -1.0, 1.0));  // in [0, π]
           double u = az - st;
           u = u < 0.0 ? u + two_pi : u;
           in = u <= span;

@@ -62,7 +62,9 @@ def register(sub) -> None:
     p.add_argument("--feed-per-tooth", type=_positive("--feed-per-tooth"), required=True, metavar="MM",
                    help="feed per tooth c [mm]")
     p.add_argument("--ap", type=_positive("--ap"), required=True, metavar="MM", help="axial depth of cut [mm]")
-    p.add_argument("--ae", type=_positive("--ae"), metavar="MM", help="radial depth of cut [mm] (up/down milling)")
+    p.add_argument("--ae", type=_positive("--ae"), metavar="MM",
+                   help="radial depth of cut [mm] (up/down milling), from the wall to the tool's largest radius; "
+                        "ball elements of smaller radius meet the wall at their own angle")
     p.add_argument("--mode", choices=("up", "down", "slot"), default="slot", help="milling mode (default slot)")
     g = p.add_mutually_exclusive_group(required=True)
     g.add_argument("--coefficients", metavar="K=V,...",
@@ -96,6 +98,9 @@ def run(args) -> int:
         raise CliError(f"--ae is required for --mode {args.mode}")
     if args.ae is not None and args.ae > args.diameter:
         raise CliError(f"--ae = {args.ae}: must not exceed --diameter ({args.diameter}) [mm]")
+    if args.mode == "slot" and args.ae is not None and abs(args.ae - args.diameter) > 1e-9 * args.diameter:
+        raise CliError(f"--ae = {args.ae}: a slot is cut by the whole tool; give --ae {args.diameter:g} "
+                       f"(the diameter) or leave it out")
     if abs(args.inclination) >= 80:
         raise CliError(f"--inclination = {args.inclination}: must be in (-80, 80) degrees")
     coefficients = None

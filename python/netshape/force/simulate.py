@@ -61,6 +61,9 @@ def cutter_forces(
     Returns (angles (n,) [rad], forces (n, 3) [N]); the angle is the immersion φ of flute 1 at the
     tool tip. ``tool`` = "flat" (linear edge ``coefficients`` or a named linear set) or "ball"
     (a BallEndCoefficients or a named ball set, default ``kim_zas_ball12``; ``inclination_deg`` = ramp ξ).
+    ``ae`` [mm] is measured from the wall to the tool's largest radius (diameter/2); in up and down
+    milling a ball element of radius r(z) < diameter/2 meets that wall at its own angle (no cut where
+    r(z) ≤ diameter/2 − ae). For ``mode="slot"`` ae is the diameter or None. See docs/force.md.
     """
     if tool not in ("flat", "ball"):
         raise ValueError(f"tool = {tool!r}: must be flat or ball")
@@ -85,6 +88,9 @@ def cutter_forces(
     if mode_e != _f.MillingMode.slot:
         if ae is None or not math.isfinite(ae) or ae <= 0 or ae > diameter:
             raise ValueError(f"ae = {ae}: radial depth must be in (0, diameter] [mm] for {mode} milling")
+    elif ae is not None and not (math.isfinite(ae) and abs(ae - diameter) <= 1e-9 * diameter):
+        raise ValueError(f"ae = {ae}: a slot is cut by the whole tool, its radial depth is the diameter "
+                         f"({diameter:g} mm); give ae = diameter or none")
     engagement = _f.AngularEngagement.from_mode(mode_e, radius, float(ae or 0.0))
     count = int(round(samples_per_revolution * revolutions))
     angles = _f.rotation_angles(count, float(revolutions))

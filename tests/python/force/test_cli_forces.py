@@ -40,6 +40,7 @@ def test_ball_named_set(tmp_path):
     (["--coefficients", "Ktc=abc"], "Ktc"),
     (["--coefficients", "Kxx=1"], "Kxx"),
     (["--mode", "up", "--ae", "12"], "--ae"),
+    (["--mode", "slot", "--ae", "4"], "--ae"),
     (["--helix", "90"], "--helix"),
     (["--flutes", "0"], "--flutes"),
 ])
@@ -74,3 +75,17 @@ def test_unknown_set(tmp_path, capsys):
     args.insert(args.index("--coefficient-set") + 1, "nope")
     assert main(args + ["--csv", str(tmp_path / "x.csv")]) == 2
     assert "nope" in capsys.readouterr().err
+
+
+def test_ball_side_cut_wall_per_element(tmp_path):
+    """Issue 24 cut (seeds/001 set, D 12, down milling, ae 3, ap 2, c 0.08): every ball element meets the
+    wall 3 mm from the axis at its own radius; the mean force is the one of the elements a straight wall
+    reaches (≈ (6.0, 7.5) N by an independent evaluation quoted in the issue), not the full-radius
+    window's (19.05, 30.27) N."""
+    csv = tmp_path / "d.csv"
+    args = ["forces", "--tool", "ball", "--diameter", "12", "--flutes", "2", "--rpm", "600", "--feed-per-tooth",
+            "0.08", "--ap", "2", "--ae", "3", "--mode", "down", "--coefficient-set", "kim_zas_ball12",
+            "--csv", str(csv)]
+    assert main(args) == 0
+    mean = np.loadtxt(csv, delimiter=",", skiprows=1)[:, 1:3].mean(axis=0)
+    np.testing.assert_allclose(mean, [6.0, 7.5], rtol=0.05)

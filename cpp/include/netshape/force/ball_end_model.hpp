@@ -16,6 +16,16 @@
 /// dw = R cos φ'·Δψ. dF_T = K_T(ψ) t^{m_T} dw, dF_R = K_R(ψ) t^{m_R} dw, projected in the tool frame
 /// with DESIGN §2's formulas (seeds/001 eq. 8 writes them with the feed along its y axis). ξ > 0 is an
 /// upward ramp (the feed climbs along +Z). No axial force (the paper models none): Fz = 0.
+///
+/// Steady cut (no map): `engagement` is the window at the tool's largest radius R and stands for
+/// straight walls parallel to the feed, at y = R cos φ_st and y = R cos φ_ex in the tool frame
+/// (DESIGN §2). An element cuts where it is ahead of the feed (X' > 0), below a_p, and the point of
+/// the radius-R circle on the front half at the element's own distance Y from the feed line lies in
+/// the window: acos(Y/R) ∈ [φ_st, φ_ex]. Up milling with a_e (window [0, acos(1 − a_e/R)]) is the wall
+/// y = R − a_e with material on +Y: an element of radius r cuts over φ ∈ [0, acos((R − a_e)/r)] and
+/// not at all when r ≤ R − a_e; down milling mirrors it (wall y = −(R − a_e), material on −Y); a slot
+/// [0, π] has no wall and every element cuts its whole front half. Rows at radius R (the cylinder
+/// above the equator) get the window itself. The chip thickness does not depend on the window.
 
 #include "netshape/core/types.hpp"
 #include "netshape/force/coefficients.hpp"
@@ -30,8 +40,8 @@ struct BallEndModel {
   double axial_depth = 3.0;            ///< a_p [mm], measured from the tip along the feed-normal axis
   double feed_per_tooth = 0.05;        ///< f [mm/tooth]
   double inclination = 0.0;            ///< ramp angle ξ [rad], in (−80°, 80°); > 0 climbs
-  AngularEngagement engagement{};      ///< window on the immersion ϕ in the inclined plane (eq. 4;
-                                       ///< = tool-frame φ for ξ = 0); ignored with a map
+  AngularEngagement engagement{};      ///< window at the largest radius R = walls parallel to the
+                                       ///< feed (see above); ignored with a map
   BallEndCoefficients coefficients{};
   double element_angle = 0.0174532925199432957;  ///< target Δψ [rad] (default 1°)
   double disk_height = 0.05;           ///< target dz of the cylindrical part [mm]

@@ -22,7 +22,10 @@ struct AngularEngagement {
   double phi_ex = pi;   ///< exit angle [rad], phi_st < phi_ex ≤ phi_st + 2π
   void validate() const;
   /// Up milling: [0, acos(1 − a_e/R)]; down milling: [π − acos(1 − a_e/R), π]; slot: [0, π]
-  /// (a_e is ignored for slot). radius R [mm] > 0, radial_depth a_e [mm] in (0, 2R].
+  /// (a_e is ignored for slot). radius R [mm] > 0 is the tool's largest radius, radial_depth a_e [mm]
+  /// in (0, 2R] is measured from the wall to that radius (the wall is at R − a_e from the axis).
+  /// The window is the one of an element at radius R; BallEndModel reads it as the wall and gives an
+  /// element of radius r < R its own, narrower window.
   static AngularEngagement from_mode(MillingMode mode, double radius, double radial_depth);
 };
 
