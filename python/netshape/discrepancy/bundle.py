@@ -311,8 +311,8 @@ def _load_volumetric(doc: dict, root: Path, where: str) -> Bundle:
         cols = _read_csv(path, VOLUMETRIC_COLUMNS, VOLUMETRIC_OPTIONAL)
         d = cols.get("direction")
         if d is not None and not np.all(np.abs(d) == 1.0):
-            bad = d[np.abs(d) != 1.0][0]
-            raise _fail(str(path), f"column 'direction': {bad!r} must be +1 or -1")
+            j = int(np.argmax(np.abs(d) != 1.0))
+            raise _fail(str(path), f"line {j + 2}, column 'direction': {float(d[j])!r} must be +1 or -1")
         out.append(VolumetricExperiment(
             file=str(path), points=np.column_stack([cols[k] for k in VOLUMETRIC_COLUMNS[:3]]),
             errors=np.column_stack([cols[k] for k in VOLUMETRIC_COLUMNS[3:]]), tool_length=L,

@@ -201,6 +201,9 @@ class _PerAxis(Effect):
     def apply(self, problem, spec, x):  # x = [axis index, ...] as returned by fit
         return self.apply_axis(problem, spec, _AXES[int(round(x[0]))], x[1:])
 
+    def parameters_of(self, x):  # x = [axis index, ...]
+        return self.parameters_of_axis(_AXES[int(round(x[0]))], x[1:])
+
     def refit(self, problem, spec, fit):
         axis = _AXES[int(round(fit.x[0]))]
         return (lambda x: self.apply_axis(problem, spec, axis, x)), fit.x[1:], self.bounds(problem, spec)

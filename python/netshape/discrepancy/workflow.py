@@ -119,7 +119,7 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
     rms_before = problem.rms(spec)
     noise = problem.noise_estimate(spec)
     loc = problem.localise(spec)
-    added, rounds = [], []
+    added, rounds, chain = [], [], []
     k_total = k_nuis
     rms_cur = rms_before
     cv_cur = rms_before
@@ -151,7 +151,15 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
         spec = fit.spec
         k_total += fit.k
         rms_cur, cv_cur, bic_cur = best["rms"], best["cv_rms"], best["bic"]
+        chain.append((cat[best["effect"]], fit))
         added.append({"effect": best["effect"], "parameters": fit.parameters, "rms_after": rms_cur})
+        if len(chain) > 1:  # refit all added effects together: earlier ones were fitted without this one
+            chain, spec = _joint_refit(problem, spec0, chain)
+            for entry, (eff, f) in zip(added, chain):
+                entry["parameters"] = f.parameters
+            rms_cur = problem.rms(spec)
+            bic_cur = problem.bic(spec, k_total)
+            added[-1]["rms_after"] = rms_cur
         del cat[best["effect"]]
     clean = [[{k: v for k, v in c.items() if k != "_fit"} for c in r] for r in rounds]
     notes = list(getattr(problem, "notes", []))
@@ -166,6 +174,38 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
                      localisation=loc, localisation_after=problem.localise(spec) if added else loc,
                      skipped=skipped, notes=notes, experiments=problem.experiment_notes(spec), unit=problem.unit,
                      problem=problem, spec_before=spec0, spec_after=spec)
+
+
+def _joint_refit(problem, base, chain):
+    """Refit the parameters of every effect in ``chain`` [(effect, EffectFit)] together (their
+    discrete choices kept), applied in order to ``base``. Returns (new chain, spec)."""
+    import numpy as np
+
+    from .catalogue import EffectFit
+
+    parts, x0, lo, hi = [], [], [], []
+    s = base
+    for eff, fit in chain:
+        make, x, (blo, bhi) = eff.refit(problem, s, fit)
+        x = np.atleast_1d(np.asarray(x, float))
+        parts.append(slice(len(x0), len(x0) + x.size))
+        x0 += list(x)
+        lo += list(np.broadcast_to(blo, x.shape))
+        hi += list(np.broadcast_to(bhi, x.shape))
+        s = make(x)
+
+    def make_all(z):
+        s = base
+        for (eff, fit), sl in zip(chain, parts):
+            s = eff.refit(problem, s, fit)[0](z[sl])
+        return s
+
+    z, spec = problem.least_squares(make_all, [np.array(x0)], (np.array(lo), np.array(hi)))
+    new = []
+    for (eff, fit), sl in zip(chain, parts):
+        full = np.concatenate([fit.x[: fit.x.size - (sl.stop - sl.start)], z[sl]])
+        new.append((eff, EffectFit(eff.parameters_of(full), spec, fit.k, full)))
+    return new, spec
 
 
 def _clean(v):

@@ -82,13 +82,14 @@ def write_csv(path: Path, header: list, data: np.ndarray) -> None:
 
 
 def force_bundle(folder, *, runout=None, edges=None, exponent=None, mode=None, noise=2.0, form="angle",
-                 revolutions=3, per_rev=180, seed=1, conditions=CONDITIONS, phase0=1.0):
+                 revolutions=3, per_rev=180, seed=1, conditions=CONDITIONS, phase0=1.0, tool=None):
     """Write a cutting_force bundle to ``folder``. Hidden effects: ``runout`` (ρ [mm], λ [deg]),
     ``edges`` (true Kte, Kre, Kae; the manifest's model keeps MODEL's), ``exponent`` (chip exponent p),
     ``mode`` (f_n [Hz], ζ). ``form``: "angle" (angle_deg) or "time" (time_s, flute 1 at θ = phase0
     [rad] when t = 0). Returns the folder."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
+    tool = tool or TOOL
     rng = np.random.default_rng(seed)
     truth = dict(MODEL)
     if edges is not None:
@@ -101,7 +102,7 @@ def force_bundle(folder, *, runout=None, edges=None, exponent=None, mode=None, n
         k = np.arange((revolutions + settle) * per_rev)
         theta = 2 * np.pi * k / per_rev + (phase0 if form == "time" else 0.0)
         F = oracle_forces(theta, feed=c, mode=m, ae=ae, coefficients=truth, runout=runout, exponent=exponent,
-                          h_ref=h_ref)
+                          h_ref=h_ref, tool=tool)
         if mode is not None:
             from scipy.signal import lsim
 
@@ -120,7 +121,7 @@ def force_bundle(folder, *, runout=None, edges=None, exponent=None, mode=None, n
             write_csv(folder / name, ["time_s", "fx_N", "fy_N", "fz_N"], np.column_stack([t, F]))
         exps.append({"file": name, "spindle_rpm": RPM, "feed_per_tooth_mm": c, "axial_depth_mm": AP,
                      "radial_depth_mm": ae, "mode": m})
-    write_manifest(folder, "cutting_force", {"tool": TOOL, "model": MODEL}, exps)
+    write_manifest(folder, "cutting_force", {"tool": tool, "model": MODEL}, exps)
     return folder
 
 
