@@ -26,7 +26,8 @@
 ``angle_deg`` is the immersion of flute 1 at the tool tip; forces act on the cutter in the cutting
 frame (X feed, Z tool axis into the spindle, Y = Z × X). An experiment may instead name a Kistler
 DynoWare export with ``format = "dynoware"`` (and ``to_cutter = "leekunhwee"`` for that set-up's
-channel mapping, see :func:`netshape.force.read_dynoware`); it is then a time series.
+channel mapping, see :func:`netshape.force.read_dynoware`); it is then a time series. A time series
+may be cut to ``time_window_s = [start, end]``: the samples from start to end seconds after its first.
 
 ``kind = "volumetric_error"``::
 
@@ -214,7 +215,7 @@ def _load_force(doc: dict, root: Path, where: str) -> Bundle:
         raise _fail(where, "no [[experiment]] tables")
     out = []
     keys = ("file", "spindle_rpm", "feed_per_tooth_mm", "axial_depth_mm", "radial_depth_mm", "mode", "format",
-            "to_cutter")
+            "to_cutter", "time_window_s")
     for i, e in enumerate(exps, start=1):
         we = f"{where}: [[experiment]] {i}"
         _check_keys(e, keys, we)
@@ -252,6 +253,15 @@ def _load_force(doc: dict, root: Path, where: str) -> Bundle:
             raise _fail(we, f"format = {fmt!r}: must be 'csv' or 'dynoware'")
         if times is not None and not np.all(np.diff(times) > 0):
             raise _fail(str(path), "column 'time_s': times must increase strictly")
+        if "time_window_s" in e:
+            win = e["time_window_s"]
+            if (times is None or not isinstance(win, list) or len(win) != 2
+                    or not all(isinstance(v, (int, float)) and math.isfinite(v) for v in win) or not win[0] < win[1]):
+                raise _fail(we, f"time_window_s = {win!r}: must be [start, end] in s (start < end) of a time series")
+            keep = (times - times[0] >= win[0]) & (times - times[0] <= win[1])
+            if keep.sum() < 2:
+                raise _fail(we, f"time_window_s = {win!r}: holds {int(keep.sum())} samples of {path.name}")
+            times, forces = times[keep], forces[keep]
         out.append(ForceExperiment(file=str(path), spindle_rpm=rpm, feed_per_tooth=c, axial_depth=ap,
                                    radial_depth=ae, mode=mode, forces=forces, angles=angles,
                                    times=None if times is None else times - 0.0))

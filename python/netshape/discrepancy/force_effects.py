@@ -39,7 +39,7 @@ import numpy as np
 
 from netshape._core import force as _f
 
-from .catalogue import Effect, register_effect
+from .catalogue import Effect, EffectFit, register_effect
 from .problem import Problem, robust_difference_noise
 
 GRID = 512  # angles per revolution of the model grid
@@ -446,6 +446,35 @@ class Runout(Effect):
         if len(x) == 1:  # 2 flutes: x = ρ·cos λ
             return dataclasses.replace(spec, runout=(abs(float(x[0])), 0.0 if x[0] >= 0 else math.pi))
         return dataclasses.replace(spec, runout=(float(x[0]), float(x[1])))
+
+    def fit(self, problem, spec, train=None):
+        """The least-squares fit, then, for time series, the flute each recording calls 1 is made the
+        same physical flute: each recording's θ0 is tried at its N equivalent values θ0 + m·2π/N
+        (equal without runout, different with it) and the fit is repeated from the best."""
+        f = super().fit(problem, spec, train)
+        nuis = problem.nuisance_experiments()
+        if train is not None or not nuis:
+            return f
+        for _ in range(3):
+            s = f.spec
+            phases = list(problem.nuisance_of(s))
+            changed = False
+            for col, i in enumerate(nuis):
+                costs = []
+                for m in range(problem.flutes):
+                    trial = problem.with_nuisance(s, [p + (2 * np.pi * m / problem.flutes if c == col else 0.0)
+                                                      for c, p in enumerate(phases)])
+                    costs.append(float(np.sum((problem.measured[i] - problem.predict(trial)[i]) ** 2)))
+                m = int(np.argmin(costs))
+                if m and costs[m] < 0.999 * costs[0]:
+                    phases[col] += 2 * np.pi * m / problem.flutes
+                    changed = True
+            if not changed:
+                break
+            base = problem.with_nuisance(spec, phases)
+            x, new = problem.least_squares(lambda x: self.apply(problem, base, x), [f.x], self.bounds(problem, base))
+            f = EffectFit(self.parameters_of(x), new, len(x), x)
+        return f
 
     def parameters_of(self, x):
         if len(x) == 1:

@@ -154,7 +154,7 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
         chain.append((cat[best["effect"]], fit))
         added.append({"effect": best["effect"], "parameters": fit.parameters, "rms_after": rms_cur})
         if len(chain) > 1:  # refit all added effects together: earlier ones were fitted without this one
-            chain, spec = _joint_refit(problem, spec0, chain)
+            chain, spec = _joint_refit(problem, problem.with_nuisance(spec0, problem.nuisance_of(spec)), chain)
             for entry, (eff, f) in zip(added, chain):
                 entry["parameters"] = f.parameters
             rms_cur = problem.rms(spec)
