@@ -77,7 +77,7 @@ def test_malformed_volumetric_bundle(tmp_path):
     text = (vb / "v1.csv").read_text().splitlines()
     text[3] = text[3].rsplit(",", 1)[0] + ",0"
     (vb / "v1.csv").write_text("\n".join(text) + "\n")
-    with pytest.raises(ValueError, match=r"v1.csv: line 5, column 'direction': 0.0 must be \+1 or -1"):
+    with pytest.raises(ValueError, match=r"v1.csv: line 4, column 'direction': 0.0 must be \+1 or -1"):
         nd.load_bundle(vb)
 
 
