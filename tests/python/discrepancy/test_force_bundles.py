@@ -62,26 +62,38 @@ def test_runout_three_flutes(tmp_path):
     assert d.rms_after < 1.1 * NOISE
 
 
-def test_edge_forces_are_named_and_recovered(tmp_path):
+def test_runout_time_series(tmp_path):
+    """The same runout as time series: which flute is 1 is the fit's choice, so ρ·cos λ is recovered
+    up to its sign (λ 0° or 180°), within 0.3 µm."""
+    d = nd.diagnose(bundle(tmp_path, runout=(0.008, 60.0), form="time"))
+    assert d.effect == "runout"
+    assert d.parameters["lambda_deg"] in (0.0, 180.0) and abs(d.parameters["rho_mm"] - 0.004) < 3e-4
+    assert d.rms_after < 1.1 * NOISE
+
+
+@pytest.mark.parametrize("form", ["angle", "time"])
+def test_edge_forces_are_named_and_recovered(tmp_path, form):
     """True Kte, Kre, Kae = 32, 40, 20 N/mm where the model has 16, 20, 10: recovered within 1 N/mm."""
-    d = nd.diagnose(bundle(tmp_path, edges=(32.0, 40.0, 20.0), form="time"))
+    d = nd.diagnose(bundle(tmp_path, edges=(32.0, 40.0, 20.0), form=form))
     assert d.effect == "edge_forces"
     got = [d.parameters[k] for k in ("Kte_N_per_mm", "Kre_N_per_mm", "Kae_N_per_mm")]
     np.testing.assert_allclose(got, [32.0, 40.0, 20.0], atol=1.0)
     assert d.rms_after < 1.1 * NOISE < d.rms_before / 2
 
 
-def test_size_effect_is_named_and_recovered(tmp_path):
+@pytest.mark.parametrize("form", ["angle", "time"])
+def test_size_effect_is_named_and_recovered(tmp_path, form):
     """Chip exponent p = 0.7 (h_ref the geometric mean feed): named, p within 0.03."""
-    d = nd.diagnose(bundle(tmp_path, exponent=0.7))
+    d = nd.diagnose(bundle(tmp_path, exponent=0.7, form=form))
     assert d.effect == "size_effect"
     assert abs(d.parameters["chip_exponent"] - 0.7) < 0.03
     assert d.rms_after < 1.1 * NOISE < d.rms_before / 2
 
 
-def test_structural_mode_is_named_and_recovered(tmp_path):
-    """A 1200 Hz mode with ζ = 0.04 (tooth passing 200 Hz), time series: f within 1 %, ζ within 0.01."""
-    d = nd.diagnose(bundle(tmp_path, mode=(1200.0, 0.04), form="time"))
+@pytest.mark.parametrize("form", ["angle", "time"])
+def test_structural_mode_is_named_and_recovered(tmp_path, form):
+    """A 1200 Hz mode with ζ = 0.04 (tooth passing 200 Hz): f within 1 %, ζ within 0.01."""
+    d = nd.diagnose(bundle(tmp_path, mode=(1200.0, 0.04), form=form))
     assert d.effect == "structural_mode"
     assert abs(d.parameters["frequency_hz"] / 1200.0 - 1) < 0.01
     assert abs(d.parameters["damping_ratio"] - 0.04) < 0.01
