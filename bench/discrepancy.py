@@ -44,17 +44,28 @@ def main(argv=None):
     print(f"load average {os.getloadavg()[0]:.1f}")
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
-        cases = [("force, 4 experiments, angle_deg, hidden runout", force_bundle(tmp / "fa", runout=(0.008, 60.0))),
-                 ("force, 4 experiments, time_s, hidden runout", force_bundle(tmp / "ft", runout=(0.008, 60.0),
-                                                                            form="time")),
-                 ("volumetric, 2 x 105 points, hidden squareness",
-                  volumetric_bundle(tmp / "v", squareness={"EC0Y": 30.0}))]
+        cases = [
+            (
+                "force, 4 experiments, angle_deg, hidden runout",
+                force_bundle(tmp / "fa", runout=(0.008, 60.0)),
+            ),
+            (
+                "force, 4 experiments, time_s, hidden runout",
+                force_bundle(tmp / "ft", runout=(0.008, 60.0), form="time"),
+            ),
+            (
+                "volumetric, 2 x 105 points, hidden squareness",
+                volumetric_bundle(tmp / "v", squareness={"EC0Y": 30.0}),
+            ),
+        ]
         print("| bundle | effect found | CPU s | wall s | rms before → after |")
         print("|---|---|---|---|---|")
         for label, folder in cases:
             b = nd.load_bundle(folder)
             cpu, wall, d = timed(lambda: nd.diagnose(b), args.repeats)
-            print(f"| {label} | {d.effect} | {cpu:.2f} | {wall:.2f} | {d.rms_before:.4g} → {d.rms_after:.4g} |")
+            print(
+                f"| {label} | {d.effect} | {cpu:.2f} | {wall:.2f} | {d.rms_before:.4g} → {d.rms_after:.4g} |"
+            )
         # one model evaluation with runout: kernel grid + interpolation vs the NumPy element sum
         b = nd.load_bundle(cases[0][1])
         prob = nd.ForceProblem(b)
@@ -68,13 +79,20 @@ def main(argv=None):
             return prob.predict(spec)
 
         def numpy_sum():
-            return [oracle_forces(e.angles, feed=c, mode=m, ae=ae, coefficients=MODEL, runout=(0.008, 60.0), dz=0.05)
-                    for e, (m, ae, c) in zip(b.experiments, CONDITIONS)]
+            return [
+                oracle_forces(
+                    e.angles, feed=c, mode=m, ae=ae, coefficients=MODEL, runout=(0.008, 60.0), dz=0.05
+                )
+                for e, (m, ae, c) in zip(b.experiments, CONDITIONS)
+            ]
 
         ck, _, _ = timed(kernel, 5)
         cn, _, _ = timed(numpy_sum, 5)
-        print(f"\none model evaluation (4 experiments x 540 angles, 60 disks, runout): kernel {1e3 * ck:.1f} ms, "
-              f"NumPy element sum {1e3 * cn:.1f} ms, ratio {cn / ck:.1f}x")
+        print(
+            "\none model evaluation (4 experiments x 540 angles, 60 disks, runout): "
+            f"kernel {1e3 * ck:.1f} ms, "
+            f"NumPy element sum {1e3 * cn:.1f} ms, ratio {cn / ck:.1f}x"
+        )
 
 
 if __name__ == "__main__":

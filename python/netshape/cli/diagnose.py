@@ -24,13 +24,20 @@ examples:
 
 
 def register(sub) -> None:
-    p = sub.add_parser("diagnose", help="name the effect a model misses from measurements",
-                       description=_DESCRIPTION, epilog=_EPILOG,
-                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = sub.add_parser(
+        "diagnose",
+        help="name the effect a model misses from measurements",
+        description=_DESCRIPTION,
+        epilog=_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
     p.add_argument("bundle", metavar="BUNDLE_DIR", help="folder with manifest.toml and the CSV files")
-    p.add_argument("--json", required=True, metavar="OUT.json",
-                   help="write kind, effect, parameters, effects, rms_before, rms_after, noise_estimate, "
-                   "candidates")
+    p.add_argument(
+        "--json",
+        required=True,
+        metavar="OUT.json",
+        help="write kind, effect, parameters, effects, rms_before, rms_after, noise_estimate, candidates",
+    )
     p.add_argument("--report", metavar="OUT_DIR", help="write residual plots (PNG) and index.html here")
     p.set_defaults(func=run)
 
@@ -51,6 +58,8 @@ def run(args) -> int:
     print(d.summary())
     for e in d.experiments:
         if "flute1_angle_at_t0_deg" in e:
-            print(f"  {e['file']}: flute 1 at t = 0 at {e['flute1_angle_at_t0_deg']:.1f} deg, "
-                  f"spindle {e['spindle_rpm_estimated']:.1f} rpm")
+            print(
+                f"  {e['file']}: flute 1 at t = 0 at {e['flute1_angle_at_t0_deg']:.1f} deg, "
+                f"spindle {e['spindle_rpm_estimated']:.1f} rpm"
+            )
     return 0

@@ -22,7 +22,20 @@ from .volumetric_effects import VolumetricProblem, VolumetricSpec
 from .workflow import Diagnosis, diagnose, make_problem
 
 __all__ = [
-    "Bundle", "Diagnosis", "Effect", "EffectFit", "ForceExperiment", "ForceProblem", "ForceSpec",
-    "VolumetricExperiment", "VolumetricProblem", "VolumetricSpec", "catalogue", "diagnose", "load_bundle",
-    "make_problem", "register_effect", "unregister_effect",
+    "Bundle",
+    "Diagnosis",
+    "Effect",
+    "EffectFit",
+    "ForceExperiment",
+    "ForceProblem",
+    "ForceSpec",
+    "VolumetricExperiment",
+    "VolumetricProblem",
+    "VolumetricSpec",
+    "catalogue",
+    "diagnose",
+    "load_bundle",
+    "make_problem",
+    "register_effect",
+    "unregister_effect",
 ]

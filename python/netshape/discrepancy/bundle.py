@@ -68,15 +68,26 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10 needs the tomli pa
 
 KINDS = ("cutting_force", "volumetric_error", "wall_error")
 FORCE_COLUMNS = ("fx_N", "fy_N", "fz_N")
-FORCE_MODEL_KEYS = ("Ktc_N_per_mm2", "Krc_N_per_mm2", "Kac_N_per_mm2", "Kte_N_per_mm", "Kre_N_per_mm",
-                    "Kae_N_per_mm")
+FORCE_MODEL_KEYS = (
+    "Ktc_N_per_mm2",
+    "Krc_N_per_mm2",
+    "Kac_N_per_mm2",
+    "Kte_N_per_mm",
+    "Kre_N_per_mm",
+    "Kae_N_per_mm",
+)
 VOLUMETRIC_COLUMNS = ("x_mm", "y_mm", "z_mm", "ex_mm", "ey_mm", "ez_mm")
 VOLUMETRIC_OPTIONAL = ("t_s", "direction")
 _AXES = "XYZ"
 #: ISO 230-1 names allowed in a volumetric [model]: the 18 axis components, the three squareness
 #: errors and the spindle tilt.
 VOLUMETRIC_MODEL_KEYS = tuple(f"E{d}{a}" for a in _AXES for d in "XYZABC") + (
-    "EC0Y", "EB0Z", "EA0Z", "spindle_tilt_a", "spindle_tilt_b")
+    "EC0Y",
+    "EB0Z",
+    "EA0Z",
+    "spindle_tilt_a",
+    "spindle_tilt_b",
+)
 
 
 @dataclass
@@ -161,7 +172,10 @@ def _read_csv(path: Path, required: tuple, optional: tuple, alternatives: tuple 
     allowed = set(required) | set(optional) | set(alternatives)
     for h in header:
         if h not in allowed:
-            raise _fail(str(path), f"unknown column {h!r} (expected {', '.join((*alternatives, *required, *optional))})")
+            raise _fail(
+                str(path),
+                f"unknown column {h!r} (expected {', '.join((*alternatives, *required, *optional))})",
+            )
     if len(set(header)) != len(header):
         raise _fail(str(path), f"repeated column in header {header}")
     for r in required:
@@ -180,7 +194,9 @@ def _read_csv(path: Path, required: tuple, optional: tuple, alternatives: tuple 
             try:
                 v = float(text)
             except ValueError:
-                raise _fail(str(path), f"line {i}, column {header[j]!r}: {text.strip()!r} is not a number") from None
+                raise _fail(
+                    str(path), f"line {i}, column {header[j]!r}: {text.strip()!r} is not a number"
+                ) from None
             if not math.isfinite(v):
                 raise _fail(str(path), f"line {i}, column {header[j]!r}: {text.strip()!r} is not finite")
             out[i - 2, j] = v
@@ -203,8 +219,12 @@ def _load_force(doc: dict, root: Path, where: str) -> Bundle:
     helix = _number(tool, "helix_deg", w)
     if not -80.0 < helix < 80.0:
         raise _fail(w, f"helix_deg = {helix}: must be in (-80, 80) [deg]")
-    tool_out = {"type": ttype, "diameter": _number(tool, "diameter_mm", w, positive=True), "flutes": flutes,
-                "helix": math.radians(helix)}
+    tool_out = {
+        "type": ttype,
+        "diameter": _number(tool, "diameter_mm", w, positive=True),
+        "flutes": flutes,
+        "helix": math.radians(helix),
+    }
     model = doc.get("model")
     if not isinstance(model, dict):
         raise _fail(where, f"missing table [model] ({', '.join(FORCE_MODEL_KEYS)})")
@@ -214,8 +234,17 @@ def _load_force(doc: dict, root: Path, where: str) -> Bundle:
     if not isinstance(exps, list) or not exps:
         raise _fail(where, "no [[experiment]] tables")
     out = []
-    keys = ("file", "spindle_rpm", "feed_per_tooth_mm", "axial_depth_mm", "radial_depth_mm", "mode", "format",
-            "to_cutter", "time_window_s")
+    keys = (
+        "file",
+        "spindle_rpm",
+        "feed_per_tooth_mm",
+        "axial_depth_mm",
+        "radial_depth_mm",
+        "mode",
+        "format",
+        "to_cutter",
+        "time_window_s",
+    )
     for i, e in enumerate(exps, start=1):
         we = f"{where}: [[experiment]] {i}"
         _check_keys(e, keys, we)
@@ -227,9 +256,13 @@ def _load_force(doc: dict, root: Path, where: str) -> Bundle:
         rpm = _number(e, "spindle_rpm", we, positive=True)
         c = _number(e, "feed_per_tooth_mm", we, positive=True)
         ap = _number(e, "axial_depth_mm", we, positive=True)
-        ae = _number(e, "radial_depth_mm", we, positive=True, default=tool_out["diameter"] if mode == "slot" else None)
+        ae = _number(
+            e, "radial_depth_mm", we, positive=True, default=tool_out["diameter"] if mode == "slot" else None
+        )
         if mode != "slot" and ae > tool_out["diameter"]:
-            raise _fail(we, f"radial_depth_mm = {ae}: larger than the tool diameter {tool_out['diameter']} mm")
+            raise _fail(
+                we, f"radial_depth_mm = {ae}: larger than the tool diameter {tool_out['diameter']} mm"
+            )
         fmt = e.get("format", "csv")
         path = Path(e["file"]) if Path(e["file"]).is_absolute() else root / e["file"]
         if fmt == "csv":
@@ -255,22 +288,39 @@ def _load_force(doc: dict, root: Path, where: str) -> Bundle:
             raise _fail(str(path), "column 'time_s': times must increase strictly")
         if "time_window_s" in e:
             win = e["time_window_s"]
-            if (times is None or not isinstance(win, list) or len(win) != 2
-                    or not all(isinstance(v, (int, float)) and math.isfinite(v) for v in win) or not win[0] < win[1]):
-                raise _fail(we, f"time_window_s = {win!r}: must be [start, end] in s (start < end) of a time series")
+            if (
+                times is None
+                or not isinstance(win, list)
+                or len(win) != 2
+                or not all(isinstance(v, (int, float)) and math.isfinite(v) for v in win)
+                or not win[0] < win[1]
+            ):
+                raise _fail(
+                    we, f"time_window_s = {win!r}: must be [start, end] in s (start < end) of a time series"
+                )
             keep = (times - times[0] >= win[0]) & (times - times[0] <= win[1])
             if keep.sum() < 2:
                 raise _fail(we, f"time_window_s = {win!r}: holds {int(keep.sum())} samples of {path.name}")
             times, forces = times[keep], forces[keep]
-        out.append(ForceExperiment(file=str(path), spindle_rpm=rpm, feed_per_tooth=c, axial_depth=ap,
-                                   radial_depth=ae, mode=mode, forces=forces, angles=angles,
-                                   times=None if times is None else times - 0.0))
+        out.append(
+            ForceExperiment(
+                file=str(path),
+                spindle_rpm=rpm,
+                feed_per_tooth=c,
+                axial_depth=ap,
+                radial_depth=ae,
+                mode=mode,
+                forces=forces,
+                angles=angles,
+                times=None if times is None else times - 0.0,
+            )
+        )
     return Bundle(kind="cutting_force", path=str(root), model=model_out, experiments=out, tool=tool_out)
 
 
 def _axis_list(value: Any, where: str) -> list:
     if not isinstance(value, list) or not all(isinstance(a, str) and a.upper() in _AXES for a in value):
-        raise _fail(where, f"{value!r}: must be a list of axis letters, e.g. [\"X\", \"Y\"]")
+        raise _fail(where, f'{value!r}: must be a list of axis letters, e.g. ["X", "Y"]')
     return [a.upper() for a in value]
 
 
@@ -299,8 +349,9 @@ def _load_volumetric(doc: dict, root: Path, where: str) -> Bundle:
     model_out = {}
     for k, v in model.items():
         coef = v if isinstance(v, list) else [v]
-        if not coef or any(isinstance(c, bool) or not isinstance(c, (int, float)) or not math.isfinite(c)
-                           for c in coef):
+        if not coef or any(
+            isinstance(c, bool) or not isinstance(c, (int, float)) or not math.isfinite(c) for c in coef
+        ):
             raise _fail(wm, f"{k} = {v!r}: must be a list of finite coefficients (constant first)")
         if (k[:2] in ("EC", "EB", "EA") and k[2] == "0" or k.startswith("spindle")) and len(coef) != 1:
             raise _fail(wm, f"{k} = {v!r}: a constant, one value")
@@ -323,12 +374,23 @@ def _load_volumetric(doc: dict, root: Path, where: str) -> Bundle:
         if d is not None and not np.all(np.abs(d) == 1.0):
             j = int(np.argmax(np.abs(d) != 1.0))
             raise _fail(str(path), f"line {j + 2}, column 'direction': {float(d[j])!r} must be +1 or -1")
-        out.append(VolumetricExperiment(
-            file=str(path), points=np.column_stack([cols[k] for k in VOLUMETRIC_COLUMNS[:3]]),
-            errors=np.column_stack([cols[k] for k in VOLUMETRIC_COLUMNS[3:]]), tool_length=L,
-            times=cols.get("t_s"), directions=d))
-    return Bundle(kind="volumetric_error", path=str(root), model=model_out, experiments=out,
-                  machine={"tool_side": ts, "workpiece_side": ws, "tool_length": length})
+        out.append(
+            VolumetricExperiment(
+                file=str(path),
+                points=np.column_stack([cols[k] for k in VOLUMETRIC_COLUMNS[:3]]),
+                errors=np.column_stack([cols[k] for k in VOLUMETRIC_COLUMNS[3:]]),
+                tool_length=L,
+                times=cols.get("t_s"),
+                directions=d,
+            )
+        )
+    return Bundle(
+        kind="volumetric_error",
+        path=str(root),
+        model=model_out,
+        experiments=out,
+        machine={"tool_side": ts, "workpiece_side": ws, "tool_length": length},
+    )
 
 
 def load_bundle(path: str | os.PathLike) -> Bundle:

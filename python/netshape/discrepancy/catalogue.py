@@ -81,8 +81,12 @@ class Effect:
 
     def fit(self, problem, spec, train=None) -> EffectFit:
         """Fit the effect on the ``train`` points (None: all) of ``problem`` starting from ``spec``."""
-        x, new = problem.least_squares(lambda x: self.apply(problem, spec, x), self.starts(problem, spec),
-                                       self.bounds(problem, spec), train=train)
+        x, new = problem.least_squares(
+            lambda x: self.apply(problem, spec, x),
+            self.starts(problem, spec),
+            self.bounds(problem, spec),
+            train=train,
+        )
         return EffectFit(self.parameters_of(x), new, len(x), x)
 
     def refit(self, problem, spec, fit: EffectFit) -> tuple:

@@ -82,8 +82,10 @@ class ForceProblem(Problem):
     def __init__(self, bundle):
         tool = bundle.tool
         if tool["type"] != "flat":
-            raise ValueError(f"{bundle.path}: [tool] type = {tool['type']!r}: the cutting_force workflow "
-                             "models flat end mills (the linear edge model); ball end mills are not supported")
+            raise ValueError(
+                f"{bundle.path}: [tool] type = {tool['type']!r}: the cutting_force workflow "
+                "models flat end mills (the linear edge model); ball end mills are not supported"
+            )
         self.bundle = bundle
         self.experiments = bundle.experiments
         self.measured = [np.asarray(e.forces, float) for e in self.experiments]
@@ -94,14 +96,24 @@ class ForceProblem(Problem):
         self.h_ref = float(np.exp(np.mean(np.log([e.feed_per_tooth for e in self.experiments]))))
         self._windows, self._models, self._ws = [], [], []
         for e in self.experiments:
-            eng = _f.AngularEngagement.from_mode(_f.milling_mode_from_string(e.mode), self.radius,
-                                                 float(e.radial_depth) if e.mode != "slot" else 0.0)
+            eng = _f.AngularEngagement.from_mode(
+                _f.milling_mode_from_string(e.mode),
+                self.radius,
+                float(e.radial_depth) if e.mode != "slot" else 0.0,
+            )
             self._windows.append((eng.phi_st, eng.phi_ex))
             dz = min(0.05, e.axial_depth / 30.0)
             pair = []
             for n in (self.flutes, 1):
-                m = _f.FlatEndModel(radius=self.radius, flutes=n, helix=self.helix, axial_depth=e.axial_depth,
-                                    feed_per_tooth=e.feed_per_tooth, engagement=eng, disk_height=dz)
+                m = _f.FlatEndModel(
+                    radius=self.radius,
+                    flutes=n,
+                    helix=self.helix,
+                    axial_depth=e.axial_depth,
+                    feed_per_tooth=e.feed_per_tooth,
+                    engagement=eng,
+                    disk_height=dz,
+                )
                 pair.append((m, _f.FlatEndWorkspace(m)))
             self._models.append(pair)
         self.omega = [2 * math.pi * e.spindle_rpm / 60.0 for e in self.experiments]  # [rad/s]
@@ -111,9 +123,11 @@ class ForceProblem(Problem):
         self._cache: dict = {}
         self.notes = []
         if any(e.time_based for e in self.experiments):
-            self.notes.append("time series: the angle of flute 1 at t = 0 was estimated by fitting the model; "
-                              "which physical flute is '1' cannot be known without a spindle encoder, so the "
-                              "runout angle lambda_deg refers to the flute the fit calls 1")
+            self.notes.append(
+                "time series: the angle of flute 1 at t = 0 was estimated by fitting the model; "
+                "which physical flute is '1' cannot be known without a spindle encoder, so the "
+                "runout angle lambda_deg refers to the flute the fit calls 1"
+            )
 
     # --- model evaluation ----------------------------------------------------------------------------
     def _kernel(self, i, flutes_one: bool, window, kc, ke, shift):
@@ -173,7 +187,9 @@ class ForceProblem(Problem):
         total = np.zeros((GRID, 3))
         for one, shift, delta in groups:
             if spec.chip_exponent is None:  # linear model: one call, edge forces where h > 0
-                total += self._kernel(i, one, _window(self._windows[i], -delta / c), kc, ke + delta * kc, shift)
+                total += self._kernel(
+                    i, one, _window(self._windows[i], -delta / c), kc, ke + delta * kc, shift
+                )
                 continue
             # cached unit terms: the fit of p only re-weights them
             for k, (hk, wk) in enumerate(zip(knots, weights)):
@@ -256,8 +272,17 @@ class ForceProblem(Problem):
 
     def initial_spec(self) -> ForceSpec:
         m = self.bundle.model
-        k = tuple(float(m[key]) for key in ("Ktc_N_per_mm2", "Krc_N_per_mm2", "Kac_N_per_mm2", "Kte_N_per_mm",
-                                            "Kre_N_per_mm", "Kae_N_per_mm"))
+        k = tuple(
+            float(m[key])
+            for key in (
+                "Ktc_N_per_mm2",
+                "Krc_N_per_mm2",
+                "Kac_N_per_mm2",
+                "Kte_N_per_mm",
+                "Kre_N_per_mm",
+                "Kae_N_per_mm",
+            )
+        )
         spec = ForceSpec(coefficients=k, phases=tuple(0.0 for _ in self.experiments))
         if self.nuisance_experiments():
             spec = self.with_nuisance(spec, [self._phase_scan(spec, i) for i in self.nuisance_experiments()])
@@ -311,7 +336,7 @@ class ForceProblem(Problem):
             total += float(np.sum(res[i] ** 2) / th.size)
             for k, v in enumerate(p, start=1):
                 power[k] = power.get(k, 0.0) + float(v)
-            k_hi = int(np.argmax(p[3 * N - 1:])) + 3 * N if H > 3 * N else 0
+            k_hi = int(np.argmax(p[3 * N - 1 :])) + 3 * N if H > 3 * N else 0
             if k_hi and p[k_hi - 1] > best[0]:
                 best = (float(p[k_hi - 1]), k_hi, k_hi * self.omega[i] / (2 * np.pi))
         ks = np.array(sorted(power))
@@ -328,7 +353,10 @@ class ForceProblem(Problem):
         if len(set(feeds)) >= 2:
             A = np.column_stack([np.ones_like(feeds), feeds])
             coef, *_ = np.linalg.lstsq(A, means, rcond=None)
-            out["mean_residual_vs_feed"] = {"intercept_N": coef[0].tolist(), "slope_N_per_mm": coef[1].tolist()}
+            out["mean_residual_vs_feed"] = {
+                "intercept_N": coef[0].tolist(),
+                "slope_N_per_mm": coef[1].tolist(),
+            }
         load = np.array([np.sqrt((p**2).sum(1)).mean() for p in pred])
         rr = np.array([np.sqrt((r**2).mean()) for r in res])
         if len(rr) >= 3 and np.std(load) > 0 and np.std(rr) > 0:
@@ -336,9 +364,11 @@ class ForceProblem(Problem):
         return out
 
     def covariates(self, spec) -> dict:
-        return {"angle": [np.mod(self.angles(spec, i), 2 * np.pi) for i in range(len(self.experiments))],
-                "feed": [e.feed_per_tooth for e in self.experiments],
-                "frequency": self.omega}
+        return {
+            "angle": [np.mod(self.angles(spec, i), 2 * np.pi) for i in range(len(self.experiments))],
+            "feed": [e.feed_per_tooth for e in self.experiments],
+            "frequency": self.omega,
+        }
 
     def experiment_notes(self, spec) -> list:
         out = []
@@ -365,7 +395,7 @@ def harmonic_power(theta, y, H, bins=256):
         for k in range(avg.shape[1]):
             avg[~have, k] = np.interp(idx[~have], idx[have], avg[have, k], period=B)
     C = np.fft.rfft(avg, axis=0) / B
-    return (2 * np.abs(C[1:H + 1]) ** 2).sum(1)
+    return (2 * np.abs(C[1 : H + 1]) ** 2).sum(1)
 
 
 def binned_scatter(theta, y, bins):
@@ -423,10 +453,12 @@ class Runout(Effect):
     name, kind = "runout", "cutting_force"
     parameters = ("rho_mm", "lambda_deg")
     covariate = "angle"
-    description = ("cutter runout: the tool axis offset by rho at angle lambda, flute j cuts at radius "
-                   "R + rho·cos(lambda − j·2π/N) (chip h_j = c·sin φ + R_j − R_{j−1}, clamped at 0); with 2 "
-                   "flutes the chip offsets are ±2·rho·cos(lambda), so only rho·cos(lambda) is identifiable and "
-                   "it is reported as lambda = 0 or 180 deg")
+    description = (
+        "cutter runout: the tool axis offset by rho at angle lambda, flute j cuts at radius "
+        "R + rho·cos(lambda − j·2π/N) (chip h_j = c·sin φ + R_j − R_{j−1}, clamped at 0); with 2 "
+        "flutes the chip offsets are ±2·rho·cos(lambda), so only rho·cos(lambda) is identifiable and "
+        "it is reported as lambda = 0 or 180 deg"
+    )
 
     def applicable(self, problem):
         return None if problem.flutes >= 2 else "runout needs at least 2 flutes"
@@ -462,8 +494,13 @@ class Runout(Effect):
             for col, i in enumerate(nuis):
                 costs = []
                 for m in range(problem.flutes):
-                    trial = problem.with_nuisance(s, [p + (2 * np.pi * m / problem.flutes if c == col else 0.0)
-                                                      for c, p in enumerate(phases)])
+                    trial = problem.with_nuisance(
+                        s,
+                        [
+                            p + (2 * np.pi * m / problem.flutes if c == col else 0.0)
+                            for c, p in enumerate(phases)
+                        ],
+                    )
                     costs.append(float(np.sum((problem.measured[i] - problem.predict(trial)[i]) ** 2)))
                 m = int(np.argmin(costs))
                 if m and costs[m] < 0.999 * costs[0]:
@@ -472,7 +509,9 @@ class Runout(Effect):
             if not changed:
                 break
             base = problem.with_nuisance(spec, phases)
-            x, new = problem.least_squares(lambda x: self.apply(problem, base, x), [f.x], self.bounds(problem, base))
+            x, new = problem.least_squares(
+                lambda x: self.apply(problem, base, x), [f.x], self.bounds(problem, base)
+            )
             f = EffectFit(self.parameters_of(x), new, len(x), x)
         return f
 
@@ -486,14 +525,18 @@ class EdgeForces(Effect):
     name, kind = "edge_forces", "cutting_force"
     parameters = ("Kte_N_per_mm", "Kre_N_per_mm", "Kae_N_per_mm")
     covariate = "feed"
-    description = ("edge (ploughing) forces: Kte, Kre, Kae refitted (the forces per unit edge length that do "
-                   "not grow with the chip)")
+    description = (
+        "edge (ploughing) forces: Kte, Kre, Kae refitted (the forces per unit edge length that do "
+        "not grow with the chip)"
+    )
 
     def starts(self, problem, spec):
         return [np.asarray(spec.coefficients[3:], float)]
 
     def apply(self, problem, spec, x):
-        return dataclasses.replace(spec, coefficients=tuple(spec.coefficients[:3]) + tuple(float(v) for v in x))
+        return dataclasses.replace(
+            spec, coefficients=tuple(spec.coefficients[:3]) + tuple(float(v) for v in x)
+        )
 
     def parameters_of(self, x):
         return {k: float(v) for k, v in zip(self.parameters, x)}
@@ -503,8 +546,10 @@ class SizeEffect(Effect):
     name, kind = "size_effect", "cutting_force"
     parameters = ("chip_exponent",)
     covariate = "feed"
-    description = ("chip-size effect: cutting forces grow as h_ref·(h/h_ref)^p instead of h (p < 1: thin "
-                   "chips cut relatively harder; h_ref the geometric mean feed per tooth of the bundle)")
+    description = (
+        "chip-size effect: cutting forces grow as h_ref·(h/h_ref)^p instead of h (p < 1: thin "
+        "chips cut relatively harder; h_ref the geometric mean feed per tooth of the bundle)"
+    )
 
     def starts(self, problem, spec):
         return [np.array([0.8]), np.array([1.2])]
@@ -523,8 +568,10 @@ class StructuralMode(Effect):
     name, kind = "structural_mode", "cutting_force"
     parameters = ("frequency_hz", "damping_ratio")
     covariate = "frequency"
-    description = ("a lightly damped mode of the tool or dynamometer: the measured force is the cutting force "
-                   "through ω_n²/(ω_n² − ω² + 2iζω_nω)")
+    description = (
+        "a lightly damped mode of the tool or dynamometer: the measured force is the cutting force "
+        "through ω_n²/(ω_n² − ω² + 2iζω_nω)"
+    )
 
     def _range(self, problem):
         # tooth-passing frequency … the highest harmonic both the grid and the sampling resolve
@@ -542,7 +589,9 @@ class StructuralMode(Effect):
 
     def applicable(self, problem):
         lo, hi = self._range(problem)
-        return None if hi > 1.2 * lo else "sampling too coarse to see a mode above the tooth-passing frequency"
+        return (
+            None if hi > 1.2 * lo else "sampling too coarse to see a mode above the tooth-passing frequency"
+        )
 
     def starts(self, problem, spec):
         lo, hi = self._range(problem)

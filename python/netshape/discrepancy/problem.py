@@ -95,13 +95,21 @@ class Problem:
                 sparsity[:, :p] = 1
                 offs = np.concatenate([[0], np.cumsum(rows)])
                 for col, e in enumerate(nuis):
-                    sparsity[offs[e]:offs[e + 1], p + col] = 1
+                    sparsity[offs[e] : offs[e + 1], p + col] = 1
             if z0.size == 0:
                 res_x, cost = z0, 0.5 * float(np.sum(fun(z0) ** 2))
             else:
-                res = _scipy_least_squares(fun, z0, bounds=(zlo, zhi), method="trf", x_scale="jac",
-                                           jac_sparsity=sparsity, max_nfev=max_nfev or 30 * (p + 1),
-                                           xtol=1e-8, ftol=1e-8)
+                res = _scipy_least_squares(
+                    fun,
+                    z0,
+                    bounds=(zlo, zhi),
+                    method="trf",
+                    x_scale="jac",
+                    jac_sparsity=sparsity,
+                    max_nfev=max_nfev or 30 * (p + 1),
+                    xtol=1e-8,
+                    ftol=1e-8,
+                )
                 res_x, cost = res.x, float(res.cost)
             if best is None or cost < best[0]:
                 best = (cost, res_x[:p].copy(), spec_of(res_x))

@@ -44,8 +44,10 @@ def plot_residuals(diagnosis):
         ax.set_ylabel(f"residual {names[a]} [{p.unit}]")
         ax.legend(loc="upper right", fontsize=7)
     axes[2][0].set_xlabel("sample (experiments in order)")
-    fig.suptitle(f"{diagnosis.kind}: rms {diagnosis.rms_before:.4g} → {diagnosis.rms_after:.4g} {p.unit} "
-                 f"(noise {diagnosis.noise_estimate:.4g})")
+    fig.suptitle(
+        f"{diagnosis.kind}: rms {diagnosis.rms_before:.4g} → {diagnosis.rms_after:.4g} {p.unit} "
+        f"(noise {diagnosis.noise_estimate:.4g})"
+    )
     fig.tight_layout()
     return fig
 
@@ -117,8 +119,11 @@ def plot_covariate(diagnosis, covariate: str, label: str = ""):
                 ax.plot(v, A[:, i] * 1e3, ".", ms=2, color="tab:blue", label="after")
                 ax.set_ylabel(f"e{'xyz'[i]} residual [µm]")
             axes[0][0].legend(fontsize=7)
-            axes[2][0].set_xlabel({"time": "t [s]", "direction": "approach direction",
-                                   "tool_length": "tool length [mm]"}[covariate])
+            axes[2][0].set_xlabel(
+                {"time": "t [s]", "direction": "approach direction", "tool_length": "tool length [mm]"}[
+                    covariate
+                ]
+            )
     else:
         raise ValueError(f"covariate = {covariate!r}: unknown")
     fig.suptitle(label or f"residual against {covariate}: before (red) and after (blue)")
@@ -145,9 +150,13 @@ def write_report(diagnosis, out_dir) -> list:
         if eff is None or not eff.covariate or eff.covariate in seen:
             continue
         seen.add(eff.covariate)
-        figs.append((f"{name}.png", plot_covariate(diagnosis, eff.covariate,
-                                                   f"{name}: residual against {eff.covariate}"),
-                     f"Residual against {eff.covariate}, where {name} shows"))
+        figs.append(
+            (
+                f"{name}.png",
+                plot_covariate(diagnosis, eff.covariate, f"{name}: residual against {eff.covariate}"),
+                f"Residual against {eff.covariate}, where {name} shows",
+            )
+        )
     for fname, fig, _ in figs:
         atomic_save_figure(fig, out / fname, dpi=90)
         written.append(out / fname)
@@ -157,25 +166,36 @@ def write_report(diagnosis, out_dir) -> list:
     def f(v):
         return "—" if v is None or (isinstance(v, float) and not math.isfinite(v)) else f"{v:.4g}"
 
-    rows = "".join(f"<tr><td>{html.escape(c['effect'])}</td><td>{f(c['rms'])}</td><td>{f(c['cv_rms'])}</td>"
-                   f"<td>{f(c['bic'])}</td></tr>" for c in d.candidates)
-    eff_rows = "".join(
-        f"<tr><td>{html.escape(e['effect'])}</td><td>{html.escape(json.dumps(e['parameters']))}</td>"
-        f"<td>{f(e['rms_after'])}</td></tr>" for e in d.effects) or "<tr><td colspan=3>no missing effect found</td></tr>"
+    rows = "".join(
+        f"<tr><td>{html.escape(c['effect'])}</td><td>{f(c['rms'])}</td><td>{f(c['cv_rms'])}</td>"
+        f"<td>{f(c['bic'])}</td></tr>"
+        for c in d.candidates
+    )
+    eff_rows = (
+        "".join(
+            f"<tr><td>{html.escape(e['effect'])}</td><td>{html.escape(json.dumps(e['parameters']))}</td>"
+            f"<td>{f(e['rms_after'])}</td></tr>"
+            for e in d.effects
+        )
+        or "<tr><td colspan=3>no missing effect found</td></tr>"
+    )
     notes = "".join(f"<li>{html.escape(n)}</li>" for n in d.notes)
     skipped = "".join(f"<li>{html.escape(k)}: {html.escape(v)}</li>" for k, v in d.skipped.items())
-    imgs = "".join(f"<h3>{html.escape(t)}</h3><img src=\"{fn}\" alt=\"{html.escape(t)}\">" for fn, _, t in figs)
+    imgs = "".join(f'<h3>{html.escape(t)}</h3><img src="{fn}" alt="{html.escape(t)}">' for fn, _, t in figs)
     page = f"""<!doctype html>
 <html><head><meta charset="utf-8"><title>netshape diagnose: {html.escape(d.kind)}</title>
 <style>body{{font-family:sans-serif;max-width:1000px;margin:2em auto}}table{{border-collapse:collapse}}
 td,th{{border:1px solid #ccc;padding:2px 8px}}img{{max-width:100%}}</style></head><body>
 <h1>Discrepancy diagnosis ({html.escape(d.kind)})</h1>
 <p>rms before {f(d.rms_before)} {u}, after {f(d.rms_after)} {u}; noise estimate {f(d.noise_estimate)} {u}.</p>
-<h2>Effects added</h2><table><tr><th>effect</th><th>parameters</th><th>rms after [{u}]</th></tr>{eff_rows}</table>
-<h2>Candidates (first round)</h2><table><tr><th>effect</th><th>rms [{u}]</th><th>held-out rms [{u}]</th><th>BIC</th></tr>{rows}</table>
-<h2>Where the residual was systematic (before)</h2><pre>{html.escape(json.dumps(_plain(d.localisation), indent=1))}</pre>
+<h2>Effects added</h2><table>
+<tr><th>effect</th><th>parameters</th><th>rms after [{u}]</th></tr>{eff_rows}</table>
+<h2>Candidates (first round)</h2><table>
+<tr><th>effect</th><th>rms [{u}]</th><th>held-out rms [{u}]</th><th>BIC</th></tr>{rows}</table>
+<h2>Where the residual was systematic (before)</h2>
+<pre>{html.escape(json.dumps(_plain(d.localisation), indent=1))}</pre>
 <h2>Experiments</h2><pre>{html.escape(json.dumps(_plain(d.experiments), indent=1))}</pre>
-<ul>{notes}</ul>{('<h2>Not tried</h2><ul>' + skipped + '</ul>') if skipped else ''}
+<ul>{notes}</ul>{("<h2>Not tried</h2><ul>" + skipped + "</ul>") if skipped else ""}
 {imgs}
 </body></html>
 """

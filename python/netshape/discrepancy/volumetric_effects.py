@@ -72,8 +72,14 @@ class VolumetricProblem(Problem):
         if m is not None:
             return m
         mc = self.bundle.machine
-        doc = {"tool_chain": mc["tool_side"], "workpiece_chain": mc["workpiece_side"],
-               "tool": {"length_mm": tool_length}, "spindle": {}, "squareness": {}, "axes": {}}
+        doc = {
+            "tool_chain": mc["tool_side"],
+            "workpiece_chain": mc["workpiece_side"],
+            "tool": {"length_mm": tool_length},
+            "spindle": {},
+            "squareness": {},
+            "axes": {},
+        }
         for name, coef in spec.model:
             if name.startswith("spindle_tilt_"):
                 doc["spindle"][f"tilt_{name[-1]}_rad"] = coef[0]
@@ -81,7 +87,9 @@ class VolumetricProblem(Problem):
                 doc["squareness"][f"{name}_rad"] = coef[0]
             else:
                 unit = "mm" if name[1] in _AXES else "rad"
-                doc["axes"].setdefault(name[2], {}).setdefault("polynomials", {})[f"{name}_{unit}"] = list(coef)
+                doc["axes"].setdefault(name[2], {}).setdefault("polynomials", {})[f"{name}_{unit}"] = list(
+                    coef
+                )
         m = machine_from_dict(doc, source="[model]")
         if len(self._machines) > 128:
             self._machines.clear()
@@ -115,13 +123,17 @@ class VolumetricProblem(Problem):
         """Correlation of each residual component with each position, time, direction and tool length
         (linear structure shows as |r| near 1), and the slope of the strongest pairs."""
         r = np.concatenate(self.residuals(spec))
-        cov = {f"{a.lower()}_mm": np.concatenate([e.points[:, i] for e in self.experiments])
-               for i, a in enumerate(_AXES)}
+        cov = {
+            f"{a.lower()}_mm": np.concatenate([e.points[:, i] for e in self.experiments])
+            for i, a in enumerate(_AXES)
+        }
         if all(e.times is not None for e in self.experiments):
             cov["t_s"] = np.concatenate([e.times for e in self.experiments])
         if all(e.directions is not None for e in self.experiments):
             cov["direction"] = np.concatenate([e.directions for e in self.experiments])
-        cov["tool_length_mm"] = np.concatenate([np.full(len(e.points), e.tool_length) for e in self.experiments])
+        cov["tool_length_mm"] = np.concatenate(
+            [np.full(len(e.points), e.tool_length) for e in self.experiments]
+        )
         out = {"residual_rms": self.rms(spec), "correlation": {}}
         for name, v in cov.items():
             if np.std(v) == 0:
@@ -132,10 +144,12 @@ class VolumetricProblem(Problem):
         return out
 
     def covariates(self, spec) -> dict:
-        return {"position": [e.points for e in self.experiments],
-                "time": [e.times for e in self.experiments],
-                "direction": [e.directions for e in self.experiments],
-                "tool_length": [np.full(len(e.points), e.tool_length) for e in self.experiments]}
+        return {
+            "position": [e.points for e in self.experiments],
+            "time": [e.times for e in self.experiments],
+            "direction": [e.directions for e in self.experiments],
+            "tool_length": [np.full(len(e.points), e.tool_length) for e in self.experiments],
+        }
 
     def experiment_notes(self, spec) -> list:
         return [{"file": e.file, "tool_length_mm": e.tool_length} for e in self.experiments]
@@ -175,7 +189,7 @@ class ScaleError(Effect):
     def apply(self, problem, spec, x):
         for n, v in zip(("EXX", "EYY", "EZZ"), x):
             c = list(spec.get(n, ())) + [0.0] * 2
-            c = c[:max(2, len(spec.get(n, ())))]
+            c = c[: max(2, len(spec.get(n, ())))]
             c[1] = v * 1e-6
             spec = spec.set(n, c)
         return spec
@@ -190,13 +204,19 @@ class _PerAxis(Effect):
     def fit(self, problem, spec, train=None):
         best = None
         for axis in _AXES:
-            x, s = problem.least_squares(lambda x, a=axis: self.apply_axis(problem, spec, a, x),
-                                         self.starts(problem, spec), self.bounds(problem, spec), train=train)
+            x, s = problem.least_squares(
+                lambda x, a=axis: self.apply_axis(problem, spec, a, x),
+                self.starts(problem, spec),
+                self.bounds(problem, spec),
+                train=train,
+            )
             cost = problem.rms(s, train)
             if best is None or cost < best[0]:
                 best = (cost, axis, x, s)
         _, axis, x, s = best
-        return EffectFit(self.parameters_of_axis(axis, x), s, len(x) + 1, np.concatenate([[_AXES.index(axis)], x]))
+        return EffectFit(
+            self.parameters_of_axis(axis, x), s, len(x) + 1, np.concatenate([[_AXES.index(axis)], x])
+        )
 
     def apply(self, problem, spec, x):  # x = [axis index, ...] as returned by fit
         return self.apply_axis(problem, spec, _AXES[int(round(x[0]))], x[1:])
@@ -244,10 +264,18 @@ class SpindleTilt(Effect):
 
     def applicable(self, problem):
         L = {e.tool_length for e in problem.experiments}
-        return None if len(L) >= 2 else "needs experiments with different tool_length_mm (else a tilt is an offset)"
+        return (
+            None
+            if len(L) >= 2
+            else "needs experiments with different tool_length_mm (else a tilt is an offset)"
+        )
 
     def starts(self, problem, spec):
-        return [np.array([spec.get("spindle_tilt_a", (0.0,))[0] * 1e6, spec.get("spindle_tilt_b", (0.0,))[0] * 1e6])]
+        return [
+            np.array(
+                [spec.get("spindle_tilt_a", (0.0,))[0] * 1e6, spec.get("spindle_tilt_b", (0.0,))[0] * 1e6]
+            )
+        ]
 
     def apply(self, problem, spec, x):
         return spec.set("spindle_tilt_a", [x[0] * 1e-6]).set("spindle_tilt_b", [x[1] * 1e-6])
@@ -260,10 +288,16 @@ class Backlash(_PerAxis):
     name, kind = "backlash", "volumetric_error"
     parameters = ("axis", "reversal_um")
     covariate = "direction"
-    description = "reversal (backlash) error of one axis: it lands reversal/2 further along its approach direction"
+    description = (
+        "reversal (backlash) error of one axis: it lands reversal/2 further along its approach direction"
+    )
 
     def applicable(self, problem):
-        return None if all(e.directions is not None for e in problem.experiments) else "needs the direction column"
+        return (
+            None
+            if all(e.directions is not None for e in problem.experiments)
+            else "needs the direction column"
+        )
 
     def starts(self, problem, spec):
         return [np.zeros(1)]

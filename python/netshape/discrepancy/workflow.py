@@ -63,19 +63,31 @@ class Diagnosis:
 
     def to_dict(self) -> dict:
         """The machine-readable result (the keys of ``netshape diagnose --json``)."""
-        return _clean({"kind": self.kind, "effect": self.effect, "parameters": self.parameters,
-                       "effects": [dict(e) for e in self.effects], "rms_before": self.rms_before,
-                       "rms_after": self.rms_after, "noise_estimate": self.noise_estimate,
-                       "candidates": [dict(c) for c in self.candidates]})
+        return _clean(
+            {
+                "kind": self.kind,
+                "effect": self.effect,
+                "parameters": self.parameters,
+                "effects": [dict(e) for e in self.effects],
+                "rms_before": self.rms_before,
+                "rms_after": self.rms_after,
+                "noise_estimate": self.noise_estimate,
+                "candidates": [dict(c) for c in self.candidates],
+            }
+        )
 
     def summary(self) -> str:
         u = self.unit
-        lines = [f"{self.kind}: rms {self.rms_before:.4g} {u} before, {self.rms_after:.4g} {u} after, "
-                 f"noise {self.noise_estimate:.4g} {u}"]
+        lines = [
+            f"{self.kind}: rms {self.rms_before:.4g} {u} before, {self.rms_after:.4g} {u} after, "
+            f"noise {self.noise_estimate:.4g} {u}"
+        ]
         if not self.effects:
             lines.append("no missing effect found")
         for e in self.effects:
-            p = ", ".join(f"{k} = {v:.4g}" if isinstance(v, float) else f"{k} = {v}" for k, v in e["parameters"].items())
+            p = ", ".join(
+                f"{k} = {v:.4g}" if isinstance(v, float) else f"{k} = {v}" for k, v in e["parameters"].items()
+            )
             lines.append(f"  + {e['effect']} ({p}): rms {e['rms_after']:.4g} {u}")
         lines += [f"note: {n}" for n in self.notes]
         return "\n".join(lines)
@@ -105,7 +117,9 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
     if effects is not None:
         unknown = [n for n in effects if n not in cat]
         if unknown:
-            raise ValueError(f"effects: {unknown[0]!r} is not in the {bundle.kind} catalogue ({', '.join(cat)})")
+            raise ValueError(
+                f"effects: {unknown[0]!r} is not in the {bundle.kind} catalogue ({', '.join(cat)})"
+            )
         cat = {n: cat[n] for n in effects}
     skipped = {}
     for name, eff in list(cat.items()):
@@ -154,7 +168,9 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
         chain.append((cat[best["effect"]], fit))
         added.append({"effect": best["effect"], "parameters": fit.parameters, "rms_after": rms_cur})
         if len(chain) > 1:  # refit all added effects together: earlier ones were fitted without this one
-            chain, spec = _joint_refit(problem, problem.with_nuisance(spec0, problem.nuisance_of(spec)), chain)
+            chain, spec = _joint_refit(
+                problem, problem.with_nuisance(spec0, problem.nuisance_of(spec)), chain
+            )
             for entry, (eff, f) in zip(added, chain):
                 entry["parameters"] = f.parameters
             rms_cur = problem.rms(spec)
@@ -164,16 +180,33 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
     clean = [[{k: v for k, v in c.items() if k != "_fit"} for c in r] for r in rounds]
     notes = list(getattr(problem, "notes", []))
     if not added:
-        notes.append("no missing effect found" + (" (the residual is consistent with the noise)"
-                                                  if rms_before <= NOISE_FACTOR * noise else ""))
+        notes.append(
+            "no missing effect found"
+            + (" (the residual is consistent with the noise)" if rms_before <= NOISE_FACTOR * noise else "")
+        )
     elif rms_cur > NOISE_FACTOR * noise:
-        notes.append(f"the residual after the added effects ({rms_cur:.4g} {problem.unit}) is still above the "
-                     f"noise ({noise:.4g} {problem.unit}): something the catalogue does not hold remains")
-    return Diagnosis(kind=bundle.kind, effects=added, rms_before=rms_before, rms_after=rms_cur,
-                     noise_estimate=noise, candidates=clean[0] if clean else [], rounds=clean,
-                     localisation=loc, localisation_after=problem.localise(spec) if added else loc,
-                     skipped=skipped, notes=notes, experiments=problem.experiment_notes(spec), unit=problem.unit,
-                     problem=problem, spec_before=spec0, spec_after=spec)
+        notes.append(
+            f"the residual after the added effects ({rms_cur:.4g} {problem.unit}) is still above the "
+            f"noise ({noise:.4g} {problem.unit}): something the catalogue does not hold remains"
+        )
+    return Diagnosis(
+        kind=bundle.kind,
+        effects=added,
+        rms_before=rms_before,
+        rms_after=rms_cur,
+        noise_estimate=noise,
+        candidates=clean[0] if clean else [],
+        rounds=clean,
+        localisation=loc,
+        localisation_after=problem.localise(spec) if added else loc,
+        skipped=skipped,
+        notes=notes,
+        experiments=problem.experiment_notes(spec),
+        unit=problem.unit,
+        problem=problem,
+        spec_before=spec0,
+        spec_after=spec,
+    )
 
 
 def _joint_refit(problem, base, chain):

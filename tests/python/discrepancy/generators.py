@@ -16,15 +16,22 @@ from pathlib import Path
 import numpy as np
 
 TOOL = {"type": "flat", "diameter_mm": 10.0, "flutes": 2, "helix_deg": 30.0}
-MODEL = {"Ktc_N_per_mm2": 900.0, "Krc_N_per_mm2": 270.0, "Kac_N_per_mm2": 150.0,
-         "Kte_N_per_mm": 16.0, "Kre_N_per_mm": 20.0, "Kae_N_per_mm": 10.0}
+MODEL = {
+    "Ktc_N_per_mm2": 900.0,
+    "Krc_N_per_mm2": 270.0,
+    "Kac_N_per_mm2": 150.0,
+    "Kte_N_per_mm": 16.0,
+    "Kre_N_per_mm": 20.0,
+    "Kae_N_per_mm": 10.0,
+}
 #: (mode, radial depth [mm], feed per tooth [mm]) of the 4 experiments of a force bundle
 CONDITIONS = [("slot", 10.0, 0.04), ("slot", 10.0, 0.1), ("up", 5.0, 0.07), ("down", 3.0, 0.13)]
 RPM, AP = 6000.0, 3.0
 
 
-def oracle_forces(angles, *, feed, mode, ae, coefficients, runout=None, exponent=None, h_ref=None,
-                  tool=TOOL, ap=AP, dz=0.01):
+def oracle_forces(
+    angles, *, feed, mode, ae, coefficients, runout=None, exponent=None, h_ref=None, tool=TOOL, ap=AP, dz=0.01
+):
     """Forces on the cutter (n, 3) [N] at angles θ (n,) [rad] by a direct element sum."""
     R = tool["diameter_mm"] / 2
     N = tool["flutes"]
@@ -39,7 +46,11 @@ def oracle_forces(angles, *, feed, mode, ae, coefficients, runout=None, exponent
     else:
         st, ex = math.pi - math.acos(1 - ae / R), math.pi
     ktc, krc, kac, kte, kre, kae = (coefficients[k] for k in MODEL)
-    r = np.zeros(N) if runout is None else runout[0] * np.cos(math.radians(runout[1]) - 2 * np.pi * np.arange(N) / N)
+    r = (
+        np.zeros(N)
+        if runout is None
+        else runout[0] * np.cos(math.radians(runout[1]) - 2 * np.pi * np.arange(N) / N)
+    )
     F = np.zeros((len(angles), 3))
     for j in range(N):
         phi = np.mod(angles[:, None] + 2 * np.pi * j / N - kb * z[None, :], 2 * np.pi)
@@ -81,8 +92,22 @@ def write_csv(path: Path, header: list, data: np.ndarray) -> None:
     np.savetxt(path, data, delimiter=",", header=",".join(header), comments="", fmt="%.10g")
 
 
-def force_bundle(folder, *, runout=None, edges=None, exponent=None, mode=None, noise=2.0, form="angle",
-                 revolutions=3, per_rev=180, seed=1, conditions=CONDITIONS, phase0=1.0, tool=None):
+def force_bundle(
+    folder,
+    *,
+    runout=None,
+    edges=None,
+    exponent=None,
+    mode=None,
+    noise=2.0,
+    form="angle",
+    revolutions=3,
+    per_rev=180,
+    seed=1,
+    conditions=CONDITIONS,
+    phase0=1.0,
+    tool=None,
+):
     """Write a cutting_force bundle to ``folder``. Hidden effects: ``runout`` (ρ [mm], λ [deg]),
     ``edges`` (true Kte, Kre, Kae; the manifest's model keeps MODEL's), ``exponent`` (chip exponent p),
     ``mode`` (f_n [Hz], ζ). ``form``: "angle" (angle_deg) or "time" (time_s, flute 1 at θ = phase0
@@ -101,26 +126,44 @@ def force_bundle(folder, *, runout=None, edges=None, exponent=None, mode=None, n
         settle = 5 if mode is not None else 0
         k = np.arange((revolutions + settle) * per_rev)
         theta = 2 * np.pi * k / per_rev + (phase0 if form == "time" else 0.0)
-        F = oracle_forces(theta, feed=c, mode=m, ae=ae, coefficients=truth, runout=runout, exponent=exponent,
-                          h_ref=h_ref, tool=tool)
+        F = oracle_forces(
+            theta,
+            feed=c,
+            mode=m,
+            ae=ae,
+            coefficients=truth,
+            runout=runout,
+            exponent=exponent,
+            h_ref=h_ref,
+            tool=tool,
+        )
         if mode is not None:
             from scipy.signal import lsim
 
             wn = 2 * np.pi * mode[0]
             sys = ([wn**2], [1.0, 2 * mode[1] * wn, wn**2])
             t = theta / omega
-            F = np.column_stack([lsim(sys, F[:, a], t)[1]
-                                 for a in range(3)])
-            F, theta = F[settle * per_rev:], theta[settle * per_rev:] - 2 * np.pi * settle
+            F = np.column_stack([lsim(sys, F[:, a], t)[1] for a in range(3)])
+            F, theta = F[settle * per_rev :], theta[settle * per_rev :] - 2 * np.pi * settle
         F = F + rng.normal(0.0, noise, F.shape)
         name = f"e{i + 1}.csv"
         if form == "angle":
-            write_csv(folder / name, ["angle_deg", "fx_N", "fy_N", "fz_N"], np.column_stack([np.degrees(theta), F]))
+            write_csv(
+                folder / name, ["angle_deg", "fx_N", "fy_N", "fz_N"], np.column_stack([np.degrees(theta), F])
+            )
         else:
             t = (theta - phase0) / omega  # θ(t) = phase0 + Ω t, t from 0
             write_csv(folder / name, ["time_s", "fx_N", "fy_N", "fz_N"], np.column_stack([t, F]))
-        exps.append({"file": name, "spindle_rpm": RPM, "feed_per_tooth_mm": c, "axial_depth_mm": AP,
-                     "radial_depth_mm": ae, "mode": m})
+        exps.append(
+            {
+                "file": name,
+                "spindle_rpm": RPM,
+                "feed_per_tooth_mm": c,
+                "axial_depth_mm": AP,
+                "radial_depth_mm": ae,
+                "mode": m,
+            }
+        )
     write_manifest(folder, "cutting_force", {"tool": tool, "model": MODEL}, exps)
     return folder
 
@@ -139,15 +182,26 @@ def _grid_path(nx=7, ny=5, nz=3):
     s = 1
     for z in np.linspace(-200, 0, nz):
         for y in np.linspace(-150, 150, ny):
-            for x in (xs if s > 0 else xs[::-1]):
+            for x in xs if s > 0 else xs[::-1]:
                 pts.append((x, y, z))
                 dirs.append(s)
             s = -s
     return np.array(pts, float), np.array(dirs, float)
 
 
-def volumetric_bundle(folder, *, squareness=None, scale=None, thermal=None, tilt=None, backlash=None,
-                      noise=5e-4, seed=2, experiments=2, lengths=(100.0, 220.0)):
+def volumetric_bundle(
+    folder,
+    *,
+    squareness=None,
+    scale=None,
+    thermal=None,
+    tilt=None,
+    backlash=None,
+    noise=5e-4,
+    seed=2,
+    experiments=2,
+    lengths=(100.0, 220.0),
+):
     """Write a volumetric_error bundle. Hidden: ``squareness`` {EC0Y, EB0Z, EA0Z: µrad}, ``scale``
     {EXX/EYY/EZZ: µm/m}, ``thermal`` (axis, amplitude [mm], τ [s]), ``tilt`` (a, b) [µrad],
     ``backlash`` (axis, reversal [µm]); noise [mm]. Experiments use the tool lengths ``lengths``."""
@@ -160,9 +214,14 @@ def volumetric_bundle(folder, *, squareness=None, scale=None, thermal=None, tilt
     t_next = 0.0
     for i in range(experiments):
         L = lengths[i % len(lengths)]
-        doc = {"tool_chain": ["Z"], "workpiece_chain": ["Y", "X"], "tool": {"length_mm": L},
-               "squareness": {}, "spindle": {}, "axes": {"X": {"polynomials": {}}, "Y": {"polynomials": {}},
-                                                         "Z": {"polynomials": {}}}}
+        doc = {
+            "tool_chain": ["Z"],
+            "workpiece_chain": ["Y", "X"],
+            "tool": {"length_mm": L},
+            "squareness": {},
+            "spindle": {},
+            "axes": {"X": {"polynomials": {}}, "Y": {"polynomials": {}}, "Z": {"polynomials": {}}},
+        }
         for k, v in VOL_MODEL.items():
             doc["axes"][k[2]]["polynomials"][k + ("_mm" if k[1] in "XYZ" else "_rad")] = list(v)
         for k, v in (squareness or {}).items():
@@ -183,8 +242,11 @@ def volumetric_bundle(folder, *, squareness=None, scale=None, thermal=None, tilt
             e[:, "XYZ".index(backlash[0])] += 0.5 * backlash[1] * 1e-3 * dirs
         e += rng.normal(0, noise, e.shape)
         name = f"v{i + 1}.csv"
-        write_csv(folder / name, ["x_mm", "y_mm", "z_mm", "ex_mm", "ey_mm", "ez_mm", "t_s", "direction"],
-                  np.column_stack([pts, e, t, dirs]))
+        write_csv(
+            folder / name,
+            ["x_mm", "y_mm", "z_mm", "ex_mm", "ey_mm", "ez_mm", "t_s", "direction"],
+            np.column_stack([pts, e, t, dirs]),
+        )
         exps.append({"file": name, "tool_length_mm": L})
     write_manifest(folder, "volumetric_error", {"machine": MACHINE, "model": VOL_MODEL}, exps)
     return folder

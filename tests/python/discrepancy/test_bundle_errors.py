@@ -24,20 +24,29 @@ def _edit(path, old, new):
     path.write_text(text.replace(old, new, 1))
 
 
-@pytest.mark.parametrize("edit, words", [
-    (("manifest.toml", "spindle_rpm = 6000.0\n", ""), ["manifest.toml", "experiment", "spindle_rpm"]),
-    (("manifest.toml", 'mode = "slot"', 'mode = "sideways"'), ["manifest.toml", "mode", "sideways"]),
-    (("manifest.toml", "Ktc_N_per_mm2 = 900.0\n", ""), ["manifest.toml", "[model]", "Ktc_N_per_mm2"]),
-    (("manifest.toml", "Ktc_N_per_mm2", "Ktc"), ["manifest.toml", "[model]", "Ktc"]),
-    (("manifest.toml", "flutes = 2", "flutes = 0"), ["manifest.toml", "[tool]", "flutes"]),
-    (("manifest.toml", 'kind = "cutting_force"', 'kind = "acoustic"'), ["manifest.toml", "kind", "acoustic"]),
-    (("manifest.toml", 'kind = "cutting_force"', 'kind = "wall_error"'), ["manifest.toml", "wall_error"]),
-    (("manifest.toml", "feed_per_tooth_mm = 0.05", "feed_per_tooth_mm = -0.05"), ["feed_per_tooth_mm", "-0.05"]),
-    (("manifest.toml", "axial_depth_mm = 3.0", 'axial_depth_mm = "3"'), ["axial_depth_mm"]),
-    (("e1.csv", "angle_deg,fx_N", "angle_deg,fx_kN"), ["e1.csv", "fx_kN"]),
-    (("e1.csv", "angle_deg,", "angle_rad,"), ["e1.csv", "angle_rad"]),
-    (("e1.csv", "angle_deg,fx_N,fy_N,fz_N", "fx_N,fy_N,fz_N,fz_N"), ["e1.csv"]),
-])
+@pytest.mark.parametrize(
+    "edit, words",
+    [
+        (("manifest.toml", "spindle_rpm = 6000.0\n", ""), ["manifest.toml", "experiment", "spindle_rpm"]),
+        (("manifest.toml", 'mode = "slot"', 'mode = "sideways"'), ["manifest.toml", "mode", "sideways"]),
+        (("manifest.toml", "Ktc_N_per_mm2 = 900.0\n", ""), ["manifest.toml", "[model]", "Ktc_N_per_mm2"]),
+        (("manifest.toml", "Ktc_N_per_mm2", "Ktc"), ["manifest.toml", "[model]", "Ktc"]),
+        (("manifest.toml", "flutes = 2", "flutes = 0"), ["manifest.toml", "[tool]", "flutes"]),
+        (
+            ("manifest.toml", 'kind = "cutting_force"', 'kind = "acoustic"'),
+            ["manifest.toml", "kind", "acoustic"],
+        ),
+        (("manifest.toml", 'kind = "cutting_force"', 'kind = "wall_error"'), ["manifest.toml", "wall_error"]),
+        (
+            ("manifest.toml", "feed_per_tooth_mm = 0.05", "feed_per_tooth_mm = -0.05"),
+            ["feed_per_tooth_mm", "-0.05"],
+        ),
+        (("manifest.toml", "axial_depth_mm = 3.0", 'axial_depth_mm = "3"'), ["axial_depth_mm"]),
+        (("e1.csv", "angle_deg,fx_N", "angle_deg,fx_kN"), ["e1.csv", "fx_kN"]),
+        (("e1.csv", "angle_deg,", "angle_rad,"), ["e1.csv", "angle_rad"]),
+        (("e1.csv", "angle_deg,fx_N,fy_N,fz_N", "fx_N,fy_N,fz_N,fz_N"), ["e1.csv"]),
+    ],
+)
 def test_malformed_force_bundle(fb, edit, words):
     _edit(fb / edit[0], edit[1], edit[2])
     with pytest.raises(ValueError) as exc:
@@ -95,8 +104,16 @@ def test_cli_end_to_end_with_report(tmp_path, capsys):
     out, rep = tmp_path / "d.json", tmp_path / "report"
     assert main(["diagnose", str(vb), "--json", str(out), "--report", str(rep)]) == 0
     d = json.loads(out.read_text())
-    assert list(d) == ["kind", "effect", "parameters", "effects", "rms_before", "rms_after", "noise_estimate",
-                       "candidates"]
+    assert list(d) == [
+        "kind",
+        "effect",
+        "parameters",
+        "effects",
+        "rms_before",
+        "rms_after",
+        "noise_estimate",
+        "candidates",
+    ]
     assert d["kind"] == "volumetric_error" and d["effect"] == "squareness"
     assert abs(d["parameters"]["EC0Y_urad"] - 30.0) < 1.0
     html = (rep / "index.html").read_text()
@@ -132,8 +149,13 @@ def test_user_registered_effect(tmp_path):
     for name in ("v1.csv", "v2.csv"):
         data = np.loadtxt(vb / name, delimiter=",", skiprows=1)
         data[:, 3] += 0.004
-        np.savetxt(vb / name, data, delimiter=",", header="x_mm,y_mm,z_mm,ex_mm,ey_mm,ez_mm,t_s,direction",
-                   comments="")
+        np.savetxt(
+            vb / name,
+            data,
+            delimiter=",",
+            header="x_mm,y_mm,z_mm,ex_mm,ey_mm,ez_mm,t_s,direction",
+            comments="",
+        )
     nd.register_effect(ProbeOffset())
     try:
         with pytest.raises(ValueError, match="already in the volumetric_error catalogue"):

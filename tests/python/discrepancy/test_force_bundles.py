@@ -119,7 +119,12 @@ def test_control_bundle_has_no_missing_effect(tmp_path, form):
     d = nd.diagnose(bundle(tmp_path, form=form, seed=7))
     out = d.to_dict()
     assert out["effect"] is None and out["effects"] == [] and out["parameters"] == {}
-    assert {c["effect"] for c in out["candidates"]} == {"runout", "edge_forces", "size_effect", "structural_mode"}
+    assert {c["effect"] for c in out["candidates"]} == {
+        "runout",
+        "edge_forces",
+        "size_effect",
+        "structural_mode",
+    }
     assert d.rms_after == d.rms_before < 1.1 * NOISE
     if form == "time":
         e = d.experiments[0]
@@ -130,8 +135,16 @@ def test_control_bundle_has_no_missing_effect(tmp_path, form):
 
 def test_to_dict_keys(runout_diagnosis):
     out = runout_diagnosis.to_dict()
-    assert list(out) == ["kind", "effect", "parameters", "effects", "rms_before", "rms_after", "noise_estimate",
-                         "candidates"]
+    assert list(out) == [
+        "kind",
+        "effect",
+        "parameters",
+        "effects",
+        "rms_before",
+        "rms_after",
+        "noise_estimate",
+        "candidates",
+    ]
     assert out["kind"] == "cutting_force"
     assert set(out["parameters"]) == {"rho_mm", "lambda_deg"}
     assert set(out["effects"][0]) == {"effect", "parameters", "rms_after"}
@@ -155,12 +168,22 @@ def test_model_is_evaluated_like_the_independent_oracle(tmp_path):
     import dataclasses
 
     for runout, p in ((None, None), ((0.01, 30.0), None), (None, 0.6), ((0.005, 200.0), 0.8)):
-        s = dataclasses.replace(spec, runout=None if runout is None else (runout[0], math.radians(runout[1])),
-                                chip_exponent=p)
+        s = dataclasses.replace(
+            spec, runout=None if runout is None else (runout[0], math.radians(runout[1])), chip_exponent=p
+        )
         pred = prob.predict(s)
         for i, (m, ae, c) in enumerate(CONDITIONS):
-            ref = oracle_forces(b.experiments[i].angles, feed=c, mode=m, ae=ae, coefficients=MODEL, runout=runout,
-                                exponent=p, h_ref=prob.h_ref, dz=0.05)
+            ref = oracle_forces(
+                b.experiments[i].angles,
+                feed=c,
+                mode=m,
+                ae=ae,
+                coefficients=MODEL,
+                runout=runout,
+                exponent=p,
+                h_ref=prob.h_ref,
+                dz=0.05,
+            )
             scale = np.abs(ref).max()
             assert np.sqrt(np.mean((pred[i] - ref) ** 2)) < 2e-3 * scale, (runout, p, i)
             assert np.abs(pred[i] - ref).max() < 1.5e-2 * scale, (runout, p, i)

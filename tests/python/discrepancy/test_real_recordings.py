@@ -29,13 +29,35 @@ def write_bundle(folder, files, window_s):
         feeds.append(int(re.search(r"f(\d+)ap", p.name).group(1)) / (6000 * 2))
         means.append(nf.recording_mean_force(r.times, r.forces, 6000.0))
     k = nf.calibrate_mean_forces(feeds, np.array(means), flutes=2, axial_depth=3.0).coefficients
-    names = ("Ktc_N_per_mm2", "Krc_N_per_mm2", "Kac_N_per_mm2", "Kte_N_per_mm", "Kre_N_per_mm", "Kae_N_per_mm")
-    lines = ['kind = "cutting_force"', "[tool]", 'type = "flat"', "diameter_mm = 10.0", "flutes = 2",
-             "helix_deg = 0.0", "[model]"] + [f"{n} = {v!r}" for n, v in zip(names, k.as_array())]
+    names = (
+        "Ktc_N_per_mm2",
+        "Krc_N_per_mm2",
+        "Kac_N_per_mm2",
+        "Kte_N_per_mm",
+        "Kre_N_per_mm",
+        "Kae_N_per_mm",
+    )
+    lines = [
+        'kind = "cutting_force"',
+        "[tool]",
+        'type = "flat"',
+        "diameter_mm = 10.0",
+        "flutes = 2",
+        "helix_deg = 0.0",
+        "[model]",
+    ] + [f"{n} = {v!r}" for n, v in zip(names, k.as_array())]
     for p, c in zip(files, feeds):
-        lines += ["[[experiment]]", f'file = "{p}"', 'format = "dynoware"', 'to_cutter = "leekunhwee"',
-                  "spindle_rpm = 6000.0", f"feed_per_tooth_mm = {c!r}", "axial_depth_mm = 3.0", 'mode = "slot"',
-                  f"time_window_s = [0.0, {window_s}]"]
+        lines += [
+            "[[experiment]]",
+            f'file = "{p}"',
+            'format = "dynoware"',
+            'to_cutter = "leekunhwee"',
+            "spindle_rpm = 6000.0",
+            f"feed_per_tooth_mm = {c!r}",
+            "axial_depth_mm = 3.0",
+            'mode = "slot"',
+            f"time_window_s = [0.0, {window_s}]",
+        ]
     (folder / "manifest.toml").write_text("\n".join(lines) + "\n")
     return folder
 

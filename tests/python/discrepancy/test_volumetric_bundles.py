@@ -16,16 +16,32 @@ from generators import volumetric_bundle
 NOISE = 5e-4  # mm
 
 
-@pytest.mark.parametrize("hidden, effect, expected, tol", [
-    ({"squareness": {"EC0Y": 30.0, "EB0Z": -20.0}}, "squareness",
-     {"EC0Y_urad": 30.0, "EB0Z_urad": -20.0, "EA0Z_urad": 0.0}, 1.0),
-    ({"scale": {"EYY": 20.0, "EZZ": -15.0}}, "scale_error",
-     {"EXX_um_per_m": 5.0, "EYY_um_per_m": 20.0, "EZZ_um_per_m": -15.0}, 0.5),
-    ({"tilt": (40.0, -25.0)}, "spindle_tilt", {"tilt_a_urad": 40.0, "tilt_b_urad": -25.0}, 1.0),
-    ({"backlash": ("X", 6.0)}, "backlash", {"axis": "X", "reversal_um": 6.0}, 0.3),
-    ({"thermal": ("Z", 0.01, 600.0)}, "thermal_drift", {"axis": "Z", "amplitude_mm": 0.01, "time_constant_s": 600.0},
-     {"amplitude_mm": 5e-4, "time_constant_s": 60.0}),
-], ids=lambda v: v if isinstance(v, str) else None)
+@pytest.mark.parametrize(
+    "hidden, effect, expected, tol",
+    [
+        (
+            {"squareness": {"EC0Y": 30.0, "EB0Z": -20.0}},
+            "squareness",
+            {"EC0Y_urad": 30.0, "EB0Z_urad": -20.0, "EA0Z_urad": 0.0},
+            1.0,
+        ),
+        (
+            {"scale": {"EYY": 20.0, "EZZ": -15.0}},
+            "scale_error",
+            {"EXX_um_per_m": 5.0, "EYY_um_per_m": 20.0, "EZZ_um_per_m": -15.0},
+            0.5,
+        ),
+        ({"tilt": (40.0, -25.0)}, "spindle_tilt", {"tilt_a_urad": 40.0, "tilt_b_urad": -25.0}, 1.0),
+        ({"backlash": ("X", 6.0)}, "backlash", {"axis": "X", "reversal_um": 6.0}, 0.3),
+        (
+            {"thermal": ("Z", 0.01, 600.0)},
+            "thermal_drift",
+            {"axis": "Z", "amplitude_mm": 0.01, "time_constant_s": 600.0},
+            {"amplitude_mm": 5e-4, "time_constant_s": 60.0},
+        ),
+    ],
+    ids=lambda v: v if isinstance(v, str) else None,
+)
 def test_hidden_effect_is_named_and_recovered(tmp_path, hidden, effect, expected, tol):
     """Tolerances: squareness and tilt 1 µrad, scale 0.5 µm/m (EXX's 5 µm/m is the model's own),
     backlash 0.3 µm, thermal 5 µm and 60 s."""
@@ -56,8 +72,13 @@ def test_two_hidden_effects(tmp_path):
 def test_control_bundle(tmp_path):
     d = nd.diagnose(volumetric_bundle(tmp_path, seed=5))
     assert d.effect is None and d.effects == []
-    assert {c["effect"] for c in d.candidates} == {"squareness", "scale_error", "thermal_drift", "spindle_tilt",
-                                                   "backlash"}
+    assert {c["effect"] for c in d.candidates} == {
+        "squareness",
+        "scale_error",
+        "thermal_drift",
+        "spindle_tilt",
+        "backlash",
+    }
 
 
 def test_effects_that_lack_their_columns_are_skipped(tmp_path):
