@@ -50,6 +50,8 @@ def test_runout_is_named_and_recovered(runout_diagnosis):
     assert d.rms_after < 1.1 * NOISE
     assert abs(d.noise_estimate - NOISE) < 0.15 * NOISE
     assert [e["effect"] for e in d.effects] == ["runout"]
+    # localisation: the residual before is at odd revolution harmonics (the two flutes differ)
+    assert d.localisation["once_per_revolution_fraction"] > 0.8
 
 
 def test_runout_three_flutes(tmp_path):
@@ -76,6 +78,8 @@ def test_edge_forces_are_named_and_recovered(tmp_path, form):
     """True Kte, Kre, Kae = 32, 40, 20 N/mm where the model has 16, 20, 10: recovered within 1 N/mm."""
     d = nd.diagnose(bundle(tmp_path, edges=(32.0, 40.0, 20.0), form=form))
     assert d.effect == "edge_forces"
+    # localisation: an intercept of the mean residual against the feed (in x: −(Kre − 20)·N·a/π)
+    assert abs(d.localisation["mean_residual_vs_feed"]["intercept_N"][0] + 20.0 * 2 * 3 / np.pi) < 5.0
     got = [d.parameters[k] for k in ("Kte_N_per_mm", "Kre_N_per_mm", "Kae_N_per_mm")]
     np.testing.assert_allclose(got, [32.0, 40.0, 20.0], atol=1.0)
     assert d.rms_after < 1.1 * NOISE < d.rms_before / 2
@@ -97,6 +101,7 @@ def test_structural_mode_is_named_and_recovered(tmp_path, form):
     assert d.effect == "structural_mode"
     assert abs(d.parameters["frequency_hz"] / 1200.0 - 1) < 0.01
     assert abs(d.parameters["damping_ratio"] - 0.04) < 0.01
+    assert d.localisation["strongest_high_harmonic"]["frequency_hz"] == pytest.approx(1200.0, rel=0.01)
     assert d.rms_after < 1.1 * NOISE < d.rms_before / 2
 
 

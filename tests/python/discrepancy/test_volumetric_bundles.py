@@ -54,6 +54,9 @@ def test_hidden_effect_is_named_and_recovered(tmp_path, hidden, effect, expected
             t = tol[k] if isinstance(tol, dict) else tol
             assert abs(d.parameters[k] - v) < t, (k, d.parameters[k], v)
     assert d.rms_before > 3 * NOISE
+    if effect == "squareness":  # localisation: ex linear in y (EC0Y) is the strongest correlation
+        corr = d.localisation["correlation"]
+        assert max(corr, key=lambda k: abs(corr[k])) == "ex~y_mm"
     assert d.rms_after < 1.1 * NOISE
     assert abs(d.noise_estimate - NOISE) < 0.1 * NOISE
 
