@@ -165,3 +165,12 @@ def test_user_registered_effect(tmp_path):
     finally:
         nd.unregister_effect("volumetric_error", "probe_offset")
     assert "probe_offset" not in nd.catalogue("volumetric_error")
+
+
+def test_ball_end_mill_is_refused_by_the_force_workflow(fb):
+    """The force catalogue extends the flat linear edge-force model: a ball end mill bundle loads but
+    diagnose says why it cannot be diagnosed."""
+    _edit(fb / "manifest.toml", 'type = "flat"', 'type = "ball"')
+    b = nd.load_bundle(fb)
+    with pytest.raises(ValueError, match=r"\[tool\] type = 'ball'.*flat end mills"):
+        nd.diagnose(b)
