@@ -1,0 +1,313 @@
+"""Volumetric-error bundles: the machine's known ISO 230-1 components synthesised by netshape.machine
+(exact product of homogeneous transforms, C++), extended by the catalogue entries ``squareness``,
+``scale_error``, ``thermal_drift``, ``spindle_tilt`` and ``backlash``.
+
+Parameters (units in the names):
+
+* squareness: ``EC0Y_urad``, ``EB0Z_urad``, ``EA0Z_urad`` (reference axes X, X, Y as in
+  netshape.machine), the machine's values after the fit;
+* scale_error: ``EXX_um_per_m``, ``EYY_um_per_m``, ``EZZ_um_per_m``: the linear term of each axis'
+  positioning error after the fit;
+* thermal_drift: the tool tip drifts along ``axis`` by amplitude·(1 − exp(−t/τ)), ``amplitude_mm``,
+  ``time_constant_s`` (needs ``t_s``);
+* spindle_tilt: ``tilt_a_urad``, ``tilt_b_urad`` about X and Y (its error grows with the tool length,
+  so the bundle needs experiments with different ``tool_length_mm`` to tell it from an offset);
+* backlash: the moving ``axis`` lands ``reversal_um``/2 further along its approach direction,
+  e_axis += direction·reversal/2 (needs ``direction``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from netshape.machine import machine_from_dict, tip_error
+
+from .catalogue import Effect, EffectFit, register_effect
+from .problem import Problem, robust_difference_noise
+
+_AXES = "XYZ"
+
+
+@dataclass(frozen=True)
+class VolumetricSpec:
+    """A volumetric-error model: ``model`` ((name, coefficients) pairs by ISO 230-1 name, as in the
+    bundle: mm or rad, position in mm); ``thermal`` ((axis, amplitude [mm], τ [s]), …); ``backlash``
+    ((axis, reversal [mm]), …); ``additive`` callables (experiment, points (n, 3)) → (n, 3) [mm]."""
+
+    model: tuple
+    thermal: tuple = ()
+    backlash: tuple = ()
+    additive: tuple = ()
+
+    def get(self, name, default=None):
+        return dict(self.model).get(name, default)
+
+    def set(self, name, coef):
+        d = dict(self.model)
+        d[name] = tuple(float(c) for c in coef)
+        return dataclasses.replace(self, model=tuple(sorted(d.items())))
+
+
+class VolumetricProblem(Problem):
+    kind = "volumetric_error"
+    unit = "mm"
+
+    def __init__(self, bundle):
+        self.bundle = bundle
+        self.experiments = bundle.experiments
+        self.measured = [np.asarray(e.errors, float) for e in self.experiments]
+        self._machines: dict = {}
+        self.notes = []
+
+    def initial_spec(self):
+        return VolumetricSpec(model=tuple(sorted((k, tuple(v)) for k, v in self.bundle.model.items())))
+
+    def machine(self, spec, tool_length):
+        key = (spec.model, tool_length)
+        m = self._machines.get(key)
+        if m is not None:
+            return m
+        mc = self.bundle.machine
+        doc = {
+            "tool_chain": mc["tool_side"],
+            "workpiece_chain": mc["workpiece_side"],
+            "tool": {"length_mm": tool_length},
+            "spindle": {},
+            "squareness": {},
+            "axes": {},
+        }
+        for name, coef in spec.model:
+            if name.startswith("spindle_tilt_"):
+                doc["spindle"][f"tilt_{name[-1]}_rad"] = coef[0]
+            elif name in ("EC0Y", "EB0Z", "EA0Z"):
+                doc["squareness"][f"{name}_rad"] = coef[0]
+            else:
+                unit = "mm" if name[1] in _AXES else "rad"
+                doc["axes"].setdefault(name[2], {}).setdefault("polynomials", {})[f"{name}_{unit}"] = list(
+                    coef
+                )
+        m = machine_from_dict(doc, source="[model]")
+        if len(self._machines) > 128:
+            self._machines.clear()
+        self._machines[key] = m
+        return m
+
+    def predict(self, spec):
+        out = []
+        for e in self.experiments:
+            p = np.array(tip_error(self.machine(spec, e.tool_length), e.points))
+            for axis, amp, tau in spec.thermal:
+                p[:, _AXES.index(axis)] += amp * (1.0 - np.exp(-e.times / tau))
+            for axis, rev in spec.backlash:
+                p[:, _AXES.index(axis)] += 0.5 * rev * e.directions
+            for add in spec.additive:
+                p = p + add(e, e.points)
+            out.append(p)
+        return out
+
+    def noise_estimate(self, spec) -> float:
+        """Robust second-difference noise of the model residual along each experiment's measuring
+        order (only within runs of one approach direction) [mm]."""
+        num, den = 0.0, 0
+        for e, r in zip(self.experiments, self.residuals(spec)):
+            v, c = robust_difference_noise(r, e.directions)
+            num += v * c
+            den += c
+        return math.sqrt(num / den) if den else 0.0
+
+    def localise(self, spec) -> dict:
+        """Correlation of each residual component with each position, time, direction and tool length
+        (linear structure shows as |r| near 1), and the slope of the strongest pairs."""
+        r = np.concatenate(self.residuals(spec))
+        cov = {
+            f"{a.lower()}_mm": np.concatenate([e.points[:, i] for e in self.experiments])
+            for i, a in enumerate(_AXES)
+        }
+        if all(e.times is not None for e in self.experiments):
+            cov["t_s"] = np.concatenate([e.times for e in self.experiments])
+        if all(e.directions is not None for e in self.experiments):
+            cov["direction"] = np.concatenate([e.directions for e in self.experiments])
+        cov["tool_length_mm"] = np.concatenate(
+            [np.full(len(e.points), e.tool_length) for e in self.experiments]
+        )
+        out = {"residual_rms": self.rms(spec), "correlation": {}}
+        for name, v in cov.items():
+            if np.std(v) == 0:
+                continue
+            for j, comp in enumerate(("ex", "ey", "ez")):
+                if np.std(r[:, j]) > 0:
+                    out["correlation"][f"{comp}~{name}"] = float(np.corrcoef(v, r[:, j])[0, 1])
+        return out
+
+    def covariates(self, spec) -> dict:
+        return {
+            "position": [e.points for e in self.experiments],
+            "time": [e.times for e in self.experiments],
+            "direction": [e.directions for e in self.experiments],
+            "tool_length": [np.full(len(e.points), e.tool_length) for e in self.experiments],
+        }
+
+    def experiment_notes(self, spec) -> list:
+        return [{"file": e.file, "tool_length_mm": e.tool_length} for e in self.experiments]
+
+
+class Squareness(Effect):
+    name, kind = "squareness", "volumetric_error"
+    parameters = ("EC0Y_urad", "EB0Z_urad", "EA0Z_urad")
+    covariate = "position"
+    description = "out-of-squareness of the axes (ISO 230-1 EC0Y, EB0Z, EA0Z)"
+
+    def starts(self, problem, spec):
+        return [np.array([(spec.get(n, (0.0,))[0]) * 1e6 for n in ("EC0Y", "EB0Z", "EA0Z")])]
+
+    def apply(self, problem, spec, x):
+        for n, v in zip(("EC0Y", "EB0Z", "EA0Z"), x):
+            spec = spec.set(n, [v * 1e-6])
+        return spec
+
+    def parameters_of(self, x):
+        return {k: float(v) for k, v in zip(self.parameters, x)}
+
+
+class ScaleError(Effect):
+    name, kind = "scale_error", "volumetric_error"
+    parameters = ("EXX_um_per_m", "EYY_um_per_m", "EZZ_um_per_m")
+    covariate = "position"
+    description = "scale (linear positioning) error of each axis: the linear term of EXX, EYY, EZZ"
+
+    def starts(self, problem, spec):
+        out = []
+        for n in ("EXX", "EYY", "EZZ"):
+            c = spec.get(n, ())
+            out.append(c[1] * 1e6 if len(c) > 1 else 0.0)
+        return [np.array(out)]
+
+    def apply(self, problem, spec, x):
+        for n, v in zip(("EXX", "EYY", "EZZ"), x):
+            c = list(spec.get(n, ())) + [0.0] * 2
+            c = c[: max(2, len(spec.get(n, ())))]
+            c[1] = v * 1e-6
+            spec = spec.set(n, c)
+        return spec
+
+    def parameters_of(self, x):
+        return {k: float(v) for k, v in zip(self.parameters, x)}
+
+
+class _PerAxis(Effect):
+    """An effect with a categorical ``axis``: fitted for X, Y and Z, the smallest cost kept."""
+
+    def fit(self, problem, spec, train=None):
+        best = None
+        for axis in _AXES:
+            x, s = problem.least_squares(
+                lambda x, a=axis: self.apply_axis(problem, spec, a, x),
+                self.starts(problem, spec),
+                self.bounds(problem, spec),
+                train=train,
+            )
+            cost = problem.rms(s, train)
+            if best is None or cost < best[0]:
+                best = (cost, axis, x, s)
+        _, axis, x, s = best
+        return EffectFit(
+            self.parameters_of_axis(axis, x), s, len(x) + 1, np.concatenate([[_AXES.index(axis)], x])
+        )
+
+    def apply(self, problem, spec, x):  # x = [axis index, ...] as returned by fit
+        return self.apply_axis(problem, spec, _AXES[int(round(x[0]))], x[1:])
+
+    def parameters_of(self, x):  # x = [axis index, ...]
+        return self.parameters_of_axis(_AXES[int(round(x[0]))], x[1:])
+
+    def refit(self, problem, spec, fit):
+        axis = _AXES[int(round(fit.x[0]))]
+        return (lambda x: self.apply_axis(problem, spec, axis, x)), fit.x[1:], self.bounds(problem, spec)
+
+
+class ThermalDrift(_PerAxis):
+    name, kind = "thermal_drift", "volumetric_error"
+    parameters = ("axis", "amplitude_mm", "time_constant_s")
+    covariate = "time"
+    description = "thermal drift of the tool tip along one axis: amplitude·(1 − exp(−t/τ))"
+
+    def applicable(self, problem):
+        return None if all(e.times is not None for e in problem.experiments) else "needs the t_s column"
+
+    def _span(self, problem):
+        return max(float(np.max(e.times)) for e in problem.experiments) or 1.0
+
+    def starts(self, problem, spec):
+        T = self._span(problem)
+        return [np.array([0.0, f * T]) for f in (0.2, 1.0)]
+
+    def bounds(self, problem, spec):
+        T = self._span(problem)
+        return (np.array([-np.inf, 1e-3 * T]), np.array([np.inf, 50.0 * T]))
+
+    def apply_axis(self, problem, spec, axis, x):
+        return dataclasses.replace(spec, thermal=spec.thermal + ((axis, float(x[0]), float(x[1])),))
+
+    def parameters_of_axis(self, axis, x):
+        return {"axis": axis, "amplitude_mm": float(x[0]), "time_constant_s": float(x[1])}
+
+
+class SpindleTilt(Effect):
+    name, kind = "spindle_tilt", "volumetric_error"
+    parameters = ("tilt_a_urad", "tilt_b_urad")
+    covariate = "tool_length"
+    description = "tilt of the spindle axis about X (a) and Y (b); the tip error grows with the tool length"
+
+    def applicable(self, problem):
+        L = {e.tool_length for e in problem.experiments}
+        return (
+            None
+            if len(L) >= 2
+            else "needs experiments with different tool_length_mm (else a tilt is an offset)"
+        )
+
+    def starts(self, problem, spec):
+        return [
+            np.array(
+                [spec.get("spindle_tilt_a", (0.0,))[0] * 1e6, spec.get("spindle_tilt_b", (0.0,))[0] * 1e6]
+            )
+        ]
+
+    def apply(self, problem, spec, x):
+        return spec.set("spindle_tilt_a", [x[0] * 1e-6]).set("spindle_tilt_b", [x[1] * 1e-6])
+
+    def parameters_of(self, x):
+        return {"tilt_a_urad": float(x[0]), "tilt_b_urad": float(x[1])}
+
+
+class Backlash(_PerAxis):
+    name, kind = "backlash", "volumetric_error"
+    parameters = ("axis", "reversal_um")
+    covariate = "direction"
+    description = (
+        "reversal (backlash) error of one axis: it lands reversal/2 further along its approach direction"
+    )
+
+    def applicable(self, problem):
+        return (
+            None
+            if all(e.directions is not None for e in problem.experiments)
+            else "needs the direction column"
+        )
+
+    def starts(self, problem, spec):
+        return [np.zeros(1)]
+
+    def apply_axis(self, problem, spec, axis, x):
+        return dataclasses.replace(spec, backlash=spec.backlash + ((axis, float(x[0]) * 1e-3),))
+
+    def parameters_of_axis(self, axis, x):
+        return {"axis": axis, "reversal_um": float(x[0])}
+
+
+for _e in (Squareness(), ScaleError(), ThermalDrift(), SpindleTilt(), Backlash()):
+    register_effect(_e, replace=True)

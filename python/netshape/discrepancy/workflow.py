@@ -1,0 +1,254 @@
+"""diagnose(bundle) → Diagnosis: residuals, localisation, catalogue fits, selection, repeat.
+
+Rounds. With the current model (the bundle's model plus the effects added so far):
+1. residuals and their localisation (``Diagnosis.localisation``, first round);
+2. every applicable catalogue effect of the bundle's kind not yet added is fitted (SciPy
+   least_squares), its rms, held-out rms (cross-validation: leave one experiment out with ≥ 3
+   experiments, else 4 blocks of points) and BIC = n·ln(RSS/n) + k·ln n (k counts the parameters of
+   all effects in the model, n the residual values) are recorded (``candidates``);
+3. the effect with the smallest BIC among those that lower the BIC by more than 10 and the held-out
+   rms by more than 1 % is added;
+4. stop when the rms is within 10 % of the noise estimate (the residual is consistent with the
+   noise), when no effect qualifies, or when every effect has been added. No effect added →
+   ``effect`` None: "no missing effect found".
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+from .bundle import Bundle, load_bundle
+from .catalogue import catalogue
+
+#: BIC must drop by more than this to add an effect ("very strong" evidence on Kass & Raftery's scale).
+BIC_MARGIN = 10.0
+#: the held-out rms must drop by more than this fraction.
+CV_MARGIN = 0.01
+#: the residual counts as noise when its rms is within this factor of the noise estimate.
+NOISE_FACTOR = 1.10
+
+
+@dataclass
+class Diagnosis:
+    """Result of :func:`diagnose`. ``effects``: every effect added, in order ({effect, parameters,
+    rms_after}); ``candidates``: first round ({effect, rms, cv_rms, bic}); ``rounds``: the candidates
+    of every round; rms and noise in the data's unit (N or mm)."""
+
+    kind: str
+    effects: list
+    rms_before: float
+    rms_after: float
+    noise_estimate: float
+    candidates: list
+    rounds: list = field(default_factory=list)
+    localisation: dict = field(default_factory=dict)
+    localisation_after: dict = field(default_factory=dict)
+    skipped: dict = field(default_factory=dict)
+    notes: list = field(default_factory=list)
+    experiments: list = field(default_factory=list)
+    unit: str = ""
+    problem: Any = None
+    spec_before: Any = None
+    spec_after: Any = None
+
+    @property
+    def effect(self) -> str | None:
+        return self.effects[0]["effect"] if self.effects else None
+
+    @property
+    def parameters(self) -> dict:
+        return dict(self.effects[0]["parameters"]) if self.effects else {}
+
+    def to_dict(self) -> dict:
+        """The machine-readable result (the keys of ``netshape diagnose --json``)."""
+        return _clean(
+            {
+                "kind": self.kind,
+                "effect": self.effect,
+                "parameters": self.parameters,
+                "effects": [dict(e) for e in self.effects],
+                "rms_before": self.rms_before,
+                "rms_after": self.rms_after,
+                "noise_estimate": self.noise_estimate,
+                "candidates": [dict(c) for c in self.candidates],
+            }
+        )
+
+    def summary(self) -> str:
+        u = self.unit
+        lines = [
+            f"{self.kind}: rms {self.rms_before:.4g} {u} before, {self.rms_after:.4g} {u} after, "
+            f"noise {self.noise_estimate:.4g} {u}"
+        ]
+        if not self.effects:
+            lines.append("no missing effect found")
+        for e in self.effects:
+            p = ", ".join(
+                f"{k} = {v:.4g}" if isinstance(v, float) else f"{k} = {v}" for k, v in e["parameters"].items()
+            )
+            lines.append(f"  + {e['effect']} ({p}): rms {e['rms_after']:.4g} {u}")
+        lines += [f"note: {n}" for n in self.notes]
+        return "\n".join(lines)
+
+
+def make_problem(bundle: Bundle):
+    if bundle.kind == "cutting_force":
+        from .force_effects import ForceProblem
+
+        return ForceProblem(bundle)
+    if bundle.kind == "volumetric_error":
+        from .volumetric_effects import VolumetricProblem
+
+        return VolumetricProblem(bundle)
+    raise ValueError(f"kind = {bundle.kind!r}: no workflow for it")
+
+
+def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
+    """Find what the bundle's model misses. ``bundle``: a :class:`Bundle` or a path to one;
+    ``effects``: names of the catalogue entries to consider (default all of the bundle's kind)."""
+    if not isinstance(bundle, Bundle):
+        bundle = load_bundle(bundle)
+    problem = make_problem(bundle)
+    from . import force_effects, volumetric_effects  # noqa: F401  (register the built-in catalogue)
+
+    cat = catalogue(bundle.kind)
+    if effects is not None:
+        unknown = [n for n in effects if n not in cat]
+        if unknown:
+            raise ValueError(
+                f"effects: {unknown[0]!r} is not in the {bundle.kind} catalogue ({', '.join(cat)})"
+            )
+        cat = {n: cat[n] for n in effects}
+    skipped = {}
+    for name, eff in list(cat.items()):
+        why = eff.applicable(problem)
+        if why:
+            skipped[name] = why
+            del cat[name]
+    spec = problem.initial_spec()
+    spec0 = spec
+    k_nuis = len(problem.nuisance_experiments())
+    rms_before = problem.rms(spec)
+    noise = problem.noise_estimate(spec)
+    loc = problem.localise(spec)
+    added, rounds, chain = [], [], []
+    k_total = k_nuis
+    rms_cur = rms_before
+    cv_cur = rms_before
+    bic_cur = problem.bic(spec, k_total)
+    while cat and len(added) < max_effects:
+        if rounds and rms_cur <= NOISE_FACTOR * noise:
+            break
+        round_ = []
+        for name, eff in cat.items():
+            try:
+                fit = eff.fit(problem, spec)
+            except (ValueError, FloatingPointError) as exc:  # an effect that cannot be fitted here
+                skipped[name] = f"fit failed: {exc}"
+                continue
+            base = problem.with_nuisance(spec, problem.nuisance_of(fit.spec))
+            make, x0, bnd = eff.refit(problem, base, fit)
+            cv = problem.cv_rms(make, x0, bnd)
+            rms = problem.rms(fit.spec)
+            bic = problem.bic(fit.spec, k_total + fit.k)
+            round_.append({"effect": name, "rms": rms, "cv_rms": cv, "bic": bic, "_fit": fit})
+        rounds.append(round_)
+        if rms_cur <= NOISE_FACTOR * noise:
+            break
+        ok = [c for c in round_ if c["bic"] < bic_cur - BIC_MARGIN and c["cv_rms"] < (1 - CV_MARGIN) * cv_cur]
+        if not ok:
+            break
+        best = min(ok, key=lambda c: c["bic"])
+        fit = best["_fit"]
+        spec = fit.spec
+        k_total += fit.k
+        rms_cur, cv_cur, bic_cur = best["rms"], best["cv_rms"], best["bic"]
+        chain.append((cat[best["effect"]], fit))
+        added.append({"effect": best["effect"], "parameters": fit.parameters, "rms_after": rms_cur})
+        if len(chain) > 1:  # refit all added effects together: earlier ones were fitted without this one
+            chain, spec = _joint_refit(
+                problem, problem.with_nuisance(spec0, problem.nuisance_of(spec)), chain
+            )
+            for entry, (eff, f) in zip(added, chain):
+                entry["parameters"] = f.parameters
+            rms_cur = problem.rms(spec)
+            bic_cur = problem.bic(spec, k_total)
+            added[-1]["rms_after"] = rms_cur
+        del cat[best["effect"]]
+    clean = [[{k: v for k, v in c.items() if k != "_fit"} for c in r] for r in rounds]
+    notes = list(getattr(problem, "notes", []))
+    if not added:
+        notes.append(
+            "no missing effect found"
+            + (" (the residual is consistent with the noise)" if rms_before <= NOISE_FACTOR * noise else "")
+        )
+    elif rms_cur > NOISE_FACTOR * noise:
+        notes.append(
+            f"the residual after the added effects ({rms_cur:.4g} {problem.unit}) is still above the "
+            f"noise ({noise:.4g} {problem.unit}): something the catalogue does not hold remains"
+        )
+    return Diagnosis(
+        kind=bundle.kind,
+        effects=added,
+        rms_before=rms_before,
+        rms_after=rms_cur,
+        noise_estimate=noise,
+        candidates=clean[0] if clean else [],
+        rounds=clean,
+        localisation=loc,
+        localisation_after=problem.localise(spec) if added else loc,
+        skipped=skipped,
+        notes=notes,
+        experiments=problem.experiment_notes(spec),
+        unit=problem.unit,
+        problem=problem,
+        spec_before=spec0,
+        spec_after=spec,
+    )
+
+
+def _joint_refit(problem, base, chain):
+    """Refit the parameters of every effect in ``chain`` [(effect, EffectFit)] together (their
+    discrete choices kept), applied in order to ``base``. Returns (new chain, spec)."""
+    import numpy as np
+
+    from .catalogue import EffectFit
+
+    parts, x0, lo, hi = [], [], [], []
+    s = base
+    for eff, fit in chain:
+        make, x, (blo, bhi) = eff.refit(problem, s, fit)
+        x = np.atleast_1d(np.asarray(x, float))
+        parts.append(slice(len(x0), len(x0) + x.size))
+        x0 += list(x)
+        lo += list(np.broadcast_to(blo, x.shape))
+        hi += list(np.broadcast_to(bhi, x.shape))
+        s = make(x)
+
+    def make_all(z):
+        s = base
+        for (eff, fit), sl in zip(chain, parts):
+            s = eff.refit(problem, s, fit)[0](z[sl])
+        return s
+
+    z, spec = problem.least_squares(make_all, [np.array(x0)], (np.array(lo), np.array(hi)))
+    new = []
+    for (eff, fit), sl in zip(chain, parts):
+        full = np.concatenate([fit.x[: fit.x.size - (sl.stop - sl.start)], z[sl]])
+        new.append((eff, EffectFit(eff.parameters_of(full), spec, fit.k, full)))
+    return new, spec
+
+
+def _clean(v):
+    """JSON-safe: non-finite floats → None, NumPy scalars → Python."""
+    if isinstance(v, dict):
+        return {k: _clean(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_clean(x) for x in v]
+    if hasattr(v, "item") and not isinstance(v, str):
+        v = v.item()
+    if isinstance(v, float) and not math.isfinite(v):
+        return None
+    return v

@@ -1,0 +1,252 @@
+"""Bundles with hidden effects for the discrepancy tests (and bench/discrepancy.py).
+
+Forces come from an independent NumPy evaluation of the element sum (DESIGN frame and formulas:
+φ_j(z) = θ + j·2π/N − k_β·z, h = c·sin φ (+ runout offset R_j − R_{j−1}, clamped at 0), linear edge
+forces, dF → (Fx, Fy, Fz)), with disks 5× thinner than the workflow's; a structural mode is applied by
+simulating the continuous 2nd-order system in time (scipy.signal.lsim over 8 revolutions, the last
+ones kept). Volumetric errors come from netshape.machine (validated against an independent matrix
+composition in tests/python/machine) plus thermal drift and backlash written out here.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+TOOL = {"type": "flat", "diameter_mm": 10.0, "flutes": 2, "helix_deg": 30.0}
+MODEL = {
+    "Ktc_N_per_mm2": 900.0,
+    "Krc_N_per_mm2": 270.0,
+    "Kac_N_per_mm2": 150.0,
+    "Kte_N_per_mm": 16.0,
+    "Kre_N_per_mm": 20.0,
+    "Kae_N_per_mm": 10.0,
+}
+#: (mode, radial depth [mm], feed per tooth [mm]) of the 4 experiments of a force bundle
+CONDITIONS = [("slot", 10.0, 0.04), ("slot", 10.0, 0.1), ("up", 5.0, 0.07), ("down", 3.0, 0.13)]
+RPM, AP = 6000.0, 3.0
+
+
+def oracle_forces(
+    angles, *, feed, mode, ae, coefficients, runout=None, exponent=None, h_ref=None, tool=TOOL, ap=AP, dz=0.01
+):
+    """Forces on the cutter (n, 3) [N] at angles θ (n,) [rad] by a direct element sum."""
+    R = tool["diameter_mm"] / 2
+    N = tool["flutes"]
+    kb = math.tan(math.radians(tool["helix_deg"])) / R
+    nd = int(math.ceil(ap / dz - 1e-9))
+    z = (np.arange(nd) + 0.5) * (ap / nd)
+    w = ap / nd
+    if mode == "slot":
+        st, ex = 0.0, math.pi
+    elif mode == "up":
+        st, ex = 0.0, math.acos(1 - ae / R)
+    else:
+        st, ex = math.pi - math.acos(1 - ae / R), math.pi
+    ktc, krc, kac, kte, kre, kae = (coefficients[k] for k in MODEL)
+    r = (
+        np.zeros(N)
+        if runout is None
+        else runout[0] * np.cos(math.radians(runout[1]) - 2 * np.pi * np.arange(N) / N)
+    )
+    F = np.zeros((len(angles), 3))
+    for j in range(N):
+        phi = np.mod(angles[:, None] + 2 * np.pi * j / N - kb * z[None, :], 2 * np.pi)
+        h = feed * np.sin(phi) + (r[j] - r[j - 1])
+        on = (phi >= st) & (phi <= ex) & (h > 0)
+        h = np.where(on, h, 0.0)
+        g = h if exponent is None else h_ref * (h / h_ref) ** exponent
+        ft = np.where(on, ktc * g + kte, 0.0) * w
+        fr = np.where(on, krc * g + kre, 0.0) * w
+        fa = np.where(on, kac * g + kae, 0.0) * w
+        F[:, 0] += np.sum(-ft * np.cos(phi) - fr * np.sin(phi), 1)
+        F[:, 1] += np.sum(ft * np.sin(phi) - fr * np.cos(phi), 1)
+        F[:, 2] += np.sum(fa, 1)
+    return F
+
+
+def _toml_value(v):
+    if isinstance(v, str):
+        return f'"{v}"'
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    return repr(float(v)) if isinstance(v, float) else str(v)
+
+
+def write_manifest(folder: Path, kind: str, tables: dict, experiments: list) -> None:
+    lines = [f'kind = "{kind}"']
+    for name, t in tables.items():
+        lines.append(f"[{name}]")
+        lines += [f"{k} = {_toml_value(v)}" for k, v in t.items()]
+    for e in experiments:
+        lines.append("[[experiment]]")
+        lines += [f"{k} = {_toml_value(v)}" for k, v in e.items()]
+    (folder / "manifest.toml").write_text("\n".join(lines) + "\n")
+
+
+def write_csv(path: Path, header: list, data: np.ndarray) -> None:
+    np.savetxt(path, data, delimiter=",", header=",".join(header), comments="", fmt="%.10g")
+
+
+def force_bundle(
+    folder,
+    *,
+    runout=None,
+    edges=None,
+    exponent=None,
+    mode=None,
+    noise=2.0,
+    form="angle",
+    revolutions=3,
+    per_rev=180,
+    seed=1,
+    conditions=CONDITIONS,
+    phase0=1.0,
+    tool=None,
+):
+    """Write a cutting_force bundle to ``folder``. Hidden effects: ``runout`` (ρ [mm], λ [deg]),
+    ``edges`` (true Kte, Kre, Kae; the manifest's model keeps MODEL's), ``exponent`` (chip exponent p),
+    ``mode`` (f_n [Hz], ζ). ``form``: "angle" (angle_deg) or "time" (time_s, flute 1 at θ = phase0
+    [rad] when t = 0). Returns the folder."""
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    tool = tool or TOOL
+    rng = np.random.default_rng(seed)
+    truth = dict(MODEL)
+    if edges is not None:
+        truth.update(zip(("Kte_N_per_mm", "Kre_N_per_mm", "Kae_N_per_mm"), edges))
+    h_ref = float(np.exp(np.mean(np.log([c for _, _, c in conditions]))))
+    omega = 2 * np.pi * RPM / 60
+    exps = []
+    for i, (m, ae, c) in enumerate(conditions):
+        settle = 5 if mode is not None else 0
+        k = np.arange((revolutions + settle) * per_rev)
+        theta = 2 * np.pi * k / per_rev + (phase0 if form == "time" else 0.0)
+        F = oracle_forces(
+            theta,
+            feed=c,
+            mode=m,
+            ae=ae,
+            coefficients=truth,
+            runout=runout,
+            exponent=exponent,
+            h_ref=h_ref,
+            tool=tool,
+        )
+        if mode is not None:
+            from scipy.signal import lsim
+
+            wn = 2 * np.pi * mode[0]
+            sys = ([wn**2], [1.0, 2 * mode[1] * wn, wn**2])
+            t = theta / omega
+            F = np.column_stack([lsim(sys, F[:, a], t)[1] for a in range(3)])
+            F, theta = F[settle * per_rev :], theta[settle * per_rev :] - 2 * np.pi * settle
+        F = F + rng.normal(0.0, noise, F.shape)
+        name = f"e{i + 1}.csv"
+        if form == "angle":
+            write_csv(
+                folder / name, ["angle_deg", "fx_N", "fy_N", "fz_N"], np.column_stack([np.degrees(theta), F])
+            )
+        else:
+            t = (theta - phase0) / omega  # θ(t) = phase0 + Ω t, t from 0
+            write_csv(folder / name, ["time_s", "fx_N", "fy_N", "fz_N"], np.column_stack([t, F]))
+        exps.append(
+            {
+                "file": name,
+                "spindle_rpm": RPM,
+                "feed_per_tooth_mm": c,
+                "axial_depth_mm": AP,
+                "radial_depth_mm": ae,
+                "mode": m,
+            }
+        )
+    write_manifest(folder, "cutting_force", {"tool": tool, "model": MODEL}, exps)
+    return folder
+
+
+# --- volumetric --------------------------------------------------------------------------------------
+
+MACHINE = {"tool_side": ["Z"], "workpiece_side": ["Y", "X"], "tool_length_mm": 100.0}
+VOL_MODEL = {"EXX": [0.0, 5e-6], "EYX": [0.0, 0.0, 2e-9], "EBY": [1e-6, 2e-9]}
+
+
+def _grid_path(nx=7, ny=5, nz=3):
+    """Serpentine grid over x ∈ [−200, 200], y ∈ [−150, 150], z ∈ [−200, 0] mm: X moves along each
+    line, alternately + and −. Returns points (n, 3) and the X approach direction (n,)."""
+    pts, dirs = [], []
+    xs = np.linspace(-200, 200, nx)
+    s = 1
+    for z in np.linspace(-200, 0, nz):
+        for y in np.linspace(-150, 150, ny):
+            for x in xs if s > 0 else xs[::-1]:
+                pts.append((x, y, z))
+                dirs.append(s)
+            s = -s
+    return np.array(pts, float), np.array(dirs, float)
+
+
+def volumetric_bundle(
+    folder,
+    *,
+    squareness=None,
+    scale=None,
+    thermal=None,
+    tilt=None,
+    backlash=None,
+    noise=5e-4,
+    seed=2,
+    experiments=2,
+    lengths=(100.0, 220.0),
+):
+    """Write a volumetric_error bundle. Hidden: ``squareness`` {EC0Y, EB0Z, EA0Z: µrad}, ``scale``
+    {EXX/EYY/EZZ: µm/m}, ``thermal`` (axis, amplitude [mm], τ [s]), ``tilt`` (a, b) [µrad],
+    ``backlash`` (axis, reversal [µm]); noise [mm]. Experiments use the tool lengths ``lengths``."""
+    from netshape.machine import machine_from_dict, tip_error
+
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    rng = np.random.default_rng(seed)
+    exps = []
+    t_next = 0.0
+    for i in range(experiments):
+        L = lengths[i % len(lengths)]
+        doc = {
+            "tool_chain": ["Z"],
+            "workpiece_chain": ["Y", "X"],
+            "tool": {"length_mm": L},
+            "squareness": {},
+            "spindle": {},
+            "axes": {"X": {"polynomials": {}}, "Y": {"polynomials": {}}, "Z": {"polynomials": {}}},
+        }
+        for k, v in VOL_MODEL.items():
+            doc["axes"][k[2]]["polynomials"][k + ("_mm" if k[1] in "XYZ" else "_rad")] = list(v)
+        for k, v in (squareness or {}).items():
+            doc["squareness"][k + "_rad"] = v * 1e-6
+        for k, v in (scale or {}).items():
+            p = doc["axes"][k[2]]["polynomials"].setdefault(k + "_mm", [0.0, 0.0])
+            p[1] = p[1] + v * 1e-6
+        if tilt is not None:
+            doc["spindle"] = {"tilt_a_rad": tilt[0] * 1e-6, "tilt_b_rad": tilt[1] * 1e-6}
+        m = machine_from_dict(doc)
+        pts, dirs = _grid_path()
+        t = t_next + 20.0 * np.arange(len(pts))
+        t_next = t[-1] + 20.0
+        e = np.array(tip_error(m, pts))
+        if thermal is not None:
+            e[:, "XYZ".index(thermal[0])] += thermal[1] * (1 - np.exp(-t / thermal[2]))
+        if backlash is not None:
+            e[:, "XYZ".index(backlash[0])] += 0.5 * backlash[1] * 1e-3 * dirs
+        e += rng.normal(0, noise, e.shape)
+        name = f"v{i + 1}.csv"
+        write_csv(
+            folder / name,
+            ["x_mm", "y_mm", "z_mm", "ex_mm", "ey_mm", "ez_mm", "t_s", "direction"],
+            np.column_stack([pts, e, t, dirs]),
+        )
+        exps.append({"file": name, "tool_length_mm": L})
+    write_manifest(folder, "volumetric_error", {"machine": MACHINE, "model": VOL_MODEL}, exps)
+    return folder
