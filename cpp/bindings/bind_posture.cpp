@@ -109,7 +109,7 @@ void bind_posture(py::module_& m) {
   }, py::arg("checker"), py::arg("frame"), py::arg("theta"), py::arg("phi"), "0 free, 1 CA1, 2 CA2");
   m.def("compute_cspace", [](const InterferenceChecker& c, const PostureFrame& f, const CSpaceOptions& o) {
     return compute_cspace(c, f, o);
-  }, py::arg("checker"), py::arg("frame"), py::arg("options") = CSpaceOptions(),
+  }, py::arg("checker"), py::arg("frame"), py::arg_v("options", CSpaceOptions(), "CSpaceOptions()"),
         py::call_guard<py::gil_scoped_release>());
 
   m.def("mb_spline_point", &mb_spline_point, py::arg("control"), py::arg("span"), py::arg("u"));
@@ -147,7 +147,7 @@ void bind_posture(py::module_& m) {
 
   m.def("plan", [](const InterferenceChecker& c, RefPoints3 cc, RefPoints3 normals, const PlanOptions& o) {
     return plan(c, cc, normals, o);
-  }, py::arg("checker"), py::arg("cc"), py::arg("normals"), py::arg("options") = PlanOptions(),
+  }, py::arg("checker"), py::arg("cc"), py::arg("normals"), py::arg_v("options", PlanOptions(), "PlanOptions()"),
         py::call_guard<py::gil_scoped_release>());
   m.def("max_posture_change", &max_posture_change, py::arg("s"), py::arg("axes"), "[rad/mm]");
 

@@ -90,7 +90,10 @@ def run(args) -> int:
         if not isinstance(surf, ng.NurbsSurface):
             raise CliError(f"--surface {args.surface}: holds a curve, not a NURBS surface")
         cc, normals = npost.surface_cc_path(surf, args.points)
-        verts, faces, _ = ng.read_stl(args.obstacles)
+        try:
+            verts, faces, _ = ng.read_stl(args.obstacles)
+        except ValueError as exc:
+            raise CliError(f"--obstacles {args.obstacles}: {exc}") from None
         if len(faces) == 0:
             raise CliError(f"--obstacles {args.obstacles}: empty mesh (no triangles)")
         assembly = npost.load_tool(args.tool)

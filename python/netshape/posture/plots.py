@@ -11,13 +11,10 @@ import numpy as np
 def plot_cspace(result, index: int):
     """C-space of CC point `index`: grid states, bisected C-obstacle boundaries (CA1, CA2), and the raw, MC,
     smoothed and final postures of that point."""
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
 
     cs = result.cspaces[index]
-    fig = plt.figure(figsize=(6.4, 6.0))
+    fig = Figure(figsize=(6.4, 6.4), constrained_layout=True)
     ax = fig.add_subplot(projection="polar")
     th, ph = np.degrees(cs.thetas), cs.phis
     st = cs.states
@@ -37,21 +34,18 @@ def plot_cspace(result, index: int):
         ax.scatter([p], [math.degrees(t)], marker=marker, s=70, color=colour, edgecolor="k", label=name, zorder=5)
     ax.set_rmax(math.degrees(cs.options.theta_max))
     ax.set_title(f"C-space at CC point {index} (radius: tilt θ [deg], angle: rotation φ from feed)", fontsize=9)
-    ax.legend(loc="lower left", bbox_to_anchor=(-0.15, -0.15), fontsize=7, ncol=3)
-    fig.tight_layout()
+    fig.legend(loc="outside lower center", fontsize=7, ncol=4)
     return fig
 
 
 def plot_angles(result):
     """Tilt θ and rotation φ [deg] of the raw, MC and final postures along the path s [mm], and the posture
     change between neighbours [deg/mm]."""
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
 
     s = np.asarray(result.s)
-    fig, axs = plt.subplots(3, 1, figsize=(7.0, 7.5), sharex=True)
+    fig = Figure(figsize=(7.0, 7.5), constrained_layout=True)
+    axs = fig.subplots(3, 1, sharex=True)
     for name, style in (("raw", "k:"), ("mc", "C2-"), ("final", "C1-")):
         st = getattr(result, name)
         ang = np.degrees(st.angles)
@@ -70,5 +64,4 @@ def plot_angles(result):
     for a in axs:
         a.grid(True, alpha=0.3)
         a.legend(fontsize=7)
-    fig.tight_layout()
     return fig

@@ -13,7 +13,7 @@ import pytest
 
 from netshape import posture as npost
 
-POINTS = 12
+POINTS = 40  # the CLI default; MC-space jitter between neighbours shows at this spacing (≈1.1 mm)
 
 
 def point_triangle_distance(p: np.ndarray, tri: np.ndarray) -> np.ndarray:
@@ -47,21 +47,22 @@ def point_triangle_distance(p: np.ndarray, tri: np.ndarray) -> np.ndarray:
     return np.min(np.linalg.norm(P - q, axis=-1), axis=1)
 
 
-def numpy_gap(assembly, tri: np.ndarray, tip: np.ndarray, axis: np.ndarray, h: float = 0.1) -> float:
+def numpy_gap(assembly, tri: np.ndarray, tip: np.ndarray, axis: np.ndarray, h: float = 0.25) -> float:
     """Lower bound of the assembly–mesh gap [mm]: distances of axis samples every h mm minus the part radius,
     less h/2 (the distance is 1-Lipschitz along the axis). Only triangles near the axis are kept."""
     a = assembly
     parts = ((a.ball_radius, a.ball_radius, a.ball_radius), (a.ball_radius, a.shank_length, a.shank_radius),
              (a.shank_length + a.holder_radius, a.holder_length, a.holder_radius))
-    lo, hi = tip - a.holder_radius - 5.0 + np.minimum(0, axis * a.holder_length), \
-        tip + a.holder_radius + 5.0 + np.maximum(0, axis * a.holder_length)
-    near = tri[np.all((tri.max(1) >= lo) & (tri.min(1) <= hi), axis=1)]
-    if len(near) == 0:
-        return math.inf
     best = math.inf
     for z0, z1, r in parts:
         zs = np.arange(z0, z1 + h, h) if z1 > z0 else np.array([z0])
-        d = point_triangle_distance(tip[None, :] + zs[:, None] * axis[None, :], near)
+        pts = tip[None, :] + zs[:, None] * axis[None, :]
+        # triangles whose box comes within r + 1 mm of this part's axis samples' box (others are further away)
+        lo, hi = pts.min(0) - r - 1.0, pts.max(0) + r + 1.0
+        near = tri[np.all((tri.max(1) >= lo) & (tri.min(1) <= hi), axis=1)]
+        if len(near) == 0:
+            continue
+        d = point_triangle_distance(pts, near)
         best = min(best, float(d.min()) - r - (h / 2 if z1 > z0 else 0.0))
     return best
 
@@ -81,10 +82,12 @@ def test_default_impeller_normal_posture_collides_on_the_inner_part(default_run)
     imp, run, tri = default_run
     raw = np.asarray(run.result.raw.collides)
     assert 0 < raw.sum() < POINTS, raw
+    # the inner part of the passage (where the lean is large against the gap) and nothing beyond it
+    np.testing.assert_array_equal(raw, np.arange(POINTS) < raw.sum())
     a = run.assembly
     for i in range(POINTS):
         g = numpy_gap(a, tri, run.result.raw.tips[i], run.result.raw.axes[i])
-        if abs(g - 0.5) > 0.1:
+        if abs(g - 0.5) > 0.25:
             assert raw[i] == (g < 0.5), (i, g)
 
 
@@ -96,7 +99,16 @@ def test_after_mc_mb_repair_nothing_collides_independent_check(default_run):
     assert s["collisions"]["final"] == 0
     for i in range(POINTS):
         g = numpy_gap(run.assembly, tri, run.result.final.tips[i], run.result.final.axes[i])
-        assert g >= 0.5 - 0.05, (i, g)
+        assert g >= 0.5 - 0.15, (i, g)
+    # the NumPy bound agrees with the planner's own gap (AABB-tree branch and bound) to the sampling step
+    from netshape.geometry import TriangleMesh
+
+    chk = npost.InterferenceChecker(TriangleMesh(run.obstacle_vertices, run.obstacle_faces), run.assembly, 0.5)
+    for i in range(0, POINTS, 7):
+        g = numpy_gap(run.assembly, tri, run.result.final.tips[i], run.result.final.axes[i])
+        gc = chk.gap(run.result.final.tips[i], run.result.final.axes[i])
+        if math.isfinite(g):
+            assert gc - 0.125 - 2e-3 <= g <= gc + 2e-3, (i, g, gc)
     ch = s["max_posture_change_deg_per_mm"]
     assert ch["final"] <= 0.5 * ch["mc"], ch
     # tips: the ball touches the floor at the CC point: centre at CC + R n, tip = centre − R·axis
@@ -207,3 +219,33 @@ def test_bad_input_names_the_cc_point_or_field(tmp_path, capsys):
     tool.write_text(tool.read_text().replace("holder_length_mm = 80.0", "holder_length_mm = 20.0"))
     with pytest.raises(ValueError, match="holder_length"):
         npost.load_tool(tool)
+
+
+def _plate(x, y0, y1):
+    v = np.array([[x, y0, -50.0], [x, y1, -50.0], [x, y1, 150.0], [x, y0, 150.0]])
+    return v, np.array([[0, 1, 2], [0, 2, 3]])
+
+
+def test_smoothing_into_an_obstacle_is_repaired():
+    """A channel open on the left for y < 40 and tight beyond (walls at x = ±6.6: the Ø12 holder keeps 0.1 mm
+    more than the clearance upright): the MC postures tilt to the left before the step and stand upright after
+    it, and strong smoothing (30 passes) drags the first postures after the step into the walls; they are
+    repaired and the independent NumPy distance confirms the clearance."""
+    vr, fr = _plate(6.6, -40.0, 120.0)
+    vl, fl = _plate(-6.6, 40.0, 120.0)
+    v, f = np.concatenate([vr, vl]), np.concatenate([fr, fl + 4])
+    y = np.arange(0.0, 61.0, 2.0)
+    cc = np.column_stack([np.zeros_like(y), y, np.zeros_like(y)])
+    n = np.tile([0.0, 0.0, 1.0], (len(y), 1))
+    a = npost.CutterAssembly(2.0, 2.0, 25.0, 6.0, 60.0)
+    o = npost.PlanOptions()
+    o.passes = 30
+    run = npost.plan_postures(cc, n, v, f, a, clearance=0.5, options=o)
+    s = run.summary()
+    smoothed_hits = np.asarray(run.result.smoothed.collides)
+    assert s["collisions"]["mc"] == 0 and smoothed_hits.sum() > 0, s
+    np.testing.assert_array_equal(np.asarray(run.result.repaired), smoothed_hits)
+    assert s["repaired"] == smoothed_hits.sum() and s["collisions"]["final"] == 0
+    tri = v[f]
+    for i in range(len(y)):
+        assert numpy_gap(a, tri, run.result.final.tips[i], run.result.final.axes[i], h=0.1) >= 0.5 - 0.06, i
