@@ -249,3 +249,37 @@ def test_smoothing_into_an_obstacle_is_repaired():
     tri = v[f]
     for i in range(len(y)):
         assert numpy_gap(a, tri, run.result.final.tips[i], run.result.final.axes[i], h=0.1) >= 0.5 - 0.06, i
+
+
+def test_cli_surface_and_obstacles_and_impeller_toml(tmp_path, capsys):
+    """--surface/--obstacles: a flat floor beside one wall (x = 9); the MC posture leans away from the wall and
+    nothing collides. --impeller with a TOML file: keys are read, an unknown key is named."""
+    from netshape import geometry as ng
+    from netshape.cli import main
+
+    surf = ng.bilinear(np.array([0, 0, 0.0]), np.array([0, 20, 0.0]), np.array([-10, 0, 0.0]),
+                       np.array([-10, 20, 0.0]))  # u along +y (feed), normal (+y) × (−x) = +z
+    sj = tmp_path / "floor.json"
+    ng.save_json(surf, sj)
+    vw, fw = _plate(9.0, -20.0, 40.0)
+    stl = tmp_path / "wall.stl"
+    ng.write_stl(stl, vw, fw)
+    tool = tmp_path / "tool.toml"
+    _write_tool(tool, 4.0)
+    out = tmp_path / "o"
+    assert main(["posture", "plan", "--surface", str(sj), "--obstacles", str(stl), "--tool", str(tool),
+                 "--out", str(out), "--points", "6"]) == 0
+    import json
+
+    s = json.loads((out / "summary.json").read_text())
+    assert s["points"] == 6 and s["collisions"]["final"] == 0 and s["cutter"]["holder_radius_mm"] == 12.0
+    final = np.loadtxt(out / "postures_final.csv", delimiter=",", skiprows=1)
+    assert np.all(final[:, 4] < 0)  # tilted away from the wall at +x
+    imp = tmp_path / "imp.toml"
+    imp.write_text("blades = 10\ntwist_deg = 0.0\n")
+    assert main(["posture", "plan", "--impeller", str(imp), "--out", str(tmp_path / "i"), "--points", "5"]) == 0
+    s = json.loads((tmp_path / "i" / "summary.json").read_text())
+    assert s["collisions"]["raw"] == 0  # upright blades: the normal posture is free
+    imp.write_text("blade_count = 10\n")
+    assert main(["posture", "plan", "--impeller", str(imp), "--out", str(tmp_path / "i")]) == 2
+    assert "blade_count" in capsys.readouterr().err
