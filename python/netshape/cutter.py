@@ -10,6 +10,13 @@ TOML keys (units in the names)::
     flute_length_mm = 22.0
     stick_out_mm = 40.0
     youngs_modulus_MPa = 600000.0   # optional (carbide by default)
+
+Optional keys of the cutter assembly, read by netshape.posture (lengths measured from the tip)::
+
+    shank_diameter_mm = 6.0
+    shank_length_mm = 35.0     # tip to the end of the shank (where the holder starts)
+    holder_diameter_mm = 20.0
+    holder_length_mm = 80.0    # tip to the end of the holder
 """
 
 from __future__ import annotations
@@ -30,7 +37,7 @@ Cutter = _cutter.Cutter
 CutterKind = _cutter.CutterKind
 
 _KEYS = ("kind", "diameter_mm", "corner_radius_mm", "flutes", "helix_deg", "flute_length_mm", "stick_out_mm",
-         "youngs_modulus_MPa")
+         "youngs_modulus_MPa", "shank_diameter_mm", "shank_length_mm", "holder_diameter_mm", "holder_length_mm")
 _REQUIRED = ("kind", "diameter_mm", "flutes", "helix_deg", "flute_length_mm", "stick_out_mm")
 
 

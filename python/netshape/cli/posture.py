@@ -1,0 +1,115 @@
+"""`netshape posture` — 5-axis tool posture planning (C-space, MC-space, MB-spline, repair, machine angles)."""
+
+from __future__ import annotations
+
+import argparse
+
+_DESCRIPTION = """\
+Choose a collision-free, smoothly changing tool posture at every cutter-contact (CC) point of a 5-axis
+ball-end path (Park, Jung, Hwang, Jung, "A theoretical consideration for continuity control of cutter
+posture", KSPE): the normal posture (raw), its C-space and the MC-space move to the middle between the two
+C-obstacles (mc), MB-spline smoothing of the posture-vector end points, and repair of any smoothed posture
+that entered an obstacle (final). See docs/posture.md.
+
+  plan   plan the postures along the middle iso-curve of a surface (or the passage of an impeller)
+"""
+
+_EPILOG = """\
+examples:
+  netshape posture plan --impeller --out run/                       default impeller and tool
+  netshape posture plan --impeller imp.toml --tool tool.toml --out run/ --clearance 0.5 --plot
+  netshape posture plan --surface floor.json --obstacles walls.stl --tool tool.toml --out run/ \\
+                        --machine table_ac.toml
+"""
+
+
+def register(sub) -> None:
+    p = sub.add_parser("posture", help="5-axis tool posture planning", description=_DESCRIPTION, epilog=_EPILOG,
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    ps = p.add_subparsers(dest="posture_command", metavar="ACTION")
+    q = ps.add_parser("plan", help="plan postures along a path", description=_DESCRIPTION, epilog=_EPILOG,
+                      formatter_class=argparse.RawDescriptionHelpFormatter)
+    src = q.add_mutually_exclusive_group(required=True)
+    src.add_argument("--impeller", nargs="?", const="", metavar="IMPELLER.toml",
+                     help="machine the passage floor of a generated impeller (no file: the default impeller)")
+    src.add_argument("--surface", metavar="SURF.json",
+                     help="NURBS surface to machine (JSON or TOML; normals towards the tool); needs --obstacles")
+    q.add_argument("--obstacles", metavar="OBST.stl", help="surfaces the assembly must clear (STL)")
+    q.add_argument("--tool", metavar="TOOL.toml",
+                   help="ball-end cutter TOML with shank_diameter_mm, shank_length_mm, holder_diameter_mm, "
+                   "holder_length_mm (default with --impeller: Ø6 ball, Ø20 holder)")
+    q.add_argument("--out", required=True, metavar="DIR", help="output folder (created if missing)")
+    q.add_argument("--clearance", type=float, default=0.5, metavar="MM", help="safety clearance [mm] (default 0.5)")
+    q.add_argument("--machine", metavar="KIN.toml",
+                   help="machine kinematics (table_ac or head_bc): also write program.ngc with A/C or B/C words")
+    q.add_argument("--points", type=int, default=40, metavar="N", help="CC points along the path (default 40)")
+    q.add_argument("--passes", type=int, default=3, metavar="K", help="MB-spline smoothing passes (default 3)")
+    q.add_argument("--tilt-max", type=float, default=60.0, metavar="DEG", help="largest tilt searched [deg]")
+    q.add_argument("--feed", type=float, default=1000.0, metavar="MM_PER_MIN", help="feed of program.ngc")
+    q.add_argument("--plot", action="store_true", help="write cspace.png and angles.png")
+    q.add_argument("--plot-point", type=int, metavar="I", help="CC point of cspace.png (default: first collision)")
+    q.set_defaults(func=run)
+    p.set_defaults(func=run, _posture_parser=p)
+
+
+def run(args) -> int:
+    import math
+    import os
+    from pathlib import Path
+
+    from netshape import posture as npost
+    from netshape.cli import CliError
+
+    if getattr(args, "posture_command", None) is None:
+        args._posture_parser.print_help()
+        return 2
+    if not math.isfinite(args.clearance) or args.clearance < 0:
+        raise CliError(f"--clearance = {args.clearance}: must be a finite number ≥ 0 [mm]")
+    if not 0 < args.tilt_max < 90:
+        raise CliError(f"--tilt-max = {args.tilt_max}: must be in (0, 90) [deg]")
+    if args.points < 4:
+        raise CliError(f"--points = {args.points}: must be ≥ 4")
+    if args.passes < 0:
+        raise CliError(f"--passes = {args.passes}: must be ≥ 0")
+    kin = npost.load_kinematics(args.machine) if args.machine else None
+    if args.impeller is not None:
+        if args.obstacles:
+            raise CliError("--obstacles: not used with --impeller (the impeller's blades are the obstacles)")
+        imp = npost.load_impeller(args.impeller or None)
+        cc, normals = imp.cc_path(args.points)
+        verts, faces = imp.obstacles()
+        assembly = npost.load_tool(args.tool) if args.tool else npost.default_assembly()
+    else:
+        if not args.obstacles:
+            raise CliError("--obstacles: required with --surface")
+        if not args.tool:
+            raise CliError("--tool: required with --surface")
+        from netshape import geometry as ng
+
+        surf = (ng.load_toml if str(args.surface).endswith(".toml") else ng.load_json)(args.surface)
+        if not isinstance(surf, ng.NurbsSurface):
+            raise CliError(f"--surface {args.surface}: holds a curve, not a NURBS surface")
+        cc, normals = npost.surface_cc_path(surf, args.points)
+        try:
+            verts, faces, _ = ng.read_stl(args.obstacles)
+        except ValueError as exc:
+            raise CliError(f"--obstacles {args.obstacles}: {exc}") from None
+        if len(faces) == 0:
+            raise CliError(f"--obstacles {args.obstacles}: empty mesh (no triangles)")
+        assembly = npost.load_tool(args.tool)
+    opts = npost.PlanOptions()
+    opts.passes = args.passes
+    opts.cspace.theta_max = math.radians(args.tilt_max)
+    run_ = npost.plan_postures(cc, normals, verts, faces, assembly, clearance=args.clearance, options=opts)
+    out = Path(args.out)
+    try:
+        os.makedirs(out, exist_ok=True)
+    except (FileExistsError, NotADirectoryError):
+        raise CliError(f"--out {args.out}: not a folder") from None
+    run_.write(out, plot=args.plot, plot_point=args.plot_point, kinematics=kin, feed_mm_per_min=args.feed)
+    s = run_.summary()
+    print(f"{s['points']} CC points: collisions raw {s['collisions']['raw']}, mc {s['collisions']['mc']}, "
+          f"final {s['collisions']['final']}; repaired {s['repaired']}; max posture change "
+          f"{s['max_posture_change_deg_per_mm']['mc']:.3g} (mc) -> {s['max_posture_change_deg_per_mm']['final']:.3g} "
+          f"(final) deg/mm; written to {out}")
+    return 0

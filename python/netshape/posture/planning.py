@@ -1,0 +1,267 @@
+"""Posture planning workflow: tool and machine TOML, CC paths from a NURBS surface, the planner run, its CSV /
+JSON / G-code outputs. The computation is in C++ (``netshape._core.posture``); this module parses and writes."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .._atomic import atomic_write
+from .._core import posture as _p
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+#: Columns of postures_*.csv: path length of the CC points, tool tip (lowest point of the ball along the axis),
+#: unit axis from the tip towards the spindle.
+CSV_COLUMNS = ("s_mm", "tip_x_mm", "tip_y_mm", "tip_z_mm", "axis_i", "axis_j", "axis_k")
+
+#: Cutter TOML keys of the assembly beyond the cutter's own (lengths measured from the tip).
+ASSEMBLY_KEYS = ("shank_diameter_mm", "shank_length_mm", "holder_diameter_mm", "holder_length_mm")
+
+
+def _number(source: str, key: str, value) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ValueError(f"{source}: {key} = {value!r}: must be a finite number")
+    return float(value)
+
+
+def assembly_from_dict(d: dict, *, source: str = "tool") -> _p.CutterAssembly:
+    """A validated :class:`CutterAssembly` from cutter TOML keys (``kind = "ball"``, ``diameter_mm``, …) plus
+    ``shank_diameter_mm``, ``shank_length_mm``, ``holder_diameter_mm``, ``holder_length_mm`` (from the tip)."""
+    from ..cutter import cutter_from_dict
+
+    cutter = cutter_from_dict(d, source=source)
+    if d.get("kind") != "ball":
+        raise ValueError(f"{source}: kind = {d.get('kind')!r}: posture planning needs a ball end mill (\"ball\")")
+    for key in ASSEMBLY_KEYS:
+        if key not in d:
+            raise ValueError(f"{source}: {key}: missing (posture planning needs {', '.join(ASSEMBLY_KEYS)})")
+    a = _p.CutterAssembly()
+    a.ball_radius = cutter.radius
+    a.shank_radius = 0.5 * _number(source, "shank_diameter_mm", d["shank_diameter_mm"])
+    a.shank_length = _number(source, "shank_length_mm", d["shank_length_mm"])
+    a.holder_radius = 0.5 * _number(source, "holder_diameter_mm", d["holder_diameter_mm"])
+    a.holder_length = _number(source, "holder_length_mm", d["holder_length_mm"])
+    try:
+        a.validate()
+    except ValueError as exc:
+        raise ValueError(f"{source}: {exc}") from None
+    return a
+
+
+def _load_toml(path) -> dict:
+    with open(path, "rb") as fh:
+        try:
+            return tomllib.load(fh)
+        except tomllib.TOMLDecodeError as exc:
+            raise ValueError(f"{os.fspath(path)}: not valid TOML: {exc}") from None
+
+
+def load_tool(path: str | os.PathLike) -> _p.CutterAssembly:
+    """Cutter assembly from a cutter TOML file with the assembly keys (see :func:`assembly_from_dict`)."""
+    return assembly_from_dict(_load_toml(path), source=os.fspath(path))
+
+
+def default_assembly() -> _p.CutterAssembly:
+    """The ball-end assembly sized for the default impeller: Ø6 ball and shank to 35 mm, Ø20 holder to 80 mm."""
+    return _p.CutterAssembly(3.0, 3.0, 35.0, 10.0, 80.0)
+
+
+def kinematics_from_dict(d: dict, *, source: str = "machine") -> _p.Kinematics:
+    """Machine kinematics from TOML keys: ``kind`` ("table_ac" or "head_bc"), ``table_centre_mm`` [x, y, z]
+    (table_ac), ``pivot_length_mm`` (head_bc), ``tilt_min_deg``, ``tilt_max_deg`` (limits of A or B)."""
+    known = ("kind", "table_centre_mm", "pivot_length_mm", "tilt_min_deg", "tilt_max_deg")
+    if not isinstance(d, dict):
+        raise ValueError(f"{source}: must be a table of keys")
+    for key in d:
+        if key not in known:
+            raise ValueError(f"{source}: {key} = {d[key]!r}: unknown key (known: {', '.join(known)})")
+    k = _p.Kinematics()
+    kinds = {"table_ac": _p.MachineKind.table_ac, "head_bc": _p.MachineKind.head_bc}
+    if d.get("kind") not in kinds:
+        raise ValueError(f"{source}: kind = {d.get('kind')!r}: must be \"table_ac\" or \"head_bc\"")
+    k.kind = kinds[d["kind"]]
+    if "table_centre_mm" in d:
+        c = d["table_centre_mm"]
+        if not isinstance(c, list) or len(c) != 3:
+            raise ValueError(f"{source}: table_centre_mm = {c!r}: must be [x, y, z] [mm]")
+        k.table_centre = np.array([_number(source, "table_centre_mm", v) for v in c])
+    if "pivot_length_mm" in d:
+        k.pivot_length = _number(source, "pivot_length_mm", d["pivot_length_mm"])
+    if "tilt_min_deg" in d:
+        k.tilt_min = math.radians(_number(source, "tilt_min_deg", d["tilt_min_deg"]))
+    if "tilt_max_deg" in d:
+        k.tilt_max = math.radians(_number(source, "tilt_max_deg", d["tilt_max_deg"]))
+    try:
+        k.validate()
+    except ValueError as exc:
+        raise ValueError(f"{source}: {exc}") from None
+    return k
+
+
+def load_kinematics(path: str | os.PathLike) -> _p.Kinematics:
+    """Machine kinematics from a TOML file (see :func:`kinematics_from_dict`)."""
+    return kinematics_from_dict(_load_toml(path), source=os.fspath(path))
+
+
+def machine_gcode(kinematics: _p.Kinematics, tips, axes, *, feed_mm_per_min: float = 1000.0,
+                  title: str = "netshape posture plan") -> str:
+    """RS274 program of the 5-axis CL points: G1 X Y Z with A C (table_ac) or B C (head_bc) words [deg]."""
+    if not (math.isfinite(feed_mm_per_min) and feed_mm_per_min > 0):
+        raise ValueError(f"feed_mm_per_min = {feed_mm_per_min!r}: must be positive")
+    joints = _p.inverse_kinematics(kinematics, np.ascontiguousarray(tips, float), np.ascontiguousarray(axes, float))
+    tilt = "A" if kinematics.kind == _p.MachineKind.table_ac else "B"
+    lines = [f"({title}: {kinematics.kind.name}, {len(joints)} points)", "G21 G90 G94"]
+    for i, (x, y, z, t, c) in enumerate(joints):
+        word = "G0" if i == 0 else "G1"
+        feed = f" F{feed_mm_per_min:.1f}" if i == 1 else ""
+        lines.append(f"{word} X{x:.4f} Y{y:.4f} Z{z:.4f} {tilt}{math.degrees(t):.4f} C{math.degrees(c):.4f}{feed}")
+    lines.append("M30")
+    return "\n".join(lines) + "\n"
+
+
+def surface_cc_path(surface, points: int) -> tuple[np.ndarray, np.ndarray]:
+    """CC points (n, 3) and unit normals (n, 3) along the surface's iso-curve at the middle of its v domain,
+    u from the start to the end of its domain. The normals must point towards the tool (out of the material)."""
+    if isinstance(points, bool) or not isinstance(points, int) or points < 4:
+        raise ValueError(f"points = {points!r}: must be an integer ≥ 4")
+    u0, u1 = surface.domain_u
+    v0, v1 = surface.domain_v
+    uv = np.column_stack([np.linspace(u0, u1, points), np.full(points, 0.5 * (v0 + v1))])
+    from ..errors import Error
+
+    try:
+        pts, nrm = surface.evaluate_with_normals(uv)
+    except Error as exc:
+        raise ValueError(f"surface: degenerate, no normal along the CC path: {exc}") from None
+    pts, nrm = np.asarray(pts), np.asarray(nrm)
+    bad = np.flatnonzero(~np.isfinite(nrm).all(axis=1) | (np.linalg.norm(nrm, axis=1) < 0.5))
+    if len(bad):
+        raise ValueError(f"surface: degenerate at CC point {bad[0]} {pts[bad[0]].tolist()}: no unit normal")
+    return pts, nrm
+
+
+def _stage_table(result, stage) -> np.ndarray:
+    return np.column_stack([result.s, stage.tips, stage.axes])
+
+
+@dataclass
+class PostureRun:
+    """A planner run with everything the CLI writes."""
+
+    result: _p.PlanResult
+    assembly: _p.CutterAssembly
+    clearance: float
+    obstacle_vertices: np.ndarray
+    obstacle_faces: np.ndarray
+    extra: dict = field(default_factory=dict)
+
+    def table(self, stage: str) -> np.ndarray:
+        """(n, 7) rows of :data:`CSV_COLUMNS` for stage "raw", "mc", "smoothed" or "final"."""
+        if stage not in ("raw", "mc", "smoothed", "final"):
+            raise ValueError(f"stage = {stage!r}: must be raw, mc, smoothed or final")
+        return _stage_table(self.result, getattr(self.result, stage))
+
+    def max_change_deg_per_mm(self, stage: str) -> float:
+        """Largest angle between neighbouring axes per mm of path [deg/mm]."""
+        return math.degrees(_p.max_posture_change(self.result.s, getattr(self.result, stage).axes))
+
+    def summary(self) -> dict:
+        """The summary.json contents."""
+        a, r = self.assembly, self.result
+        return {
+            "cutter": {
+                "ball_radius_mm": a.ball_radius,
+                "shank_radius_mm": a.shank_radius,
+                "shank_length_mm": a.shank_length,
+                "holder_radius_mm": a.holder_radius,
+                "holder_length_mm": a.holder_length,
+            },
+            "clearance_mm": self.clearance,
+            "points": int(len(r.s)),
+            "collisions": {"raw": r.raw.collision_count(), "mc": r.mc.collision_count(),
+                           "final": r.final.collision_count()},
+            "repaired": r.repaired_count(),
+            "max_posture_change_deg_per_mm": {k: self.max_change_deg_per_mm(k) for k in ("raw", "mc", "final")},
+        }
+
+    def write(self, out_dir: str | os.PathLike, *, plot: bool = False, plot_point: int | None = None,
+              kinematics: _p.Kinematics | None = None, feed_mm_per_min: float = 1000.0) -> list[Path]:
+        """Write obstacles.stl, postures_raw.csv, postures_mc.csv, postures_final.csv, summary.json (and
+        program.ngc with kinematics, cspace.png and angles.png with plot) into out_dir, each atomically."""
+        from ..geometry import write_stl
+
+        out = Path(out_dir)
+        if not out.is_dir():
+            raise ValueError(f"--out = {str(out)!r}: not a folder")
+        written = []
+        stl = out / "obstacles.stl"
+        write_stl(stl, self.obstacle_vertices, self.obstacle_faces, name="netshape posture obstacles")
+        written.append(stl)
+        header = ",".join(CSV_COLUMNS)
+        for stage in ("raw", "mc", "final"):
+            path = out / f"postures_{stage}.csv"
+            rows = self.table(stage)
+            with atomic_write(path) as fh:
+                fh.write(header + "\n")
+                for row in rows:
+                    fh.write(",".join(f"{v:.9g}" for v in row) + "\n")
+            written.append(path)
+        path = out / "summary.json"
+        with atomic_write(path) as fh:
+            json.dump(self.summary(), fh, indent=2)
+            fh.write("\n")
+        written.append(path)
+        if kinematics is not None:
+            path = out / "program.ngc"
+            text = machine_gcode(kinematics, self.result.final.tips, self.result.final.axes,
+                                 feed_mm_per_min=feed_mm_per_min)
+            with atomic_write(path) as fh:
+                fh.write(text)
+            written.append(path)
+        if plot:
+            from .._atomic import atomic_save_figure
+            from .plots import plot_angles, plot_cspace
+
+            i = self.default_plot_point() if plot_point is None else plot_point
+            if not 0 <= i < len(self.result.s):
+                raise ValueError(f"--plot-point = {i}: must be in [0, {len(self.result.s) - 1}]")
+            fig = plot_cspace(self.result, i)
+            atomic_save_figure(fig, out / "cspace.png", dpi=110)
+            fig2 = plot_angles(self.result)
+            atomic_save_figure(fig2, out / "angles.png", dpi=110)
+            written += [out / "cspace.png", out / "angles.png"]
+        return written
+
+    def default_plot_point(self) -> int:
+        """The first CC point whose normal posture collides (else the middle one)."""
+        hits = np.flatnonzero(self.result.raw.collides)
+        return int(hits[0]) if len(hits) else len(self.result.s) // 2
+
+
+def plan_postures(cc, normals, obstacle_vertices, obstacle_faces, assembly: _p.CutterAssembly, *,
+                  clearance: float = 0.5, options: _p.PlanOptions | None = None) -> PostureRun:
+    """Run the planner: C-space per CC point, MC-space, MB-spline smoothing, repair (see docs/posture.md)."""
+    from ..geometry import TriangleMesh
+
+    if not (isinstance(clearance, (int, float)) and math.isfinite(clearance) and clearance >= 0):
+        raise ValueError(f"clearance = {clearance!r}: must be a finite number ≥ 0 [mm]")
+    v = np.ascontiguousarray(obstacle_vertices, float).reshape(-1, 3)
+    f = np.ascontiguousarray(obstacle_faces, np.int64).reshape(-1, 3)
+    if len(f) == 0:
+        raise ValueError("obstacles: the mesh is empty (no triangles)")
+    mesh = TriangleMesh(v, f)
+    checker = _p.InterferenceChecker(mesh, assembly, float(clearance))
+    result = _p.plan(checker, np.ascontiguousarray(cc, float), np.ascontiguousarray(normals, float),
+                     options or _p.PlanOptions())
+    return PostureRun(result=result, assembly=assembly, clearance=float(clearance), obstacle_vertices=v,
+                      obstacle_faces=f)
