@@ -35,4 +35,7 @@ def run(args) -> int:
     print(f"netshape demo: bundled files in {folder}")
     print(f"netshape demo: netshape info {program}\n")
     args.program = str(program)
+    var = folder / "part.var"  # its G54 (the program selects G54): zero, the part's own origin
+    args.var = str(var) if var.is_file() else None
+    args.tool_table = None
     return info.run(args)
