@@ -204,6 +204,7 @@ void bind_toolpath(py::module_& m) {
       .def_readwrite("initial_position", &ReaderOptions::initial_position, "[mm], program coordinates")
       .def_readwrite("max_line_length", &ReaderOptions::max_line_length)
       .def_readwrite("keep_commands", &ReaderOptions::keep_commands)
+      .def_readwrite("keep_line_numbers", &ReaderOptions::keep_line_numbers)
       .def_readwrite("has_work_offsets", &ReaderOptions::has_work_offsets)
       .def_readwrite("work_offsets", &ReaderOptions::work_offsets, "(9, 3) G54 … G59.3 [mm]")
       .def_readwrite("has_tool_table", &ReaderOptions::has_tool_table)

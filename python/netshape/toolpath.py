@@ -113,14 +113,16 @@ def read_tool_table(path: str | os.PathLike) -> dict[int, float]:
     return out
 
 
-def reader_options(work_offsets: Any = None, tool_table: Any = None) -> ReaderOptions:
+def reader_options(work_offsets: Any = None, tool_table: Any = None, line_numbers: bool = False) -> ReaderOptions:
     """ReaderOptions with work offsets and tool lengths applied.
 
     work_offsets : None, a LinuxCNC ``.var`` path (:func:`read_var_file`), a (9, 3) array [mm] in
         :data:`WORK_OFFSET_CODES` order, or a mapping ``{"G55": (x, y, z)}`` (others 0).
     tool_table : None, a LinuxCNC tool table path (:func:`read_tool_table`) or ``{tool: length_mm}``.
+    line_numbers : keep N words as commands ("N10").
     """
     o = ReaderOptions()
+    o.keep_line_numbers = bool(line_numbers)
     if work_offsets is not None:
         if isinstance(work_offsets, (str, os.PathLike)):
             w = read_var_file(work_offsets)
@@ -179,6 +181,7 @@ def read_gcode(
     chord_tolerance: float = 0.002,
     work_offsets: Any = None,
     tool_table: Any = None,
+    line_numbers: bool = False,
 ) -> Toolpath:
     """Read an RS274/NGC program into a :class:`Toolpath`: motion blocks, and every comment and
     non-motion word (M, S, T, G4 dwells, G43/G49, G54-G59.3, G61/G64, G40, G80 ...) as
@@ -193,6 +196,7 @@ def read_gcode(
         positions (program + work offset + tool length along Z); when a program selects a work offset
         or a tool length that was not given, it is taken as zero and a :class:`GcodeWarning` names
         the line (once per kind).
+    line_numbers : also keep N words as commands (``"N10"``; the writer puts each on its own line).
 
     Raises
     ------
@@ -200,7 +204,7 @@ def read_gcode(
         (a ``ValueError``) with ``source``, ``line``, ``column`` for bad or unsupported G-code.
     """
     split = _arcs_mode(arcs, chord_tolerance)
-    tp = _tp.read_gcode(_path(path), reader_options(work_offsets, tool_table))
+    tp = _tp.read_gcode(_path(path), reader_options(work_offsets, tool_table, line_numbers))
     _warn(tp.warnings)
     return tp.split_arcs(float(chord_tolerance)) if split else tp
 
@@ -213,10 +217,11 @@ def parse_gcode(
     chord_tolerance: float = 0.002,
     work_offsets: Any = None,
     tool_table: Any = None,
+    line_numbers: bool = False,
 ) -> Toolpath:
     """Parse program text (see :func:`read_gcode`); ``source`` names it in error messages."""
     split = _arcs_mode(arcs, chord_tolerance)
-    tp = _tp.parse_gcode(text, source, reader_options(work_offsets, tool_table))
+    tp = _tp.parse_gcode(text, source, reader_options(work_offsets, tool_table, line_numbers))
     _warn(tp.warnings)
     return tp.split_arcs(float(chord_tolerance)) if split else tp
 

@@ -708,7 +708,19 @@ struct GcodeReader::Impl {
 
   // ---- execution --------------------------------------------------------------------------------
   // Returns true if a block was produced.
+  // Comments of the current line, in order (after its N word when line numbers are kept).
+  void record_comments() {
+    if (!comments.empty() && opt.keep_commands)
+      for (const auto& [cb, ce] : comments) record(CommandKind::comment, std::string(line_b + cb, line_b + ce));
+  }
+
   bool execute(Block& out) {
+    if (opt.keep_line_numbers && has('n')) {
+      const double n = val('n');
+      if (n < 0.0 || n > 1e9 || std::round(n) != n) fail_at(wc('n'), "N = " + fmt_num(n) + ": line number must be a non-negative integer");
+      record(CommandKind::word, "N" + std::to_string(static_cast<long>(n)));
+    }
+    record_comments();
     // Unsupported letters first (they change the path or belong to refused codes).
     static const char* const kAxisNames = "abcuvw";
     for (const char* p = kAxisNames; *p; ++p)
@@ -1136,9 +1148,10 @@ struct GcodeReader::Impl {
         break;
       }
       normalize(b, e);
-      if (!comments.empty() && opt.keep_commands)
-        for (const auto& [cb, ce] : comments) record(CommandKind::comment, std::string(b + cb, b + ce));
-      if (nlen == 0) continue;
+      if (nlen == 0) {
+        record_comments();
+        continue;
+      }
       if (norm[0] == '%') {
         if (nlen == 1) continue;
         throw ParseError(source, line_no, column_of(1), "unexpected text after '%'");

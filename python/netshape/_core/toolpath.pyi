@@ -324,6 +324,7 @@ class ReaderOptions:
     has_tool_table: bool
     has_work_offsets: bool
     keep_commands: bool
+    keep_line_numbers: bool
     def __init__(self) -> None:
         ...
     def validate(self) -> None:

@@ -150,6 +150,19 @@ def test_issue_example_keeps_every_word():
     check_plain(tp)
 
 
+def test_line_numbers_when_asked(shared_data):
+    text = (shared_data / "gcode" / "cds.ngc").read_text()
+    tp = reread(text, line_numbers=True)
+    t = texts(tp)
+    assert t[:3] == ["(Circle Diamond Square Program)", "(Tom Kramer)", "(26-Sep-1994)"]
+    numbered = [x for x in t if x.startswith("N")]
+    assert len(numbered) > 250 and numbered[0] == "N80"
+    assert t[t.index("N150") + 1] == "(MILLING AN ENCLOSED POCKET)"
+    back = reread(tpm.format_gcode(tp), line_numbers=True)
+    assert pairs(back) == expected_pairs(tp)
+    assert "N10" not in texts(reread(text))  # not kept unless asked
+
+
 # ---- shared programs ---------------------------------------------------------------------------
 
 @pytest.mark.parametrize("name", PROGRAMS)

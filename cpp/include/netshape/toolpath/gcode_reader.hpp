@@ -37,6 +37,9 @@ struct ReaderOptions {
   long max_line_length = 1 << 20;
   /// Keep comments and non-motion words as Commands (off: only blocks, dwell totals and warnings).
   bool keep_commands = true;
+  /// Also keep N line numbers as commands ("N10", before the line's other records; written on a line
+  /// of their own). Off by default.
+  bool keep_line_numbers = false;
   /// Work offsets G54 … G59.3 (rows 0 … 8) [mm], applied when `has_work_offsets`; G54 is in force at
   /// the start. Without them a program that selects a work offset reads with zero offsets and one warning.
   bool has_work_offsets = false;
