@@ -419,6 +419,13 @@ TEST_CASE("fuzz: mutated programs give a ParseError/invalid_argument or blocks, 
       WriterOptions o;
       const Toolpath back = P(format_gcode(t, o));
       CHECK(back.blocks.size() == t.blocks.size());
+      // the same commands at the same places (plus the M2 the writer adds when there was no end)
+      const bool end = !t.commands.empty() && t.commands.back().kind == CommandKind::program_end;
+      REQUIRE(back.commands.size() == t.commands.size() + (end ? 0 : 1));
+      for (std::size_t i = 0; i < t.commands.size(); ++i) {
+        CHECK(back.commands[i].text == t.commands[i].text);
+        CHECK(back.commands[i].before == t.commands[i].before);
+      }
       ++ok;
     } catch (const std::invalid_argument&) {
       ++bad;

@@ -178,7 +178,6 @@ def test_shared_program_zero_error_compensation(shared_data, name):
     check_compensated(zero_machine(), tp, exact_motion=True)
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("name", PROGRAMS)
 def test_shared_program_real_machine_compensation(shared_data, name):
     machine = ns.machine.load_machine(HMC)
@@ -342,9 +341,14 @@ def programs(draw):
     return "\n".join(lines) + "\n"
 
 
-def _parse_or_none(text):
+# every work offset inside the HMC's travel (X 0-800, Y 0-600, Z 0-500 mm), a little apart
+FUZZ_OFFSETS = np.array([[400.0 + 3 * k, 300.0 - 2 * k, 250.0 + k] for k in range(9)])
+FUZZ_TOOLS = {t: 10.0 * t for t in range(10)}
+
+
+def _parse_or_none(text, **kw):
     try:
-        return reread(text, tool_table={t: 10.0 * t for t in range(10)})
+        return reread(text, tool_table=FUZZ_TOOLS, **kw)
     except ns.ParseError:
         return None  # e.g. a line with two M codes of one group, or an arc the R cannot reach
 
@@ -355,6 +359,19 @@ def test_random_programs_round_trip(text):
     tp = _parse_or_none(text)
     if tp is None or len(tp) == 0:
         return
-    kw = dict(tool_table={t: 10.0 * t for t in range(10)})
+    kw = dict(tool_table=FUZZ_TOOLS)
     check_plain(tp, **kw)
     check_compensated(zero_machine(), tp, exact_motion=True, **kw)
+    # a real machine, with the programs placed in its travel by work offsets
+    tpo = _parse_or_none(text, work_offsets=FUZZ_OFFSETS)
+    check_plain(tpo, work_offsets=FUZZ_OFFSETS, **kw)
+    check_compensated(_HMC(), tpo, exact_motion=False, work_offsets=FUZZ_OFFSETS, **kw)
+
+
+_HMC_CACHE: list = []
+
+
+def _HMC():
+    if not _HMC_CACHE:
+        _HMC_CACHE.append(ns.machine.load_machine(HMC))
+    return _HMC_CACHE[0]
