@@ -129,7 +129,9 @@ def run(args) -> int:
 
         fig = plot_profiles(traj, title=f"{args.program} — rule {args.rule}")
         atomic_save_figure(fig, args.plot)
-    print(f"{traj.stats['blocks']} blocks, cycle time {traj.stats['cycle_time_s']:.4f} s, "
+    dwell = traj.stats.get("dwell_time_s", 0.0)
+    print(f"{traj.stats['blocks']} blocks, cycle time {traj.stats['cycle_time_s']:.4f} s"
+          + (f" (dwells {dwell:.4f} s)" if dwell else "") + ", "
           f"max axis velocity {traj.stats['max_axis_velocity_mm_s']:.2f} mm/s, "
           f"accel {traj.stats['max_axis_accel_mm_s2']:.1f} mm/s^2, "
           f"path deviation {traj.stats['max_path_deviation_mm']:.4f} mm")
