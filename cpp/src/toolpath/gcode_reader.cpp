@@ -1,8 +1,10 @@
 // Streaming RS274/NGC reader. One pass per line: (1) copy the line without blanks and comments,
 // lower-cased, remembering each character's source column; (2) read the words, evaluating
 // parameters and [ ] expressions (parameter assignments are collected and applied after the line,
-// as NGC says); (3) execute the line in NGC order (F, S, T, M6, spindle, dwell, modes, motion, stop)
-// and emit at most one block.
+// as NGC says); (3) execute the line in NGC order (F, S, T, M6, spindle, coolant, dwell, modes, offsets,
+// motion, stop) and emit at most one block. Comments and the words that do not move the tool are
+// recorded as Commands (`before` = blocks emitted so far) in that order; G54…/G43 change the offset
+// added to block coordinates.
 #include "netshape/toolpath/gcode_reader.hpp"
 
 #include <algorithm>
