@@ -66,13 +66,15 @@ py::dict summary_dict(const Summary& s) {
   d["dwell_time_s"] = s.dwell_time;
   d["dwells"] = s.dwells;
   d["source_lines"] = s.source_lines;
+  d["total_time_s"] = s.total_time();
+  d["warnings"] = s.warnings;
   return d;
 }
 
 // Read every block into column arrays (no per-block Python objects).
 py::dict read_arrays(GcodeReader& reader, bool split, double tol) {
   std::vector<std::uint8_t> kind, cw, plane;
-  std::vector<double> start, end, center, feed, rpm;
+  std::vector<double> start, end, center, feed, rpm, dwell, after;
   std::vector<std::int32_t> tool, turns;
   std::vector<std::int64_t> line;
   std::vector<Block> pieces;
@@ -92,9 +94,14 @@ py::dict read_arrays(GcodeReader& reader, bool split, double tol) {
       rpm.push_back(x.spindle_rpm);
       tool.push_back(x.tool);
       line.push_back(x.line);
+      dwell.push_back(0.0);
       ++n;
     };
+    double dwelled = 0.0;  // dwell time read before the current block [s]
     while (reader.next(b)) {
+      const double before = reader.dwell_time() - dwelled;
+      dwelled = reader.dwell_time();
+      const std::size_t first = dwell.size();
       if (split && b.kind == MotionKind::arc) {
         pieces.clear();
         split_block(b, tol, pieces);
@@ -102,7 +109,11 @@ py::dict read_arrays(GcodeReader& reader, bool split, double tol) {
       } else {
         push(b);
       }
+      dwell[first] = before;
     }
+    // dwells after the last move: in `dwell_after` of the last block (zeros elsewhere)
+    after.assign(dwell.size(), 0.0);
+    if (!after.empty()) after.back() = reader.dwell_time() - dwelled;
   }
   py::dict d;
   const py::ssize_t m = n;
@@ -117,6 +128,8 @@ py::dict read_arrays(GcodeReader& reader, bool split, double tol) {
   d["spindle_rpm"] = to_numpy(std::move(rpm), {m});
   d["tool"] = to_numpy(std::move(tool), {m});
   d["line"] = to_numpy(std::move(line), {m});
+  d["dwell"] = to_numpy(std::move(dwell), {m});
+  d["dwell_after"] = to_numpy(std::move(after), {m});
   return d;
 }
 
@@ -156,6 +169,48 @@ void bind_toolpath(py::module_& m) {
       .def("curvature", &Block::curvature, "curvature [1/mm]")
       .def("__repr__", &block_repr);
 
+  py::enum_<CommandKind>(m, "CommandKind", "What a non-motion record is (values are stable).")
+      .value("comment", CommandKind::comment)
+      .value("word", CommandKind::word)
+      .value("dwell", CommandKind::dwell)
+      .value("work_offset", CommandKind::work_offset)
+      .value("tool_length", CommandKind::tool_length)
+      .value("program_end", CommandKind::program_end);
+
+  py::class_<Command>(m, "Command",
+                      "A non-motion record (comment, M/S/T word, dwell, offset …) placed before block `before`.")
+      .def(py::init<>())
+      .def(py::init([](std::size_t before, CommandKind kind, std::string text, double value, long line) {
+             Command c;
+             c.before = before;
+             c.kind = kind;
+             c.text = std::move(text);
+             c.value = value;
+             c.line = line;
+             return c;
+           }),
+           py::arg("before"), py::arg("kind"), py::arg("text"), py::arg("value") = 0.0, py::arg("line") = 0)
+      .def_readwrite("before", &Command::before, "index of the motion block it precedes (len(blocks): at the end)")
+      .def_readwrite("kind", &Command::kind)
+      .def_readwrite("text", &Command::text, "as written out, e.g. 'M8', 'G64 P0.1', 'G4 P0.5', '(finish)'")
+      .def_readwrite("value", &Command::value, "dwell [s], work offset index 0-8, or tool length [mm]")
+      .def_readwrite("line", &Command::line, "1-based source line (0 = not from a file)")
+      .def("__repr__", [](const Command& c) {
+        return "Command(before=" + std::to_string(c.before) + ", '" + c.text + "', line=" + std::to_string(c.line) + ")";
+      });
+
+  py::class_<ReaderOptions>(m, "ReaderOptions", "Options of the G-code reader (offsets [mm]).")
+      .def(py::init<>())
+      .def_readwrite("initial_position", &ReaderOptions::initial_position, "[mm], program coordinates")
+      .def_readwrite("max_line_length", &ReaderOptions::max_line_length)
+      .def_readwrite("keep_commands", &ReaderOptions::keep_commands)
+      .def_readwrite("keep_line_numbers", &ReaderOptions::keep_line_numbers)
+      .def_readwrite("has_work_offsets", &ReaderOptions::has_work_offsets)
+      .def_readwrite("work_offsets", &ReaderOptions::work_offsets, "(9, 3) G54 … G59.3 [mm]")
+      .def_readwrite("has_tool_table", &ReaderOptions::has_tool_table)
+      .def_readwrite("tool_lengths", &ReaderOptions::tool_lengths, "{tool: length along Z [mm]}")
+      .def("validate", &ReaderOptions::validate);
+
   py::class_<Summary>(m, "Summary", "Whole-program figures: counts, lengths [mm], bounding box [mm], times [s].")
       .def(py::init<>())
       .def_readonly("rapids", &Summary::rapids)
@@ -169,6 +224,8 @@ void bind_toolpath(py::module_& m) {
       .def_readonly("dwell_time", &Summary::dwell_time, "G4 dwell time [s]")
       .def_readonly("dwells", &Summary::dwells)
       .def_readonly("source_lines", &Summary::source_lines)
+      .def_readonly("warnings", &Summary::warnings)
+      .def_property_readonly("total_time", &Summary::total_time, "feed time + dwell time [s]")
       .def_property_readonly("blocks", &Summary::blocks)
       .def("to_dict", &summary_dict, "Plain dict with unit-suffixed keys (JSON-ready).")
       .def("__repr__", [](const Summary& s) {
@@ -187,6 +244,11 @@ void bind_toolpath(py::module_& m) {
       .def_readwrite("source", &Toolpath::source)
       .def_readwrite("dwell_time", &Toolpath::dwell_time, "G4 dwell time [s]")
       .def_readwrite("dwells", &Toolpath::dwells)
+      .def_readwrite("commands", &Toolpath::commands, "list of Command (a copy on each access)")
+      .def_readwrite("work_offsets", &Toolpath::work_offsets, "(9, 3) offsets the blocks include [mm]")
+      .def_readwrite("warnings", &Toolpath::warnings)
+      .def("with_blocks", &Toolpath::with_blocks, py::arg("blocks"), py::arg("origin"),
+           "A copy with new blocks; origin[i] = index of the block new block i came from (commands follow).")
       .def("summary", &Toolpath::summary)
       .def("split_arcs", &Toolpath::split_arcs, py::arg("chord_tolerance"),
            "A copy with every arc replaced by chords within chord_tolerance [mm].")
@@ -212,6 +274,12 @@ void bind_toolpath(py::module_& m) {
         if (!r.next(b)) throw py::stop_iteration();
         return b;
       })
+      .def("take_commands", [](GcodeReader& r) {
+        std::vector<Command> v;
+        r.take_commands(v);
+        return v;
+      }, "The comments and non-motion commands read so far, and forget them (bounded memory when streaming).")
+      .def_property_readonly("warnings", &GcodeReader::warnings)
       .def_property_readonly("lines_read", &GcodeReader::lines_read)
       .def_property_readonly("source", &GcodeReader::source);
 
@@ -223,31 +291,39 @@ void bind_toolpath(py::module_& m) {
       .def_readwrite("absolute_arc_centers", &WriterOptions::absolute_arc_centers)
       .def_readwrite("header_comment", &WriterOptions::header_comment);
 
-  m.def("read_gcode", [](const std::string& path) {
+  const auto dflt = py::arg_v("options", ReaderOptions{}, "ReaderOptions()");
+  m.def("read_gcode", [](const std::string& path, const ReaderOptions& o) {
     py::gil_scoped_release nogil;
-    return read_gcode(path);
-  }, py::arg("path"));
-  m.def("parse_gcode", [](const std::string& text, const std::string& source) {
+    return read_gcode(path, o);
+  }, py::arg("path"), dflt);
+  m.def("parse_gcode", [](const std::string& text, const std::string& source, const ReaderOptions& o) {
     py::gil_scoped_release nogil;
-    return parse_gcode(text, source);
-  }, py::arg("text"), py::arg("source") = "<string>");
-  m.def("summarize_gcode", [](const std::string& path) {
+    return parse_gcode(text, source, o);
+  }, py::arg("text"), py::arg("source") = "<string>", dflt);
+  m.def("summarize_gcode", [](const std::string& path, const ReaderOptions& o) {
     py::gil_scoped_release nogil;
-    return summarize_gcode(path);
-  }, py::arg("path"));
-  m.def("summarize_gcode_text", [](const std::string& text, const std::string& source) {
+    return summarize_gcode(path, o);
+  }, py::arg("path"), dflt);
+  m.def("summarize_gcode_text", [](const std::string& text, const std::string& source, const ReaderOptions& o) {
     py::gil_scoped_release nogil;
-    return summarize_gcode_text(text, source);
-  }, py::arg("text"), py::arg("source") = "<string>");
-  m.def("read_gcode_arrays", [](const std::string& path, bool split, double tol) {
-    GcodeReader r = GcodeReader::open(path);
-    return read_arrays(r, split, tol);
-  }, py::arg("path"), py::arg("split_arcs") = false, py::arg("chord_tolerance") = 0.002);
-  m.def("parse_gcode_arrays", [](const std::string& text, const std::string& source, bool split, double tol) {
-    GcodeReader r = GcodeReader::from_string(text, source);
-    return read_arrays(r, split, tol);
+    return summarize_gcode_text(text, source, o);
+  }, py::arg("text"), py::arg("source") = "<string>", dflt);
+  m.def("read_gcode_arrays", [](const std::string& path, bool split, double tol, ReaderOptions o) {
+    o.keep_commands = false;
+    GcodeReader r = GcodeReader::open(path, o);
+    py::dict d = read_arrays(r, split, tol);
+    d["warnings"] = r.warnings();
+    return d;
+  }, py::arg("path"), py::arg("split_arcs") = false, py::arg("chord_tolerance") = 0.002, dflt);
+  m.def("parse_gcode_arrays", [](const std::string& text, const std::string& source, bool split, double tol,
+                                 ReaderOptions o) {
+    o.keep_commands = false;
+    GcodeReader r = GcodeReader::from_string(text, source, o);
+    py::dict d = read_arrays(r, split, tol);
+    d["warnings"] = r.warnings();
+    return d;
   }, py::arg("text"), py::arg("source") = "<string>", py::arg("split_arcs") = false,
-     py::arg("chord_tolerance") = 0.002);
+     py::arg("chord_tolerance") = 0.002, dflt);
   m.def("format_gcode", [](const Toolpath& t, const WriterOptions& o) {
     std::ostringstream os;
     write_gcode(t, os, o);

@@ -10,8 +10,13 @@ Units: mm, mm/s (G-code ``F`` is mm/min or in/min and is converted), s, rev/min.
 
 from __future__ import annotations
 
+import math
 import os
-from typing import Literal
+import warnings
+from collections.abc import Mapping
+from typing import Any, Literal
+
+import numpy as np
 
 from ._atomic import atomic_write
 from ._core import toolpath as _tp
@@ -23,11 +28,130 @@ MotionKind = _tp.MotionKind
 Plane = _tp.Plane
 GcodeReader = _tp.GcodeReader
 WriterOptions = _tp.WriterOptions
+ReaderOptions = _tp.ReaderOptions
+Command = _tp.Command
+CommandKind = _tp.CommandKind
 chord_count = _tp.chord_count
 block_bounds = _tp.block_bounds
 
 #: Names of the ``kind`` codes in :func:`read_gcode_arrays` (index = code).
 KIND_NAMES = ("rapid", "line", "arc")
+
+#: Work offset codes in row order of ``work_offsets`` arrays (LinuxCNC parameters 5221 + 20·row).
+WORK_OFFSET_CODES = ("G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3")
+
+
+class GcodeWarning(UserWarning):
+    """A program uses a work offset or tool length that was not given (taken as zero)."""
+
+
+def read_var_file(path: str | os.PathLike) -> np.ndarray:
+    """Work offsets G54 … G59.3 from a LinuxCNC parameter file (``.var``: lines ``number value``).
+
+    Returns a (9, 3) array [mm] (rows in :data:`WORK_OFFSET_CODES` order; parameters 5221–5223 for
+    G54, +20 for each next system). Parameters not in the file are 0. Refused with ValueError naming
+    the line: malformed lines, a rotation (XY rotation parameter 5230 + 20·row non-zero), or an active
+    G92 offset (5210 = 1 with a non-zero 5211–5213), which change geometry this reader does not model.
+    """
+    p = _path(path)
+    values: dict[int, float] = {}
+    with open(p, encoding="utf-8", errors="replace") as fh:
+        for i, raw in enumerate(fh, 1):
+            text = raw.split(";")[0].split("#")[0].strip()
+            if not text:
+                continue
+            parts = text.split()
+            try:
+                num, val = int(parts[0]), float(parts[1])
+            except (ValueError, IndexError):
+                raise ValueError(f"{p}:{i}: {raw.strip()!r}: expected 'parameter value'") from None
+            if not math.isfinite(val):
+                raise ValueError(f"{p}:{i}: parameter {num} = {parts[1]}: must be a finite number")
+            values[num] = val
+    out = np.zeros((9, 3))
+    for row, code in enumerate(WORK_OFFSET_CODES):
+        base = 5221 + 20 * row
+        out[row] = [values.get(base + k, 0.0) for k in range(3)]
+        rot = values.get(base + 9, 0.0)
+        if rot != 0.0:
+            raise ValueError(f"{p}: parameter {base + 9} = {rot:g}: {code} XY rotation is not supported")
+    if values.get(5210, 0.0) != 0.0 and any(values.get(5211 + k, 0.0) != 0.0 for k in range(3)):
+        raise ValueError(f"{p}: parameters 5210-5213: an active G92 offset is not supported")
+    cs = values.get(5220, 1.0)
+    if cs != 1.0:
+        warnings.warn(f"{p}: parameter 5220 = {cs:g} (current coordinate system) is not used: programs "
+                      "are read starting in G54", GcodeWarning, stacklevel=2)
+    return out
+
+
+def read_tool_table(path: str | os.PathLike) -> dict[int, float]:
+    """Tool lengths [mm] by tool number from a LinuxCNC tool table (lines ``T1 P1 D10 Z120.5 ;comment``:
+    ``T`` the tool number, ``Z`` its length offset; a tool without ``Z`` has length 0). Refused with
+    ValueError naming the line: a line without ``T``, a malformed word, or a tool given twice."""
+    p = _path(path)
+    out: dict[int, float] = {}
+    with open(p, encoding="utf-8", errors="replace") as fh:
+        for i, raw in enumerate(fh, 1):
+            text = raw.split(";")[0].strip()
+            if not text:
+                continue
+            words: dict[str, float] = {}
+            for w in text.split():
+                try:
+                    words[w[0].upper()] = float(w[1:])
+                except (ValueError, IndexError):
+                    raise ValueError(f"{p}:{i}: word {w!r}: expected a letter and a number") from None
+            t = words.get("T")
+            if t is None or t < 0 or t != int(t):
+                raise ValueError(f"{p}:{i}: {raw.strip()!r}: needs T with a non-negative tool number")
+            z = words.get("Z", 0.0)
+            if not math.isfinite(z):
+                raise ValueError(f"{p}:{i}: Z = {z}: must be a finite length [mm]")
+            if int(t) in out:
+                raise ValueError(f"{p}:{i}: tool T{int(t)} is given twice")
+            out[int(t)] = z
+    return out
+
+
+def reader_options(work_offsets: Any = None, tool_table: Any = None, line_numbers: bool = False) -> ReaderOptions:
+    """ReaderOptions with work offsets and tool lengths applied.
+
+    work_offsets : None, a LinuxCNC ``.var`` path (:func:`read_var_file`), a (9, 3) array [mm] in
+        :data:`WORK_OFFSET_CODES` order, or a mapping ``{"G55": (x, y, z)}`` (others 0).
+    tool_table : None, a LinuxCNC tool table path (:func:`read_tool_table`) or ``{tool: length_mm}``.
+    line_numbers : keep N words as commands ("N10").
+    """
+    o = ReaderOptions()
+    o.keep_line_numbers = bool(line_numbers)
+    if work_offsets is not None:
+        if isinstance(work_offsets, (str, os.PathLike)):
+            w = read_var_file(work_offsets)
+        elif isinstance(work_offsets, Mapping):
+            w = np.zeros((9, 3))
+            for code, xyz in work_offsets.items():
+                c = str(code).upper()
+                if c not in WORK_OFFSET_CODES:
+                    raise ValueError(f"work_offsets key {code!r}: must be one of {', '.join(WORK_OFFSET_CODES)}")
+                w[WORK_OFFSET_CODES.index(c)] = np.asarray(xyz, dtype=float).reshape(3)
+        else:
+            w = np.asarray(work_offsets, dtype=float)
+            if w.shape != (9, 3):
+                raise ValueError(f"work_offsets shape = {w.shape}: must be (9, 3) [mm] (G54 ... G59.3)")
+        if not np.all(np.isfinite(w)):
+            raise ValueError("work_offsets: must be finite numbers [mm]")
+        o.has_work_offsets = True
+        o.work_offsets = w
+    if tool_table is not None:
+        t = read_tool_table(tool_table) if isinstance(tool_table, (str, os.PathLike)) else dict(tool_table)
+        o.has_tool_table = True
+        o.tool_lengths = {int(k): float(v) for k, v in t.items()}
+    o.validate()
+    return o
+
+
+def _warn(messages) -> None:
+    for m in messages:
+        warnings.warn(m, GcodeWarning, stacklevel=3)
 
 
 def _path(path: str | os.PathLike) -> str:
@@ -55,14 +179,24 @@ def read_gcode(
     *,
     arcs: Literal["keep", "split"] = "keep",
     chord_tolerance: float = 0.002,
+    work_offsets: Any = None,
+    tool_table: Any = None,
+    line_numbers: bool = False,
 ) -> Toolpath:
-    """Read an RS274/NGC program into a :class:`Toolpath`.
+    """Read an RS274/NGC program into a :class:`Toolpath`: motion blocks, and every comment and
+    non-motion word (M, S, T, G4 dwells, G43/G49, G54-G59.3, G61/G64, G40, G80 ...) as
+    :class:`Command` records at their place among the blocks (``tp.commands``).
 
     Parameters
     ----------
     path : program file.
     arcs : ``"keep"`` (G2/G3 stay arcs) or ``"split"`` (arcs become G1 chords).
     chord_tolerance : largest chord error when splitting arcs [mm].
+    work_offsets, tool_table : see :func:`reader_options`. When given, blocks are in machine axis
+        positions (program + work offset + tool length along Z); when a program selects a work offset
+        or a tool length that was not given, it is taken as zero and a :class:`GcodeWarning` names
+        the line (once per kind).
+    line_numbers : also keep N words as commands (``"N10"``; the writer puts each on its own line).
 
     Raises
     ------
@@ -70,7 +204,8 @@ def read_gcode(
         (a ``ValueError``) with ``source``, ``line``, ``column`` for bad or unsupported G-code.
     """
     split = _arcs_mode(arcs, chord_tolerance)
-    tp = _tp.read_gcode(_path(path))
+    tp = _tp.read_gcode(_path(path), reader_options(work_offsets, tool_table, line_numbers))
+    _warn(tp.warnings)
     return tp.split_arcs(float(chord_tolerance)) if split else tp
 
 
@@ -80,10 +215,14 @@ def parse_gcode(
     source: str = "<string>",
     arcs: Literal["keep", "split"] = "keep",
     chord_tolerance: float = 0.002,
+    work_offsets: Any = None,
+    tool_table: Any = None,
+    line_numbers: bool = False,
 ) -> Toolpath:
     """Parse program text (see :func:`read_gcode`); ``source`` names it in error messages."""
     split = _arcs_mode(arcs, chord_tolerance)
-    tp = _tp.parse_gcode(text, source)
+    tp = _tp.parse_gcode(text, source, reader_options(work_offsets, tool_table, line_numbers))
+    _warn(tp.warnings)
     return tp.split_arcs(float(chord_tolerance)) if split else tp
 
 
@@ -92,16 +231,22 @@ def read_gcode_arrays(
     *,
     arcs: Literal["keep", "split"] = "keep",
     chord_tolerance: float = 0.002,
+    work_offsets: Any = None,
+    tool_table: Any = None,
 ) -> dict:
     """Read a program straight into NumPy arrays (filled in C++, no per-block Python objects).
 
     Returns a dict of n-row arrays: ``kind`` uint8 (0 rapid, 1 line, 2 arc; see KIND_NAMES),
     ``start``, ``end``, ``center`` float64 (n, 3) [mm], ``clockwise`` bool, ``plane`` uint8 (0 xy,
     1 zx, 2 yz), ``turns`` int32, ``feed`` float64 [mm/s], ``spindle_rpm`` float64 [rev/min, negative
-    for M4], ``tool`` int32, ``line`` int64 (1-based source line).
+    for M4], ``tool`` int32, ``line`` int64 (1-based source line), ``dwell`` float64 [s] (G4 dwell
+    time executed before block i), ``dwell_after`` float64 [s] (dwell after block i that precedes no
+    other block: only the last entry can be non-zero); their sum is the program's dwell time. ``work_offsets``, ``tool_table``: see :func:`read_gcode`.
     """
     split = _arcs_mode(arcs, chord_tolerance)
-    return _tp.read_gcode_arrays(_path(path), split, float(chord_tolerance))
+    d = _tp.read_gcode_arrays(_path(path), split, float(chord_tolerance), reader_options(work_offsets, tool_table))
+    _warn(d.pop("warnings"))
+    return d
 
 
 def parse_gcode_arrays(
@@ -110,21 +255,37 @@ def parse_gcode_arrays(
     source: str = "<string>",
     arcs: Literal["keep", "split"] = "keep",
     chord_tolerance: float = 0.002,
+    work_offsets: Any = None,
+    tool_table: Any = None,
 ) -> dict:
     """Like :func:`read_gcode_arrays` for program text."""
     split = _arcs_mode(arcs, chord_tolerance)
-    return _tp.parse_gcode_arrays(text, source, split, float(chord_tolerance))
+    d = _tp.parse_gcode_arrays(text, source, split, float(chord_tolerance), reader_options(work_offsets, tool_table))
+    _warn(d.pop("warnings"))
+    return d
 
 
-def summary(path: str | os.PathLike) -> Summary:
-    """Counts, lengths [mm], exact bounding box [mm] and time at programmed feed [s] of a program
-    file, computed while streaming it (memory does not grow with the program's length)."""
-    return _tp.summarize_gcode(_path(path))
+def summary(path: str | os.PathLike, *, work_offsets: Any = None, tool_table: Any = None) -> Summary:
+    """Counts, lengths [mm], exact bounding box [mm], time at programmed feed and G4 dwell time [s]
+    of a program file, computed while streaming it (memory does not grow with the program's length).
+    Offsets as in :func:`read_gcode` (warnings in ``.warnings`` and as :class:`GcodeWarning`)."""
+    s = _tp.summarize_gcode(_path(path), reader_options(work_offsets, tool_table))
+    _warn(s.warnings)
+    return s
 
 
-def summary_of_text(text: str, *, source: str = "<string>") -> Summary:
+def summary_of_text(text: str, *, source: str = "<string>", work_offsets: Any = None,
+                    tool_table: Any = None) -> Summary:
     """:func:`summary` of program text."""
-    return _tp.summarize_gcode_text(text, source)
+    s = _tp.summarize_gcode_text(text, source, reader_options(work_offsets, tool_table))
+    _warn(s.warnings)
+    return s
+
+
+def non_motion(toolpath: Toolpath) -> list[tuple[int, str]]:
+    """The program's non-motion records as ``(before, text)`` pairs in order (what a lossless
+    transform must keep: same texts, same order, same place among the motion blocks)."""
+    return [(c.before, c.text) for c in toolpath.commands]
 
 
 def iter_gcode(path: str | os.PathLike) -> GcodeReader:
@@ -163,10 +324,13 @@ def write_gcode(
 ) -> None:
     """Write ``toolpath`` as G-code to ``path``, whole or not at all (temporary file + rename).
 
-    Header ``G21 G90 G17 G94 G91.1``; one line per block with only the words that change; F in
-    mm/min; arcs as G2/G3 with I/J/K centre offsets (or G90.1 absolute centres), or as G1 chords
-    within ``chord_tolerance`` [mm] when ``split_arcs``. ``decimals=-1`` writes the shortest numbers
-    that read back exactly, so read -> write -> read gives the same blocks.
+    Header ``G21 G90 G17 G94 G91.1``; every command (comment, M/S/T word, dwell, offset ...) on its own
+    line before the block it precedes; one line per block with only the words that change; F in
+    mm/min rounded to 1e-6; arcs as G2/G3 with I/J/K centre offsets (or G90.1 absolute centres), or as
+    G1 chords within ``chord_tolerance`` [mm] when ``split_arcs``; the program's own M2/M30, else M2.
+    Coordinates are written in program coordinates (the tool path's work offsets and tool lengths in
+    force subtracted). ``decimals=-1`` writes the shortest numbers that read back exactly, so read ->
+    write -> read gives the same blocks and the same commands.
     """
     text = format_gcode(
         toolpath,
@@ -182,7 +346,12 @@ def write_gcode(
 
 __all__ = [
     "Block",
+    "Command",
+    "CommandKind",
     "GcodeReader",
+    "GcodeWarning",
+    "ReaderOptions",
+    "WORK_OFFSET_CODES",
     "KIND_NAMES",
     "MotionKind",
     "Plane",
@@ -193,10 +362,14 @@ __all__ = [
     "chord_count",
     "format_gcode",
     "iter_gcode",
+    "non_motion",
     "parse_gcode",
     "parse_gcode_arrays",
     "read_gcode",
     "read_gcode_arrays",
+    "read_tool_table",
+    "read_var_file",
+    "reader_options",
     "summary",
     "summary_of_text",
     "write_gcode",

@@ -1,8 +1,10 @@
 // Streaming RS274/NGC reader. One pass per line: (1) copy the line without blanks and comments,
 // lower-cased, remembering each character's source column; (2) read the words, evaluating
 // parameters and [ ] expressions (parameter assignments are collected and applied after the line,
-// as NGC says); (3) execute the line in NGC order (F, S, T, M6, spindle, dwell, modes, motion, stop)
-// and emit at most one block.
+// as NGC says); (3) execute the line in NGC order (F, S, T, M6, spindle, coolant, dwell, modes, offsets,
+// motion, stop) and emit at most one block. Comments and the words that do not move the tool are
+// recorded as Commands (`before` = blocks emitted so far) in that order; G54…/G43 change the offset
+// added to block coordinates.
 #include "netshape/toolpath/gcode_reader.hpp"
 
 #include <algorithm>
@@ -23,6 +25,12 @@ namespace netshape::toolpath {
 void ReaderOptions::validate() const {
   for (int i = 0; i < 3; ++i) NETSHAPE_CHECK_FINITE("initial_position", initial_position[i]);
   NETSHAPE_CHECK(max_line_length >= 16, "max_line_length", max_line_length, "must be at least 16 [characters]");
+  for (int i = 0; i < 9; ++i)
+    for (int k = 0; k < 3; ++k) NETSHAPE_CHECK_FINITE("work_offsets", work_offsets(i, k));
+  for (const auto& [t, len] : tool_lengths) {
+    NETSHAPE_CHECK(t >= 0, "tool_lengths", t, "tool numbers must not be negative");
+    NETSHAPE_CHECK_FINITE("tool_lengths", len);
+  }
 }
 
 namespace {
@@ -38,6 +46,14 @@ const double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1
 std::string fmt_num(double v) {
   char buf[64];
   auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+// A word value as G-code text: shortest form that reads back exactly, never in exponent notation.
+std::string fmt_word(double v) {
+  char buf[400];
+  if (v == 0.0) v = 0.0;  // no "-0"
+  auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed);
   return std::string(buf, r.ptr);
 }
 
@@ -213,6 +229,42 @@ struct GcodeReader::Impl {
   double dwell_total = 0.0;
   long dwell_count = 0;
 
+  // ---- non-motion records, offsets ------------------------------------------------------------
+  std::vector<Command> pending;   // commands not yet taken
+  std::size_t blocks_out = 0;     // blocks returned so far (the `before` of new commands)
+  std::vector<std::pair<std::size_t, std::size_t>> comments;  // [b, e) offsets into the line
+  std::vector<std::string> warns;
+  bool warned_offsets = false, warned_tools = false;
+  int coord_system = 0;           // 0 … 8: G54 … G59.3
+  double tool_offset = 0.0;       // tool length applied along +Z [mm]
+  Vec3 offset = Vec3::Zero();     // work offset + tool length in force [mm]
+  Vec3 mpos = Vec3::Zero();       // position in the output frame (program + offset) [mm]
+
+  void record(CommandKind kind, std::string text, double value = 0.0) {
+    if (!opt.keep_commands) return;
+    Command c;
+    c.before = blocks_out;
+    c.kind = kind;
+    c.text = std::move(text);
+    c.value = value;
+    c.line = line_no;
+    pending.push_back(std::move(c));
+  }
+  // Initial state: G54 in force, no tool length, the tool at opt.initial_position (program coordinates).
+  void start() {
+    position = opt.initial_position;
+    offset = opt.has_work_offsets ? Vec3(opt.work_offsets.row(0).transpose()) : Vec3::Zero();
+    mpos = position + offset;
+  }
+  void warn(const std::string& what) { warns.push_back(source + ":" + std::to_string(line_no) + ": " + what); }
+  // Offset in force changed: the tool stays where it is, its program coordinates change.
+  void set_offset() {
+    Vec3 o = opt.has_work_offsets ? Vec3(opt.work_offsets.row(coord_system).transpose()) : Vec3::Zero();
+    o.z() += tool_offset;
+    offset = o;
+    position = mpos - offset;
+  }
+
   ~Impl() {
     if (file) std::fclose(file);
   }
@@ -283,6 +335,7 @@ struct GcodeReader::Impl {
     line_e = e;
     const std::size_t n = static_cast<std::size_t>(e - b);
     if (nlen < n + 1) norm.resize(n + 1);
+    comments.clear();
     char* out = &norm[0];
     std::size_t k = 0;
     for (std::size_t i = 0; i < n; ++i) {
@@ -296,10 +349,17 @@ struct GcodeReader::Impl {
       if (t == kParen) {
         const void* close = std::memchr(b + i + 1, ')', n - i - 1);
         if (!close) throw ParseError(source, line_no, static_cast<long>(i) + 1, "comment '(' is not closed on its line");
-        i = static_cast<std::size_t>(static_cast<const char*>(close) - b);
+        const std::size_t j = static_cast<std::size_t>(static_cast<const char*>(close) - b);
+        comments.emplace_back(i, j + 1);
+        i = j;
         continue;
       }
-      if (t == kSemicolon) break;
+      if (t == kSemicolon) {
+        std::size_t j = n;
+        while (j > i + 1 && (b[j - 1] == ' ' || b[j - 1] == '\t')) --j;
+        comments.emplace_back(i, j);
+        break;
+      }
       char tmp[48];
       std::snprintf(tmp, sizeof tmp, "unexpected character (byte 0x%02X)", c);
       throw ParseError(source, line_no, static_cast<long>(i) + 1, tmp);
@@ -650,7 +710,19 @@ struct GcodeReader::Impl {
 
   // ---- execution --------------------------------------------------------------------------------
   // Returns true if a block was produced.
+  // Comments of the current line, in order (after its N word when line numbers are kept).
+  void record_comments() {
+    if (!comments.empty() && opt.keep_commands)
+      for (const auto& [cb, ce] : comments) record(CommandKind::comment, std::string(line_b + cb, line_b + ce));
+  }
+
   bool execute(Block& out) {
+    if (opt.keep_line_numbers && has('n')) {
+      const double n = val('n');
+      if (n < 0.0 || n > 1e9 || std::round(n) != n) fail_at(wc('n'), "N = " + fmt_num(n) + ": line number must be a non-negative integer");
+      record(CommandKind::word, "N" + std::to_string(static_cast<long>(n)));
+    }
+    record_comments();
     // Unsupported letters first (they change the path or belong to refused codes).
     static const char* const kAxisNames = "abcuvw";
     for (const char* p = kAxisNames; *p; ++p)
@@ -662,6 +734,9 @@ struct GcodeReader::Impl {
     int g_motion = -2, g_motion_col = 0, g_plane = -1, g_units = -1, g_dist = -1, g_arcdist = -1;
     bool g_dwell = false;
     int g_dwell_col = 0;
+    // codes kept as commands (×10 code, or −1 when absent)
+    long g_cutter = -1, g_tlo = -1, g_cs = -1, g_path = -1, g_spindle_mode = -1, g_retract = -1, g_g92 = -1;
+    bool g_cancel = false;
     int group_col[16] = {0};
     auto group = [&](int gi, int column, long c10) {
       if (group_col[gi]) fail_at(column, code_name('G', c10) + " conflicts with another G-code of the same modal group on the line");
@@ -676,7 +751,10 @@ struct GcodeReader::Impl {
         case 0: case 10: case 20: case 30: case 800:
           group(0, column, c);
           g_motion = static_cast<int>(c / 10);
-          if (c == 800) g_motion = -1;
+          if (c == 800) {
+            g_motion = -1;
+            g_cancel = true;
+          }
           g_motion_col = column;
           break;
         case 40:
@@ -702,29 +780,36 @@ struct GcodeReader::Impl {
           break;
         case 400:  // cutter compensation off: nothing to undo
           group(6, column, c);
+          g_cutter = c;
           break;
-        case 430: case 490:  // tool length offset: positions are taken as tool-tip positions
+        case 430: case 490:  // tool length offset (applied from the tool table when given)
           group(7, column, c);
           if (c == 430) uses_h = true;
+          g_tlo = c;
           break;
         case 540: case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593:
-          group(8, column, c);  // work offsets taken as identity (documented)
+          group(8, column, c);  // work offsets (applied when given)
+          g_cs = c;
           break;
         case 610: case 611: case 640:
           group(9, column, c);
           if (c == 640) uses_p = uses_q = true;
+          g_path = c;
           break;
-        case 940:
+        case 940:  // the only feed mode: the writer states it in its header
           group(10, column, c);
           break;
         case 970:
           group(11, column, c);
+          g_spindle_mode = c;
           break;
         case 980: case 990:
           group(12, column, c);
+          g_retract = c;
           break;
         case 921: case 922:  // cancel G92 offsets: there are none
           group(13, column, c);
+          g_g92 = c;
           break;
         case 50: case 51: case 52: case 53: case 62: case 63:
           fail_at(column, "NURBS/spline block " + code_name('G', c) + " is not supported");
@@ -750,7 +835,9 @@ struct GcodeReader::Impl {
     }
 
     // M codes.
-    int m_spindle = -1, m_stop = -1;
+    int m_spindle = -1, m_stop = -1, m_override = -1;
+    int m_coolant[3] = {-1, -1, -1};  // M7, M8, M9 in the order given
+    int n_coolant = 0;
     bool m_change = false;
     int mgroup_col[8] = {0};
     auto mgroup = [&](int gi, int column, long c) {
@@ -775,10 +862,13 @@ struct GcodeReader::Impl {
           mgroup(2, column, c);
           m_change = true;
           break;
-        case 7: case 8: case 9:
-          break;  // coolant
+        case 7: case 8: case 9:  // coolant (M7 and M8 may share a line)
+          if (n_coolant == 3) fail_at(column, "too many coolant M-codes on one line");
+          m_coolant[n_coolant++] = static_cast<int>(c);
+          break;
         case 48: case 49: case 50: case 51: case 52: case 53:
           mgroup(3, column, c);
+          m_override = static_cast<int>(c);
           break;  // overrides
         case 98: case 99:
           fail_at(column, "subroutine M" + std::to_string(c) + " is not supported");
@@ -801,16 +891,24 @@ struct GcodeReader::Impl {
       const double s = val('s');
       if (s < 0.0 || !(s <= 1e7)) fail_at(wc('s'), "S = " + fmt_num(s) + ": spindle speed must be in 0 … 1e7 [rev/min]");
       speed = s;
+      record(CommandKind::word, "S" + fmt_word(s));
     }
     if (has('t')) {
       const double t = val('t');
       if (t < 0.0 || t > 1e9 || std::round(t) != t) fail_at(wc('t'), "T = " + fmt_num(t) + ": tool number must be a non-negative integer");
       selected_tool = static_cast<int>(t);
+      record(CommandKind::word, "T" + std::to_string(selected_tool));
     }
-    if (m_change) tool = selected_tool;
+    if (m_change) {
+      tool = selected_tool;
+      record(CommandKind::word, "M6");
+    }
     if (m_spindle == 3) spindle_dir = 1;
     if (m_spindle == 4) spindle_dir = -1;
     if (m_spindle == 5) spindle_dir = 0;
+    if (m_spindle >= 0) record(CommandKind::word, "M" + std::to_string(m_spindle));
+    for (int i = 0; i < n_coolant; ++i) record(CommandKind::word, "M" + std::to_string(m_coolant[i]));
+    if (m_override >= 0) record(CommandKind::word, "M" + std::to_string(m_override));
 
     if (g_dwell) {
       if (!has('p')) fail_at(g_dwell_col, "G4 dwell needs a P word (seconds)");
@@ -819,10 +917,34 @@ struct GcodeReader::Impl {
       dwell_total += p;
       ++dwell_count;
       uses_p = true;
+      record(CommandKind::dwell, "G4 P" + fmt_word(p), p);
     }
     if (g_plane >= 0) plane = static_cast<Plane>(g_plane);
+    if (g_cutter >= 0) record(CommandKind::word, code_name('G', g_cutter));
+    if (g_tlo >= 0) tool_length(g_tlo);
+    if (g_cs >= 0) work_offset(g_cs);
+    if (g_path >= 0) {
+      std::string t = code_name('G', g_path);
+      if (g_path == 640) {  // P (blending tolerance) and Q (naive CAM tolerance) are lengths: in mm
+        for (const char l : {'p', 'q'}) {
+          if (!has(l)) continue;
+          const double v = val(l);
+          if (!(v >= 0.0 && v <= kMaxCoordinate))
+            fail_at(wc(l), std::string(1, static_cast<char>(l - 32)) + " = " + fmt_num(v) +
+                               ": G64 tolerance must be a non-negative length");
+          t += ' ';
+          t += static_cast<char>(l - 32);
+          t += fmt_word(v * u);
+        }
+      }
+      record(CommandKind::word, std::move(t));
+    }
     if (g_dist >= 0) incremental = g_dist == 1;
     if (g_arcdist >= 0) arc_absolute = g_arcdist == 1;
+    if (g_g92 >= 0) record(CommandKind::word, code_name('G', g_g92));
+    if (g_spindle_mode >= 0) record(CommandKind::word, code_name('G', g_spindle_mode));
+    if (g_retract >= 0) record(CommandKind::word, code_name('G', g_retract));
+    if (g_cancel) record(CommandKind::word, "G80");
     if (g_motion != -2) motion = g_motion;
 
     const bool axes = has('x') || has('y') || has('z');
@@ -870,8 +992,15 @@ struct GcodeReader::Impl {
         make_arc(out, target, u, mcol0);
         uses_p = true;
       }
+      if (offset != Vec3::Zero()) {  // to the output frame; the start is exactly where the last block ended
+        out.start = mpos;
+        out.end = target + offset;
+        out.center += offset;
+      }
       position = target;
+      mpos = out.end;
       produced = true;
+      ++blocks_out;
     } else if (arc_words) {
       const char w = has('i') ? 'i' : has('j') ? 'j' : has('k') ? 'k' : 'r';
       fail_at(wc(w), std::string("word ") + static_cast<char>(w - 32) + " without a motion (no X, Y or Z on the line)");
@@ -883,8 +1012,58 @@ struct GcodeReader::Impl {
     for (const char* p = kUnused; *p; ++p)
       if (has(*p)) fail_at(wc(*p), std::string("word ") + static_cast<char>(*p - 32) + " is not supported here");
 
+    if (m_stop >= 0)
+      record(m_stop == 2 || m_stop == 30 ? CommandKind::program_end : CommandKind::word, "M" + std::to_string(m_stop));
     if (m_stop == 2 || m_stop == 30) ended = true;
     return produced;
+  }
+
+  // G43 [H] / G49: tool length along +Z from the tool table (zero, with one warning, without one).
+  void tool_length(long c) {
+    if (c == 490) {
+      tool_offset = 0.0;
+      set_offset();
+      record(CommandKind::tool_length, "G49", 0.0);
+      return;
+    }
+    std::string text = "G43";
+    int t = tool;
+    if (has('h')) {
+      const double h = val('h');
+      if (h < 0.0 || h > 1e9 || std::round(h) != h)
+        fail_at(wc('h'), "H = " + fmt_num(h) + ": tool number must be a non-negative integer");
+      t = static_cast<int>(h);
+      text += " H" + std::to_string(t);
+    }
+    double len = 0.0;
+    if (opt.has_tool_table) {
+      if (t != 0) {
+        const auto it = opt.tool_lengths.find(t);
+        if (it == opt.tool_lengths.end())
+          fail_at(has('h') ? wc('h') : 1, "G43: tool " + std::to_string(t) + " is not in the tool table");
+        len = it->second;
+      }
+    } else if (!warned_tools) {
+      warned_tools = true;
+      warn(text + " applies a tool length but no tool table was given; taken as zero");
+    }
+    tool_offset = len;
+    set_offset();
+    record(CommandKind::tool_length, std::move(text), len);
+  }
+
+  // G54 … G59.3: work offset from the options (zero, with one warning, without them).
+  void work_offset(long c) {
+    static const long codes[9] = {540, 550, 560, 570, 580, 590, 591, 592, 593};
+    int k = 0;
+    while (codes[k] != c) ++k;
+    if (!opt.has_work_offsets && !warned_offsets) {
+      warned_offsets = true;
+      warn(code_name('G', c) + " selects a work offset but no work offsets were given; taken as zero");
+    }
+    coord_system = k;
+    set_offset();
+    record(CommandKind::work_offset, code_name('G', c), k);
   }
 
   void make_arc(Block& out, const Vec3& target, double u, int column) {
@@ -971,7 +1150,10 @@ struct GcodeReader::Impl {
         break;
       }
       normalize(b, e);
-      if (nlen == 0) continue;
+      if (nlen == 0) {
+        record_comments();
+        continue;
+      }
       if (norm[0] == '%') {
         if (nlen == 1) continue;
         throw ParseError(source, line_no, column_of(1), "unexpected text after '%'");
@@ -996,7 +1178,7 @@ GcodeReader GcodeReader::open(const std::string& path, const ReaderOptions& opti
   auto impl = std::make_unique<Impl>();
   impl->source = path;
   impl->opt = options;
-  impl->position = options.initial_position;
+  impl->start();
   impl->file = std::fopen(path.c_str(), "rb");
   if (!impl->file) {
     throw std::invalid_argument("path = " + path + ": cannot open the file for reading (" + std::strerror(errno) + ")");
@@ -1010,7 +1192,7 @@ GcodeReader GcodeReader::from_string(std::string text, const std::string& source
   auto impl = std::make_unique<Impl>();
   impl->source = source;
   impl->opt = options;
-  impl->position = options.initial_position;
+  impl->start();
   impl->text = std::move(text);
   return GcodeReader(std::move(impl));
 }
@@ -1021,6 +1203,15 @@ long GcodeReader::lines_read() const noexcept { return impl_->line_no; }
 double GcodeReader::dwell_time() const noexcept { return impl_->dwell_total; }
 long GcodeReader::dwells() const noexcept { return impl_->dwell_count; }
 Vec3 GcodeReader::position() const noexcept { return impl_->position; }
+void GcodeReader::take_commands(std::vector<Command>& out) {
+  if (out.empty()) {
+    out.swap(impl_->pending);
+  } else {
+    out.insert(out.end(), std::make_move_iterator(impl_->pending.begin()), std::make_move_iterator(impl_->pending.end()));
+  }
+  impl_->pending.clear();
+}
+const std::vector<std::string>& GcodeReader::warnings() const noexcept { return impl_->warns; }
 
 namespace {
 Toolpath drain(GcodeReader& r) {
@@ -1028,8 +1219,10 @@ Toolpath drain(GcodeReader& r) {
   tp.source = r.source();
   Block b;
   while (r.next(b)) tp.blocks.push_back(b);
+  r.take_commands(tp.commands);
   tp.dwell_time = r.dwell_time();
   tp.dwells = r.dwells();
+  tp.warnings = r.warnings();
   return tp;
 }
 Summary summarize(GcodeReader& r) {
@@ -1039,27 +1232,36 @@ Summary summarize(GcodeReader& r) {
   sb.add_dwell(r.dwell_time(), r.dwells());
   Summary s = sb.summary();
   s.source_lines = r.lines_read();
+  s.warnings = r.warnings();
   return s;
 }
 }  // namespace
 
 Toolpath read_gcode(const std::string& path, const ReaderOptions& options) {
   GcodeReader r = GcodeReader::open(path, options);
-  return drain(r);
+  Toolpath tp = drain(r);
+  if (options.has_work_offsets) tp.work_offsets = options.work_offsets;
+  return tp;
 }
 
 Toolpath parse_gcode(const std::string& text, const std::string& source, const ReaderOptions& options) {
   GcodeReader r = GcodeReader::from_string(text, source, options);
-  return drain(r);
+  Toolpath tp = drain(r);
+  if (options.has_work_offsets) tp.work_offsets = options.work_offsets;
+  return tp;
 }
 
 Summary summarize_gcode(const std::string& path, const ReaderOptions& options) {
-  GcodeReader r = GcodeReader::open(path, options);
+  ReaderOptions o = options;
+  o.keep_commands = false;
+  GcodeReader r = GcodeReader::open(path, o);
   return summarize(r);
 }
 
 Summary summarize_gcode_text(const std::string& text, const std::string& source, const ReaderOptions& options) {
-  GcodeReader r = GcodeReader::from_string(text, source, options);
+  ReaderOptions o = options;
+  o.keep_commands = false;
+  GcodeReader r = GcodeReader::from_string(text, source, o);
   return summarize(r);
 }
 

@@ -42,10 +42,30 @@ class NumberFormat {
       out.append(buf, static_cast<std::size_t>(n));
     }
   }
+  // Feed [units/min]: rounded to 1e-6 (shortest form would keep the binary noise of mm/s × 60, e.g.
+  // 1000000.0000000001); fixed decimals when asked for fewer.
+  void put_feed(std::string& out, double f) const {
+    out += 'F';
+    char buf[64];
+    const int d = decimals_ < 0 || decimals_ > 6 ? 6 : decimals_;
+    int n = std::snprintf(buf, sizeof buf, "%.*f", d, f);
+    if (d > 0) {
+      while (n > 1 && buf[n - 1] == '0') --n;
+      if (buf[n - 1] == '.') --n;
+    }
+    out.append(buf, static_cast<std::size_t>(n));
+  }
 
  private:
   int decimals_;
 };
+
+// Leading integer of `text` after `skip` characters ("S1600" → 1600), for the state the writer tracks.
+double value_after(const std::string& text, std::size_t skip) {
+  double v = 0.0;
+  if (text.size() > skip) std::from_chars(text.data() + skip, text.data() + text.size(), v);
+  return v;
+}
 
 }  // namespace
 
@@ -61,12 +81,64 @@ void write_gcode(const Toolpath& tp, std::ostream& os, const WriterOptions& opt)
     os << '(' << c << ")\n";
   }
   os << "G21 G90 G17 G94 " << (opt.absolute_arc_centers ? "G90.1" : "G91.1") << '\n';
-  Vec3 pos = Vec3::Zero();
+  // Block coordinates are in the tool path's frame (program + work offset + tool length); `off` is the
+  // offset the commands written so far put in force, subtracted from every written coordinate.
+  int coord_system = 0;
+  double tool_offset = 0.0;
+  Vec3 off = tp.work_offsets.row(0).transpose();
+  Vec3 pos = off;  // the reader's tool starts at program (0, 0, 0)
   int motion = -1;
   Plane plane = Plane::xy;
   double feed = 0.0;
-  double rpm = 0.0;
+  double speed = 0.0;  // S [rev/min]
+  int spindle_dir = 0; // M3 +1, M4 −1, M5 0
+  int selected = 0;
   int tool = 0;
+  bool ended = false;  // an M2 / M30 command was written
+  std::size_t ci = 0;  // next command
+  const std::size_t nc = tp.commands.size();
+  for (std::size_t i = 1; i < nc; ++i)
+    NETSHAPE_CHECK(tp.commands[i].before >= tp.commands[i - 1].before, "commands.before", tp.commands[i].before,
+                   "must be non-decreasing");
+  // Write the commands placed before block `k` (k = blocks.size(): the rest) and track the state they set.
+  auto commands_before = [&](std::size_t k) {
+    for (; ci < nc && tp.commands[ci].before <= k; ++ci) {
+      const Command& c = tp.commands[ci];
+      for (char ch : c.text)
+        NETSHAPE_CHECK(ch != '\n' && ch != '\r', "command.text", c.text, "must be one line");
+      os << c.text << '\n';
+      const std::string& t = c.text;
+      switch (c.kind) {
+        case CommandKind::work_offset:
+          NETSHAPE_CHECK(c.value >= 0 && c.value <= 8 && c.value == std::floor(c.value), "command.value", c.value,
+                         "work offset index must be 0 … 8 (G54 … G59.3)");
+          coord_system = static_cast<int>(c.value);
+          break;
+        case CommandKind::tool_length:
+          NETSHAPE_CHECK_FINITE("command.value", c.value);
+          tool_offset = c.value;
+          break;
+        case CommandKind::program_end:
+          ended = true;
+          break;
+        case CommandKind::word:
+          if (t.size() > 1 && t[0] == 'S') speed = value_after(t, 1);
+          else if (t.size() > 1 && t[0] == 'T') selected = static_cast<int>(value_after(t, 1));
+          else if (t == "M6") tool = selected;
+          else if (t == "M3") spindle_dir = 1;
+          else if (t == "M4") spindle_dir = -1;
+          else if (t == "M5") spindle_dir = 0;
+          else if (t == "G80") motion = -1;
+          break;
+        default:
+          break;
+      }
+      if (c.kind == CommandKind::work_offset || c.kind == CommandKind::tool_length) {
+        off = tp.work_offsets.row(coord_system).transpose();
+        off.z() += tool_offset;
+      }
+    }
+  };
   const char axis[3] = {'X', 'Y', 'Z'};
   const char offs[3] = {'I', 'J', 'K'};
   std::vector<Block> pieces;
@@ -77,27 +149,30 @@ void write_gcode(const Toolpath& tp, std::ostream& os, const WriterOptions& opt)
       NETSHAPE_CHECK_FINITE("block.end", b.end[i]);
     }
     NETSHAPE_CHECK(std::isfinite(b.feed) && b.feed >= 0.0, "block.feed", b.feed, "must be a non-negative number [mm/s]");
+    // tool and spindle the commands did not set (tool paths built in code, or changed by a transform)
     if (b.tool != tool) {
       NETSHAPE_CHECK(b.tool >= 0, "block.tool", b.tool, "must not be negative");
       os << 'T' << b.tool << " M6\n";
-      tool = b.tool;
+      tool = selected = b.tool;
     }
-    if (b.spindle_rpm != rpm) {
+    if (b.spindle_rpm != spindle_dir * speed) {
       NETSHAPE_CHECK(std::isfinite(b.spindle_rpm), "block.spindle_rpm", b.spindle_rpm, "must be finite [rev/min]");
       line.clear();
       if (b.spindle_rpm == 0.0) {
         line = "M5";
+        spindle_dir = 0;
       } else {
         nf.put(line, 'S', std::abs(b.spindle_rpm));
         line += b.spindle_rpm > 0.0 ? " M3" : " M4";
+        speed = std::abs(b.spindle_rpm);
+        spindle_dir = b.spindle_rpm > 0.0 ? 1 : -1;
       }
       os << line << '\n';
-      rpm = b.spindle_rpm;
     }
     if (b.start != pos) {  // discontinuity: move there at rapid
       line = motion == 0 ? "" : "G0 ";
       for (int a = 0; a < 3; ++a) {
-        nf.put(line, axis[a], b.start[a]);
+        nf.put(line, axis[a], b.start[a] - off[a]);
         if (a < 2) line += ' ';
       }
       os << line << '\n';
@@ -119,21 +194,21 @@ void write_gcode(const Toolpath& tp, std::ostream& os, const WriterOptions& opt)
     bool any = false;
     for (int a = 0; a < 3; ++a) {
       if (b.end[a] != pos[a]) {
-        nf.put(line, axis[a], b.end[a]);
+        nf.put(line, axis[a], b.end[a] - off[a]);
         line += ' ';
         any = true;
       }
     }
     if (!any) {  // zero-length move or full circle: still a block
       const int a = b.kind == MotionKind::arc ? plane_axes(b.plane).a : 0;
-      nf.put(line, axis[a], b.end[a]);
+      nf.put(line, axis[a], b.end[a] - off[a]);
       line += ' ';
     }
     if (b.kind == MotionKind::arc) {
       const PlaneAxes ax = plane_axes(b.plane);
       for (int k : {ax.a, ax.b}) {
         NETSHAPE_CHECK_FINITE("block.center", b.center[k]);
-        nf.put(line, offs[k], opt.absolute_arc_centers ? b.center[k] : b.center[k] - b.start[k]);
+        nf.put(line, offs[k], opt.absolute_arc_centers ? b.center[k] - off[k] : b.center[k] - b.start[k]);
         line += ' ';
       }
       if (b.turns != 1) {
@@ -144,7 +219,7 @@ void write_gcode(const Toolpath& tp, std::ostream& os, const WriterOptions& opt)
       }
     }
     if (b.feed != feed) {
-      nf.put(line, 'F', b.feed * 60.0);
+      nf.put_feed(line, b.feed * 60.0);
       line += ' ';
       feed = b.feed;
     }
@@ -153,7 +228,10 @@ void write_gcode(const Toolpath& tp, std::ostream& os, const WriterOptions& opt)
     pos = b.end;
   };
 
-  for (const Block& b : tp.blocks) {
+  for (std::size_t k = 0; k < tp.blocks.size(); ++k) {
+    commands_before(k);
+    NETSHAPE_CHECK(!ended, "commands", k, "a block follows the program end (M2/M30) command");
+    const Block& b = tp.blocks[k];
     if (opt.split_arcs && b.kind == MotionKind::arc) {
       pieces.clear();
       split_block(b, opt.chord_tolerance, pieces);
@@ -162,7 +240,8 @@ void write_gcode(const Toolpath& tp, std::ostream& os, const WriterOptions& opt)
       emit(b);
     }
   }
-  os << "M2\n";
+  commands_before(tp.blocks.size());
+  if (!ended) os << "M2\n";
   if (!os) throw Error("write_gcode: the output stream failed");
 }
 

@@ -50,12 +50,39 @@ void split_block(const Block& b, double chord_tolerance, std::vector<Block>& out
 Toolpath Toolpath::split_arcs(double chord_tolerance) const {
   NETSHAPE_CHECK(std::isfinite(chord_tolerance) && chord_tolerance > 0.0, "chord_tolerance", chord_tolerance,
                  "must be a positive number [mm]");
+  std::vector<Block> out;
+  std::vector<long> origin;
+  out.reserve(blocks.size());
+  origin.reserve(blocks.size());
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    split_block(blocks[i], chord_tolerance, out);
+    origin.resize(out.size(), static_cast<long>(i));
+  }
+  return with_blocks(std::move(out), origin);
+}
+
+Toolpath Toolpath::with_blocks(std::vector<Block> new_blocks, const std::vector<long>& origin) const {
+  NETSHAPE_CHECK(origin.size() == new_blocks.size(), "origin", origin.size(),
+                 ("must have one entry per new block (" + std::to_string(new_blocks.size()) + ")").c_str());
+  const long n = static_cast<long>(blocks.size());
+  for (std::size_t i = 0; i < origin.size(); ++i) {
+    NETSHAPE_CHECK(origin[i] >= 0 && origin[i] < n, "origin", origin[i],
+                   ("must index a block of the tool path (0 … " + std::to_string(n - 1) + ")").c_str());
+    NETSHAPE_CHECK(i == 0 || origin[i] >= origin[i - 1], "origin", origin[i], "must be non-decreasing");
+  }
   Toolpath t;
   t.source = source;
   t.dwell_time = dwell_time;
   t.dwells = dwells;
-  t.blocks.reserve(blocks.size());
-  for (const Block& b : blocks) split_block(b, chord_tolerance, t.blocks);
+  t.work_offsets = work_offsets;
+  t.warnings = warnings;
+  t.commands = commands;
+  // first[k]: index of the first new block that came from old block k or a later one
+  std::vector<std::size_t> first(blocks.size() + 1, new_blocks.size());
+  for (std::size_t i = origin.size(); i-- > 0;) first[static_cast<std::size_t>(origin[i])] = i;
+  for (std::size_t k = blocks.size(); k-- > 0;) first[k] = std::min(first[k], first[k + 1]);
+  for (Command& c : t.commands) c.before = first[std::min(c.before, blocks.size())];
+  t.blocks = std::move(new_blocks);
   return t;
 }
 

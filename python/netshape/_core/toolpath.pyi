@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Block', 'GcodeReader', 'MotionKind', 'Plane', 'Summary', 'Toolpath', 'WriterOptions', 'block_bounds', 'chord_count', 'format_gcode', 'parse_gcode', 'parse_gcode_arrays', 'read_gcode', 'read_gcode_arrays', 'summarize_gcode', 'summarize_gcode_text']
+__all__: list[str] = ['Block', 'Command', 'CommandKind', 'GcodeReader', 'MotionKind', 'Plane', 'ReaderOptions', 'Summary', 'Toolpath', 'WriterOptions', 'block_bounds', 'chord_count', 'format_gcode', 'parse_gcode', 'parse_gcode_arrays', 'read_gcode', 'read_gcode_arrays', 'summarize_gcode', 'summarize_gcode_text']
 class MotionKind:
     """
     Kind of motion block (values are the `kind` array codes).
@@ -213,6 +213,152 @@ class Block:
     @turns.setter
     def turns(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
+class CommandKind:
+    """
+    What a non-motion record is (values are stable).
+    
+    Members:
+    
+      comment
+    
+      word
+    
+      dwell
+    
+      work_offset
+    
+      tool_length
+    
+      program_end
+    """
+    __members__: typing.ClassVar[dict[str, CommandKind]]
+    comment: typing.ClassVar[CommandKind]
+    dwell: typing.ClassVar[CommandKind]
+    program_end: typing.ClassVar[CommandKind]
+    tool_length: typing.ClassVar[CommandKind]
+    word: typing.ClassVar[CommandKind]
+    work_offset: typing.ClassVar[CommandKind]
+    @typing.overload
+    def __eq__(self, other: CommandKind) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: CommandKind) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class Command:
+    """
+    A non-motion record (comment, M/S/T word, dwell, offset …) placed before block `before`.
+    """
+    kind: CommandKind
+    @typing.overload
+    def __init__(self) -> None:
+        ...
+    @typing.overload
+    def __init__(self, before: typing.SupportsInt | typing.SupportsIndex, kind: CommandKind, text: str, value: typing.SupportsFloat | typing.SupportsIndex = 0.0, line: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    @property
+    def before(self) -> int:
+        """
+        index of the motion block it precedes (len(blocks): at the end)
+        """
+    @before.setter
+    def before(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def line(self) -> int:
+        """
+        1-based source line (0 = not from a file)
+        """
+    @line.setter
+    def line(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def text(self) -> str:
+        """
+        as written out, e.g. 'M8', 'G64 P0.1', 'G4 P0.5', '(finish)'
+        """
+    @text.setter
+    def text(self, arg0: str) -> None:
+        ...
+    @property
+    def value(self) -> float:
+        """
+        dwell [s], work offset index 0-8, or tool length [mm]
+        """
+    @value.setter
+    def value(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class ReaderOptions:
+    """
+    Options of the G-code reader (offsets [mm]).
+    """
+    has_tool_table: bool
+    has_work_offsets: bool
+    keep_commands: bool
+    keep_line_numbers: bool
+    def __init__(self) -> None:
+        ...
+    def validate(self) -> None:
+        ...
+    @property
+    def initial_position(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        [mm], program coordinates
+        """
+    @initial_position.setter
+    def initial_position(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> None:
+        ...
+    @property
+    def max_line_length(self) -> int:
+        ...
+    @max_line_length.setter
+    def max_line_length(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def tool_lengths(self) -> dict[int, float]:
+        """
+        {tool: length along Z [mm]}
+        """
+    @tool_lengths.setter
+    def tool_lengths(self, arg0: collections.abc.Mapping[typing.SupportsInt | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+    @property
+    def work_offsets(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[9, 3]"]:
+        """
+        (9, 3) G54 … G59.3 [mm]
+        """
+    @work_offsets.setter
+    def work_offsets(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[9, 3]"]) -> None:
+        ...
 class Summary:
     """
     Whole-program figures: counts, lengths [mm], bounding box [mm], times [s].
@@ -273,6 +419,14 @@ class Summary:
     @property
     def source_lines(self) -> int:
         ...
+    @property
+    def total_time(self) -> float:
+        """
+        feed time + dwell time [s]
+        """
+    @property
+    def warnings(self) -> list[str]:
+        ...
 class Toolpath:
     """
     A program: its motion blocks in order and the name of its source.
@@ -292,6 +446,10 @@ class Toolpath:
         """
     def summary(self) -> Summary:
         ...
+    def with_blocks(self, blocks: collections.abc.Sequence[Block], origin: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex]) -> Toolpath:
+        """
+        A copy with new blocks; origin[i] = index of the block new block i came from (commands follow).
+        """
     @property
     def blocks(self) -> list[Block]:
         """
@@ -299,6 +457,14 @@ class Toolpath:
         """
     @blocks.setter
     def blocks(self, arg0: collections.abc.Sequence[Block]) -> None:
+        ...
+    @property
+    def commands(self) -> list[Command]:
+        """
+        list of Command (a copy on each access)
+        """
+    @commands.setter
+    def commands(self, arg0: collections.abc.Sequence[Command]) -> None:
         ...
     @property
     def dwell_time(self) -> float:
@@ -314,6 +480,20 @@ class Toolpath:
     @dwells.setter
     def dwells(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
+    @property
+    def warnings(self) -> list[str]:
+        ...
+    @warnings.setter
+    def warnings(self, arg0: collections.abc.Sequence[str]) -> None:
+        ...
+    @property
+    def work_offsets(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[9, 3]"]:
+        """
+        (9, 3) offsets the blocks include [mm]
+        """
+    @work_offsets.setter
+    def work_offsets(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[9, 3]"]) -> None:
+        ...
 class GcodeReader:
     """
     Streaming reader: iterate to get Blocks one at a time.
@@ -328,11 +508,18 @@ class GcodeReader:
         ...
     def __next__(self) -> Block:
         ...
+    def take_commands(self) -> list[Command]:
+        """
+        The comments and non-motion commands read so far, and forget them (bounded memory when streaming).
+        """
     @property
     def lines_read(self) -> int:
         ...
     @property
     def source(self) -> str:
+        ...
+    @property
+    def warnings(self) -> list[str]:
         ...
 class WriterOptions:
     """
@@ -365,15 +552,15 @@ def chord_count(radius: typing.SupportsFloat | typing.SupportsIndex, sweep: typi
     ...
 def format_gcode(toolpath: Toolpath, options: WriterOptions = ...) -> str:
     ...
-def parse_gcode(text: str, source: str = '<string>') -> Toolpath:
+def parse_gcode(text: str, source: str = '<string>', options: ReaderOptions = ...) -> Toolpath:
     ...
-def parse_gcode_arrays(text: str, source: str = '<string>', split_arcs: bool = False, chord_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.002) -> dict:
+def parse_gcode_arrays(text: str, source: str = '<string>', split_arcs: bool = False, chord_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.002, options: ReaderOptions = ...) -> dict:
     ...
-def read_gcode(path: str) -> Toolpath:
+def read_gcode(path: str, options: ReaderOptions = ...) -> Toolpath:
     ...
-def read_gcode_arrays(path: str, split_arcs: bool = False, chord_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.002) -> dict:
+def read_gcode_arrays(path: str, split_arcs: bool = False, chord_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.002, options: ReaderOptions = ...) -> dict:
     ...
-def summarize_gcode(path: str) -> Summary:
+def summarize_gcode(path: str, options: ReaderOptions = ...) -> Summary:
     ...
-def summarize_gcode_text(text: str, source: str = '<string>') -> Summary:
+def summarize_gcode_text(text: str, source: str = '<string>', options: ReaderOptions = ...) -> Summary:
     ...

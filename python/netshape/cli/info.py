@@ -7,8 +7,9 @@ import json
 _DESCRIPTION = """\
 Read an RS274/NGC (LinuxCNC dialect) G-code program and print block counts by kind, rapid and feed
 path lengths [mm], the bounding box of all motion including arcs [mm], and the time of the feed
-moves at the programmed feed [s] (rapids and accelerations not included; G4 dwells listed apart).
-Inch programs (G20) are converted to mm. The program is streamed: memory does not grow with its
+moves at the programmed feed [s], G4 dwell time [s] and their sum, the total time (rapids and
+accelerations not included). Inch programs (G20) are converted to mm. With --var / --tool-table the
+positions are machine axis positions (program + work offset + tool length along Z). The program is streamed: memory does not grow with its
 length. Unsupported codes (cutter compensation, canned cycles, NURBS, G92, o-words, ...) are
 refused with file:line:column and the reason; exit code 2.
 """
@@ -23,14 +24,17 @@ def register(sub) -> None:
     )
     p.add_argument("program", metavar="PROGRAM", help="G-code file (.ngc, .nc, .gcode, ...)")
     p.add_argument("--json", action="store_true", help="print a JSON object instead of a table")
+    from netshape.cli._offsets import add_offset_options
+
+    add_offset_options(p)
     p.set_defaults(func=run)
 
 
-def info_dict(program) -> dict:
+def info_dict(program, *, work_offsets=None, tool_table=None) -> dict:
     """The figures `netshape info` prints, as a dict (keys carry their units)."""
     from netshape import toolpath
 
-    d = toolpath.summary(program).to_dict()
+    d = toolpath.summary(program, work_offsets=work_offsets, tool_table=tool_table).to_dict()
     d = {"program": str(program), **d}
     d["bbox_min_mm"] = list(d["bbox_min_mm"])
     d["bbox_max_mm"] = list(d["bbox_max_mm"])
@@ -52,12 +56,16 @@ def format_table(d: dict) -> str:
     ]
     if d["dwells"]:
         rows.append(("dwell time", f"{d['dwell_time_s']:.3f} s  ({d['dwells']} dwells)"))
+        rows.append(("total time", f"{d['total_time_s']:.3f} s  (feed + dwell)"))
     width = max(len(k) for k, _ in rows)
     return "\n".join(f"{k:<{width}}  {v}" for k, v in rows)
 
 
 def run(args) -> int:
-    d = info_dict(args.program)
+    from netshape.cli._offsets import offset_kwargs, reader_warnings
+
+    with reader_warnings("info"):
+        d = info_dict(args.program, **offset_kwargs(args))
     if args.json:
         print(json.dumps(d, indent=2))
     else:

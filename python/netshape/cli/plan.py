@@ -8,8 +8,9 @@ import math
 
 _DESCRIPTION = """\
 Plan the feedrate of a G-code program under axis limits with a look-ahead buffer (seeds/002), then
-interpolate it in two loops (rough period --ts1, fine period --ts2). Writes a JSON summary: blocks,
-cycle_time_s, max_axis_velocity_mm_s, max_axis_accel_mm_s2, max_axis_jerk_mm_s3 (largest over all
+interpolate it in two loops (rough period --ts1, fine period --ts2). The tool stops for every G4
+dwell and waits its duration (counted in cycle_time_s and in dwell_time_s). Writes a JSON summary:
+blocks, cycle_time_s, dwell_time_s, max_axis_velocity_mm_s, max_axis_accel_mm_s2, max_axis_jerk_mm_s3 (largest over all
 axes and samples, by finite differences of the fine samples) and max_path_deviation_mm.
 
 Corner rules:
@@ -61,6 +62,9 @@ def register(sub) -> None:
     p.add_argument("--json", required=True, metavar="OUT.json", help="summary (written atomically)")
     p.add_argument("--samples", metavar="OUT.csv", help="fine samples: t_s,x_mm,...,vx_mm_s,...,feed_mm_s,block")
     p.add_argument("--plot", metavar="OUT.png", help="feed and per-axis velocity plot")
+    from netshape.cli._offsets import add_offset_options
+
+    add_offset_options(p)
     p.set_defaults(func=run)
 
 
@@ -109,7 +113,10 @@ def run(args) -> int:
     options = make_options(args.rule, ts1=args.ts1, ts2=args.ts2, lookahead=args.lookahead, tolerance=args.tolerance,
                            allowable_speed_difference=args.allowable / 60.0, junction_deviation=deviation,
                            square_corner_velocity=scv, junction_accel=args.junction_accel)
-    arrays = toolpath.read_gcode_arrays(args.program)
+    from netshape.cli._offsets import offset_kwargs, reader_warnings
+
+    with reader_warnings("plan"):
+        arrays = toolpath.read_gcode_arrays(args.program, **offset_kwargs(args))
     arrays = {k: np.asarray(v) for k, v in arrays.items()}
     arrays["feed"] = arrays["feed"] * args.feed_scale
     traj = plan(arrays, limits, options)
@@ -147,7 +154,9 @@ def run(args) -> int:
 
         fig = plot_profiles(traj, title=f"{args.program} — rule {args.rule}")
         atomic_save_figure(fig, args.plot)
-    print(f"{traj.stats['blocks']} blocks, cycle time {traj.stats['cycle_time_s']:.4f} s, "
+    dwell = traj.stats.get("dwell_time_s", 0.0)
+    print(f"{traj.stats['blocks']} blocks, cycle time {traj.stats['cycle_time_s']:.4f} s"
+          + (f" (dwells {dwell:.4f} s)" if dwell else "") + ", "
           f"max axis velocity {traj.stats['max_axis_velocity_mm_s']:.2f} mm/s, "
           f"accel {traj.stats['max_axis_accel_mm_s2']:.1f} mm/s^2, "
           f"path deviation {traj.stats['max_path_deviation_mm']:.4f} mm")

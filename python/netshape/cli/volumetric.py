@@ -52,7 +52,8 @@ def register(sub) -> None:
     m.set_defaults(func=run)
     c = vs.add_parser("compensate", help="compensate a G-code program",
                       description="Rewrite PROGRAM so the actual tool tip lands on the nominal path of "
-                      "MACHINE. Modal feed, spindle and tool are kept; comments are not carried over.")
+                      "MACHINE. Every comment and non-motion word (M, S, T, G4, G43, G54-G59.3, G64 ...) is "
+                      "kept in order at its place; M30 stays M30.")
     c.add_argument("program", metavar="PROGRAM", help="G-code program (RS274/NGC)")
     c.add_argument("--machine", required=True, metavar="MACHINE.toml", help="machine description")
     c.add_argument("-o", "--output", required=True, metavar="OUT.nc", help="compensated program")
@@ -60,6 +61,9 @@ def register(sub) -> None:
                    help="largest deviation of the actual path from the nominal lines and arcs [mm] "
                    "(default 0.002)")
     c.add_argument("--json", metavar="OUT.json", help="write the report as JSON")
+    from netshape.cli._offsets import add_offset_options
+
+    add_offset_options(c)
     c.set_defaults(func=run)
     p.set_defaults(func=run, _volumetric_parser=p)
 
@@ -97,12 +101,15 @@ def run(args) -> int:
         tol = args.chord_tolerance
         if not (tol > 0 and tol < float("inf")):
             raise CliError(f"--chord-tolerance {tol}: must be a positive number [mm]")
-        rep = nc.compensate_gcode(machine, args.program, args.output, chord_tolerance=tol)
+        from netshape.cli._offsets import offset_kwargs, reader_warnings
+
+        with reader_warnings("volumetric"):
+            rep = nc.compensate_gcode(machine, args.program, args.output, chord_tolerance=tol, **offset_kwargs(args))
         d = rep.to_dict()
         print(f"{args.output}: {d['blocks_in']} blocks in, {d['blocks_out']} out; largest correction "
               f"{d['max_correction_mm'] * 1e3:.3f} µm, residual ≤ {d['max_residual_mm']:.2g} mm, "
               f"path within {d['max_path_deviation_mm'] * 1e3:.3f} µm; arcs kept {d['arcs_kept']}, "
-              f"split {d['arcs_split']}")
+              f"split {d['arcs_split']}; {d['commands']} comments and non-motion words kept")
         if args.json:
             with atomic_write(args.json, "w") as fh:
                 json.dump(d, fh, indent=1)

@@ -10,10 +10,14 @@ end point to ``tolerance`` (1e-9 mm), rewrites lines as one or more G1 moves so 
 between compensated points stays within ``chord_tolerance`` of the nominal line (checked at ¼, ½,
 ¾ of every output segment, adaptive halving), keeps an arc as a (moved) arc where its actual path
 stays within ``chord_tolerance`` of the nominal arc and otherwise rewrites it as compensated chords,
-and carries the modal state (feed, spindle, tool) of each source block. A compensated point outside
+and carries the modal state (feed, spindle, tool) of each source block. Every comment and
+non-motion word of the program (M codes, S, T, G4 dwells, G43/G49, G54-G59.3, G61/G64 P Q, G40, G80,
+M2/M30 ...) is written in the same order and at the same place among the moves: a command that
+preceded source block i precedes the first output move of block i. A compensated point outside
 an axis' travel is refused with a ValueError naming the source line and the axis. Output is written
-whole or not at all. Comments and non-motion words other than F, S, M3/M4/M5 and T…M6 are not carried
-over (the writer's header is G21 G90 G17 G94 G91.1).
+whole or not at all (the writer's header is G21 G90 G17 G94 G91.1). With ``work_offsets`` /
+``tool_table`` the blocks are machine axis positions (what the error model is indexed by) and the
+output is written back in program coordinates.
 """
 
 from __future__ import annotations
@@ -73,6 +77,7 @@ class ProgramReport:
     max_correction_mm: float = 0.0
     max_residual_mm: float = 0.0
     max_path_deviation_mm: float = 0.0
+    commands: int = 0  # comments and non-motion words carried over (all of the program's)
     extra: dict = field(default_factory=dict)
 
     def to_dict(self) -> dict[str, Any]:
@@ -175,6 +180,13 @@ def _subdivide(machine, comp: _Compensator, a_nom, b_nom, a_cmd, b_cmd, lines, t
     return [[p for _, p in sorted(lst, key=lambda x: x[0])] for lst in interior], worst
 
 
+def _radii(start, end, center, axes) -> tuple[float, float]:
+    """In-plane distances [mm] of an arc's start and end from its centre (axes: the plane's two)."""
+    s = np.asarray(start, dtype=float)[list(axes)] - np.asarray(center, dtype=float)[list(axes)]
+    e = np.asarray(end, dtype=float)[list(axes)] - np.asarray(center, dtype=float)[list(axes)]
+    return float(np.hypot(*s)), float(np.hypot(*e))
+
+
 def _arc_count(block, tol: float) -> int:
     r = block.radius()
     sweep = abs(block.sweep())
@@ -186,9 +198,10 @@ def _arc_count(block, tol: float) -> int:
 
 
 def compensate_program(machine: _m.Machine, program: Any, chord_tolerance: float = 0.002,
-                       tolerance: float = 1e-9):
+                       tolerance: float = 1e-9, *, work_offsets: Any = None, tool_table: Any = None):
     """Compensate a program (path or netshape.toolpath.Toolpath). Returns (Toolpath, ProgramReport).
-    See the module docstring for what happens to lines, arcs and modal state."""
+    See the module docstring for what happens to lines, arcs, modal state and commands.
+    ``work_offsets`` / ``tool_table``: see :func:`netshape.toolpath.read_gcode` (path input only)."""
     from .. import toolpath as tpm
 
     tol = float(chord_tolerance)
@@ -196,15 +209,18 @@ def compensate_program(machine: _m.Machine, program: Any, chord_tolerance: float
         raise ValueError(f"chord_tolerance = {chord_tolerance!r}: must be a positive number [mm]")
     if isinstance(program, (str, os.PathLike)):
         source = os.fspath(program)
-        tp = tpm.read_gcode(program, arcs="keep")
+        tp = tpm.read_gcode(program, arcs="keep", work_offsets=work_offsets, tool_table=tool_table)
     else:
+        if work_offsets is not None or tool_table is not None:
+            raise ValueError("work_offsets / tool_table apply when reading a program path; a Toolpath "
+                             "already carries its offsets")
         tp = program
         source = getattr(tp, "source", "") or "<program>"
     blocks = tp.blocks
-    report = ProgramReport(source=source, blocks_in=len(blocks))
+    report = ProgramReport(source=source, blocks_in=len(blocks), commands=len(tp.commands))
     comp = _Compensator(machine, tolerance, source)
     if not blocks:
-        return tpm.Toolpath(), report
+        return tp.with_blocks([], []), report
     lines = np.array([b.line for b in blocks], dtype=np.int64)
     starts = np.array([b.start for b in blocks], dtype=float)
     ends = np.array([b.end for b in blocks], dtype=float)
@@ -235,7 +251,13 @@ def compensate_program(machine: _m.Machine, program: Any, chord_tolerance: float
         nb.center = center
         m = max(8, _arc_count(b, tol / 2))
         fr = np.linspace(0.0, 1.0, m + 1)[1:-1]
-        keep = abs(np.linalg.norm(nb.start - center) - np.linalg.norm(nb.end - center)) < 0.5 * tol
+        # in-plane radii (a helix' normal-axis travel is not a radius); the moved arc may spiral as much
+        # as the nominal one does, plus half the tolerance
+        pa = [(0, 1), (2, 0), (1, 2)][int(b.plane)]
+        bc = np.asarray(b.center, dtype=float)
+        r_nom = _radii(starts[i], ends[i], bc, pa)
+        r_cmd = _radii(nb.start, nb.end, center, pa)
+        keep = abs((r_cmd[0] - r_cmd[1]) - (r_nom[0] - r_nom[1])) < 0.5 * tol
         dev = np.inf
         if keep:
             pts = np.array([nb.point_at(float(s)) for s in fr])
@@ -278,15 +300,17 @@ def compensate_program(machine: _m.Machine, program: Any, chord_tolerance: float
                 lst.append(nb)
         report.lines_split = sum(1 for i in line_ids if len(new_lists[i]) > 1)
     out = []
+    origin = []
     for i, b in enumerate(blocks):
         if b.kind == tpm.MotionKind.rapid:
             nb = _copy_block(tpm, b)
             nb.start, nb.end = s_cmd[i], e_cmd[i]
             out.append(nb)
+            origin.append(i)
         else:
             out.extend(new_lists[i])
-    res = tpm.Toolpath()
-    res.blocks = out
+            origin.extend([i] * len(new_lists[i]))
+    res = tp.with_blocks(out, origin)
     report.blocks_out = len(out)
     report.max_correction_mm = comp.max_correction
     report.max_residual_mm = comp.max_residual
@@ -301,12 +325,15 @@ def _copy_block(tpm, b):
 
 
 def compensate_gcode(machine: _m.Machine, program: str | os.PathLike, output: str | os.PathLike,
-                     chord_tolerance: float = 0.002, tolerance: float = 1e-9) -> ProgramReport:
+                     chord_tolerance: float = 0.002, tolerance: float = 1e-9, *, work_offsets: Any = None,
+                     tool_table: Any = None) -> ProgramReport:
     """Read ``program``, compensate it (:func:`compensate_program`) and write G-code to ``output``
-    (whole or not at all). Returns the report."""
+    (whole or not at all; the first line is a comment naming the source and the machine, then the
+    program's own commands and the compensated moves). Returns the report."""
     from .. import toolpath as tpm
 
-    tp, report = compensate_program(machine, program, chord_tolerance, tolerance)
+    tp, report = compensate_program(machine, program, chord_tolerance, tolerance, work_offsets=work_offsets,
+                                    tool_table=tool_table)
     text = tpm.format_gcode(tp, header_comment=f"netshape volumetric compensation of {os.path.basename(os.fspath(program))} "
                             f"for machine {machine.name}, chord tolerance {chord_tolerance:g} mm")
     with atomic_write(output, "w") as fh:

@@ -161,6 +161,32 @@ def path_points(program, limits: AxisLimits, options: PlanOptions, ds: float, *,
     return np.asarray(pts), np.asarray(s), float(t)
 
 
+def _dwells(program, n: int):
+    """Dwell time [s] before each block and after the last, (n + 1,), or None when the program does
+    not say (polylines, plain block lists). From the ``dwell`` array of
+    netshape.toolpath.read_gcode_arrays or the G4 commands of a netshape.toolpath.Toolpath."""
+    if isinstance(program, dict):
+        if program.get("dwell") is None:
+            return None
+        d = np.zeros(n + 1)
+        for key, at in (("dwell", slice(0, n)), ("dwell_after", slice(1, n + 1))):
+            if program.get(key) is None:
+                continue
+            v = np.asarray(program[key], dtype=np.float64)
+            if v.shape != (n,) or not np.all(np.isfinite(v)) or np.any(v < 0):
+                raise ValueError(f"{key}: shape {v.shape}, must be ({n},) non-negative times [s]")
+            d[at] += v
+        return d
+    commands = getattr(program, "commands", None)
+    if commands is None:
+        return None
+    d = np.zeros(n + 1)
+    for c in commands:
+        if int(getattr(c.kind, "value", c.kind)) == 2:  # netshape.toolpath.CommandKind.dwell
+            d[min(int(c.before), n)] += float(c.value)
+    return d
+
+
 def plan(program, limits: AxisLimits, options: PlanOptions | None = None, *, feed=None,
          with_deviation: bool = True, **option_keywords) -> Trajectory:
     """Plan and interpolate a program.
@@ -169,14 +195,61 @@ def plan(program, limits: AxisLimits, options: PlanOptions | None = None, *, fee
         (then `feed` [mm/s] is required).
     limits : AxisLimits. options : PlanOptions, or keywords of :func:`make_options`.
     Returns a :class:`Trajectory` whose samples are at options.ts2 and end at the program end point.
+
+    G4 dwells (a Toolpath's dwell commands, or the ``dwell`` / ``dwell_after`` arrays of
+    netshape.toolpath.read_gcode_arrays): the tool comes to rest at the end of the block before a
+    dwell, waits, and starts from rest; the program is planned as independent pieces between dwells and
+    the dwell appears as a gap in ``t`` (same position before and after). ``stats["dwell_time_s"]`` is
+    the total dwell and ``stats["cycle_time_s"]`` includes it; maxima are over all pieces.
     """
     if options is None:
         options = make_options(**option_keywords)
     elif option_keywords:
         raise ValueError(f"options given twice: {sorted(option_keywords)}")
-    t, pos, vel, fd, blk, stats = _m._plan_arrays(*_call_args(_arrays(program, feed)), limits, options,
-                                                  with_deviation)
-    stats = dict(stats)
+    arr = _arrays(program, feed)
+    args = _call_args(arr)
+    n = len(args[0])
+    dw = _dwells(program, n)
+    cuts = [] if dw is None else [i for i in range(1, n) if dw[i] > 0.0]
+    if not cuts:
+        t, pos, vel, fd, blk, stats = _m._plan_arrays(*args, limits, options, with_deviation)
+        stats = dict(stats)
+        t = np.asarray(t)
+        if dw is not None and dw.sum() > 0.0:  # dwells only before the first or after the last move
+            t = t + dw[0]
+            stats["cycle_time_s"] += float(dw.sum())
+    else:
+        t, pos, vel, fd, blk, stats = _plan_pieces(args, dw, [0, *cuts, n], limits, options, with_deviation)
+    stats["dwell_time_s"] = 0.0 if dw is None else float(dw.sum())
     stats["rule"] = rule_name(options.rule)
     stats["ts1_s"], stats["ts2_s"], stats["lookahead"] = options.ts1, options.ts2, options.lookahead
     return Trajectory(np.asarray(t), np.asarray(pos), np.asarray(vel), np.asarray(fd), np.asarray(blk), stats)
+
+
+def _plan_pieces(args, dw, bounds, limits, options, with_deviation):
+    """Plan blocks [bounds[j], bounds[j+1]) independently (each from rest to rest) and join them with
+    the dwells between them."""
+    ts, ps, vs, fs, bs = [], [], [], [], []
+    stats: dict = {}
+    t0 = float(dw[0])
+    for a, b in zip(bounds[:-1], bounds[1:]):
+        t, pos, vel, fd, blk, st = _m._plan_arrays(*(x[a:b] for x in args), limits, options, with_deviation)
+        st = dict(st)
+        ts.append(np.asarray(t) + t0)
+        ps.append(np.asarray(pos)), vs.append(np.asarray(vel)), fs.append(np.asarray(fd))
+        bs.append(np.asarray(blk) + a)
+        t0 += float(st["cycle_time_s"]) + float(dw[b])
+        for k, v in st.items():
+            if k not in stats:
+                stats[k] = v
+            elif k in ("blocks", "samples"):
+                stats[k] += v
+            elif k == "cycle_time_s" or k == "end_error_mm":
+                stats[k] = v  # set below / the last piece ends the program
+            elif isinstance(v, (list, tuple)):
+                stats[k] = [max(x, y) for x, y in zip(stats[k], v)]
+            else:
+                stats[k] = max(stats[k], v)
+    stats["cycle_time_s"] = t0
+    return (np.concatenate(ts), np.concatenate(ps), np.concatenate(vs), np.concatenate(fs), np.concatenate(bs),
+            stats)

@@ -198,11 +198,96 @@ TEST_CASE("program end: M2/M30 stop reading") {
   CHECK(t.blocks.size() == 1);
 }
 
-TEST_CASE("G4 dwell is counted, harmless codes ignored") {
+TEST_CASE("G4 dwell is counted, non-motion codes are kept in NGC order") {
   const Toolpath t = P("G21 G40 G49 G54 G64 P0.01 G80 G94 G97 G98 M8\nG43 H1\nG4 P1.5\nG0 X1\nG4 P0.5\nM9 M2\n");
   CHECK(t.blocks.size() == 1);
   CHECK(t.dwell_time == doctest::Approx(2.0));
   CHECK(t.summary().dwells == 2);
+  std::vector<std::string> texts;
+  for (const Command& c : t.commands) texts.push_back(c.text + "@" + std::to_string(c.before));
+  const std::vector<std::string> want = {"M8@0", "G40@0", "G49@0", "G54@0", "G64 P0.01@0", "G97@0", "G98@0",
+                                         "G80@0", "G43 H1@0", "G4 P1.5@0", "G4 P0.5@1", "M9@1", "M2@1"};
+  CHECK(texts == want);
+  CHECK(t.commands.back().kind == CommandKind::program_end);
+  CHECK(t.commands[9].kind == CommandKind::dwell);
+  CHECK(t.commands[9].value == 1.5);
+  // no offsets given: one warning each for the work offset and the tool length, naming the line
+  REQUIRE(t.warnings.size() == 2);
+  CHECK(t.warnings[0].find("t:1: G54") == 0);
+  CHECK(t.warnings[1].find("t:2: G43 H1") == 0);
+}
+
+TEST_CASE("writer keeps every command in place; M30 stays M30; feeds without binary noise") {
+  const std::string prog =
+      "(prog) G21 G90\nG64 P0.05 Q0.02\nT2 M6\nG43 H2\nG54\nS12000 M3\nM8\nG0 X0 Y0 Z5\nM7\n"
+      "G1 Z-2 F1000000 (plunge)\nG4 P0.5\nG1 X10 F450\n(finish pass)\nG2 X20 R5\nM9\nM5\nG0 Z50\nM30\n";
+  const Toolpath a = P(prog);
+  const std::string text = format_gcode(a);
+  CHECK(text.find("F1000000\n") != std::string::npos);
+  CHECK(text.find("M30\n") != std::string::npos);
+  CHECK(text.find("M2\n") == std::string::npos);
+  const Toolpath b = P(text);
+  REQUIRE(a.commands.size() == b.commands.size());
+  for (std::size_t i = 0; i < a.commands.size(); ++i) {
+    CHECK(a.commands[i].text == b.commands[i].text);
+    CHECK(a.commands[i].before == b.commands[i].before);
+    CHECK(a.commands[i].kind == b.commands[i].kind);
+  }
+  REQUIRE(a.blocks.size() == b.blocks.size());
+  for (std::size_t i = 0; i < a.blocks.size(); ++i) CHECK(a.blocks[i].end == b.blocks[i].end);
+  // inch program: G64 P is a length, written in mm
+  CHECK(P("G20 G64 P0.1\n").commands.at(0).text == "G64 P2.54");
+  // M0 on a motion line stops after the move
+  const Toolpath m = P("G0 X1 M0\n");
+  CHECK(m.commands.at(0).before == 1);
+}
+
+TEST_CASE("work offsets and tool lengths are applied and written back") {
+  ReaderOptions o;
+  o.has_work_offsets = true;
+  o.work_offsets.row(0) << 100.0, 50.0, -20.0;  // G54
+  o.work_offsets.row(1) << -10.0, 0.0, 5.0;     // G55
+  o.has_tool_table = true;
+  o.tool_lengths[3] = 120.5;
+  const std::string prog = "G0 X1 Y2 Z3\nG55 G0 X1\nG43 H3 G1 Z0 F100\nG2 X3 I1 J0\nG49\nG0 Z1\nG91 G0 X1\n";
+  const Toolpath t = parse_gcode(prog, "t", o);
+  CHECK(t.warnings.empty());
+  REQUIRE(t.blocks.size() == 6);
+  CHECK(t.blocks[0].end == Vec3(101.0, 52.0, -17.0));
+  CHECK(t.blocks[1].start == t.blocks[0].end);      // changing the offset does not move the tool
+  CHECK(t.blocks[1].end == Vec3(-9.0, 52.0, -17.0)); // G55: X = 1 - 10; Y, Z stay (machine)
+  CHECK(t.blocks[2].end.z() == doctest::Approx(5.0 + 120.5));
+  CHECK(t.blocks[3].center.x() == doctest::Approx(-10.0 + 2.0));
+  CHECK(t.blocks[4].end.z() == doctest::Approx(5.0 + 1.0));
+  CHECK(t.blocks[5].end.x() == doctest::Approx(-10.0 + 3.0 + 1.0));
+  CHECK(t.commands[1].kind == CommandKind::tool_length);
+  CHECK(t.commands[1].value == 120.5);
+  // the writer subtracts them: reading its output with the same offsets gives the same blocks
+  const Toolpath b = parse_gcode(format_gcode(t), "w", o);
+  REQUIRE(b.blocks.size() == t.blocks.size());
+  for (std::size_t i = 0; i < t.blocks.size(); ++i) {
+    CHECK((b.blocks[i].end - t.blocks[i].end).norm() < 1e-12);
+    CHECK((b.blocks[i].start - t.blocks[i].start).norm() < 1e-12);
+  }
+  // a tool that is not in the table is an error naming the line
+  try {
+    parse_gcode("G0 X0\nG43 H7\n", "t", o);
+    FAIL("accepted H7");
+  } catch (const ParseError& e) {
+    CHECK(e.line() == 2);
+    CHECK(e.reason().find("tool 7 is not in the tool table") != std::string::npos);
+  }
+}
+
+TEST_CASE("with_blocks keeps the commands before the first block of their source block") {
+  Toolpath t = P("M8\nG0 X1\nM7\nG2 X3 R1 F60\nM9\nG0 X4\nM30\n");
+  const Toolpath s = t.split_arcs(0.001);
+  REQUIRE(s.blocks.size() > 3);
+  CHECK(s.commands.at(0).before == 0);
+  CHECK(s.commands.at(1).before == 1);
+  CHECK(s.commands.at(2).before == s.blocks.size() - 1);
+  CHECK(s.commands.at(3).before == s.blocks.size());
+  CHECK_THROWS_AS(t.with_blocks(t.blocks, {0, 2, 1}), std::invalid_argument);
 }
 
 TEST_CASE("writer round trip gives the same blocks") {
@@ -334,6 +419,13 @@ TEST_CASE("fuzz: mutated programs give a ParseError/invalid_argument or blocks, 
       WriterOptions o;
       const Toolpath back = P(format_gcode(t, o));
       CHECK(back.blocks.size() == t.blocks.size());
+      // the same commands at the same places (plus the M2 the writer adds when there was no end)
+      const bool end = !t.commands.empty() && t.commands.back().kind == CommandKind::program_end;
+      REQUIRE(back.commands.size() == t.commands.size() + (end ? 0 : 1));
+      for (std::size_t i = 0; i < t.commands.size(); ++i) {
+        CHECK(back.commands[i].text == t.commands[i].text);
+        CHECK(back.commands[i].before == t.commands[i].before);
+      }
       ++ok;
     } catch (const std::invalid_argument&) {
       ++bad;

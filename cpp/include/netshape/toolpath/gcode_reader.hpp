@@ -7,17 +7,21 @@
 /// Supported subset (docs/toolpath.md has the full list): G0 G1 G2 G3 (I J K and R forms, full
 /// circles, P turns, helical), G4 dwell, G17/18/19, G20/21 (inch input converted to mm), G90/G91,
 /// G90.1/G91.1, G94, F S T M0 M1 M2 M3 M4 M5 M6 M30, N words, comments, `%` lines, numbered and
-/// named parameters and `[...]` expressions. Codes that do not change the path (G40, G43/G49,
-/// G54–G59.3 taken as identity, G61/G61.1/G64, G80, G97, G98/G99, M7–M9, M48/M49) are accepted and
-/// ignored. Everything else that would change the path (cutter compensation, canned cycles, NURBS,
-/// G92 offsets, o-word subroutines and control flow, rotary axes …) is refused with a ParseError
-/// naming the line, the column and the word.
+/// named parameters and `[...]` expressions. Work offsets G54–G59.3 and tool length G43 H / G49 are
+/// applied from ReaderOptions when given (otherwise taken as zero, with one warning). Codes that do
+/// not move the tool (G40, G61/G61.1/G64 P Q, G80, G92.1/G92.2, G97, G98/G99, M0 M1 M7–M9, M48–M53,
+/// M60 …) and comments are kept as Commands in program order. Everything else that would change the
+/// path (cutter compensation G41/G42, canned cycles, NURBS, G92 offsets, G93/G95 feed modes, o-word
+/// subroutines and control flow, rotary axes …) is refused with a ParseError naming the line, the
+/// column and the word.
 ///
 /// Units of the output: mm, mm/s (the G-code F word is in mm/min or in/min), s (G4 P).
 
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "netshape/core/types.hpp"
 #include "netshape/toolpath/block.hpp"
@@ -31,6 +35,20 @@ struct ReaderOptions {
   Vec3 initial_position = Vec3::Zero();
   /// Longest accepted source line [characters]; longer lines are a ParseError (guards memory).
   long max_line_length = 1 << 20;
+  /// Keep comments and non-motion words as Commands (off: only blocks, dwell totals and warnings).
+  bool keep_commands = true;
+  /// Also keep N line numbers as commands ("N10", before the line's other records; written on a line
+  /// of their own). Off by default.
+  bool keep_line_numbers = false;
+  /// Work offsets G54 … G59.3 (rows 0 … 8) [mm], applied when `has_work_offsets`; G54 is in force at
+  /// the start. Without them a program that selects a work offset reads with zero offsets and one warning.
+  bool has_work_offsets = false;
+  WorkOffsets work_offsets = WorkOffsets::Zero();
+  /// Tool lengths [mm] by tool number (LinuxCNC tool table Z), applied along +Z by G43 [H] when
+  /// `has_tool_table`; G43 H of a tool not in the table is an error. Without a table G43 reads as
+  /// zero length with one warning.
+  bool has_tool_table = false;
+  std::map<int, double> tool_lengths;
   void validate() const;
 };
 
@@ -62,6 +80,11 @@ class GcodeReader {
   long dwells() const noexcept;
   /// Current tool position in program coordinates [mm].
   Vec3 position() const noexcept;
+  /// Move the commands read so far (comments, non-motion words, dwells, offsets; `before` counts the
+  /// blocks returned by next()) to the end of `out`.
+  void take_commands(std::vector<Command>& out);
+  /// Warnings so far ("file:line: G55 selects a work offset but none were given; taken as zero").
+  const std::vector<std::string>& warnings() const noexcept;
 
   struct Impl;
 

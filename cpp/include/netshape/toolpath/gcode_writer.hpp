@@ -1,8 +1,9 @@
 #pragma once
 /// \file gcode_writer.hpp
 /// RS274/NGC writer: a Toolpath back to G-code (mm, absolute, modal). What it writes reads back
-/// (GcodeReader) into the same blocks: coordinates exactly (shortest round-trip number form), arc
-/// centres and feeds to a few units in the last place.
+/// (GcodeReader) into the same blocks and the same commands: coordinates exactly (shortest round-trip
+/// number form; to rounding of the offsets when work offsets / tool lengths are applied), arc centres
+/// and feeds to a few units in the last place, command texts exactly.
 
 #include <ostream>
 #include <string>
@@ -21,9 +22,15 @@ struct WriterOptions {
   void validate() const;
 };
 
-/// Write `toolpath` as G-code to `out`: a "G21 G90 G17 G94 G91.1" header, one line per block with only
-/// the words that change (modal G, F in mm/min, S/M3/M4/M5, T…M6), and M2 at the end. A block whose
-/// start is not where the previous one ended is preceded by a G0 to its start. Dwells are not written.
+/// Write `toolpath` as G-code to `out`: a "G21 G90 G17 G94 G91.1" header; every Command (comment,
+/// M/S/T word, G4 dwell, G43/G49, G54…, G64 …) as written in `text`, on its own line, before the block it
+/// precedes, in order; one line per block with only the words that change (modal G, F in mm/min rounded
+/// to 1e-6, and S/M3/M4/M5, T…M6 where a block's spindle or tool differs from what the commands set).
+/// Coordinates are written in program coordinates: the work offset and tool length that the written
+/// G54…/G43 commands put in force (from `toolpath.work_offsets` and the commands' values) are
+/// subtracted. A block whose start is not where the previous one ended is preceded by a G0 to its start.
+/// Ends with the program's M2/M30 command, or M2 when it has none. Throws std::invalid_argument for
+/// non-finite blocks, decreasing `before`, multi-line command text or a block after the program end.
 void write_gcode(const Toolpath& toolpath, std::ostream& out, const WriterOptions& options = {});
 
 /// The G-code text of `toolpath` (see write_gcode).
