@@ -49,11 +49,12 @@ def test_single_element_distributed_equals_resultant():
 
 
 def test_steady_wall_trend_and_slot():
-    """Error grows with the width (seeds Fig. 4 trend) and with the stick-out (∝ L³ for a tip load)."""
+    """The error grows with the width (the trend of the paper's Fig. 4): small while one flute alone
+    generates the wall, ~0.1 mm once the next flute cuts its thick chip at the same instant."""
     e = [d.steady_wall(d.make_model(ae=w, mode="down", **PAPER), "down")["wall_error_mm"]["middle"]
-         for w in (0.5, 1.0, 2.0, 3.0)]
-    assert all(b > a > 0 for a, b in zip(e, e[1:]))
-    assert 0.01 < e[2] < 1.0  # tens of µm for the paper's set-up
+         for w in (2.0, 8.0, 11.0, 12.5, 18.0)]
+    assert all(b >= a - 1e-9 for a, b in zip(e, e[1:]))
+    assert 0 < e[0] < 0.005 and 0.05 < e[-1] < 0.2
     s = d.steady_wall(d.make_model(mode="slot", **PAPER), "slot")
     assert set(s["walls"]) == {"left", "right"}
 
@@ -67,7 +68,7 @@ def test_bad_input():
         d.parse_coefficients("nonsense_set")
 
 
-def _straight_setup(tmp_path, width=1.5, spacing=1.0):
+def _straight_setup(tmp_path, width=12.0, spacing=1.0):
     """A straight down-milling cut along +X over a flat-sided stock of constant width."""
     tool = tmp_path / "tool.toml"
     tool.write_text('kind = "flat"\ndiameter_mm = 25.0\nflutes = 4\nhelix_deg = 60.0\nflute_length_mm = 50.0\n'
@@ -89,9 +90,9 @@ def test_path_steady_part_matches_the_steady_cut(tmp_path):
     r = d.predict_path(setup)
     x = setup.nominal[:, 0]
     mid = (x > 15) & (x < 25)
-    steady = d.steady_wall(d.make_model(ae=1.5, mode="down", **PAPER), "down")["wall_error_mm"]
+    steady = d.steady_wall(d.make_model(ae=12.0, mode="down", **PAPER), "down")["wall_error_mm"]
     e = np.asarray(r.error)[mid]
-    np.testing.assert_allclose(np.asarray(r.width)[mid], 1.5, atol=0.06)
+    np.testing.assert_allclose(np.asarray(r.width)[mid], 12.0, atol=0.06)
     np.testing.assert_allclose(e[:, 1], steady["middle"], rtol=0.05)
     assert np.all(np.asarray(r.engaged)[x < -13] == 0)
 
@@ -100,7 +101,7 @@ def test_schemes_converge_to_the_same_path(tmp_path):
     setup = _straight_setup(tmp_path)
     out = {}
     for sc in ("one-d", "integrated", "sectional", "accelerated"):
-        res = d.compensate_path(setup, scheme=sc, level="middle", tolerance=5e-4)
+        res = d.compensate_path(setup, scheme=sc, level="middle", tolerance=5e-4, discount=0.5)
         out[sc] = res
         after = np.max(np.abs(np.asarray(res.after.error)[:, 1]))
         before = np.max(np.abs(np.asarray(res.before.error)[:, 1]))
@@ -110,7 +111,9 @@ def test_schemes_converge_to_the_same_path(tmp_path):
             assert after <= 1e-3
     ci, cs = np.asarray(out["integrated"].offsets), np.asarray(out["sectional"].offsets)
     assert np.max(np.abs(ci - cs)) < 2e-3
+    # with the paper's damped update (λ = 0.5) the plain iteration needs ~8 iterations, Anderson far fewer
     assert out["accelerated"].path_evaluations < out["integrated"].path_evaluations
+    assert out["integrated"].iterations >= 6
     # the steady middle section: the 1-D root is the converged offset there
     x = setup.nominal[:, 0]
     mid = (x > 15) & (x < 25)
