@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "netshape/compensation/deflection_compensation.hpp"
 #include "netshape/deflection.hpp"
 #include "netshape/force.hpp"
 
@@ -155,4 +156,16 @@ TEST_CASE("bad input: stick-out shorter than the cut, zero E") {
   CHECK_THROWS_AS(m.validate(), std::invalid_argument);
   CHECK_THROWS_AS(Cantilever::tool(25.0, 250.0, 0.0, InertiaModel::square), std::invalid_argument);
   CHECK_THROWS_AS(load_model_from_string("spread"), std::invalid_argument);
+}
+
+TEST_CASE("1-D compensation (paper eq. 8): the root leaves no error on the steady cut of width W + C") {
+  DeflectionModel m = paper_model();
+  const double W = 11.0, z = 1.25;
+  const double C = compensation::one_d_compensation(m, WallSide::right, W, z, 1e-9);
+  m.force.engagement = force::AngularEngagement::from_mode(force::MillingMode::down, 12.5, W + C);
+  DeflectionWorkspace ws(m);
+  const VectorXd zl = (VectorXd(1) << z).finished();
+  const double e = wall_errors(m, ws, WallSide::right, zl).error[0];
+  CHECK(C > 1e-3);                              // the uncompensated error is tens of µm
+  CHECK(std::abs(e - C) < 1e-8);                // D[W + C] = C
 }
