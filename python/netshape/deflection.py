@@ -366,10 +366,14 @@ def max_wall_error(r: PathWallErrors) -> dict:
     return dict(zip(_LEVELS, map(float, e.max(axis=0))))
 
 
-def compensated_program(setup: PathSetup, positions: np.ndarray):
-    """The program with its contour blocks replaced by lines through ``positions`` (n, 3), each line
-    carrying the feed, spindle, tool and plane of the contour block its point came from; the blocks
-    before and after are kept, joined by a line where the compensated ends differ from the nominal ones."""
+def compensated_program(setup: PathSetup, positions: np.ndarray, *, arc_tolerance: float = 5e-4):
+    """The program with its contour replaced by the compensated points ``positions`` (n, 3): along an XY
+    arc block of the original, the longest runs of points that lie within ``arc_tolerance`` [mm] of one
+    arc about the same centre (same direction, radius interpolated by angle between the run's ends, as
+    netshape.toolpath reads such arcs) become arcs, the rest lines; every other block becomes lines
+    through its points. Each new block carries the feed, spindle, tool and plane of the block its
+    points came from; the blocks before and after the contour are kept, joined by a line where the
+    compensated ends differ from the nominal ones."""
     from netshape.toolpath import Toolpath
 
     blocks = list(setup.program.blocks)
@@ -384,8 +388,28 @@ def compensated_program(setup: PathSetup, positions: np.ndarray):
     start = np.asarray(contour[0].start, dtype=float)
     if np.linalg.norm(positions[0] - start) > 1e-9:
         new.append(_line(contour[0], start, positions[0]))
-    for i in range(1, len(positions)):
-        new.append(_line(contour[owner[i]], positions[i - 1], positions[i]))
+    i = 1
+    n = len(positions)
+    while i < n:
+        bi = owner[i]
+        j = i
+        while j + 1 < n and owner[j + 1] == bi:
+            j += 1
+        blk = contour[bi]
+        pts = positions[i - 1:j + 1]
+        if int(blk.kind) == 2 and blk.turns == 1 and str(blk.plane).split(".")[-1] == "xy":
+            # greedy: the longest runs of points that stay within the tolerance of one arc
+            a = 0
+            while a < len(pts) - 1:
+                b = a + 1
+                while b + 1 < len(pts) and _fits_arc(blk, pts[a:b + 2], arc_tolerance):
+                    b += 1
+                new.append(_arc(blk, pts[a], pts[b]) if b - a >= 2 else _line(blk, pts[a], pts[b]))
+                a = b
+        else:
+            for k in range(1, len(pts)):
+                new.append(_line(blk, pts[k - 1], pts[k]))
+        i = j + 1
     end = np.asarray(contour[-1].end, dtype=float)
     if np.linalg.norm(positions[-1] - end) > 1e-9:
         new.append(_line(contour[-1], positions[-1], end))
@@ -396,6 +420,26 @@ def compensated_program(setup: PathSetup, positions: np.ndarray):
     out.dwell_time = setup.program.dwell_time
     out.dwells = setup.program.dwells
     return out
+
+
+def _fits_arc(blk, pts, tol: float) -> bool:
+    """All points within tol [mm] of the arc about blk's centre from pts[0] to pts[-1] (radius linear in
+    the angle fraction; the points were sampled uniformly in angle)."""
+    c = np.asarray(blk.center, dtype=float)[:2]
+    r = np.hypot(pts[:, 0] - c[0], pts[:, 1] - c[1])
+    frac = np.linspace(0.0, 1.0, len(pts))
+    return bool(np.max(np.abs(r - (r[0] + (r[-1] - r[0]) * frac))) <= tol)
+
+
+def _arc(template, a, b):
+    blk = _line(template, a, b)
+    from netshape.toolpath import MotionKind
+
+    blk.kind = MotionKind.arc
+    blk.center = np.asarray(template.center, dtype=float)
+    blk.clockwise = template.clockwise
+    blk.turns = 1
+    return blk
 
 
 def _line(template, a, b):

@@ -229,7 +229,7 @@ def run_compensate(args) -> int:
           f"{dt:.2f} s")
     if not res.converged:
         raise CliError(f"{args.output} not written: {res.message}")
-    program = d.compensated_program(setup, np.asarray(res.positions))
+    program = d.compensated_program(setup, np.asarray(res.positions), arc_tolerance=args.tolerance)
     write_gcode(program, args.output, header_comment=f"netshape deflection compensate: {args.scheme}, "
                 f"{args.level}, max wall error {before * 1e3:.1f} -> {after * 1e3:.2f} um")
     if args.json:

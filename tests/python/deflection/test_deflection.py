@@ -198,3 +198,19 @@ def test_example_runs(tmp_path):
     for r in s["schemes"].values():
         assert r["converged"] and r["max_wall_error_after_um"] <= 1.0
     assert s["schemes"]["accelerated"]["path_evaluations"] < s["schemes"]["integrated"]["path_evaluations"]
+
+
+def test_compensated_program_keeps_arcs_within_tolerance(tmp_path):
+    """A uniformly offset arc stays one G2/G3 block (same centre); a wavy offset becomes lines."""
+    (tmp_path / "a.nc").write_text("G21 G90 G17\nS600 M3\nG0 X60 Y50 Z5\nG1 Z0 F30\nG3 X40 Y50 I-10 J0\nM30\n")
+    prog = ns.toolpath.read_gcode(tmp_path / "a.nc")
+    pts, first, last, _ = d.contour_of(prog, 0.5)
+    normals = np.asarray(d.wall_normals(pts, d.WallSide.left))
+    setup = d.PathSetup(None, None, None, prog, pts, first, last, d.WallSide.left, None)
+    out = d.compensated_program(setup, pts + np.column_stack([0.01 * normals, np.zeros(len(pts))]))
+    arcs = [b for b in out.blocks if int(b.kind) == 2]
+    assert len(arcs) == 1 and np.allclose(arcs[0].center, (50, 50, 0))
+    assert arcs[0].radius() == pytest.approx(10.0 - 0.01, abs=1e-5)  # left of a CCW arc: towards the centre
+    wavy = 0.01 * np.sin(np.arange(len(pts)))
+    out = d.compensated_program(setup, pts + np.column_stack([wavy[:, None] * normals, np.zeros(len(pts))]))
+    assert sum(int(b.kind) == 2 for b in out.blocks) < 3
