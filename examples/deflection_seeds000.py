@@ -86,9 +86,9 @@ def cases():
     xf = 60.0 - R
     finish = _program([_line(xf, xf), _line(-15.0, xf)], (xf, -15.0))
     out["pocket"] = (([0, 0, -5], [80, 80, 2.5]), rough, finish)
-    # arc (Fig. 14): a circular pocket wall of radius 60 about (70, 70) with 9 mm left, finished
+    # arc (Fig. 14): a circular pocket wall of radius 60 about (70, 70) with 10 mm left, finished
     # counter-clockwise (wall on the right) over half a turn.
-    rr, rf = 60.0 - R - 9.0, 60.0 - R
+    rr, rf = 60.0 - R - 10.0, 60.0 - R
     rough = _program([_arc("G3", 70.0 - rr, 70.0, -rr, 0.0), _arc("G3", 70.0 + rr, 70.0, rr, 0.0)],
                      (70.0 + rr, 70.0), z=-1.0)
     finish = _program([_arc("G3", 70.0, 70.0 + rf, -rf, 0.0), _arc("G3", 70.0 - rf, 70.0, 0.0, -rf)],
