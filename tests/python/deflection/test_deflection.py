@@ -214,3 +214,30 @@ def test_compensated_program_keeps_arcs_within_tolerance(tmp_path):
     wavy = 0.01 * np.sin(np.arange(len(pts)))
     out = d.compensated_program(setup, pts + np.column_stack([wavy[:, None] * normals, np.zeros(len(pts))]))
     assert sum(int(b.kind) == 2 for b in out.blocks) < 3
+
+
+def test_exact_self_removal_agrees_with_the_zmap_sweep(tmp_path):
+    """The contour's own removal as exact swept discs and as a Z-map swept move by move (stock.sweep_line,
+    read with stock.immersion) give the same engagement up to the 0.1 mm grid."""
+    setup = _straight_setup(tmp_path)
+    n = len(setup.nominal)
+    normals = np.asarray(d.wall_normals(setup.nominal, setup.side))
+    exact = d.path_wall_errors(setup.model, setup.cutter, setup.stock, setup.nominal, normals, np.zeros(n),
+                               setup.options)
+    opt = d.PathOptions()
+    opt.side = setup.side
+    opt.exact_self_removal = False
+    swept = d.path_wall_errors(setup.model, setup.cutter, setup.stock, setup.nominal, normals, np.zeros(n), opt)
+    x = setup.nominal[:, 0]
+    mid = (x > 5) & (x < 35)
+    np.testing.assert_allclose(np.asarray(swept.width)[mid], np.asarray(exact.width)[mid], atol=0.1)
+    np.testing.assert_allclose(np.asarray(swept.error)[mid], np.asarray(exact.error)[mid], atol=3e-3)
+
+
+def test_cli_predict_plot(tmp_path):
+    _straight_setup(tmp_path)
+    out = tmp_path / "plots"
+    assert main(["deflection", "predict", str(tmp_path / "cut.nc"), "--tool", str(tmp_path / "tool.toml"),
+                 "--stock", str(tmp_path / "stock.toml"), "--coefficients", "cho_suh_example", "--rpm", "600",
+                 "--spacing", "2", "--plot", str(out)]) == 0
+    assert (out / "wall_error.png").stat().st_size > 1000 and (out / "profile.png").exists()
