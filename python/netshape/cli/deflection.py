@@ -147,7 +147,7 @@ def run_wall(args) -> int:
     try:
         k = d.parse_coefficients(args.coefficients)
     except ValueError as exc:
-        raise CliError(f"--coefficients = {args.coefficients!r}: {exc}") from None
+        raise CliError(f"--{exc}") from None
     model = d.make_model(diameter=diameter, flutes=flutes, helix_deg=helix, stick_out=stick, youngs_modulus=e,
                          feed_per_tooth=args.feed_per_tooth, ap=args.ap, ae=args.ae, mode=args.mode,
                          coefficients=k, inertia=args.inertia, load=args.load)
@@ -170,7 +170,7 @@ def _setup(args):
     try:
         k = d.parse_coefficients(args.coefficients)
     except ValueError as exc:
-        raise CliError(f"--coefficients = {args.coefficients!r}: {exc}") from None
+        raise CliError(f"--{exc}") from None
     cutter = load_cutter(args.tool)
     stock = d.load_stock(args.stock)
     program = read_gcode(args.program)
