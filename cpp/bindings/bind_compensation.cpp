@@ -1,5 +1,6 @@
 // Bindings of the `compensation` area (netshape._core.compensation). Thin: lambdas only turn out-parameters into returns.
 #include "default_types.hpp"
+#include "netshape/compensation/deflection_compensation.hpp"
 #include "netshape/compensation/volumetric_compensation.hpp"
 
 namespace py = pybind11;
@@ -61,9 +62,99 @@ void bind_volumetric_compensation(py::module_& m) {
       "Like compensate_points, with per-point status instead of raising");
 }
 
+
+// --- deflection compensation (tool deflection, Cho & Suh 1993) -------------------------------------
+void bind_deflection_compensation(py::module_& m) {
+  using namespace netshape::compensation;
+  using netshape::py_types::RefPoints2;
+  using netshape::py_types::RefPoints3;
+  using netshape::py_types::RefVector;
+  py::enum_<ReferenceLevel>(m, "ReferenceLevel")
+      .value("bottom", ReferenceLevel::bottom)
+      .value("middle", ReferenceLevel::middle)
+      .value("top", ReferenceLevel::top);
+  py::enum_<DeflectionScheme>(m, "DeflectionScheme")
+      .value("one_d", DeflectionScheme::one_d)
+      .value("integrated", DeflectionScheme::integrated)
+      .value("sectional", DeflectionScheme::sectional)
+      .value("accelerated", DeflectionScheme::accelerated);
+  m.def("reference_level_from_string", &reference_level_from_string, py::arg("name"));
+  m.def("deflection_scheme_from_string", &deflection_scheme_from_string, py::arg("name"));
+  m.def("wall_normals", &wall_normals, py::arg("nominal"), py::arg("side"), "(n, 2) unit wall normals of a polyline");
+  py::class_<PathOptions>(m, "PathOptions")
+      .def(py::init<>())
+      .def_readwrite("side", &PathOptions::side)
+      .def_readwrite("profile_levels", &PathOptions::profile_levels)
+      .def_readwrite("immersion", &PathOptions::immersion)
+      .def_readwrite("exact_self_removal", &PathOptions::exact_self_removal)
+      .def("validate", &PathOptions::validate);
+  py::class_<PathWallErrors>(m, "PathWallErrors")
+      .def_readonly("positions", &PathWallErrors::positions)
+      .def_readonly("error", &PathWallErrors::error)
+      .def_readonly("deflection", &PathWallErrors::deflection)
+      .def_readonly("normal_deflection", &PathWallErrors::normal_deflection)
+      .def_readonly("tangential_deflection", &PathWallErrors::tangential_deflection)
+      .def_readonly("force", &PathWallErrors::force)
+      .def_readonly("width", &PathWallErrors::width)
+      .def_readonly("depth", &PathWallErrors::depth)
+      .def_readonly("phi_st", &PathWallErrors::phi_st)
+      .def_readonly("phi_ex", &PathWallErrors::phi_ex)
+      .def_readonly("engaged", &PathWallErrors::engaged)
+      .def_readonly("wall_flags", &PathWallErrors::wall_flags)
+      .def_readonly("profile", &PathWallErrors::profile);
+  m.def(
+      "path_wall_errors",
+      [](const netshape::deflection::DeflectionModel& model, const netshape::cutter::Cutter& cutter,
+         const netshape::stock::ZMap& stock, const RefPoints3& nominal, const RefPoints2& normals,
+         const RefVector& offsets, const PathOptions& options) {
+        py::gil_scoped_release release;
+        return path_wall_errors(model, cutter, stock, nominal, normals, offsets, options);
+      },
+      py::arg("model"), py::arg("cutter"), py::arg("stock"), py::arg("nominal"), py::arg("normals"),
+      py::arg("offsets"), py::arg_v("options", PathOptions{}, "PathOptions()"),
+      "wall error along P_i = R_i + C_i n_i over a copy of the stock swept move by move");
+  m.def("one_d_compensation", &one_d_compensation, py::arg("model"), py::arg("side"), py::arg("width"),
+        py::arg("level_z"), py::arg("tolerance") = 1e-7, py::arg("max_iterations") = 100,
+        "C [mm] with D[W + C] - C = 0 for a steady cut of width W [mm] (eq. 8)");
+  py::class_<DeflectionCompensationOptions>(m, "DeflectionCompensationOptions")
+      .def(py::init<>())
+      .def_readwrite("scheme", &DeflectionCompensationOptions::scheme)
+      .def_readwrite("level", &DeflectionCompensationOptions::level)
+      .def_readwrite("tolerance", &DeflectionCompensationOptions::tolerance)
+      .def_readwrite("discount", &DeflectionCompensationOptions::discount)
+      .def_readwrite("max_iterations", &DeflectionCompensationOptions::max_iterations)
+      .def_readwrite("anderson_depth", &DeflectionCompensationOptions::anderson_depth)
+      .def_readwrite("path", &DeflectionCompensationOptions::path)
+      .def("validate", &DeflectionCompensationOptions::validate);
+  py::class_<DeflectionCompensationResult>(m, "DeflectionCompensationResult")
+      .def_readonly("converged", &DeflectionCompensationResult::converged)
+      .def_readonly("message", &DeflectionCompensationResult::message)
+      .def_readonly("scheme", &DeflectionCompensationResult::scheme)
+      .def_readonly("iterations", &DeflectionCompensationResult::iterations)
+      .def_readonly("path_evaluations", &DeflectionCompensationResult::path_evaluations)
+      .def_readonly("point_evaluations", &DeflectionCompensationResult::point_evaluations)
+      .def_readonly("worst_index", &DeflectionCompensationResult::worst_index)
+      .def_readonly("offsets", &DeflectionCompensationResult::offsets)
+      .def_readonly("positions", &DeflectionCompensationResult::positions)
+      .def_readonly("normals", &DeflectionCompensationResult::normals)
+      .def_readonly("history", &DeflectionCompensationResult::history)
+      .def_readonly("before", &DeflectionCompensationResult::before)
+      .def_readonly("after", &DeflectionCompensationResult::after);
+  m.def(
+      "compensate_deflection",
+      [](const netshape::deflection::DeflectionModel& model, const netshape::cutter::Cutter& cutter,
+         const netshape::stock::ZMap& stock, const RefPoints3& nominal, const DeflectionCompensationOptions& o) {
+        py::gil_scoped_release release;
+        return compensate_deflection(model, cutter, stock, nominal, o);
+      },
+      py::arg("model"), py::arg("cutter"), py::arg("stock"), py::arg("nominal"),
+      py::arg_v("options", DeflectionCompensationOptions{}, "DeflectionCompensationOptions()"),
+      "compensate the path (n, 3) for tool deflection; converged = False with a message when it fails");
+}
+
 }  // namespace
 
 void bind_compensation(py::module_& m) {
   bind_volumetric_compensation(m);
-  // (deflection compensation binds here too, in its own function)
+  bind_deflection_compensation(m);
 }

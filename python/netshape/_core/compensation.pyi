@@ -1,9 +1,12 @@
 from __future__ import annotations
+import netshape._core.cutter
+import netshape._core.deflection
 import netshape._core.machine
+import netshape._core.stock
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['VolumetricOptions', 'VolumetricResult', 'VolumetricStatus', 'compensate_points', 'compensate_points_status']
+__all__: list[str] = ['DeflectionCompensationOptions', 'DeflectionCompensationResult', 'DeflectionScheme', 'PathOptions', 'PathWallErrors', 'ReferenceLevel', 'VolumetricOptions', 'VolumetricResult', 'VolumetricStatus', 'compensate_deflection', 'compensate_points', 'compensate_points_status', 'deflection_scheme_from_string', 'one_d_compensation', 'path_wall_errors', 'reference_level_from_string', 'wall_normals']
 class VolumetricOptions:
     check_travel: bool
     @typing.overload
@@ -97,6 +100,235 @@ class VolumetricResult:
     @property
     def status(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
         ...
+class ReferenceLevel:
+    """
+    Members:
+    
+      bottom
+    
+      middle
+    
+      top
+    """
+    __members__: typing.ClassVar[dict[str, ReferenceLevel]]
+    bottom: typing.ClassVar[ReferenceLevel]
+    middle: typing.ClassVar[ReferenceLevel]
+    top: typing.ClassVar[ReferenceLevel]
+    @typing.overload
+    def __eq__(self, other: ReferenceLevel) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: ReferenceLevel) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class DeflectionScheme:
+    """
+    Members:
+    
+      one_d
+    
+      integrated
+    
+      sectional
+    
+      accelerated
+    """
+    __members__: typing.ClassVar[dict[str, DeflectionScheme]]
+    accelerated: typing.ClassVar[DeflectionScheme]
+    integrated: typing.ClassVar[DeflectionScheme]
+    one_d: typing.ClassVar[DeflectionScheme]
+    sectional: typing.ClassVar[DeflectionScheme]
+    @typing.overload
+    def __eq__(self, other: DeflectionScheme) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: DeflectionScheme) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class PathOptions:
+    exact_self_removal: bool
+    immersion: netshape._core.stock.ImmersionOptions
+    side: netshape._core.deflection.WallSide
+    def __init__(self) -> None:
+        ...
+    def validate(self) -> None:
+        ...
+    @property
+    def profile_levels(self) -> int:
+        ...
+    @profile_levels.setter
+    def profile_levels(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+class PathWallErrors:
+    @property
+    def deflection(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 2]"]:
+        ...
+    @property
+    def depth(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def engaged(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        ...
+    @property
+    def error(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    @property
+    def force(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 2]"]:
+        ...
+    @property
+    def normal_deflection(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def phi_ex(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def phi_st(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def positions(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+    @property
+    def profile(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    @property
+    def tangential_deflection(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def wall_flags(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        ...
+    @property
+    def width(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+class DeflectionCompensationOptions:
+    level: ReferenceLevel
+    path: PathOptions
+    scheme: DeflectionScheme
+    def __init__(self) -> None:
+        ...
+    def validate(self) -> None:
+        ...
+    @property
+    def anderson_depth(self) -> int:
+        ...
+    @anderson_depth.setter
+    def anderson_depth(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def discount(self) -> float:
+        ...
+    @discount.setter
+    def discount(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_iterations(self) -> int:
+        ...
+    @max_iterations.setter
+    def max_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def tolerance(self) -> float:
+        ...
+    @tolerance.setter
+    def tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class DeflectionCompensationResult:
+    @property
+    def after(self) -> PathWallErrors:
+        ...
+    @property
+    def before(self) -> PathWallErrors:
+        ...
+    @property
+    def converged(self) -> bool:
+        ...
+    @property
+    def history(self) -> list[float]:
+        ...
+    @property
+    def iterations(self) -> int:
+        ...
+    @property
+    def message(self) -> str:
+        ...
+    @property
+    def normals(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 2]"]:
+        ...
+    @property
+    def offsets(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def path_evaluations(self) -> int:
+        ...
+    @property
+    def point_evaluations(self) -> int:
+        ...
+    @property
+    def positions(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+    @property
+    def scheme(self) -> DeflectionScheme:
+        ...
+    @property
+    def worst_index(self) -> int:
+        ...
+def compensate_deflection(model: netshape._core.deflection.DeflectionModel, cutter: netshape._core.cutter.Cutter, stock: netshape._core.stock.ZMap, nominal: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], options: DeflectionCompensationOptions = ...) -> DeflectionCompensationResult:
+    """
+    compensate the path (n, 3) for tool deflection; converged = False with a message when it fails
+    """
 def compensate_points(machine: netshape._core.machine.Machine, nominal: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], options: VolumetricOptions = ...) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
     """
     Commanded points [mm] so the actual tip lands on the nominal (n, 3) points; raises on failure
@@ -104,4 +336,20 @@ def compensate_points(machine: netshape._core.machine.Machine, nominal: typing.A
 def compensate_points_status(machine: netshape._core.machine.Machine, nominal: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], options: VolumetricOptions = ...) -> VolumetricResult:
     """
     Like compensate_points, with per-point status instead of raising
+    """
+def deflection_scheme_from_string(name: str) -> DeflectionScheme:
+    ...
+def one_d_compensation(model: netshape._core.deflection.DeflectionModel, side: netshape._core.deflection.WallSide, width: typing.SupportsFloat | typing.SupportsIndex, level_z: typing.SupportsFloat | typing.SupportsIndex, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, max_iterations: typing.SupportsInt | typing.SupportsIndex = 100) -> float:
+    """
+    C [mm] with D[W + C] - C = 0 for a steady cut of width W [mm] (eq. 8)
+    """
+def path_wall_errors(model: netshape._core.deflection.DeflectionModel, cutter: netshape._core.cutter.Cutter, stock: netshape._core.stock.ZMap, nominal: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], normals: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 2]", "flags.c_contiguous"], offsets: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], options: PathOptions = ...) -> PathWallErrors:
+    """
+    wall error along P_i = R_i + C_i n_i over a copy of the stock swept move by move
+    """
+def reference_level_from_string(name: str) -> ReferenceLevel:
+    ...
+def wall_normals(nominal: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], side: netshape._core.deflection.WallSide) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 2]"]:
+    """
+    (n, 2) unit wall normals of a polyline
     """

@@ -1,0 +1,240 @@
+"""`netshape deflection`: tool deflection wall error of a steady cut (wall), along a program over a
+stock (predict), and the compensated program (compensate)."""
+
+from __future__ import annotations
+
+import argparse
+import math
+import time
+
+from netshape.cli.forces import _finite, _positive
+
+_DESCRIPTION = """\
+Tool deflection and the wall error it leaves (Cho & Suh 1993). The tool is a cantilever of length
+stick-out; the wall at height z is cut when a flute's element at z passes the wall angle; the error
+is the deflection there along the wall normal, + when material is left, - when overcut.
+  wall        one steady straight cut (up: left wall, down: right wall, slot: both)
+  predict     the wall error along a program's 2-D contour over a stock (Z-map swept move by move)
+  compensate  rewrite the contour so the predicted wall error is within --tolerance
+"""
+
+_EPILOG = """\
+examples:
+  netshape deflection wall --diameter 25 --flutes 4 --helix 60 --stick-out 250 --youngs-modulus 210000 \\
+      --rpm 600 --feed-per-tooth 0.0127 --ap 2.5 --ae 2 --mode down --coefficients cho_suh_example --json w.json
+  netshape deflection predict part.nc --tool tool.toml --stock stock.toml --coefficients KT=1000,KR=0.4 \\
+      --rpm 600 --json pred.json --plot plots/
+  netshape deflection compensate part.nc --tool tool.toml --stock stock.toml --coefficients cho_suh_example \\
+      --rpm 600 --scheme accelerated --level middle -o part_comp.nc
+--coefficients: a named set (cho_suh_example, leekunhwee_flat_slot), Ktc=...,Krc=...,Kac=...,Kte=...,
+Kre=...,Kae=... (linear edge, N/mm^2 and N/mm) or KT=...,KR=... (Kline-DeVor).
+"""
+
+
+def register(sub) -> None:
+    p = sub.add_parser("deflection", help="tool deflection wall error and its path compensation",
+                       description=_DESCRIPTION, epilog=_EPILOG,
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    dsub = p.add_subparsers(dest="action", metavar="ACTION")
+    dsub.required = True
+
+    w = dsub.add_parser("wall", help="wall error of one steady straight cut",
+                        formatter_class=argparse.RawDescriptionHelpFormatter, epilog=_EPILOG)
+    w.add_argument("--tool", metavar="TOOL.toml", help="cutter TOML (diameter, flutes, helix, stick-out, E)")
+    w.add_argument("--diameter", type=_positive("--diameter"), metavar="MM", help="tool diameter [mm]")
+    w.add_argument("--flutes", type=int, metavar="N", help="number of flutes")
+    w.add_argument("--helix", type=_finite("--helix"), metavar="DEG", help="helix angle [deg]")
+    w.add_argument("--stick-out", type=_finite("--stick-out"), metavar="MM", help="holder face to tip [mm]")
+    w.add_argument("--youngs-modulus", type=_finite("--youngs-modulus"), metavar="MPA", help="E of the tool [MPa]")
+    _common(w)
+    w.add_argument("--feed-per-tooth", type=_positive("--feed-per-tooth"), required=True, metavar="MM",
+                   help="feed per tooth c [mm]")
+    w.add_argument("--ap", type=_positive("--ap"), required=True, metavar="MM", help="axial depth of cut [mm]")
+    w.add_argument("--ae", type=_positive("--ae"), metavar="MM", help="radial depth of cut [mm] (up/down)")
+    w.add_argument("--mode", choices=("up", "down", "slot"), default="down", help="milling mode (default down)")
+    w.add_argument("--levels", type=int, default=21, metavar="N", help="profile levels, bottom to top (default 21)")
+    w.add_argument("--json", metavar="OUT.json", help="write the result as JSON")
+    w.set_defaults(func=run_wall)
+
+    for name, helptext in (("predict", "wall error along a program over a stock"),
+                           ("compensate", "write the deflection-compensated program")):
+        q = dsub.add_parser(name, help=helptext, formatter_class=argparse.RawDescriptionHelpFormatter,
+                            epilog=_EPILOG)
+        q.add_argument("program", metavar="PROGRAM", help="G-code program with one 2-D contour")
+        q.add_argument("--tool", required=True, metavar="TOOL.toml", help="cutter TOML (flat end mill)")
+        q.add_argument("--stock", required=True, metavar="STOCK.toml",
+                       help="min_mm, max_mm, spacing_mm, optional [[pre_cut]] program/tool")
+        _common(q)
+        q.add_argument("--spacing", type=_positive("--spacing"), default=0.5, metavar="MM",
+                       help="path point spacing [mm] (default 0.5)")
+        q.add_argument("--side", choices=("auto", "left", "right"), default="auto",
+                       help="wall side: left of the feed (up milling) or right (down milling); default auto")
+        if name == "predict":
+            q.add_argument("--json", metavar="OUT.json", help="write max_wall_error_mm and the per-point table")
+            q.add_argument("--plot", metavar="DIR", help="write PNG plots into DIR")
+            q.set_defaults(func=run_predict)
+        else:
+            q.add_argument("--scheme", choices=("one-d", "integrated", "sectional", "accelerated"),
+                           default="accelerated", help="compensation scheme (default accelerated)")
+            q.add_argument("--level", choices=("bottom", "middle", "top"), default="middle",
+                           help="reference level of the wall (default middle)")
+            q.add_argument("--tolerance", type=_positive("--tolerance"), default=5e-4, metavar="MM",
+                           help="largest wall error accepted at the level [mm] (default 0.0005)")
+            q.add_argument("--discount", type=_positive("--discount"), default=1.0, metavar="LAMBDA",
+                           help="discount factor lambda in (0, 1] of the update (default 1)")
+            q.add_argument("--max-iterations", type=int, default=50, metavar="N", help="iteration limit (default 50)")
+            q.add_argument("-o", "--output", required=True, metavar="OUT.nc", help="compensated program")
+            q.add_argument("--json", metavar="OUT.json", help="also write the summary as JSON")
+            q.set_defaults(func=run_compensate)
+
+
+def _common(p) -> None:
+    p.add_argument("--inertia", choices=("square", "equivalent"), default="square",
+                   help="I from the inscribed square D^4/48 or an equivalent diameter 0.8 D (default square)")
+    p.add_argument("--load", choices=("resultant", "distributed"), default="distributed",
+                   help="resultant at L - A/2 (eq. 7) or distributed element loads (default)")
+    p.add_argument("--rpm", type=_positive("--rpm"), required=True, metavar="RPM", help="spindle speed [rev/min]")
+    p.add_argument("--coefficients", required=True, metavar="NAME|K=V,...",
+                   help="named set, Ktc=...,Krc=...,Kac=...,Kte=...,Kre=...,Kae=... or KT=...,KR=...")
+
+
+def _write_json(path, data) -> None:
+    import json
+
+    from netshape._atomic import atomic_write
+
+    with atomic_write(path, "w") as fh:
+        json.dump(data, fh, indent=1)
+        fh.write("\n")
+
+
+def run_wall(args) -> int:
+    from netshape import deflection as d
+    from netshape.cli import CliError
+
+    if args.tool:
+        from netshape.cutter import load_cutter
+
+        c = load_cutter(args.tool)
+        diameter, flutes, helix = 2 * c.radius, c.flutes, math.degrees(c.helix)
+        stick, e = c.stick_out, c.youngs_modulus
+        for name in ("diameter", "flutes", "helix", "stick_out", "youngs_modulus"):
+            if getattr(args, name) is not None:
+                raise CliError(f"--{name.replace('_', '-')}: give either --tool or the tool options, not both")
+    else:
+        missing = [o for o, v in (("--diameter", args.diameter), ("--flutes", args.flutes), ("--helix", args.helix),
+                                  ("--stick-out", args.stick_out), ("--youngs-modulus", args.youngs_modulus))
+                   if v is None]
+        if missing:
+            raise CliError(f"{missing[0]}: required without --tool")
+        diameter, flutes, helix, stick, e = args.diameter, args.flutes, args.helix, args.stick_out, args.youngs_modulus
+    if not 1 <= flutes <= 64:
+        raise CliError(f"--flutes = {flutes}: must be an integer in 1..64")
+    if not 0.0 <= helix < 85.0:
+        raise CliError(f"--helix = {helix}: must be in [0, 85) degrees")
+    if not e > 0:
+        raise CliError(f"--youngs-modulus = {e:g}: must be positive [MPa]")
+    if not stick > 0:
+        raise CliError(f"--stick-out = {stick:g}: must be positive [mm]")
+    if stick < args.ap:
+        raise CliError(f"--stick-out = {stick:g}: shorter than the axial depth --ap = {args.ap:g} [mm]")
+    if args.mode != "slot" and args.ae is None:
+        raise CliError(f"--ae is required for --mode {args.mode}")
+    if args.ae is not None and args.ae > diameter:
+        raise CliError(f"--ae = {args.ae:g}: must not exceed the diameter ({diameter:g}) [mm]")
+    if not 3 <= args.levels <= 10001:
+        raise CliError(f"--levels = {args.levels}: must be in 3..10001")
+    try:
+        k = d.parse_coefficients(args.coefficients)
+    except ValueError as exc:
+        raise CliError(f"--{exc}") from None
+    model = d.make_model(diameter=diameter, flutes=flutes, helix_deg=helix, stick_out=stick, youngs_modulus=e,
+                         feed_per_tooth=args.feed_per_tooth, ap=args.ap, ae=args.ae, mode=args.mode,
+                         coefficients=k, inertia=args.inertia, load=args.load)
+    res = d.steady_wall(model, args.mode, levels=args.levels)
+    res.update({"mode": args.mode, "load": args.load, "inertia": args.inertia, "rpm": args.rpm})
+    w = res["wall_error_mm"]
+    print(f"wall error ({res['side']} wall, {args.load}): bottom {w['bottom'] * 1e3:.2f} um, "
+          f"middle {w['middle'] * 1e3:.2f} um, top {w['top'] * 1e3:.2f} um; max force {res['max_force_N']:.1f} N")
+    if args.json:
+        _write_json(args.json, res)
+    return 0
+
+
+def _setup(args):
+    from netshape import deflection as d
+    from netshape.cli import CliError
+    from netshape.cutter import load_cutter
+    from netshape.toolpath import read_gcode
+
+    try:
+        k = d.parse_coefficients(args.coefficients)
+    except ValueError as exc:
+        raise CliError(f"--{exc}") from None
+    cutter = load_cutter(args.tool)
+    stock = d.load_stock(args.stock)
+    program = read_gcode(args.program)
+    return d.setup_path(program, cutter, stock, coefficients=k, rpm=args.rpm, spacing=args.spacing,
+                        inertia=args.inertia, load=args.load, side=args.side)
+
+
+def run_predict(args) -> int:
+    import numpy as np
+
+    from netshape import deflection as d
+
+    t0 = time.perf_counter()
+    setup = _setup(args)
+    r = d.predict_path(setup)
+    dt = time.perf_counter() - t0
+    mx = d.max_wall_error(r)
+    print(f"{args.program}: {len(setup.nominal)} points, {int(np.sum(r.engaged))} cutting, "
+          f"{str(setup.side).split('.')[-1]} wall")
+    print(f"largest wall error: bottom {mx['bottom'] * 1e3:.2f} um, middle {mx['middle'] * 1e3:.2f} um, "
+          f"top {mx['top'] * 1e3:.2f} um   ({dt:.2f} s)")
+    if args.json:
+        prof = np.asarray(r.profile)
+        _write_json(args.json, {"max_wall_error_mm": mx, "side": str(setup.side).split(".")[-1],
+                                "feed_per_tooth_mm": setup.model.force.feed_per_tooth,
+                                "points": d.path_table(r, setup.nominal),
+                                "profile": {"levels": int(prof.shape[1]), "error_mm": prof.tolist()}})
+    if args.plot:
+        from netshape.deflection_plots import plot_prediction
+
+        plot_prediction(setup, r, args.plot)
+    return 0
+
+
+def run_compensate(args) -> int:
+    import numpy as np
+
+    from netshape import deflection as d
+    from netshape.cli import CliError
+    from netshape.toolpath import write_gcode
+
+    if not 0 < args.discount <= 1:
+        raise CliError(f"--discount = {args.discount:g}: must be in (0, 1]")
+    if not 1 <= args.max_iterations <= 100000:
+        raise CliError(f"--max-iterations = {args.max_iterations}: must be in 1..100000")
+    t0 = time.perf_counter()
+    setup = _setup(args)
+    res = d.compensate_path(setup, scheme=args.scheme, level=args.level, tolerance=args.tolerance,
+                            discount=args.discount, max_iterations=args.max_iterations)
+    dt = time.perf_counter() - t0
+    lv = ("bottom", "middle", "top").index(args.level)
+    before = float(np.max(np.abs(np.asarray(res.before.error)[:, lv])))
+    after = float(np.max(np.abs(np.asarray(res.after.error)[:, lv])))
+    print(f"scheme {args.scheme}, level {args.level}: largest wall error {before * 1e3:.2f} um before, "
+          f"{after * 1e3:.2f} um after; {res.iterations} iterations, {res.path_evaluations} path evaluations, "
+          f"{dt:.2f} s")
+    if not res.converged:
+        raise CliError(f"{args.output} not written: {res.message}")
+    program = d.compensated_program(setup, np.asarray(res.positions), arc_tolerance=args.tolerance)
+    write_gcode(program, args.output, header_comment=f"netshape deflection compensate: {args.scheme}, "
+                f"{args.level}, max wall error {before * 1e3:.1f} -> {after * 1e3:.2f} um")
+    if args.json:
+        _write_json(args.json, {"scheme": args.scheme, "level": args.level, "converged": True,
+                                "iterations": res.iterations, "path_evaluations": res.path_evaluations,
+                                "max_wall_error_before_mm": before, "max_wall_error_after_mm": after,
+                                "time_s": dt, "message": res.message})
+    return 0
