@@ -373,9 +373,15 @@ def compensated_program(setup: PathSetup, positions: np.ndarray, *, arc_toleranc
     netshape.toolpath reads such arcs) become arcs, the rest lines; every other block becomes lines
     through its points. Each new block carries the feed, spindle, tool and plane of the block its
     points came from; the blocks before and after the contour are kept, joined by a line where the
-    compensated ends differ from the nominal ones."""
-    from netshape.toolpath import Toolpath
+    compensated ends differ from the nominal ones. The program's non-motion records (comments, M/S/T
+    words, dwells, offsets) stay where they were relative to the moves they came with."""
+    new, origin = compensated_blocks(setup, positions, arc_tolerance=arc_tolerance)
+    return setup.program.with_blocks(new, origin)
 
+
+def compensated_blocks(setup: PathSetup, positions: np.ndarray, *, arc_tolerance: float = 5e-4):
+    """The blocks of :func:`compensated_program` and, for each, the index of the program block it came
+    from (non-decreasing): what ``Toolpath.with_blocks`` needs to keep the non-motion records in place."""
     blocks = list(setup.program.blocks)
     contour = blocks[setup.first:setup.last + 1]
     nominal = setup.nominal
@@ -385,9 +391,11 @@ def compensated_program(setup: PathSetup, positions: np.ndarray, *, arc_toleranc
     scale = ends[-1] / arc[-1] if arc[-1] > 0 else 1.0
     owner = np.minimum(np.searchsorted(ends, arc * scale - 1e-9), len(contour) - 1)
     new = blocks[:setup.first]
+    origin = list(range(setup.first))  # index of the original block each new block came from
     start = np.asarray(contour[0].start, dtype=float)
     if np.linalg.norm(positions[0] - start) > 1e-9:
         new.append(_line(contour[0], start, positions[0]))
+        origin.append(setup.first)
     i = 1
     n = len(positions)
     while i < n:
@@ -405,21 +413,20 @@ def compensated_program(setup: PathSetup, positions: np.ndarray, *, arc_toleranc
                 while b + 1 < len(pts) and _fits_arc(blk, pts[a:b + 2], arc_tolerance):
                     b += 1
                 new.append(_arc(blk, pts[a], pts[b]) if b - a >= 2 else _line(blk, pts[a], pts[b]))
+                origin.append(setup.first + int(bi))
                 a = b
         else:
             for k in range(1, len(pts)):
                 new.append(_line(blk, pts[k - 1], pts[k]))
+                origin.append(setup.first + int(bi))
         i = j + 1
     end = np.asarray(contour[-1].end, dtype=float)
     if np.linalg.norm(positions[-1] - end) > 1e-9:
         new.append(_line(contour[-1], positions[-1], end))
+        origin.append(setup.last)
     new.extend(blocks[setup.last + 1:])
-    out = Toolpath()
-    out.source = setup.program.source
-    out.blocks = new
-    out.dwell_time = setup.program.dwell_time
-    out.dwells = setup.program.dwells
-    return out
+    origin.extend(range(setup.last + 1, len(blocks)))
+    return new, origin
 
 
 def _fits_arc(blk, pts, tol: float) -> bool:
@@ -460,7 +467,7 @@ __all__ = [
     "KLINE_DEVOR_SETS", "Cantilever", "DeflectionCompensationOptions", "DeflectionCompensationResult",
     "DeflectionModel", "DeflectionScheme", "DeflectionWorkspace", "InertiaModel", "LoadModel", "PathOptions",
     "PathSetup", "PathWallErrors", "ReferenceLevel", "WallErrors", "WallSide", "compensate_deflection",
-    "compensate_path", "compensated_program", "contour_of", "cut_levels", "deflection_at", "disk_forces",
+    "compensate_path", "compensated_blocks", "compensated_program", "contour_of", "cut_levels", "deflection_at", "disk_forces",
     "generation_angle", "load_stock", "make_model", "max_force", "max_wall_error", "model_for_cutter",
     "one_d_compensation", "parse_coefficients", "path_table", "path_wall_errors", "predict_path",
     "second_moment", "setup_path", "steady_wall", "wall_errors", "wall_normals",

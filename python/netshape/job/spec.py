@@ -39,7 +39,8 @@ _MACHINE_KEYS = {"file", "error_scale"}
 _LIMIT_KEYS = {"vmax_mm_s", "amax_mm_s2", "jmax_mm_s3", "rule", "tolerance_mm", "ts1_s", "ts2_s", "lookahead"}
 _CUTTING_KEYS = {"spindle_rpm", "feed_per_tooth_mm", "feed_scale", "step_mm", "samples_per_revolution",
                  "disk_height_mm", "error_spacing_mm"}
-_COMP_KEYS = {"deflection", "volumetric", "chord_tolerance_mm", "deflection_scheme", "deflection_level"}
+_COMP_KEYS = {"deflection", "volumetric", "chord_tolerance_mm", "deflection_scheme", "deflection_level",
+              "deflection_unconverged"}
 _REPORT_KEYS = {"dpi", "zmap_stl", "plots"}
 _COEFF_KEYS = ("Ktc", "Krc", "Kac", "Kte", "Kre", "Kae")
 _RULES = ("paper", "vector", "per-axis", "junction-deviation", "blend")
@@ -316,6 +317,10 @@ def _compensate(src: str, v: Any) -> dict:
     if level not in ("bottom", "middle", "top"):
         raise _err(src, "compensate.deflection_level", level, "must be bottom, middle or top")
     out["deflection_scheme"], out["deflection_level"] = scheme, level
+    unconverged = t.get("deflection_unconverged", "report")
+    if unconverged not in ("report", "fail"):
+        raise _err(src, "compensate.deflection_unconverged", unconverged, "must be report or fail")
+    out["deflection_unconverged"] = unconverged
     return out
 
 

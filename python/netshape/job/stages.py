@@ -79,9 +79,21 @@ def shift_toolpath(tp, delta: np.ndarray):
         nb.end = np.asarray(b.end) + d
         nb.center = np.asarray(b.center) + d
         out.append(nb)
-    res = tpm.Toolpath()
-    res.blocks = out
-    return res
+    # one new block per old one: the program's non-motion records (comments, M/S/T words, dwells,
+    # work offsets) keep their places
+    return tp.with_blocks(out, list(range(len(out))))
+
+
+def read_program(path):
+    """A program of the job, arcs kept, in its own coordinates: the job places its G54–G59 words and tool
+    length itself (``[offsets]``), so the reader's warning that none were given does not apply."""
+    import warnings
+
+    from netshape import toolpath as tpm
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", tpm.GcodeWarning)
+        return tpm.read_gcode(path, arcs="keep")
 
 
 def stage_program(job: Job) -> Program:
@@ -89,7 +101,7 @@ def stage_program(job: Job) -> Program:
     of every block."""
     from netshape import toolpath as tpm
 
-    tp = tpm.read_gcode(job.program, arcs="keep")
+    tp = read_program(job.program)
     if len(tp.blocks) == 0:
         raise ValueError(f"program = {str(job.program)!r}: no motion blocks")
     scale = job.cutting["feed_scale"]
@@ -99,8 +111,7 @@ def stage_program(job: Job) -> Program:
             nb = _copy_block(tpm, b)
             nb.feed = b.feed * scale
             blocks.append(nb)
-        tp = tpm.Toolpath()
-        tp.blocks = blocks
+        tp = tp.with_blocks(blocks, list(range(len(blocks))))
     lines = np.array([b.line for b in tp.blocks], dtype=np.int64)
     per_line = active_work_offsets(job.program)
     idx = per_line[np.clip(lines, 0, len(per_line) - 1)]
@@ -154,7 +165,7 @@ def stage_stock(job: Job):
     else:
         z = ns.ZMap(lo[0], hi[0], lo[1], hi[1], s["spacing_mm"], hi[2], lo[2])
     for pc in s["pre_cut"]:
-        ns.sweep(z, make_cutter(pc.tool), tpm.read_gcode(pc.program, arcs="keep"))
+        ns.sweep(z, make_cutter(pc.tool), read_program(pc.program))
     return z
 
 
@@ -252,8 +263,9 @@ class DeflectionResult:
 #: area's contour API): ``setup_path(program, cutter, stock, *, coefficients, rpm, spacing)`` for one
 #: contiguous 2-D contour, ``predict_path(setup)`` → wall errors (``error`` (n, 3): bottom, middle,
 #: top [mm]), ``compensate_path(setup, *, scheme, level)`` → ``converged``, ``message``, ``positions``,
-#: ``after``, ``iterations``, and ``compensated_program(setup, positions)`` → Toolpath.
-DEFLECTION_API = ("setup_path", "predict_path", "compensate_path", "compensated_program")
+#: ``after``, ``iterations``, and ``compensated_blocks(setup, positions)`` → (blocks, index of the contour
+#: block each came from).
+DEFLECTION_API = ("setup_path", "predict_path", "compensate_path", "compensated_blocks")
 
 
 def deflection_api():
@@ -332,12 +344,15 @@ def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> De
     s_start = np.concatenate([[0.0], np.cumsum(lengths)])
     z = stock0.copy()
     out_blocks, s_all, before_all, after_all, skipped = [], [], [], [], []
+    origin: list[int] = []  # index in tp.blocks of the block each of out_blocks came from
+    unconverged: list[str] = []  # contours whose iteration stopped above the tolerance (where and why)
     iterations = 0
     done = 0
     for first, last in contour_runs(tp):
         if first > done:
             nst.sweep(z, cutter, _sub_toolpath(tp, blocks[done:first]))
             out_blocks.extend(blocks[done:first])
+            origin.extend(range(done, first))
         run = blocks[first:last + 1]
         sub = _sub_toolpath(tp, run)
         rpm = job.cutting["spindle_rpm"] or abs(float(run[0].spindle_rpm))
@@ -347,6 +362,7 @@ def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> De
         except ValueError as exc:
             skipped.append(f"line {run[0].line}: {' '.join(str(exc).split())}")
             out_blocks.extend(run)
+            origin.extend(range(first, last + 1))
         else:
             nominal = np.asarray(setup.nominal, dtype=float)
             arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(nominal[:, :2], axis=0), axis=1))])
@@ -357,23 +373,31 @@ def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> De
                 res = api["compensate_path"](setup, scheme=job.compensate["deflection_scheme"],
                                              level=job.compensate["deflection_level"])
                 if not res.converged:
-                    raise Error(f"deflection compensation of the contour from line {run[0].line}: {res.message}")
+                    where = f"deflection compensation of the contour from line {run[0].line}: {res.message}"
+                    if job.compensate["deflection_unconverged"] == "fail":
+                        raise Error(where)
+                    # the last iterate is written; its residual is the "after" error of these points
+                    unconverged.append(" ".join(where.split()))
                 iterations = max(iterations, int(res.iterations))
                 after_all.append(np.asarray(res.after.error, dtype=float)[:, level])
-                new = list(api["compensated_program"](setup, np.asarray(res.positions, dtype=float)).blocks)
+                new, sub_origin = api["compensated_blocks"](setup, np.asarray(res.positions, dtype=float))
                 for b in new:  # keep the source line (work offset, reports) of the contour
                     if b.line <= 0:
                         b.line = run[0].line
                 out_blocks.extend(new)
+                origin.extend(first + int(k) for k in sub_origin)
             else:
                 after_all.append(before)
                 out_blocks.extend(run)
+                origin.extend(range(first, last + 1))
         nst.sweep(z, cutter, sub)
         done = last + 1
     out_blocks.extend(blocks[done:])
+    origin.extend(range(done, len(blocks)))
     info = {"contours": len(s_all), "contours_skipped": skipped}
     if compensate:
         info["iterations"] = iterations
+        info["contours_unconverged"] = unconverged
     if not s_all:
         why = skipped[0] if skipped else "the program has no 2-D contour (XY moves at one Z)"
         return DeflectionResult(available=False, reason=f"deflection wall error: no contour evaluated ({why})",
@@ -382,7 +406,10 @@ def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> De
                            after_mm=np.concatenate(after_all), info=info,
                            ranges=[(float(a[0]), float(a[-1])) for a in s_all])
     if compensate:
-        res.compensated = _sub_toolpath(tp, out_blocks)
+        res.compensated = tp.with_blocks(out_blocks, origin)
+        if unconverged:
+            res.reason = (f"compensation did not converge on {len(unconverged)} contour(s), the last iterate is "
+                          f"written and its residual is the error after: {'; '.join(unconverged)}")
     return res
 
 
@@ -540,12 +567,15 @@ def to_program_frame(tp_machine, prog: Program):
 
 
 def write_program_text(tp, idx: np.ndarray, header: str) -> str:
-    """G-code of ``tp`` (program coordinates); where the work offset changes between blocks, the block
-    runs are written with their G54–G59 word so each runs under the offset it was written for."""
+    """G-code of ``tp`` (program coordinates) with the program's non-motion records (comments, M/S/T
+    words, dwells, G54–G59) at their places. A tool path without records (built by hand) is written in
+    runs of one work offset, each with its G54–G59 word, so each runs under the offset it was written
+    for."""
     from netshape import toolpath as tpm
 
     blocks = tp.blocks
-    if len(blocks) == 0:
+    if len(blocks) == 0 or len(tp.commands) > 0:
+        # the program's own records carry its G54-G59 words at their places
         return tpm.format_gcode(tp, header_comment=header)
     cuts = [0] + [i for i in range(1, len(blocks)) if idx[i] != idx[i - 1]] + [len(blocks)]
     parts = []

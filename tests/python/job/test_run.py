@@ -65,13 +65,17 @@ def test_compensated_errors_below_uncompensated(demo_run):
         assert e["deflection"]["max_after_mm"] < e["deflection"]["max_before_mm"]
 
 
-def test_compensated_program_lands_on_the_nominal_points(demo_run):
+def test_compensated_program_lands_on_the_nominal_points(tmp_path):
     """Independent of the job's own re-prediction: every end point of the original program's feed
     moves is reached, within 1e-6 mm, by the actual tip (machine model) at some end point of the
-    compensated program, both placed in the machine by the job's G54 offset."""
-    out, s, _ = demo_run
-    job = load_job(DEMO / "job.toml")
-    comp_text = (out / s["files"]["compensated_program"]).read_text()
+    compensated program, both placed in the machine by the job's G54 offset. (The demo job with
+    volumetric compensation only: deflection compensation moves the contours off the nominal path
+    on purpose.)"""
+    d = _demo_copy(tmp_path)
+    job = job_from_dict(_volumetric_only(tomllib.loads((d / "job.toml").read_text())), source="job.toml",
+                        base_dir=d)
+    s = run_job(job, tmp_path / "out")
+    comp_text = (tmp_path / "out" / s["files"]["compensated_program"]).read_text()
     assert "G54" in comp_text
     comp = ns.toolpath.parse_gcode(comp_text)
     orig = ns.toolpath.read_gcode(DEMO / "part.ngc")
@@ -264,3 +268,19 @@ def test_force_stage_in_chunks_cuts_the_same_stock(monkeypatch):
     assert parts.removed_volume == pytest.approx(removed, rel=1e-9)
     assert np.max(parts.peak_resultant) == pytest.approx(np.max(whole.peak_resultant), rel=0.03)
     assert np.all(np.diff(parts.block) >= 0)
+
+
+def test_compensated_program_keeps_the_programs_words(demo_run):
+    """Deflection then volumetric compensation change coordinates only: the compensated program carries
+    the original's comments, tool/spindle words, work offset and program end in the same order."""
+    import warnings
+
+    out, s, _ = demo_run
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ns.toolpath.GcodeWarning)
+        orig = ns.toolpath.read_gcode(DEMO / "part.ngc")
+        comp = ns.toolpath.parse_gcode((out / s["files"]["compensated_program"]).read_text())
+    words = [c.text for c in orig.commands]
+    assert {"M5", "M30", "G54"} <= set(words)
+    assert s["job"]["compensations"] == ["deflection", "volumetric"]
+    assert [c.text for c in comp.commands if not c.text.startswith("(netshape compensated")] == words
