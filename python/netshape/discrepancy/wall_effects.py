@@ -83,7 +83,7 @@ class WallProblem(Problem):
         s = e.x - self._shift[i]
         # passes farther than D from a point cannot be the deepest (see the module docstring)
         D = math.sqrt(4 * R * abs(rho) + (0.5 * N * c) ** 2)
-        K = int(math.ceil(D / c)) + 1
+        K = math.ceil(D / c) + 1
         m = np.rint(s / c)[:, None] + np.arange(-K, K + 1)[None, :]
         j = np.mod(m, N).astype(int)
         rj = r[j]

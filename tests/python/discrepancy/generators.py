@@ -262,20 +262,21 @@ WALL_AP = 4.0
 
 
 def wall_bundle(folder, *, holder_stiffness=None, runout=None, noise=1e-3, seed=3, form="xz",
-                length=2.0, dx=0.01, z_levels=(0.5, 1.5, 2.5, 3.5), conditions=WALL_CONDITIONS):
+                length=2.0, dx=0.01, z_levels=(0.5, 1.5, 2.5, 3.5), conditions=WALL_CONDITIONS, tool=None):
     """Write a wall_error bundle of steady straight cuts. The model's wall error e₀(z) and the force at
     the generating instant come from netshape.deflection (the bundle's own model); hidden:
     ``holder_stiffness`` [N/µm] (the tool translates rigidly by F/k) and ``runout`` (ρ [mm], λ [deg]):
     flute j cuts an exact circle of radius R + ρ·cos(λ − j·2π/N) at every pass, the passes placed by
     the flute angles (flute j at height z reaches the wall angle at θ = φ_w + k_β·z + j·2π/N + 2πm,
     the tool centre then at x = N·c·(θ − φ_w)/2π), the wall the deepest of all circles. ``form``:
-    "xz" (x_mm,z_mm,error_mm over ``z_levels``) or "x" (x_mm,error_mm at z = ap/2). Noise [mm]."""
+    "xz" (x_mm,z_mm,error_mm over ``z_levels``) or "x" (x_mm,error_mm at z = ap/2). Noise [mm];
+    ``tool``: a [tool] table (default WALL_TOOL)."""
     from netshape import deflection as d
 
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     rng = np.random.default_rng(seed)
-    t = WALL_TOOL
+    t = WALL_TOOL if tool is None else tool
     R, N = t["diameter_mm"] / 2, t["flutes"]
     kb = math.tan(math.radians(t["helix_deg"])) / R
     x = np.arange(0.0, length + 1e-9, dx)
@@ -311,5 +312,5 @@ def wall_bundle(folder, *, holder_stiffness=None, runout=None, noise=1e-3, seed=
             write_csv(folder / name, ["x_mm", "error_mm"], np.column_stack([x, E[0]]))
         exps.append({"file": name, "feed_per_tooth_mm": c, "axial_depth_mm": WALL_AP, "radial_depth_mm": ae,
                      "mode": mode, "spindle_rpm": 8000.0})
-    write_manifest(folder, "wall_error", {"tool": WALL_TOOL, "model": WALL_MODEL}, exps)
+    write_manifest(folder, "wall_error", {"tool": t, "model": WALL_MODEL}, exps)
     return folder

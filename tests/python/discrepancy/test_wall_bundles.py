@@ -18,7 +18,7 @@ import pytest
 import netshape.discrepancy as nd
 from netshape.cli import main
 
-from generators import wall_bundle
+from generators import WALL_TOOL, wall_bundle
 
 NOISE = 1e-3  # mm
 K_TRUE = 10.0  # N/µm
@@ -84,18 +84,7 @@ def test_control_wall_bundle_finds_nothing(tmp_path, form):
 
 def test_two_flutes_report_rho_cos_lambda(tmp_path):
     """With 2 flutes r₁ = −r₀: only ρ·cos λ is identifiable, reported with λ = 0 or 180°."""
-    from generators import WALL_TOOL
-
-    tool = dict(WALL_TOOL, flutes=2)
-    import generators
-
-    old = generators.WALL_TOOL
-    generators.WALL_TOOL = tool
-    try:
-        b = wall_bundle(tmp_path, runout=(0.004, 60.0), form="x")
-    finally:
-        generators.WALL_TOOL = old
-    d = nd.diagnose(b)
+    d = nd.diagnose(wall_bundle(tmp_path, runout=(0.004, 60.0), form="x", tool=dict(WALL_TOOL, flutes=2)))
     assert d.effect == "runout"
     assert d.parameters["lambda_deg"] in (0.0, 180.0)
     assert abs(d.parameters["rho_mm"] - 0.002) < 2.5e-4  # ρ·|cos 60°|
