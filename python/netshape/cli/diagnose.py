@@ -7,13 +7,14 @@ import argparse
 import json
 
 _DESCRIPTION = """\
-Read a measurement bundle (BUNDLE_DIR/manifest.toml + CSV files: kind cutting_force or
-volumetric_error), compare it with the bundle's model, fit every effect of the catalogue the model
+Read a measurement bundle (BUNDLE_DIR/manifest.toml + CSV files: kind cutting_force,
+volumetric_error or wall_error), compare it with the bundle's model, fit every effect of the catalogue the model
 may lack, add the one that held-out prediction error and BIC choose, and repeat until the residual
 is consistent with the measurement noise. "effect": null means no missing effect was found.
 
   cutting_force     runout, edge_forces, size_effect, structural_mode
   volumetric_error  squareness, scale_error, thermal_drift, spindle_tilt, backlash
+  wall_error        holder_compliance, runout
 """
 
 _EPILOG = """\

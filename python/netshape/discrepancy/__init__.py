@@ -8,17 +8,19 @@ lacks, and how much of the gap adding it closes (the workflow of docs/discrepanc
 
 The catalogue (``nd.catalogue(kind)``) is an open registry: subclass :class:`Effect` and call
 :func:`register_effect` to add your own. Python orchestration only: the models are evaluated by the
-C++ kernels of netshape.force and netshape.machine; the fits are SciPy ``least_squares``.
+C++ kernels of netshape.force, netshape.machine and netshape.deflection; the fits are SciPy ``least_squares``.
 """
 
 from __future__ import annotations
 
-from .bundle import Bundle, ForceExperiment, VolumetricExperiment, load_bundle
+from .bundle import Bundle, ForceExperiment, VolumetricExperiment, WallExperiment, load_bundle
 from .catalogue import Effect, EffectFit, catalogue, register_effect, unregister_effect
 from . import force_effects as _force_effects  # noqa: F401  (registers the cutting-force catalogue)
 from . import volumetric_effects as _volumetric_effects  # noqa: F401  (registers the volumetric catalogue)
+from . import wall_effects as _wall_effects  # noqa: F401  (registers the wall-error catalogue)
 from .force_effects import ForceProblem, ForceSpec
 from .volumetric_effects import VolumetricProblem, VolumetricSpec
+from .wall_effects import WallProblem, WallSpec
 from .workflow import Diagnosis, diagnose, make_problem
 
 __all__ = [
@@ -32,6 +34,9 @@ __all__ = [
     "VolumetricExperiment",
     "VolumetricProblem",
     "VolumetricSpec",
+    "WallExperiment",
+    "WallProblem",
+    "WallSpec",
     "catalogue",
     "diagnose",
     "load_bundle",

@@ -46,6 +46,33 @@ may be cut to ``time_window_s = [start, end]``: the samples from start to end se
 e = actual − nominal tool tip relative to the workpiece [mm]; ``t_s`` when the point was measured [s];
 ``direction`` (+1/−1) the approach direction of the moving axis.
 
+``kind = "wall_error"`` (steady straight cuts of a flat end mill, the case of ``netshape deflection
+wall``)::
+
+    kind = "wall_error"
+    [tool]                      # flat end mill: diameter_mm, flutes, helix_deg, stick_out_mm,
+    diameter_mm = 6.0           # youngs_modulus_MPa (default 600000, carbide)
+    flutes = 3
+    helix_deg = 30.0
+    stick_out_mm = 30.0
+    [model]
+    coefficients = "Ktc=900,Krc=270,Kac=150,Kte=16,Kre=20,Kae=10"   # as deflection --coefficients
+    inertia = "square"          # optional: square | equivalent
+    load = "distributed"        # optional: resultant | distributed
+    [[experiment]]
+    file = "cut1.csv"           # columns x_mm,error_mm or x_mm,z_mm,error_mm
+    feed_per_tooth_mm = 0.1
+    axial_depth_mm = 4.0
+    radial_depth_mm = 1.0       # may be left out for mode = "slot"
+    mode = "down"               # up | down | slot
+    side = "right"              # optional: left | right (default: up → left, down → right; slot: required)
+    z_mm = 2.0                  # height of the x_mm,error_mm profile above the tip (default ap/2)
+    spindle_rpm = 6000.0        # optional, recorded only
+
+error = the wall's deviation from its nominal position along its normal [mm], + where material is
+left; x_mm along the feed from a position where flute 1 generates the wall at the tool tip (z = 0);
+z_mm above the tool tip.
+
 Every problem raises one ValueError naming the file and the field (FileNotFoundError for a missing
 file).
 """
@@ -121,6 +148,23 @@ class VolumetricExperiment:
     tool_length: float
     times: np.ndarray | None = None
     directions: np.ndarray | None = None
+
+
+@dataclass
+class WallExperiment:
+    """One wall-error measurement of a steady straight cut: positions x (n,) along the feed and z
+    (n,) above the tip [mm], errors (n, 1) [mm] (+ material left); the cut's data in mm."""
+
+    file: str
+    feed_per_tooth: float
+    axial_depth: float
+    radial_depth: float
+    mode: str
+    side: str
+    x: np.ndarray
+    z: np.ndarray
+    errors: np.ndarray
+    spindle_rpm: float | None = None
 
 
 @dataclass
@@ -393,6 +437,100 @@ def _load_volumetric(doc: dict, root: Path, where: str) -> Bundle:
     )
 
 
+WALL_TOOL_KEYS = ("type", "diameter_mm", "flutes", "helix_deg", "stick_out_mm", "youngs_modulus_MPa")
+WALL_MODEL_KEYS = ("coefficients", "inertia", "load")
+
+
+def _load_wall(doc: dict, root: Path, where: str) -> Bundle:
+    from netshape import deflection as _defl
+
+    _check_keys(doc, ("kind", "tool", "model", "experiment"), where)
+    tool = doc.get("tool")
+    if not isinstance(tool, dict):
+        raise _fail(where, "missing table [tool] (diameter_mm, flutes, helix_deg, stick_out_mm, youngs_modulus_MPa)")
+    w = f"{where}: [tool]"
+    _check_keys(tool, WALL_TOOL_KEYS, w)
+    if tool.get("type", "flat") != "flat":
+        raise _fail(w, f"type = {tool['type']!r}: the deflection model needs a flat end mill ('flat')")
+    flutes = tool.get("flutes")
+    if isinstance(flutes, bool) or not isinstance(flutes, int) or not 1 <= flutes <= 64:
+        raise _fail(w, f"flutes = {flutes!r}: must be an integer in 1..64")
+    helix = _number(tool, "helix_deg", w)
+    if not 0.0 <= helix < 80.0:
+        raise _fail(w, f"helix_deg = {helix}: must be in [0, 80) [deg]")
+    tool_out = {
+        "type": "flat",
+        "diameter": _number(tool, "diameter_mm", w, positive=True),
+        "flutes": flutes,
+        "helix_deg": helix,
+        "stick_out": _number(tool, "stick_out_mm", w, positive=True),
+        "youngs_modulus": _number(tool, "youngs_modulus_MPa", w, positive=True, default=600e3),
+    }
+    model = doc.get("model")
+    wm = f"{where}: [model]"
+    if not isinstance(model, dict):
+        raise _fail(where, "missing table [model] (coefficients, inertia, load)")
+    _check_keys(model, WALL_MODEL_KEYS, wm)
+    if not isinstance(model.get("coefficients"), str):
+        raise _fail(wm, f"coefficients = {model.get('coefficients')!r}: must be a set name, 'Ktc=…,…' or 'KT=…,KR=…'")
+    try:
+        _defl.parse_coefficients(model["coefficients"])
+    except ValueError as exc:
+        raise _fail(wm, str(exc)) from None
+    model_out = {"coefficients": model["coefficients"]}
+    for key, allowed in (("inertia", ("square", "equivalent")), ("load", ("resultant", "distributed"))):
+        v = model.get(key, allowed[0] if key == "inertia" else allowed[1])
+        if v not in allowed:
+            raise _fail(wm, f"{key} = {v!r}: must be {' or '.join(map(repr, allowed))}")
+        model_out[key] = v
+    exps = doc.get("experiment")
+    if not isinstance(exps, list) or not exps:
+        raise _fail(where, "no [[experiment]] tables")
+    keys = ("file", "spindle_rpm", "feed_per_tooth_mm", "axial_depth_mm", "radial_depth_mm", "mode", "side", "z_mm")
+    out = []
+    for i, e in enumerate(exps, start=1):
+        we = f"{where}: [[experiment]] {i}"
+        _check_keys(e, keys, we)
+        if not isinstance(e.get("file"), str) or not e["file"]:
+            raise _fail(we, f"file = {e.get('file')!r}: must name a CSV file")
+        mode = e.get("mode")
+        if mode not in ("up", "down", "slot"):
+            raise _fail(we, f"mode = {mode!r}: must be 'up', 'down' or 'slot'")
+        side = e.get("side", {"up": "left", "down": "right"}.get(mode))
+        if side not in ("left", "right"):
+            raise _fail(we, f"side = {side!r}: must be 'left' or 'right' (required for mode = 'slot')")
+        c = _number(e, "feed_per_tooth_mm", we, positive=True)
+        ap = _number(e, "axial_depth_mm", we, positive=True)
+        ae = _number(e, "radial_depth_mm", we, positive=True, default=tool_out["diameter"] if mode == "slot" else None)
+        rpm = _number(e, "spindle_rpm", we, positive=True) if "spindle_rpm" in e else None
+        try:
+            _defl.make_model(diameter=tool_out["diameter"], flutes=flutes, helix_deg=helix,
+                             stick_out=tool_out["stick_out"], youngs_modulus=tool_out["youngs_modulus"],
+                             feed_per_tooth=c, ap=ap, ae=ae, mode=mode, coefficients=model["coefficients"],
+                             inertia=model_out["inertia"], load=model_out["load"])
+        except ValueError as exc:
+            raise _fail(we, str(exc)) from None
+        path = Path(e["file"]) if Path(e["file"]).is_absolute() else root / e["file"]
+        cols = _read_csv(path, ("x_mm", "error_mm"), ("z_mm",))
+        if "z_mm" in cols:
+            if "z_mm" in e:
+                raise _fail(we, "z_mm: given both here and as a column of the CSV (keep one)")
+            z = cols["z_mm"]
+        else:
+            z0 = _number(e, "z_mm", we, default=0.5 * ap)
+            z = np.full(len(cols["x_mm"]), z0)
+        bad = (z < 0) | (z > ap)
+        if bad.any():
+            j = int(np.argmax(bad))
+            src = f"{path}: line {j + 2}, column 'z_mm'" if "z_mm" in cols else f"{we}: z_mm"
+            raise ValueError(f"{src}: {float(z[j])!r} must lie within the cut, 0..axial_depth_mm = {ap} [mm]")
+        out.append(
+            WallExperiment(file=str(path), feed_per_tooth=c, axial_depth=ap, radial_depth=ae, mode=mode,
+                           side=side, x=cols["x_mm"], z=z, errors=cols["error_mm"][:, None], spindle_rpm=rpm)
+        )
+    return Bundle(kind="wall_error", path=str(root), model=model_out, experiments=out, tool=tool_out)
+
+
 def load_bundle(path: str | os.PathLike) -> Bundle:
     """Read a bundle folder (or its manifest.toml). Raises FileNotFoundError for a missing folder,
     manifest or CSV, ValueError naming the file and the field for anything malformed."""
@@ -410,7 +548,7 @@ def load_bundle(path: str | os.PathLike) -> Bundle:
     if kind not in KINDS:
         raise _fail(where, f"kind = {kind!r}: must be one of {', '.join(KINDS)}")
     if kind == "wall_error":
-        raise _fail(where, "kind = 'wall_error': not available yet (it needs the deflection workflow)")
+        return _load_wall(doc, manifest.parent, where)
     if kind == "cutting_force":
         return _load_force(doc, manifest.parent, where)
     return _load_volumetric(doc, manifest.parent, where)

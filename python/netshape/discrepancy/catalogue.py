@@ -1,7 +1,7 @@
 """The catalogue of candidate effects: an open registry of named model extensions.
 
 An effect is a named, physically parametrised extension of the current model of one bundle kind
-(``cutting_force``, ``volumetric_error``). It knows its parameter names (units in the names), whether
+(``cutting_force``, ``volumetric_error``, ``wall_error``). It knows its parameter names (units in the names), whether
 a bundle carries what it needs, and how to fit itself: :meth:`Effect.fit` returns the fitted
 parameters and the extended model specification. Most effects only describe a parametrisation
 (:meth:`Effect.starts`, :meth:`Effect.bounds`, :meth:`Effect.apply`, :meth:`Effect.parameters_of`)
@@ -26,7 +26,8 @@ A user adds an effect by subclassing :class:`Effect` and calling :func:`register
     nd.register_effect(ProbeOffset())
 
 ``additive`` terms are functions ``(experiment, points_or_angles) -> (n, 3)`` added to the prediction
-(both specification types have the field).
+(every specification type has the field; for wall errors the points are (n, 2) x, z [mm] and the
+result (n, 1) [mm]).
 """
 
 from __future__ import annotations
@@ -51,7 +52,8 @@ class EffectFit:
 class Effect:
     """Base class of a catalogue entry. Subclasses set ``name``, ``kind``, ``parameters`` (tuple of
     names), ``covariate`` (where the effect shows: ``angle``, ``feed``, ``frequency`` for forces;
-    ``position``, ``time``, ``direction``, ``tool_length`` for volumetric errors) and ``description``."""
+    ``position``, ``time``, ``direction``, ``tool_length`` for volumetric errors; ``normal_force``,
+    ``revolution_phase`` for wall errors) and ``description``."""
 
     name: str = ""
     kind: str = ""

@@ -30,9 +30,10 @@ def plot_residuals(diagnosis):
     """Residual per experiment before and after (against the sample index), one row per axis."""
     p = diagnosis.problem
     rb, ra = p.residuals(diagnosis.spec_before), p.residuals(diagnosis.spec_after)
-    fig, axes = _figure(3, 1)
-    names = ("x", "y", "z")
-    for a in range(3):
+    ncol = rb[0].shape[1]
+    fig, axes = _figure(ncol, 1)
+    names = ("x", "y", "z") if ncol == 3 else ("",)
+    for a in range(ncol):
         ax = axes[a][0]
         off = 0
         for i, (b, af) in enumerate(zip(rb, ra)):
@@ -43,7 +44,7 @@ def plot_residuals(diagnosis):
             ax.axvline(off, color="0.8", lw=0.5)
         ax.set_ylabel(f"residual {names[a]} [{p.unit}]")
         ax.legend(loc="upper right", fontsize=7)
-    axes[2][0].set_xlabel("sample (experiments in order)")
+    axes[ncol - 1][0].set_xlabel("sample (experiments in order)")
     fig.suptitle(
         f"{diagnosis.kind}: rms {diagnosis.rms_before:.4g} → {diagnosis.rms_after:.4g} {p.unit} "
         f"(noise {diagnosis.noise_estimate:.4g})"
@@ -124,6 +125,19 @@ def plot_covariate(diagnosis, covariate: str, label: str = ""):
                     covariate
                 ]
             )
+    elif covariate in ("normal_force", "revolution_phase"):
+        fig, axes = _figure(1, 1, (8, 3.4))
+        ax = axes[0][0]
+        v = np.concatenate(cov[covariate])
+        B, A = np.concatenate(rb)[:, 0], np.concatenate(ra)[:, 0]
+        ax.plot(v, B * 1e3, ".", ms=2, color="tab:red", label="before")
+        ax.plot(v, A * 1e3, ".", ms=2, color="tab:blue", label="after")
+        ax.set_ylabel("wall error residual [µm]")
+        ax.set_xlabel(
+            {"normal_force": "force along the wall normal at the generating instant [N]",
+             "revolution_phase": "revolution phase of the generating pass [deg] (0: flute 1)"}[covariate]
+        )
+        ax.legend(fontsize=7)
     else:
         raise ValueError(f"covariate = {covariate!r}: unknown")
     fig.suptitle(label or f"residual against {covariate}: before (red) and after (blue)")

@@ -102,6 +102,10 @@ def make_problem(bundle: Bundle):
         from .volumetric_effects import VolumetricProblem
 
         return VolumetricProblem(bundle)
+    if bundle.kind == "wall_error":
+        from .wall_effects import WallProblem
+
+        return WallProblem(bundle)
     raise ValueError(f"kind = {bundle.kind!r}: no workflow for it")
 
 
@@ -111,7 +115,7 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
     if not isinstance(bundle, Bundle):
         bundle = load_bundle(bundle)
     problem = make_problem(bundle)
-    from . import force_effects, volumetric_effects  # noqa: F401  (register the built-in catalogue)
+    from . import force_effects, volumetric_effects, wall_effects  # noqa: F401  (register the built-in catalogue)
 
     cat = catalogue(bundle.kind)
     if effects is not None:

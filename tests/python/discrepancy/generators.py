@@ -250,3 +250,67 @@ def volumetric_bundle(
         exps.append({"file": name, "tool_length_mm": L})
     write_manifest(folder, "volumetric_error", {"machine": MACHINE, "model": VOL_MODEL}, exps)
     return folder
+
+
+# --- wall error ----------------------------------------------------------------------------------
+
+WALL_TOOL = {"diameter_mm": 6.0, "flutes": 3, "helix_deg": 30.0, "stick_out_mm": 30.0, "youngs_modulus_MPa": 600e3}
+WALL_MODEL = {"coefficients": "Ktc=900,Krc=270,Kac=150,Kte=16,Kre=20,Kae=10", "inertia": "square", "load": "distributed"}
+#: (mode, radial depth [mm], feed per tooth [mm]) of the 3 steady cuts of a wall bundle
+WALL_CONDITIONS = [("down", 0.5, 0.15), ("down", 1.0, 0.2), ("up", 0.5, 0.25)]
+WALL_AP = 4.0
+
+
+def wall_bundle(folder, *, holder_stiffness=None, runout=None, noise=1e-3, seed=3, form="xz",
+                length=2.0, dx=0.01, z_levels=(0.5, 1.5, 2.5, 3.5), conditions=WALL_CONDITIONS, tool=None):
+    """Write a wall_error bundle of steady straight cuts. The model's wall error e₀(z) and the force at
+    the generating instant come from netshape.deflection (the bundle's own model); hidden:
+    ``holder_stiffness`` [N/µm] (the tool translates rigidly by F/k) and ``runout`` (ρ [mm], λ [deg]):
+    flute j cuts an exact circle of radius R + ρ·cos(λ − j·2π/N) at every pass, the passes placed by
+    the flute angles (flute j at height z reaches the wall angle at θ = φ_w + k_β·z + j·2π/N + 2πm,
+    the tool centre then at x = N·c·(θ − φ_w)/2π), the wall the deepest of all circles. ``form``:
+    "xz" (x_mm,z_mm,error_mm over ``z_levels``) or "x" (x_mm,error_mm at z = ap/2). Noise [mm];
+    ``tool``: a [tool] table (default WALL_TOOL)."""
+    from netshape import deflection as d
+
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    rng = np.random.default_rng(seed)
+    t = WALL_TOOL if tool is None else tool
+    R, N = t["diameter_mm"] / 2, t["flutes"]
+    kb = math.tan(math.radians(t["helix_deg"])) / R
+    x = np.arange(0.0, length + 1e-9, dx)
+    zs = np.asarray(z_levels if form == "xz" else [WALL_AP / 2], float)
+    exps = []
+    for i, (mode, ae, c) in enumerate(conditions):
+        side = "left" if mode == "up" else "right"
+        m = d.make_model(diameter=t["diameter_mm"], flutes=N, helix_deg=t["helix_deg"], stick_out=t["stick_out_mm"],
+                         youngs_modulus=t["youngs_modulus_MPa"], feed_per_tooth=c, ap=WALL_AP, ae=ae, mode=mode,
+                         coefficients=WALL_MODEL["coefficients"])
+        w = d.wall_errors(m, d.DeflectionWorkspace(m), getattr(d.WallSide, side), zs)
+        ny = 1.0 if side == "left" else -1.0
+        X, Z = np.meshgrid(x, zs)
+        E = np.repeat(np.asarray(w.error)[:, None], len(x), axis=1)
+        if holder_stiffness is not None:
+            E -= (np.asarray(w.force)[:, 1] * ny)[:, None] / (holder_stiffness * 1e3)
+        if runout is not None:
+            rho, lam = runout[0], math.radians(runout[1])
+            reach = np.full(X.shape, -np.inf)
+            for j in range(N):
+                Rj = R + rho * math.cos(lam - 2 * math.pi * j / N)
+                for mrev in range(-2, int(length / (N * c)) + 3):
+                    theta = kb * Z + 2 * math.pi * j / N + 2 * math.pi * mrev  # θ − φ_w of the pass
+                    xp = N * c * theta / (2 * math.pi)
+                    dd = np.minimum(np.abs(X - xp), Rj)
+                    reach = np.maximum(reach, np.sqrt(Rj**2 - dd**2) - R)
+            E -= reach
+        E += rng.normal(0.0, noise, E.shape)
+        name = f"wall{i + 1}.csv"
+        if form == "xz":
+            write_csv(folder / name, ["x_mm", "z_mm", "error_mm"], np.column_stack([X.ravel(), Z.ravel(), E.ravel()]))
+        else:
+            write_csv(folder / name, ["x_mm", "error_mm"], np.column_stack([x, E[0]]))
+        exps.append({"file": name, "feed_per_tooth_mm": c, "axial_depth_mm": WALL_AP, "radial_depth_mm": ae,
+                     "mode": mode, "spindle_rpm": 8000.0})
+    write_manifest(folder, "wall_error", {"tool": t, "model": WALL_MODEL}, exps)
+    return folder

@@ -36,7 +36,10 @@ def _edit(path, old, new):
             ("manifest.toml", 'kind = "cutting_force"', 'kind = "acoustic"'),
             ["manifest.toml", "kind", "acoustic"],
         ),
-        (("manifest.toml", 'kind = "cutting_force"', 'kind = "wall_error"'), ["manifest.toml", "wall_error"]),
+        (
+            ("manifest.toml", 'kind = "cutting_force"', 'kind = "wall_error"'),
+            ["manifest.toml", "[tool]", "stick_out_mm"],
+        ),
         (
             ("manifest.toml", "feed_per_tooth_mm = 0.05", "feed_per_tooth_mm = -0.05"),
             ["feed_per_tooth_mm", "-0.05"],

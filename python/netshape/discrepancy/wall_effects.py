@@ -1,0 +1,217 @@
+"""Wall-error bundles: the surface-generation wall error of a steady straight cut predicted by
+netshape.deflection (C++: the cantilever tool under the flat end mill force at the instant the wall at
+height z is generated), extended by the catalogue entries ``holder_compliance`` and ``runout``.
+
+Models (error e [mm], + where material is left; n the wall normal from the tool axis to the wall):
+
+* base: e₀(z) = −δ(z)·n, δ the cantilever deflection at height z when flute 1 passes the wall angle
+  (netshape.deflection.wall_errors);
+* holder_compliance: a translational spring of stiffness k at the holder/spindle carries the cutting
+  force F(z) of that same instant, so the whole tool translates rigidly by F/k:
+  e = e₀(z) − (F(z)·n)/k. Parameters ``stiffness_N_per_um`` (k) and ``compliance_um_per_N`` (1/k);
+* runout: the tool axis is offset by ρ at angle λ, flute j (0 = flute 1) cuts at radius
+  R_j = R + r_j, r_j = ρ·cos(λ − j·2π/N) (the cutting-force convention). Flute 1 generates the wall at
+  height z at the feed positions x₁(z) + m·N·c (x₁(z) = N·c·k_β·z/2π, c the feed per tooth,
+  k_β = tan β / R), flute j at x₁(z) + (j + m·N)·c; each pass leaves a circular arc of radius R_j,
+  and the wall is the deepest of them: e = e₀(z) − max_passes [r_j − (x − x_pass)²/(2R_j)]. The
+  change of the chip loads, and so of the deflection, by the runout is not modelled. With N ≤ 2
+  only ρ·cos λ is identifiable; it is reported as λ = 0 or 180°. Parameters ``rho_mm``, ``lambda_deg``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .catalogue import Effect, register_effect
+from .problem import Problem, robust_difference_noise
+
+
+@dataclass(frozen=True)
+class WallSpec:
+    """A wall-error model: the bundle's deflection model plus ``compliance`` [mm/N] of a holder
+    spring, ``runout`` (ρ [mm], λ [rad]) or None, and ``additive`` callables
+    (experiment, points (n, 2) of x, z [mm]) → (n, 1) [mm]."""
+
+    compliance: float = 0.0
+    runout: tuple | None = None
+    additive: tuple = ()
+
+
+class WallProblem(Problem):
+    kind = "wall_error"
+    unit = "mm"
+
+    def __init__(self, bundle):
+        from netshape import deflection as d
+
+        self.bundle = bundle
+        self.experiments = bundle.experiments
+        self.measured = [np.asarray(e.errors, float).reshape(-1, 1) for e in self.experiments]
+        t = bundle.tool
+        self.radius = 0.5 * t["diameter"]
+        self.flutes = int(t["flutes"])
+        self.k_beta = math.tan(math.radians(t["helix_deg"])) / self.radius
+        self.notes = []
+        self._base, self._fn, self._shift = [], [], []
+        for e in self.experiments:
+            m = d.make_model(
+                diameter=t["diameter"], flutes=self.flutes, helix_deg=t["helix_deg"], stick_out=t["stick_out"],
+                youngs_modulus=t["youngs_modulus"], feed_per_tooth=e.feed_per_tooth, ap=e.axial_depth,
+                ae=e.radial_depth, mode=e.mode, coefficients=bundle.model["coefficients"],
+                inertia=bundle.model["inertia"], load=bundle.model["load"],
+            )
+            zu, inv = np.unique(e.z, return_inverse=True)
+            w = d.wall_errors(m, d.DeflectionWorkspace(m), getattr(d.WallSide, e.side), zu)
+            ny = 1.0 if e.side == "left" else -1.0
+            self._base.append(np.asarray(w.error, float)[inv])
+            self._fn.append(np.asarray(w.force, float)[inv, 1] * ny)  # F·n [N] at the generating instant
+            # feed position of flute 1's generating pass at height z [mm]
+            self._shift.append(self.flutes * e.feed_per_tooth * self.k_beta * e.z / (2 * math.pi))
+
+    def initial_spec(self):
+        return WallSpec()
+
+    def runout_term(self, i, rho, lam) -> np.ndarray:
+        """−max over passes of the reach r_j − d²/(2R_j) at the points of experiment i [mm]."""
+        e = self.experiments[i]
+        N, c, R = self.flutes, e.feed_per_tooth, self.radius
+        r = rho * np.cos(lam - 2 * np.pi * np.arange(N) / N)
+        s = e.x - self._shift[i]
+        # passes farther than D from a point cannot be the deepest (see the module docstring)
+        D = math.sqrt(4 * R * abs(rho) + (0.5 * N * c) ** 2)
+        K = math.ceil(D / c) + 1
+        m = np.rint(s / c)[:, None] + np.arange(-K, K + 1)[None, :]
+        j = np.mod(m, N).astype(int)
+        rj = r[j]
+        reach = rj - (s[:, None] - m * c) ** 2 / (2 * (R + rj))
+        return -reach.max(axis=1)
+
+    def predict(self, spec):
+        out = []
+        for i, e in enumerate(self.experiments):
+            p = self._base[i] - spec.compliance * self._fn[i]
+            if spec.runout is not None:
+                p = p + self.runout_term(i, *spec.runout)
+            p = p[:, None]
+            for add in spec.additive:
+                p = p + np.asarray(add(e, np.column_stack([e.x, e.z])), float).reshape(-1, 1)
+            out.append(p)
+        return out
+
+    def _order(self, i):
+        e = self.experiments[i]
+        return np.lexsort((e.x, e.z))
+
+    def noise_estimate(self, spec) -> float:
+        """Robust second-difference noise of the model residual along x within each height z [mm]."""
+        num, den = 0.0, 0
+        for i, r in enumerate(self.residuals(spec)):
+            o = self._order(i)
+            v, c = robust_difference_noise(r[o], self.experiments[i].z[o])
+            num += v * c
+            den += c
+        return math.sqrt(num / den) if den else 0.0
+
+    def revolution_phase(self, i) -> np.ndarray:
+        """Angle of the spindle revolution [deg] at which each point's wall was generated by flute 1's
+        position (0 where flute 1 generates it)."""
+        e = self.experiments[i]
+        return np.degrees(np.mod(2 * np.pi * (e.x - self._shift[i]) / (self.flutes * e.feed_per_tooth), 2 * np.pi))
+
+    def localise(self, spec) -> dict:
+        """Mean residual per experiment, correlation of the residual with the normal force at the
+        generating instant and with z, and the amplitude of its once-per-revolution harmonic along x
+        (runout shows there; a holder spring follows the force)."""
+        res = self.residuals(spec)
+        r = np.concatenate([ri[:, 0] for ri in res])
+        out = {"residual_rms": self.rms(spec), "mean_per_experiment_mm": [float(ri.mean()) for ri in res]}
+        corr = {}
+        for name, v in (("normal_force_N", np.concatenate(self._fn)),
+                        ("z_mm", np.concatenate([e.z for e in self.experiments]))):
+            if np.std(v) > 0 and np.std(r) > 0:
+                corr[f"error~{name}"] = float(np.corrcoef(v, r)[0, 1])
+        out["correlation"] = corr
+        amps = []
+        for i, ri in enumerate(res):
+            ph = np.radians(self.revolution_phase(i))
+            A = np.column_stack([np.ones_like(ph), np.cos(ph), np.sin(ph)])
+            coef, *_ = np.linalg.lstsq(A, ri[:, 0], rcond=None)
+            amps.append(float(math.hypot(coef[1], coef[2])))
+        out["per_revolution_amplitude_mm"] = amps
+        return out
+
+    def covariates(self, spec) -> dict:
+        return {
+            "normal_force": list(self._fn),
+            "revolution_phase": [self.revolution_phase(i) for i in range(len(self.experiments))],
+        }
+
+    def experiment_notes(self, spec) -> list:
+        return [
+            {"file": e.file, "mode": e.mode, "side": e.side, "feed_per_tooth_mm": e.feed_per_tooth,
+             "axial_depth_mm": e.axial_depth, "radial_depth_mm": e.radial_depth}
+            for e in self.experiments
+        ]
+
+
+class HolderCompliance(Effect):
+    name, kind = "holder_compliance", "wall_error"
+    parameters = ("stiffness_N_per_um", "compliance_um_per_N")
+    covariate = "normal_force"
+    description = (
+        "a translational spring k at the holder/spindle: the tool translates rigidly by F/k, "
+        "e = e₀ − (F·n)/k with F the force at the instant the wall is generated"
+    )
+
+    def starts(self, problem, spec):
+        return [np.array([0.05])]
+
+    def bounds(self, problem, spec):
+        return (np.zeros(1), np.full(1, np.inf))
+
+    def apply(self, problem, spec, x):
+        return dataclasses.replace(spec, compliance=spec.compliance + float(x[0]) * 1e-3)
+
+    def parameters_of(self, x):
+        c = float(x[0])
+        return {"stiffness_N_per_um": 1.0 / c if c > 0 else math.inf, "compliance_um_per_N": c}
+
+
+class WallRunout(Effect):
+    name, kind = "runout", "wall_error"
+    parameters = ("rho_mm", "lambda_deg")
+    covariate = "revolution_phase"
+    description = (
+        "cutter runout: flute j cuts at radius R + rho·cos(lambda − j·2π/N); the wall is the deepest "
+        "arc left by the flute passes, e = e₀ − max(r_j − d²/2R_j)"
+    )
+
+    def starts(self, problem, spec):
+        rho0 = max(2.0 * problem.rms(spec), 1e-3)
+        if problem.flutes <= 2:
+            return [np.array([rho0]), np.array([-rho0])]
+        return [np.array([rho0, a]) for a in np.linspace(0, 2 * np.pi, 2 * problem.flutes, endpoint=False)]
+
+    def bounds(self, problem, spec):
+        lim = 0.2 * problem.radius
+        if problem.flutes <= 2:
+            return (np.full(1, -lim), np.full(1, lim))
+        return (np.array([0.0, -np.inf]), np.array([lim, np.inf]))
+
+    def apply(self, problem, spec, x):
+        if len(x) == 1:  # ρ·cos λ signed, λ = 0
+            return dataclasses.replace(spec, runout=(float(x[0]), 0.0))
+        return dataclasses.replace(spec, runout=(float(x[0]), float(x[1])))
+
+    def parameters_of(self, x):
+        if len(x) == 1:
+            return {"rho_mm": abs(float(x[0])), "lambda_deg": 0.0 if x[0] >= 0 else 180.0}
+        return {"rho_mm": float(x[0]), "lambda_deg": float(np.degrees(x[1]) % 360.0)}
+
+
+for _e in (HolderCompliance(), WallRunout()):
+    register_effect(_e, replace=True)
