@@ -52,15 +52,26 @@ def plot_force(forces):
     return fig
 
 
+def _broken(s_mm, values):
+    """(s, v) with NaN between contours (a jump in s of more than 5 sample spacings), so the plot does
+    not draw a line across the moves between two contours."""
+    s_mm, values = np.asarray(s_mm, float), np.asarray(values, float)
+    if len(s_mm) < 3:
+        return s_mm, values
+    ds = np.diff(s_mm)
+    cut = np.flatnonzero(ds > 5.0 * np.median(ds)) + 1
+    return np.insert(s_mm, cut, np.nan), np.insert(values, cut, np.nan)
+
+
 def plot_wall_error(defl, vol, order_text):
     """Error along the path before and after compensation [µm], one panel per source."""
     fig = _figure(8.0, 5.6)
     axs = fig.subplots(2, 1)
     ax = axs[0]
     if defl is not None and defl.available:
-        ax.plot(defl.s_mm, 1e3 * defl.before_mm, lw=0.8, label="before")
+        ax.plot(*_broken(defl.s_mm, 1e3 * defl.before_mm), lw=0.8, label="before")
         if defl.after_mm is not None:
-            ax.plot(defl.s_mm[:len(defl.after_mm)], 1e3 * defl.after_mm, lw=0.8, label="after")
+            ax.plot(*_broken(defl.s_mm[:len(defl.after_mm)], 1e3 * defl.after_mm), lw=0.8, label="after")
         ax.set_ylabel("wall error [µm]")
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3)
