@@ -5,8 +5,8 @@ Data: ../shared/data/leekunhwee-flat-slot (Kistler DynoWare CSV, 10 kHz; 2-flute
 full slot, a_p = 3 mm, 6000 rpm, f_t = 0.025 … 0.125 mm/tooth). Read by path, never copied.
 
 Steps
-1. read each recording and map the dynamometer channels to forces ON THE CUTTER in the DESIGN §2
-   frame (C = (dyn Fy, dyn Fx, dyn Fz), see netshape.force.dynoware);
+1. read each recording and map the dynamometer channels to forces ON THE CUTTER in the cutting
+   frame of docs/conventions.md §2 (C = (dyn Fy, dyn Fx, dyn Fz), see netshape.force.dynoware);
 2. mean force over whole revolutions → Altintas mean-force regression → Ktc … Kae;
 3. per recording: the model with those coefficients, its angle offset found by a phase fit and the
    helix lag scanned (diameter and helix are not given: only the lag over the depth, a_p·tanβ/R,

@@ -1,4 +1,4 @@
-"""Design surface → offset → CL points → raster G-code, and a pocket with an island (seeds/003 §3).
+"""Design surface → offset → CL points → raster G-code, and a pocket with an island (Yang & Kweon §3).
 
     PYTHONPATH=python python examples/geometry_dome_raster.py [--out DIR] [--scallop 0.01]
 

@@ -1,4 +1,4 @@
-"""seeds/002 §4 reproduced: feed profiles of the right-angle blocks (Fig. 12) and of the three
+"""Lee & Lee §4 reproduced: feed profiles of the right-angle blocks (Fig. 12) and of the three
 semicircles (Fig. 14 f) and the per-axis profiles (Fig. 15), as PNG, with every corner rule compared.
 
     python examples/motion_seeds002.py [--out DIR]
@@ -35,7 +35,7 @@ def run(out: Path) -> dict:
 
     # Fig. 12: four 20 mm blocks at right angles, F5000
     sq = nm.plan(s.square_program(), lim, feed=5000 / 60, rule="paper", **common)
-    atomic_save_figure(plot_profiles(sq, title="seeds/002 Fig. 12: 4 × 20 mm at 90°, F5000, paper rule"),
+    atomic_save_figure(plot_profiles(sq, title="Lee & Lee Fig. 12: 4 × 20 mm at 90°, F5000, paper rule"),
                        out / "fig12_right_angle.png")
     corners = [float(sq.feed[np.argmin(np.linalg.norm(sq.position - c, axis=1))] * 60)
                for c in s.square_program()[1:-1]]
@@ -56,7 +56,7 @@ def run(out: Path) -> dict:
         summary["fig14"][rule] = {k: tr.stats[k] for k in ("cycle_time_s", "max_axis_accel_mm_s2",
                                                            "max_path_deviation_mm")}
         if rule == "paper":
-            atomic_save_figure(plot_profiles(tr, title="seeds/002 Fig. 14 (f) / 15: F4000, 3 semicircles, paper rule"),
+            atomic_save_figure(plot_profiles(tr, title="Lee & Lee Fig. 14 (f) / 15: F4000, 3 semicircles, paper rule"),
                                out / "fig15_axis_profiles.png")
             i = 3
             arc = []

@@ -1,4 +1,4 @@
-"""seeds/003's flow (Yang & Kweon, Fig. 4): NURBS design surface → CL points on its offset surface →
+"""Yang & Kweon's flow (Fig. 4; docs/references.md): NURBS design surface → CL points on its offset surface →
 volumetric error before compensation → compensated CL data → volumetric error after.
 
     python examples/volumetric_seeds003.py [--out DIR] [--n 41] [--machine examples/machines/seeds003_hmc.toml]
@@ -53,7 +53,7 @@ def run(out: Path, n: int = 41, machine_path: Path = HERE / "machines" / "seeds0
     surf = design_surface()
     us = np.linspace(0.0, 1.0, n)
     vs = np.linspace(0.0, 1.0, n)
-    # eq. (12): O(u, v) = Q(u, v) + f(d)·n(u, v), f(d) = 5 mm (ball radius; seeds/003 Fig. 5)
+    # eq. (12): O(u, v) = Q(u, v) + f(d)·n(u, v), f(d) = 5 mm (ball radius; Yang & Kweon Fig. 5)
     uv = np.array([[u, v] for u in us for v in vs])
     cl = ns.geometry.offset_points(surf, uv, offset)
     q = surf.evaluate(uv)
@@ -61,12 +61,12 @@ def run(out: Path, n: int = 41, machine_path: Path = HERE / "machines" / "seeds0
     # before compensation: where the tool centre actually goes for the nominal CL points
     before = ns.machine.error_map(machine, cl, shape=(n, n), label="CL before compensation")
     cmp_orders = ns.machine.compare_orders(machine, cl)
-    # compensation in the post-processor (seeds/003 §4.2)
+    # compensation in the post-processor (Yang & Kweon §4.2)
     cmd = ns.compensation.compensate_points(machine, cl, tolerance=tolerance)
     after_err = ns.machine.actual_points(machine, cmd) - cl
     after_ve = np.linalg.norm(after_err, axis=1)
 
-    # plots (seeds/003 Fig. 6, 7(a), 7(b), 8, 10)
+    # plots (Yang & Kweon Fig. 6, 7(a), 7(b), 8, 10)
     atomic_save_figure(ns.machine.plot_error_map(before, title="Volumetric error map on the CL points "
                                                  f"(before): {before.volumetric.min() * 1e3:.1f} – "
                                                  f"{before.volumetric.max() * 1e3:.1f} µm"),

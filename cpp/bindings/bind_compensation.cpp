@@ -7,7 +7,7 @@ namespace py = pybind11;
 
 namespace {
 
-// --- volumetric compensation (machine geometric errors, seeds/003) --------------------------------
+// --- volumetric compensation (machine geometric errors, Yang & Kweon) --------------------------------
 void bind_volumetric_compensation(py::module_& m) {
   using namespace netshape::compensation;
   using netshape::py_types::RefPoints3;

@@ -27,7 +27,7 @@ py::dict summary_dict(const nf::ForceSummary& s) {
 }  // namespace
 
 void bind_force(py::module_& m) {
-  py::enum_<nf::MillingMode>(m, "MillingMode", "Up, down or slot milling (DESIGN §2).")
+  py::enum_<nf::MillingMode>(m, "MillingMode", "Up, down or slot milling (docs/conventions.md §2).")
       .value("up", nf::MillingMode::up)
       .value("down", nf::MillingMode::down)
       .value("slot", nf::MillingMode::slot);
@@ -61,7 +61,7 @@ void bind_force(py::module_& m) {
       });
 
   py::class_<nf::KlineDevorCoefficients>(m, "KlineDevorCoefficients",
-                                         "Kline–DeVor K_T [N/mm²] and K_R [-] (seeds/000 eq. 1).")
+                                         "Kline–DeVor K_T [N/mm²] and K_R [-] (Cho & Suh eq. 1).")
       .def(py::init([](double kt, double kr) { return validated(nf::KlineDevorCoefficients{kt, kr}); }), "kt"_a,
            "kr"_a)
       .def_readwrite("kt", &nf::KlineDevorCoefficients::kt)
@@ -70,7 +70,7 @@ void bind_force(py::module_& m) {
       .def("to_linear_edge", &nf::KlineDevorCoefficients::to_linear_edge);
 
   py::class_<nf::BallEndCoefficients>(m, "BallEndCoefficients",
-                                      "Feng–Menq ball-end coefficients (seeds/001 eq. 6–7): K_T(ψ) = Σ a_i ψ^i, "
+                                      "Feng–Menq ball-end coefficients (Kim et al. eq. 6–7): K_T(ψ) = Σ a_i ψ^i, "
                                       "K_R(ψ) = Σ b_i ψ^i, exponents m_t, m_r.")
       .def(py::init([](std::array<double, 4> a, std::array<double, 4> b, double m_t, double m_r) {
              return validated(nf::BallEndCoefficients{a, b, m_t, m_r});
@@ -190,7 +190,7 @@ void bind_force(py::module_& m) {
       "model"_a, "angles"_a);
   m.def("rotation_angles", &nf::rotation_angles, "count"_a, "revolutions"_a = 1.0);
 
-  py::class_<nf::BallEndModel>(m, "BallEndModel", "Ball end mill force model (seeds/001).")
+  py::class_<nf::BallEndModel>(m, "BallEndModel", "Ball end mill force model (Kim et al.).")
       .def(py::init([](double radius, int flutes, double helix, double axial_depth, double feed_per_tooth,
                        double inclination, nf::AngularEngagement engagement, nf::BallEndCoefficients coefficients,
                        double element_angle, double disk_height) {

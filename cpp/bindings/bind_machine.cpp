@@ -106,7 +106,7 @@ void bind_machine(py::module_& m) {
   m.def("actual_points", &actual_points, py::arg("machine"), py::arg("commanded"),
         py::arg_v("order", Order::exact, "Order.exact"), "Where the tip lands, p + e(p) [mm], (n, 3) → (n, 3)");
   m.def("volumetric_error", &volumetric_error, py::arg("machine"), py::arg("points"),
-        py::arg_v("order", Order::exact, "Order.exact"), "|e(p)| [mm] (seeds/003 eq. 16), (n, 3) → (n,)");
+        py::arg_v("order", Order::exact, "Order.exact"), "|e(p)| [mm] (Yang & Kweon eq. 16), (n, 3) → (n,)");
   m.def("rotation_zyx", &rotation_zyx, py::arg("a"), py::arg("b"), py::arg("c"),
         "Rz(c)·Ry(b)·Rx(a) [rad] → (3, 3)");
 }

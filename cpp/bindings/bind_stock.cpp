@@ -138,7 +138,7 @@ void bind_stock(py::module_& m) {
         Vec3 x, y;
         cutting_frame(f, x, y);
         return py::make_tuple(x, y);
-      }, py::arg("feed_direction"), "(X_c, Y_c) unit axes of the cutting frame (DESIGN §2)");
+      }, py::arg("feed_direction"), "(X_c, Y_c) unit axes of the cutting frame (docs/conventions.md §2)");
   m.def("element_point", &element_point, py::arg("cutter"), py::arg("tip"), py::arg("feed_direction"), py::arg("phi"),
         py::arg("z"), "point (3,) [mm] of the element at immersion phi [rad], height z [mm] above the tip");
   m.def("engaged_elements", &engaged_elements, py::arg("zmap"), py::arg("cutter"), py::arg("tip"),

@@ -1,5 +1,5 @@
 // The extension module netshape._core. Each area binds itself in bind_<area>.cpp; they are called
-// here in the order data flows (DESIGN §1), so an area may use the types of the areas before it.
+// here in the order data flows (README, "Areas"), so an area may use the types of the areas before it.
 #include <pybind11/pybind11.h>
 
 #include "netshape/core/error.hpp"

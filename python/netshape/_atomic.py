@@ -1,4 +1,4 @@
-"""Write output files whole or not at all (DESIGN §5): write a temporary file beside the target,
+"""Write output files whole or not at all (docs/conventions.md §6): write a temporary file beside the target,
 then rename it over the target."""
 
 from __future__ import annotations

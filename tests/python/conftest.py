@@ -1,5 +1,6 @@
-"""Shared fixtures. `shared_data` is ../shared/data beside the checkout (DESIGN §4.11): tests that
-need it skip, with the reason, where it is absent."""
+"""Shared fixtures. `shared_data` is ../shared/data beside the checkout (public programs and
+measurements, each folder with a README on its source and licence): tests that need it skip, with the
+reason, where it is absent."""
 
 from __future__ import annotations
 

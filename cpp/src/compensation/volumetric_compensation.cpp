@@ -286,7 +286,7 @@ VolumetricResult compensate_points_status(const Machine& machine, const Eigen::R
         if (second[l]) {
           // Second-order step from the same evaluation: with the step d = −s of the linear model, the
           // residual left at P + d is ≈ ½ H[d, d] (curvature of the error functions and the Abbe arms'
-          // growth; ~1e-8 mm on seeds/003's HMC); subtract (I + J)⁻¹ ½ H[d, d] as well. Only a better
+          // growth; ~1e-8 mm on Yang & Kweon's HMC); subtract (I + J)⁻¹ ½ H[d, d] as well. Only a better
           // start: the next evaluation checks the residual exactly as before.
           const double d[3] = {-s0, -s1, -s2};
           const double(&cv)[18][machine::batch_lanes] = data.lane_curvature;

@@ -49,7 +49,7 @@ BallEndCoefficientSet ball_end_coefficient_set(const std::string& name) {
     s.helix = deg2rad(30.0);
     s.source =
         "G. M. Kim, P. J. Cho, B. H. Kim, C. N. Chu, 'Cutting force prediction in the ball-end milling "
-        "process of various cutting area using Z-map' (seeds/001) §4.2: zinc alloy ZAS, 600 rpm";
+        "process of various cutting area using Z-map' §4.2 (docs/references.md): zinc alloy ZAS, 600 rpm";
     return s;
   }
   throw std::invalid_argument("coefficient_set = " + name + ": unknown ball-end coefficient set (known: kim_zas_ball12)");

@@ -134,7 +134,7 @@ NETSHAPE_ALWAYS_INLINE void element_step(const LoopConstants& L, const typename 
     sy += ft * sp - fr * cp;
     sz += (P::splat(L.k.kac) * h + P::splat(L.k.kae)) * w;
   } else {
-    // seeds/000 eq. 1-5 in its own angle α = π − φ: t_c = f sin α, dF_T = K_T t_c D_z,
+    // Cho & Suh eq. 1-5 in its own angle α = π − φ: t_c = f sin α, dF_T = K_T t_c D_z,
     // dF_R = K_R dF_T, Fx = Σ(−dF_R sin α + dF_T cos α), Fy = Σ(dF_R cos α + dF_T sin α).
     const V sa = sp, ca = -cp;
     V tc = P::splat(L.c) * sa;

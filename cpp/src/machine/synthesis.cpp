@@ -1,5 +1,5 @@
 // Error synthesis along the two chains of a machine: exact product of homogeneous transforms and
-// its first-order expansion (seeds/003 eq. 9-11 generalised). The exact path tracks the deviation
+// its first-order expansion (Yang & Kweon eq. 9-11 generalised). The exact path tracks the deviation
 // d = W - W_nominal directly, using R - I computed without cancellation, so small errors keep full
 // relative precision.
 #include "netshape/machine/synthesis.hpp"

@@ -9,7 +9,7 @@ import typing
 __all__: list[str] = ['AngularEngagement', 'BallEndCoefficientSet', 'BallEndCoefficients', 'BallEndFit', 'BallEndModel', 'BallEndWorkspace', 'EngagementMap', 'FlatCoefficientModel', 'FlatEndModel', 'FlatEndWorkspace', 'KlineDevorCoefficients', 'LinearEdgeCoefficientSet', 'LinearEdgeCoefficients', 'LinearEdgeFit', 'MillingMode', 'ProgramForceOptions', 'TimeSeriesFit', 'ball_end_coefficient_set', 'ball_end_coefficient_set_names', 'ball_end_forces', 'ball_end_mean_slot_force', 'fit_ball_end_mean_forces', 'fit_linear_edge_mean_forces', 'fit_linear_edge_time_series', 'flat_end_forces', 'flat_end_moments', 'linear_edge_basis', 'linear_edge_coefficient_set', 'linear_edge_coefficient_set_names', 'mean_force', 'mean_force_matrix', 'milling_mode_from_string', 'resultant', 'rotation_angles', 'simulate_program_core', 'summarize', 'summarize_revolutions']
 class MillingMode:
     """
-    Up, down or slot milling (DESIGN §2).
+    Up, down or slot milling (docs/conventions.md §2).
     
     Members:
     
@@ -154,7 +154,7 @@ class LinearEdgeCoefficients:
         ...
 class KlineDevorCoefficients:
     """
-    Kline–DeVor K_T [N/mm²] and K_R [-] (seeds/000 eq. 1).
+    Kline–DeVor K_T [N/mm²] and K_R [-] (Cho & Suh eq. 1).
     """
     def __init__(self, kt: typing.SupportsFloat | typing.SupportsIndex, kr: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
@@ -176,7 +176,7 @@ class KlineDevorCoefficients:
         ...
 class BallEndCoefficients:
     """
-    Feng–Menq ball-end coefficients (seeds/001 eq. 6–7): K_T(ψ) = Σ a_i ψ^i, K_R(ψ) = Σ b_i ψ^i, exponents m_t, m_r.
+    Feng–Menq ball-end coefficients (Kim et al. eq. 6–7): K_T(ψ) = Σ a_i ψ^i, K_R(ψ) = Σ b_i ψ^i, exponents m_t, m_r.
     """
     def __init__(self, a: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(4)"], b: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(4)"], m_t: typing.SupportsFloat | typing.SupportsIndex, m_r: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
@@ -359,7 +359,7 @@ class FlatEndWorkspace:
         ...
 class BallEndModel:
     """
-    Ball end mill force model (seeds/001).
+    Ball end mill force model (Kim et al.).
     """
     coefficients: BallEndCoefficients
     engagement: AngularEngagement

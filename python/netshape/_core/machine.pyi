@@ -434,5 +434,5 @@ def tip_error(machine: Machine, points: typing.Annotated[numpy.typing.NDArray[nu
     """
 def volumetric_error(machine: Machine, points: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], order: Order = ...) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
     """
-    |e(p)| [mm] (seeds/003 eq. 16), (n, 3) → (n,)
+    |e(p)| [mm] (Yang & Kweon eq. 16), (n, 3) → (n,)
     """

@@ -217,7 +217,7 @@ class Immersion:
         ...
 def cutting_frame(feed_direction: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]]:
     """
-    (X_c, Y_c) unit axes of the cutting frame (DESIGN §2)
+    (X_c, Y_c) unit axes of the cutting frame (docs/conventions.md §2)
     """
 def element_point(cutter: netshape._core.cutter.Cutter, tip: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], feed_direction: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], phi: typing.SupportsFloat | typing.SupportsIndex, z: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
     """

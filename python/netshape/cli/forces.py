@@ -1,4 +1,5 @@
-"""`netshape forces`: cutting forces on the cutter over one or more revolutions (DESIGN §2 frame)."""
+"""`netshape forces`: cutting forces on the cutter over one or more revolutions
+(frame and signs: docs/conventions.md)."""
 
 from __future__ import annotations
 
@@ -7,8 +8,8 @@ import math
 
 _DESCRIPTION = """\
 Simulate the cutting forces ON THE CUTTER of a flat or ball end mill over whole revolutions and
-write them as CSV (angle_deg,fx_N,fy_N,fz_N). Frame (DESIGN §2): X along the feed, Z along the tool
-axis from the tip into the spindle, Y = Z x X; the cutter turns clockwise seen from the spindle; the
+write them as CSV (angle_deg,fx_N,fy_N,fz_N). Frame (docs/conventions.md §2): X along the feed, Z along
+the tool axis from the tip into the spindle, Y = Z x X; the cutter turns clockwise seen from the spindle; the
 angle is the immersion of flute 1 at the tool tip, clockwise from +Y.
 """
 
@@ -19,7 +20,7 @@ examples:
       --coefficients Ktc=958.8,Krc=251.1,Kac=146.4,Kte=15.8,Kre=19.4,Kae=18.2 --csv slot.csv --plot slot.png
   netshape forces --tool ball --diameter 12 --flutes 2 --helix 30 --rpm 600 --feed-per-tooth 0.05 \\
       --ap 3 --ae 12 --mode slot --coefficient-set kim_zas_ball12 --csv ball.csv
-named coefficient sets: flat: leekunhwee_flat_slot; ball: kim_zas_ball12 (seeds/001).
+named coefficient sets: flat: leekunhwee_flat_slot; ball: kim_zas_ball12 (Kim et al.).
 """
 
 

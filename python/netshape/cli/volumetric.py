@@ -1,4 +1,4 @@
-"""`netshape volumetric` — machine volumetric error maps and compensated programs (seeds/003)."""
+"""`netshape volumetric` — machine volumetric error maps and compensated programs (Yang & Kweon)."""
 
 from __future__ import annotations
 
@@ -40,14 +40,14 @@ def register(sub) -> None:
     vs = p.add_subparsers(dest="volumetric_command", metavar="ACTION")
     m = vs.add_parser("map", help="volumetric error over a grid of the workspace",
                       description="Tool-tip error relative to the workpiece over a regular grid of the "
-                      "axes' travel (exact product of transforms; seeds/003 eq. 16 for |error|).")
+                      "axes' travel (exact product of transforms; Yang & Kweon eq. 16 for |error|).")
     m.add_argument("machine", metavar="MACHINE.toml", help="machine description")
     m.add_argument("--grid", type=_grid, default=(9, 9, 5), metavar="NX,NY,NZ",
                    help="grid points per axis over the travel (default 9,9,5)")
     m.add_argument("--program", metavar="PROGRAM",
                    help="map along this G-code program (block end points, arcs split at 0.01 mm) "
                    "instead of the grid")
-    m.add_argument("--plot", metavar="OUT.png", help="write the error map plot (seeds/003 Fig. 6)")
+    m.add_argument("--plot", metavar="OUT.png", help="write the error map plot (Yang & Kweon Fig. 6)")
     m.add_argument("--json", metavar="OUT.json", help="write summary and per-point errors [mm] as JSON")
     m.set_defaults(func=run)
     c = vs.add_parser("compensate", help="compensate a G-code program",

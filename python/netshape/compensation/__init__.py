@@ -1,6 +1,6 @@
 """netshape.compensation — programs rewritten so the part comes out right (C++ netshape::compensation).
 
-Volumetric compensation of machine geometric errors (seeds/003): :mod:`.volumetric`.
+Volumetric compensation of machine geometric errors (Yang & Kweon): :mod:`.volumetric`.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Volumetric compensation (seeds/003 §4.2): commanded points and G-code programs such that the
+"""Volumetric compensation (Yang & Kweon §4.2): commanded points and G-code programs such that the
 actual tool tip of a machine with geometric errors lands on the nominal path.
 
     m = ns.machine.load_machine("machine.toml")

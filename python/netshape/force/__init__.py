@@ -1,8 +1,8 @@
-"""netshape.force — mechanistic cutting-force models, engagement and calibration (DESIGN §4.2).
+"""netshape.force — mechanistic cutting-force models, engagement and calibration (docs/force.md).
 
-Frame and signs (DESIGN §2): X along the feed, Z along the tool axis from the tip into the spindle,
-Y = Z × X; the cutter turns clockwise seen from the spindle; the immersion φ of a flute is measured
-clockwise from +Y; forces are those acting ON THE CUTTER [N]. Angles in the API are radians.
+Frame and signs (docs/conventions.md §2–3): X along the feed, Z along the tool axis from the tip into
+the spindle, Y = Z × X; the cutter turns clockwise seen from the spindle; the immersion φ of a flute is
+measured clockwise from +Y; forces are those acting ON THE CUTTER [N]. Angles in the API are radians.
 
 C++ core (``netshape._core.force``): :class:`FlatEndModel` / :class:`FlatEndWorkspace`,
 :class:`BallEndModel` / :class:`BallEndWorkspace`, coefficient types and named sets, engagement,

@@ -36,7 +36,7 @@ def recording_mean_force(times: np.ndarray, forces: np.ndarray, rpm: float) -> n
 def calibrate_mean_forces(feeds, mean_forces, *, flutes: int, axial_depth: float,
                           engagement: "_f.AngularEngagement | None" = None) -> "_f.LinearEdgeFit":
     """Mean-force regression (Altintas): feeds (n,) [mm/tooth], mean forces on the cutter (n, 3) [N]
-    in the DESIGN frame → LinearEdgeFit (coefficients, r2 per axis, residuals)."""
+    in the cutting frame (docs/conventions.md §2) → LinearEdgeFit (coefficients, r2 per axis, residuals)."""
     e = engagement if engagement is not None else _f.AngularEngagement(0.0, math.pi)
     return _f.fit_linear_edge_mean_forces(e, int(flutes), float(axial_depth), np.asarray(feeds, float),
                                           np.ascontiguousarray(mean_forces, dtype=float))

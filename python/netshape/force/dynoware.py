@@ -6,7 +6,8 @@ Layout: header lines ``key:,value`` (DynoWare version, file names, ``Sampling ra
 
 Frames. A dynamometer measures the force on the WORKPIECE, W = −C (C = force on the cutter). Its axes
 are the instrument's: for the Kistler 9257B family Z points down into the plate. netshape's force
-models give C in the cutting frame of DESIGN §2 (X feed, Z tool axis up into the spindle, Y = Z × X).
+models give C in the cutting frame of docs/conventions.md §2 (X feed, Z tool axis up into the
+spindle, Y = Z × X).
 Readings map to the cutting frame by a 3×3 matrix T with C = T·F_dyn, which combines the sign flip
 W → C with the mounting of the plate. For the leekunhwee-flat-slot recordings (its README: ref
 Fy = dyn Fx, ref Fx = dyn Fy, X = feed) the plate axes are e_dx = −Y, e_dy = −X, e_dz = −Z (a proper
@@ -78,7 +79,7 @@ def read_dynoware(path: str | os.PathLike, to_cutter: np.ndarray | str | None = 
     path : file name.
     to_cutter : None (keep the dynamometer channels), ``"leekunhwee"`` (the mapping of the
         leekunhwee-flat-slot set-up) or a (3, 3) matrix T with C = T·F_dyn giving the force on the
-        cutter in the DESIGN §2 cutting frame.
+        cutter in the cutting frame of docs/conventions.md §2.
 
     Returns
     -------

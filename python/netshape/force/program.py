@@ -1,4 +1,4 @@
-"""Force along a program on a Z-map stock (DESIGN §4.2 "per path position")."""
+"""Force along a program on a Z-map stock (docs/force.md "per path position")."""
 
 from __future__ import annotations
 

@@ -314,7 +314,7 @@ def _sub_toolpath(tp, blocks):
 
 
 def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> DeflectionResult:
-    """Wall error from tool deflection along the program (seeds/000: cantilever tool, surface
+    """Wall error from tool deflection along the program (Cho & Suh: cantilever tool, surface
     generation, Z-map engagement) and, when asked, the deflection-compensated program.
 
     The program is cut in order on a copy of the stock; every contour (a run of XY cutting moves at one

@@ -1,13 +1,13 @@
 """netshape.machine — a 3-axis machine's geometric errors (ISO 230-1) and their synthesis into the
-tool-tip error relative to the workpiece (seeds/003 §2, §4; C++ netshape::machine).
+tool-tip error relative to the workpiece (Yang & Kweon §2, §4; C++ netshape::machine).
 
     import netshape as ns
     m = ns.machine.load_machine("examples/machines/seeds003_hmc.toml")
     e = ns.machine.tip_error(m, points)              # (n, 3) mm, exact product of transforms
-    emap = ns.machine.grid_error_map(m, (9, 9, 5))    # seeds/003 eq. 16 over the workspace
-    fig = ns.machine.plot_error_map(emap)             # seeds/003 Fig. 6
+    emap = ns.machine.grid_error_map(m, (9, 9, 5))    # Yang & Kweon eq. 16 over the workspace
+    fig = ns.machine.plot_error_map(emap)             # Yang & Kweon Fig. 6
 
-seeds/003 symbols → ISO 230-1 names (docs/machine.md): δ_ij → E{I}{J} (δ_xx → EXX, δ_yx → EYX …),
+Yang & Kweon symbols → ISO 230-1 names (docs/machine.md): δ_ij → E{I}{J} (δ_xx → EXX, δ_yx → EYX …),
 ε_ij → E{A,B,C for i = x,y,z}{J} (ε_xx → EAX, ε_yx → EBX, ε_zx → ECX …), S_xy → EC0Y,
 S_yz → EA0Z, S_zx → −EB0Z, ε_xs/ε_ys → spindle_tilt_a/b, L → tool_length, T → spindle_nose.
 """
@@ -42,7 +42,7 @@ ideal_machine = _m.ideal_machine
 component_name = _m.component_name
 rotation_zyx = _m.rotation_zyx
 
-#: seeds/003 symbol → (ISO 230-1 name, sign) for the paper's HMC. Its Z axis is on the workpiece
+#: Yang & Kweon symbol → (ISO 230-1 name, sign) for the paper's HMC. Its Z axis is on the workpiece
 #: side, where the paper writes the table's own motion and netshape the tool's motion relative to the
 #: workpiece (ISO 230-1 sense): δ_iz(z_table) = −E·Z(q) and ε_iz = −E·Z to first order, with the
 #: table position z_table = −q (docs/machine.md).

@@ -12,8 +12,8 @@ Format (docs/machine.md has a full example)::
     direction = [0.0, 0.0, -1.0]    # unit vector gauge point → tip
 
     [spindle]
-    tilt_a_rad = 0.0                # about X (seeds/003 ε_xs)
-    tilt_b_rad = 0.0                # about Y (seeds/003 ε_ys)
+    tilt_a_rad = 0.0                # about X (Yang & Kweon ε_xs)
+    tilt_b_rad = 0.0                # about Y (Yang & Kweon ε_ys)
 
     [squareness]                    # ISO 230-1; reference axes: EC0Y → X, EB0Z → X, EA0Z → Y
     EC0Y_rad = 0.0

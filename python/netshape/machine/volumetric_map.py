@@ -1,5 +1,5 @@
-"""Volumetric error maps (seeds/003 eq. 16) over a grid and along a program, and their plots
-(seeds/003 Fig. 6–7). Plots return matplotlib Figures (Agg) and never show them."""
+"""Volumetric error maps (Yang & Kweon eq. 16) over a grid and along a program, and their plots
+(Yang & Kweon Fig. 6–7). Plots return matplotlib Figures (Agg) and never show them."""
 
 from __future__ import annotations
 
@@ -40,7 +40,7 @@ def actual_points(machine: _m.Machine, commanded: Any, order: str = "exact") -> 
 
 
 def volumetric_error(machine: _m.Machine, points: Any, order: str = "exact") -> np.ndarray:
-    """VE = |e(p)| [mm] (seeds/003 eq. 16), (n, 3) → (n,)."""
+    """VE = |e(p)| [mm] (Yang & Kweon eq. 16), (n, 3) → (n,)."""
     return _m.volumetric_error(machine, _points(points), _order(order))
 
 
@@ -149,7 +149,7 @@ def program_error_map(machine: _m.Machine, program: Any, chord_tolerance: float 
 
 
 def plot_error_map(emap: ErrorMap, scale: float | None = None, title: str | None = None):
-    """seeds/003 Fig. 6: the workspace points coloured by volumetric error [µm] with the error
+    """Yang & Kweon Fig. 6: the workspace points coloured by volumetric error [µm] with the error
     vectors drawn ×``scale`` (default: the longest arrow is 10 % of the workspace diagonal)."""
     import matplotlib
 
@@ -178,7 +178,7 @@ def plot_error_map(emap: ErrorMap, scale: float | None = None, title: str | None
 
 def plot_surface_error(surface: Any, errors: Any, scale: float = 10.0, title: str | None = None,
                        compensated: Any = None):
-    """seeds/003 Fig. 7/9/10: a gridded surface (nu, nv, 3) [mm] as a solid wireframe and the same
+    """Yang & Kweon Fig. 7/9/10: a gridded surface (nu, nv, 3) [mm] as a solid wireframe and the same
     surface moved by its errors (nu, nv, 3) [mm] ×``scale`` dashed; optionally a second error
     field ``compensated`` (after compensation) in red."""
     import matplotlib

@@ -1,10 +1,11 @@
-"""netshape.stock — the Z-map workpiece (C++ ``netshape::stock``; DESIGN §4.3, seeds/001 §2).
+"""netshape.stock — the Z-map workpiece (C++ ``netshape::stock``; docs/stock.md;
+Kim et al. §2, docs/references.md).
 
 A :class:`ZMap` is a regular grid of material heights [mm] over a rectangle of the machine XY plane.
 Sweeping a cutter (flat, ball, bull-nose; tool axis +Z) along lines, polylines, blocks or whole
 programs lowers every node to the lowest point the cutter's tip surface reaches over the move,
 computed exactly per node (not sampled). Engagement queries say which cutter elements are in
-material at a cutter position, in the cutting frame of DESIGN §2.
+material at a cutter position, in the cutting frame of docs/conventions.md §2.
 
     import numpy as np
     import netshape as ns

@@ -26,7 +26,7 @@ TEST_CASE("cutter profile: flat, ball and bull-nose envelopes") {
   CHECK(bull.radius_at(0.5) == doctest::Approx(4.0 + std::sqrt(1 - 0.25)));
 }
 
-TEST_CASE("cutter helix lag constant: seeds/000 §5, D = 25 mm, 60° helix, z = 1.25 mm gives 9.92°") {
+TEST_CASE("cutter helix lag constant: Cho & Suh §5, D = 25 mm, 60° helix, z = 1.25 mm gives 9.92°") {
   const Cutter c = Cutter::flat_end(25.0, 2, netshape::deg2rad(60));
   const double lag_deg = netshape::rad2deg(1.25 * c.helix_lag());
   CHECK(lag_deg == doctest::Approx(9.92).epsilon(5e-4));

@@ -1,4 +1,4 @@
-// Ball end mill model: steady side cuts meet the wall at each element's own radius (DESIGN §2).
+// Ball end mill model: steady side cuts meet the wall at each element's own radius (docs/conventions.md §2).
 #include <doctest/doctest.h>
 
 #include <algorithm>

@@ -24,7 +24,7 @@ FlatEndModel slot_model() {
 }
 }  // namespace
 
-TEST_CASE("seeds/000 §5: helix lag at mid depth of a D=25 mm, 60° cutter is 9.92° (printed 9.915°)") {
+TEST_CASE("Cho & Suh §5: helix lag at mid depth of a D=25 mm, 60° cutter is 9.92° (printed 9.915°)") {
   FlatEndModel m;
   m.radius = 12.5;
   m.helix = deg2rad(60.0);
@@ -32,7 +32,7 @@ TEST_CASE("seeds/000 §5: helix lag at mid depth of a D=25 mm, 60° cutter is 9.
   CHECK(std::abs(rad2deg(m.k_beta() * 1.25) - 9.915) < 0.01);
 }
 
-TEST_CASE("Altintas closed-form mean slot forces equal the simulated mean (DESIGN frame)") {
+TEST_CASE("Altintas closed-form mean slot forces equal the simulated mean (docs/conventions.md §2 frame)") {
   const FlatEndModel m = slot_model();
   const VectorXd th = rotation_angles(3600);
   const Points3 F = flat_end_forces(m, th);
@@ -65,7 +65,7 @@ TEST_CASE("up and down milling mean forces equal the general closed form") {
   }
 }
 
-TEST_CASE("Kline-DeVor (seeds/000 eq. 1-5, α = π − φ) equals the linear edge model with ktc=KT, krc=KR·KT") {
+TEST_CASE("Kline-DeVor (Cho & Suh eq. 1-5, α = π − φ) equals the linear edge model with ktc=KT, krc=KR·KT") {
   FlatEndModel a = slot_model();
   a.engagement = AngularEngagement::from_mode(MillingMode::down, 5.0, 3.0);
   FlatEndModel b = a;

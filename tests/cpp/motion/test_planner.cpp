@@ -1,4 +1,4 @@
-// netshape::motion: corner rules, profiles, the streaming planner and the seeds/002 square test.
+// netshape::motion: corner rules, profiles, the streaming planner and the Lee & Lee square test.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -152,7 +152,7 @@ TEST_CASE("junction deviation: the corner speed is capped by both blocks' nomina
   }
 }
 
-TEST_CASE("seeds/002 Fig. 12: four 20 mm blocks at right angles, corner feed = allowable difference") {
+TEST_CASE("Lee & Lee Fig. 12: four 20 mm blocks at right angles, corner feed = allowable difference") {
   PlanOptions o;
   o.rule = CornerRule::paper;
   o.ts1 = 4e-4;

@@ -12,7 +12,7 @@ using netshape::VectorXd;
 using netshape::cutter::Cutter;
 using netshape::stock::ZMap;
 
-TEST_CASE("engagement: the cutting frame of DESIGN §2") {
+TEST_CASE("engagement: the cutting frame of docs/conventions.md §2") {
   const Cutter c = Cutter::flat_end(10.0, 2, 0.5);
   // feed along +Y of the machine: X_c = +Y, Y_c = Z × X_c = −X
   const Vec3 tip(1.0, 2.0, 3.0), feed(0.0, 2.0, 0.5);

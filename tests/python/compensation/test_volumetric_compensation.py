@@ -1,4 +1,5 @@
-"""Volumetric compensation of points and of G-code programs (seeds/003 §4.2)."""
+"""Volumetric compensation of points and of G-code programs (S.-H. Yang & S.-H. Kweon, "Volumetric error
+compensation of a 3-axis horizontal machining center in the post-processor", §4.2; docs/references.md)."""
 
 from __future__ import annotations
 

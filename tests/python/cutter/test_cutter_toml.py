@@ -27,7 +27,7 @@ def test_load_save_round_trip(tmp_path):
     assert c.kind == ns.cutter.CutterKind.bull
     assert c.radius == 5.0 and c.corner_radius == 1.0 and c.flutes == 3
     assert c.helix == pytest.approx(math.radians(30))
-    # seeds/000 §5: D = 25 mm, 60° helix, at z = 1.25 mm the lag z·tanβ/R is 9.92°
+    # Cho & Suh §5: D = 25 mm, 60° helix, at z = 1.25 mm the lag z·tanβ/R is 9.92°
     d25 = ns.cutter.Cutter.flat_end(25.0, 2, math.radians(60))
     assert math.degrees(1.25 * d25.helix_lag()) == pytest.approx(9.92, abs=0.005)
     out = tmp_path / "out.toml"

@@ -1,5 +1,6 @@
-"""Ball end mill model after seeds/001 (Kim, Cho, Kim & Chu): published coefficient set, eq. 3–8,
-ramp cuts, and the §4.2 fitting procedure."""
+"""Ball end mill model after G. M. Kim, P. J. Cho, B. H. Kim & C. N. Chu, "Cutting force prediction in
+the ball-end milling process of various cutting area using Z-map" (Kim et al.; docs/references.md):
+published coefficient set, eq. 3–8, ramp cuts, and the §4.2 fitting procedure."""
 
 from __future__ import annotations
 
@@ -14,7 +15,7 @@ PUB = nf.ball_end_coefficient_set("kim_zas_ball12")
 
 
 def test_published_set_and_polynomials():
-    """seeds/001 §4.2: K_T = 321.7 + 803.1ψ − 1165.5ψ² + 550.7ψ³, K_R = 104.1 + 139.1ψ − 213.1ψ² + 69.3ψ³,
+    """Kim et al. §4.2: K_T = 321.7 + 803.1ψ − 1165.5ψ² + 550.7ψ³, K_R = 104.1 + 139.1ψ − 213.1ψ² + 69.3ψ³,
     m_T = 0.7053, m_R = 0.4788; D = 12 mm, 2 flutes, 30° helix."""
     k = PUB.coefficients
     assert PUB.diameter == 12.0 and PUB.flutes == 2 and PUB.helix == pytest.approx(math.radians(30))
@@ -29,9 +30,10 @@ def test_published_set_and_polynomials():
 
 
 def _reference(theta, R, N, beta, ap, f, k, xi, dpsi_deg=1.0):
-    """Independent NumPy evaluation of seeds/001 eq. 1, 4, 5, 6 (the paper's asin/acos form of the
-    rotated-frame angles) with the DESIGN projection; elements over the whole hemisphere, engaged
-    where the element is in front of the inclined feed and below a_p in the rotated frame."""
+    """Independent NumPy evaluation of Kim et al. eq. 1, 4, 5, 6 (the paper's asin/acos form of the
+    rotated-frame angles) with the projection of docs/conventions.md §3; elements over the whole
+    hemisphere, engaged where the element is in front of the inclined feed and below a_p in the rotated
+    frame."""
     n = int(round(90 / dpsi_deg))
     dpsi = (math.pi / 2) / n
     psi = (np.arange(n) + 0.5) * dpsi          # position angle (0 equator … π/2 tip)
@@ -88,7 +90,7 @@ def test_mean_slot_force_closed_form_equals_simulation():
 
 
 def test_seeds001_table1_fit_recovers_published_set():
-    """seeds/001 §4.2 (Table 1): slot tests over a_p 0.3–6 mm and f 0.01–0.075 mm/tooth. Mean forces
+    """Kim et al. §4.2 (Table 1): slot tests over a_p 0.3–6 mm and f 0.01–0.075 mm/tooth. Mean forces
     synthesised by simulating the published set over a revolution, then fitted: the coefficients and
     exponents come back."""
     depths, feeds, fx, fy = [], [], [], []

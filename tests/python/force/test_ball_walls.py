@@ -1,7 +1,7 @@
 """Steady side cuts of a ball end mill: each element's window comes from its own radius r(z) and the
-wall at R − a_e from the axis (DESIGN §2), checked against the engagement that a Z-map of a box
-pre-cut to that wall gives (netshape.stock.engaged_elements, the seeds/001 §3.2 reading), against an
-independent NumPy evaluation of seeds/001 eq. 1, 4–6 with the wall, and flat end mills unchanged."""
+wall at R − a_e from the axis (docs/conventions.md §2), checked against the engagement that a Z-map of a box
+pre-cut to that wall gives (netshape.stock.engaged_elements, the Kim et al. §3.2 reading), against an
+independent NumPy evaluation of Kim et al. eq. 1, 4–6 with the wall, and flat end mills unchanged."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import pytest
 import netshape.force as nf
 from netshape import stock as st
 
-PUB = nf.ball_end_coefficient_set("kim_zas_ball12")  # seeds/001 §4.2: D 12 mm, 2 flutes, 30°
+PUB = nf.ball_end_coefficient_set("kim_zas_ball12")  # Kim et al. §4.2: D 12 mm, 2 flutes, 30°
 R = 6.0
 HELIX = math.radians(30.0)
 SPACING = 0.01   # Z-map node spacing [mm]: the wall lands within SPACING/2 of R − a_e
@@ -82,7 +82,7 @@ def test_ball_steady_cut_equals_zmap_wall(mode, ae, ap):
 
 
 def test_issue_cut_against_zmap_and_old_full_radius_window():
-    """seeds/001 set, down milling, a_e 3, a_p 2, c 0.08 (issue 24): the mean force follows the
+    """Kim et al. set, down milling, a_e 3, a_p 2, c 0.08 (issue 24): the mean force follows the
     Z-map, and the old reading (every element with the window of the full radius R, which the map
     `from_window` reproduces) is 3–4× larger."""
     cutter = st.Cutter.ball_end(2 * R, 2, HELIX)
@@ -115,7 +115,7 @@ def test_full_width_side_cut_equals_slot():
 
 
 def _reference_wall(theta, ap, f, k, xi, wall_y, up, dpsi_deg=0.5):
-    """Independent NumPy evaluation of seeds/001 eq. 1, 4, 5, 6 (asin/acos form, ball part only,
+    """Independent NumPy evaluation of Kim et al. eq. 1, 4, 5, 6 (asin/acos form, ball part only,
     a_p ≤ R) with a straight wall parallel to the feed: an element cuts where it is ahead of the
     inclined feed, below a_p in the rotated frame, and on the material side of y = wall_y."""
     n = int(round(90 / dpsi_deg))

@@ -78,7 +78,7 @@ def test_unknown_set(tmp_path, capsys):
 
 
 def test_ball_side_cut_wall_per_element(tmp_path):
-    """Issue 24 cut (seeds/001 set, D 12, down milling, ae 3, ap 2, c 0.08): every ball element meets the
+    """Issue 24 cut (Kim et al. set, D 12, down milling, ae 3, ap 2, c 0.08): every ball element meets the
     wall 3 mm from the axis at its own radius; the mean force is the one of the elements a straight wall
     reaches (≈ (6.0, 7.5) N by an independent evaluation quoted in the issue), not the full-radius
     window's (19.05, 30.27) N."""

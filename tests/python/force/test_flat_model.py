@@ -1,4 +1,6 @@
-"""Flat end mill model: published numbers (seeds/000), closed forms (Altintas), convergence, signs."""
+"""Flat end mill model: published numbers (J.-H. Cho & S.-H. Suh, "Path compensation toward direct shape
+control: dealing with tool deflection problem in 2D contour machining"), closed forms (Y. Altintas,
+Manufacturing Automation, ch. 2), convergence, signs. Full references: docs/references.md."""
 
 from __future__ import annotations
 
@@ -19,7 +21,7 @@ def model(mode="slot", ae=10.0, dz=0.02, helix=30.0, c=0.1, k=K, R=5.0, ap=3.0, 
 
 
 def test_seeds000_helix_lag():
-    """seeds/000 §5: D = 25 mm, 60° helix, A = 2.5 mm; the lag at mid depth z = 1.25 mm is
+    """Cho & Suh §5: D = 25 mm, 60° helix, A = 2.5 mm; the lag at mid depth z = 1.25 mm is
     z·tanβ/R = 9.92° (the paper prints 9.915°)."""
     m = nf.FlatEndModel(radius=12.5, helix=math.radians(60), axial_depth=2.5)
     lag = math.degrees(m.k_beta() * 1.25)
@@ -28,8 +30,9 @@ def test_seeds000_helix_lag():
 
 
 def test_altintas_slot_mean_closed_form():
-    """Altintas, Manufacturing Automation ch. 2, slot (φ 0…π), in the DESIGN frame (forces on the
-    cutter, φ clockwise from +Y): F̄x = −N a krc c/4 − N a kre/π, F̄y = N a ktc c/4 + N a kte/π,
+    """Altintas, Manufacturing Automation ch. 2, slot (φ 0…π), in the cutting frame of
+    docs/conventions.md §2 (forces on the cutter, φ clockwise from +Y):
+    F̄x = −N a krc c/4 − N a kre/π, F̄y = N a ktc c/4 + N a kte/π,
     F̄z = N a kac c/π + N a kae/2. The simulated mean equals them."""
     m = model()
     F = nf.flat_end_forces(m, nf.rotation_angles(3600))
@@ -43,7 +46,8 @@ def test_altintas_slot_mean_closed_form():
 
 @pytest.mark.parametrize("mode", ["up", "down"])
 def test_up_down_mean_closed_form(mode):
-    """General closed form N a/(2π) ∫ over [φst, φex] (DESIGN §2 windows) equals the simulated mean."""
+    """General closed form N a/(2π) ∫ over [φst, φex] (windows of docs/conventions.md §2) equals the
+    simulated mean."""
     m = model(mode, ae=2.0)
     F = nf.flat_end_forces(m, nf.rotation_angles(7200))
     cf = nf.mean_force(m.linear_edge, m.engagement, 0.1, 2, 3.0)
@@ -107,7 +111,7 @@ def test_matches_exact_helical_integral_and_converges():
 
 
 def test_kline_devor_equals_linear_edge():
-    """seeds/000 eq. 1–5 (α = π − φ inside) equals the linear edge model with ktc = K_T, krc = K_R K_T."""
+    """Cho & Suh eq. 1–5 (α = π − φ inside) equals the linear edge model with ktc = K_T, krc = K_R K_T."""
     a = model("down", ae=3.0)
     kd = nf.KlineDevorCoefficients(800.0, 0.3)
     b = nf.FlatEndModel(radius=5, flutes=2, helix=math.radians(30), axial_depth=3, feed_per_tooth=0.1,

@@ -1,4 +1,6 @@
-"""Offset surfaces (seeds/003 eq. 12), CC→CL for flat, ball and bull-nose cutters, raster paths."""
+"""Offset surfaces (S.-H. Yang & S.-H. Kweon, "Volumetric error compensation of a 3-axis horizontal
+machining center in the post-processor", eq. 12; docs/references.md), CC→CL for flat, ball and bull-nose
+cutters, raster paths."""
 
 from __future__ import annotations
 

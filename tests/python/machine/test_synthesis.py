@@ -140,7 +140,7 @@ def test_pitch_error_gives_abbe_error_proportional_to_offset():
 
 
 def test_seeds003_eq9_terms():
-    """Single components of the seeds/003 HMC give the terms of eq. (9) and (11) (first order):
+    """Single components of the Yang & Kweon HMC give the terms of eq. (9) and (11) (first order):
     ΔW_x ∋ (T_z + L + Oxy_z)·ε_yx, (T_z + L)·ε_yy, −(T_y + Oxy_y + y)·ε_zx, −y·S_xy and
     −(T_z + L + Ozx_z + Oxy_z − z_table)·ε_yz; ΔW_z ∋ −(T_x + Oxy_x)·ε_yx. The paper's table (Z) is
     on the workpiece side: ε_yz = −EBZ, z_table = −z (docs/machine.md)."""

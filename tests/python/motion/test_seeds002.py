@@ -1,4 +1,6 @@
-"""seeds/002 §4 tests: the right-angle blocks (Fig. 12) and the three semicircles (Fig. 13–15)."""
+"""§4 tests of C.-S. Lee & J.-P. Lee, "The implement of 2-step motion control loop and look ahead algorithm
+for a high speed machining" (Lee & Lee; docs/references.md): the right-angle blocks (Fig. 12) and the
+three semicircles (Fig. 13–15)."""
 
 from __future__ import annotations
 
@@ -21,7 +23,7 @@ def _feed_at(traj, point):
 
 
 def test_right_angle_blocks_corner_speed_is_allowable_difference():
-    """seeds/002 §4.1, Fig. 12: 4 × 20 mm single-axis blocks at 90°, F5000, allowable difference
+    """Lee & Lee §4.1, Fig. 12: 4 × 20 mm single-axis blocks at 90°, F5000, allowable difference
     100 mm/min: eq. 4 gives less than 100 mm/min at 90°, so each corner runs at 100 mm/min, and
     every block reaches F5000 in between."""
     pts = s.square_program()
@@ -35,7 +37,7 @@ def test_right_angle_blocks_corner_speed_is_allowable_difference():
 
 
 def test_semicircle_feeds_fall_with_radius():
-    """seeds/002 §4.2, Fig. 14(f): F4000, three semicircles of 77 micro-blocks; the paper reads the
+    """Lee & Lee §4.2, Fig. 14(f): F4000, three semicircles of 77 micro-blocks; the paper reads the
     arc feeds as ~3000–3200, ~1100 and ~550 mm/min. With our reconstruction (radii 30/10/5 mm, 39/22/16
     chords, Acc·Ts1 = 0.18 mm/s) the junction feeds on the arcs are about 3330, 1060 and 560 mm/min; we
     require the paper's figures within 12 %."""

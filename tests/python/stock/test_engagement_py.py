@@ -1,6 +1,6 @@
 """Engagement from the Z-map equals the analytic engagement for a straight cut into a flat-topped
-block (issue 3, Done-when). Analytic immersion (DESIGN §2; Altintas, Manufacturing Automation ch. 2):
-up milling φ_st = 0, φ_ex = acos(1 − a_e/R); down milling φ_st = π − acos(1 − a_e/R), φ_ex = π;
+block (issue 3, Done-when). Analytic immersion (docs/conventions.md §2; Altintas, Manufacturing Automation
+ch. 2): up milling φ_st = 0, φ_ex = acos(1 − a_e/R); down milling φ_st = π − acos(1 − a_e/R), φ_ex = π;
 slotting 0 … π; axial depth a_p."""
 
 from __future__ import annotations

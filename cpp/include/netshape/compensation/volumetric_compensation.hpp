@@ -1,11 +1,11 @@
 #pragma once
 /// \file volumetric_compensation.hpp
-/// Volumetric compensation of CL points (seeds/003 §4.2): commanded points P_cmd such that the
+/// Volumetric compensation of CL points (Yang & Kweon §4.2): commanded points P_cmd such that the
 /// actual tool tip P_cmd + e(P_cmd) lands on the nominal point P_nom, with e from the exact error
 /// synthesis of a machine::Machine.
 ///
 /// Iteration: P ← P − (I + J₁)⁻¹·(P + e(P) − P_nom), J₁ the first-order Jacobian (chord Newton on the
-/// exact residual; with J₁ = 0 this is the fixed point P ← P − (P + e(P) − P_nom) of seeds/003, same
+/// exact residual; with J₁ = 0 this is the fixed point P ← P − (P + e(P) − P_nom) of Yang & Kweon, same
 /// solution). Start: P_nom, or P_nom plus the previous point's correction when the previous point is
 /// within 10 mm. (I + J₁)⁻¹ is computed at the start of a point and reused by the following points while
 /// they stay within 10 mm of where it was computed (along a path: no Jacobian, 2 exact evaluations per
@@ -65,7 +65,7 @@ VolumetricStatus compensate_point(const machine::Machine& machine, machine::Mach
 /// `machine::tip_error_lanes` call evaluates all lanes. Here the step matrix is (I + J)⁻¹ of the exact
 /// Jacobian, and the first step after computing it also subtracts (I + J)⁻¹·½H[d, d] (second derivative of
 /// the first-order model along the linear step d, from the same evaluation): a cold point costs 2 exact
-/// evaluations (residual after one step ~1e-12 mm on the seeds/003 HMC). A point that leaves the chord iteration (slow
+/// evaluations (residual after one step ~1e-12 mm on the Yang & Kweon HMC). A point that leaves the chord iteration (slow
 /// contraction right after a fresh step matrix, max_iterations, a table left, not finite) is solved again
 /// by `compensate_point` from a cold start: its result and status are that function's. The commanded points
 /// equal the one-by-one ones to the tolerance (only the starts differ).

@@ -28,7 +28,7 @@ struct Cutter {
   /// Radius of the cutter's envelope at height z above the tip [mm]; 0 ≤ z. Beyond the flute
   /// length the envelope keeps the nominal radius (the shank is taken as the same size).
   double radius_at(double z) const noexcept;
-  /// Helix lag constant k_β = tan β / R [rad/mm] (DESIGN §2; flat part of the flute).
+  /// Helix lag constant k_β = tan β / R [rad/mm] (docs/conventions.md §2; flat part of the flute).
   double helix_lag() const noexcept;
 
   static Cutter flat_end(double diameter, int flutes, double helix_rad);

@@ -1,31 +1,32 @@
 #pragma once
 /// \file ball_end_model.hpp
-/// Ball end mill force model after seeds/001 eq. 1–10 (Feng–Menq coefficients K_T(ψ), K_R(ψ) cubic in
+/// Ball end mill force model after Kim et al. eq. 1–10 (Feng–Menq coefficients K_T(ψ), K_R(ψ) cubic in
 /// the position angle ψ of the edge element, chip-size exponents m_T, m_R), with inclined (ramp) cuts
 /// handled by rotating the element frame by ξ about the axis normal to the feed (eq. 3–4).
 ///
 /// Elements: one flute's ball part is cut into equal steps Δψ of the position angle ψ (0 at the
 /// equator, π/2 at the tip; height above the tip z = R(1 − sin ψ), eq. 9; radius R cos ψ, eq. 10);
 /// above the equator (a_p > R) the cylindrical part is cut into disks with the coefficients at ψ = 0.
-/// The flute lags by k_β·z (k_β = tan β / R), as DESIGN §2 (seeds/001 eq. 1 writes the same lag as
-/// sin φ·tan β from the equator; the constant difference only moves the angle origin to the tip).
+/// The flute lags by k_β·z (k_β = tan β / R), as docs/conventions.md §2 (Kim et al. eq. 1 writes the
+/// same lag as sin φ·tan β from the equator; the constant difference only moves the angle origin to the tip).
 ///
 /// Chip and width (eq. 4–6): with the element at (X, Y, Z) relative to the ball centre and the
 /// rotated frame X' = X cos ξ + Z sin ξ (along the inclined feed), Y' = Y, Z' = −X sin ξ + Z cos ξ:
 /// cos φ' = √(X'² + Y'²)/R, sin ϕ = X'/(R cos φ'), chip t = f·sin ϕ (zero where X' ≤ 0), width
 /// dw = R cos φ'·Δψ. dF_T = K_T(ψ) t^{m_T} dw, dF_R = K_R(ψ) t^{m_R} dw, projected in the tool frame
-/// with DESIGN §2's formulas (seeds/001 eq. 8 writes them with the feed along its y axis). ξ > 0 is an
-/// upward ramp (the feed climbs along +Z). No axial force (the paper models none): Fz = 0.
+/// with the formulas of docs/conventions.md §3 (Kim et al. eq. 8 writes them with the feed along its
+/// y axis). ξ > 0 is an upward ramp (the feed climbs along +Z). No axial force (the paper models
+/// none): Fz = 0.
 ///
-/// Steady cut (no map): `engagement` is the window at the tool's largest radius R and stands for
-/// straight walls parallel to the feed, at y = R cos φ_st and y = R cos φ_ex in the tool frame
-/// (DESIGN §2). An element cuts where it is ahead of the feed (X' > 0), below a_p, and the point of
-/// the radius-R circle on the front half at the element's own distance Y from the feed line lies in
-/// the window: acos(Y/R) ∈ [φ_st, φ_ex]. Up milling with a_e (window [0, acos(1 − a_e/R)]) is the wall
-/// y = R − a_e with material on +Y: an element of radius r cuts over φ ∈ [0, acos((R − a_e)/r)] and
-/// not at all when r ≤ R − a_e; down milling mirrors it (wall y = −(R − a_e), material on −Y); a slot
-/// [0, π] has no wall and every element cuts its whole front half. Rows at radius R (the cylinder
-/// above the equator) get the window itself. The chip thickness does not depend on the window.
+/// Steady cut (no map): `engagement` is the window at the tool's largest radius R and stands for straight
+/// walls parallel to the feed, at y = R cos φ_st and y = R cos φ_ex in the tool frame (docs/conventions.md
+/// §2). An element cuts where it is ahead of the feed (X' > 0), below a_p, and the point of the radius-R
+/// circle on the front half at the element's own distance Y from the feed line lies in the window: acos(Y/R)
+/// ∈ [φ_st, φ_ex]. Up milling with a_e (window [0, acos(1 − a_e/R)]) is the wall y = R − a_e with material on
+/// +Y: an element of radius r cuts over φ ∈ [0, acos((R − a_e)/r)] and not at all when r ≤ R − a_e; down
+/// milling mirrors it (wall y = −(R − a_e), material on −Y); a slot [0, π] has no wall and every element cuts
+/// its whole front half. Rows at radius R (the cylinder above the equator) get the window itself. The chip
+/// thickness does not depend on the window.
 
 #include "netshape/core/types.hpp"
 #include "netshape/force/coefficients.hpp"

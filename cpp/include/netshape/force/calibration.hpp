@@ -2,7 +2,7 @@
 /// \file calibration.hpp
 /// Least-squares identification of cutting coefficients:
 ///  - closed-form mean forces of the linear edge model and the Altintas mean-force regression;
-///  - the seeds/001 §4.2 (Table 1) procedure: ball-end K_T(ψ), K_R(ψ) cubics and exponents m_T, m_R
+///  - the Kim et al. §4.2 (Table 1) procedure: ball-end K_T(ψ), K_R(ψ) cubics and exponents m_T, m_R
 ///    from mean slot forces over axial depths and feeds;
 ///  - fitting the linear edge coefficients and the angle offset to a measured force time series.
 
@@ -53,11 +53,11 @@ struct BallEndFit {
   double rms_y = 0.0;  ///< rms residual of F̄y [N]
 };
 
-/// seeds/001 §4.2: fit a0…a3, b0…b3, m_T, m_R to mean slot forces. Each test i has axial depth
-/// depths[i] [mm], feed per tooth feeds[i] [mm] and measured mean (F̄x, F̄y) [N] in the DESIGN frame
-/// (F̄y carries the tangential coefficients, F̄x the radial ones). `geometry` gives R, N, β and the
-/// discretisation (its coefficients, depth and feed are ignored). Separable least squares: for
-/// each exponent the cubic is linear; the exponent is found by a grid scan in [m_min, m_max] and a
+/// Kim et al. §4.2: fit a0…a3, b0…b3, m_T, m_R to mean slot forces. Each test i has axial depth depths[i]
+/// [mm], feed per tooth feeds[i] [mm] and measured mean (F̄x, F̄y) [N] in the cutting frame
+/// (docs/conventions.md §2; F̄y carries the tangential coefficients, F̄x the radial ones). `geometry` gives
+/// R, N, β and the discretisation (its coefficients, depth and feed are ignored). Separable least squares:
+/// for each exponent the cubic is linear; the exponent is found by a grid scan in [m_min, m_max] and a
 /// golden-section refinement. Needs ≥ 5 tests with ≥ 4 distinct depths and ≥ 2 distinct feeds.
 BallEndFit fit_ball_end_mean_forces(const BallEndModel& geometry, const Eigen::Ref<const VectorXd>& depths,
                                     const Eigen::Ref<const VectorXd>& feeds,

@@ -1,7 +1,7 @@
 #pragma once
 /// \file coefficients.hpp
 /// Cutting-force coefficients: the linear edge-force model (Altintas), the Kline–DeVor constant
-/// coefficients (seeds/000 eq. 1) and the Feng–Menq ball-end polynomials (seeds/001 eq. 6–7), plus the
+/// coefficients (Cho & Suh eq. 1) and the Feng–Menq ball-end polynomials (Kim et al. eq. 6–7), plus the
 /// named coefficient sets netshape ships.
 
 #include <array>
@@ -10,7 +10,7 @@
 
 namespace netshape::force {
 
-/// Linear edge-force model (DESIGN §2): per unit length of cutting edge along the tool axis
+/// Linear edge-force model (docs/conventions.md §2): per unit length of cutting edge along the tool axis
 ///   dFt = (ktc·h + kte)·dz,  dFr = (krc·h + kre)·dz,  dFa = (kac·h + kae)·dz,  h = c·sin φ.
 struct LinearEdgeCoefficients {
   double ktc = 0.0;  ///< tangential cutting coefficient [N/mm²]
@@ -30,7 +30,7 @@ struct LinearEdgeCoefficients {
   }
 };
 
-/// Kline–DeVor constant coefficients (seeds/000 eq. 1): dF_T = K_T·t_c·D_z, dF_R = K_R·dF_T.
+/// Kline–DeVor constant coefficients (Cho & Suh eq. 1): dF_T = K_T·t_c·D_z, dF_R = K_R·dF_T.
 /// No edge and no axial force. Equivalent to a linear edge model with ktc = kt, krc = kr·kt.
 struct KlineDevorCoefficients {
   double kt = 0.0;  ///< K_T, tangential specific cutting force [N/mm²]; > 0
@@ -39,10 +39,10 @@ struct KlineDevorCoefficients {
   LinearEdgeCoefficients to_linear_edge() const noexcept { return {kt, kr * kt, 0.0, 0.0, 0.0, 0.0}; }
 };
 
-/// Feng–Menq style ball-end coefficients (seeds/001 eq. 6–7):
+/// Feng–Menq style ball-end coefficients (Kim et al. eq. 6–7):
 ///   dF_T = K_T(ψ)·t^{m_T}·dw,  dF_R = K_R(ψ)·t^{m_R}·dw,
 ///   K_T(ψ) = a0 + a1 ψ + a2 ψ² + a3 ψ³,  K_R(ψ) = b0 + b1 ψ + b2 ψ² + b3 ψ³,
-/// with ψ [rad] the position angle of the edge element on the ball (seeds/001's φ: 0 at the equator,
+/// with ψ [rad] the position angle of the edge element on the ball (Kim et al.'s φ: 0 at the equator,
 /// π/2 at the tip), t [mm] the chip thickness and dw [mm] the chip width. The units of a, b follow
 /// from the exponents (N/mm^(1+m)). The model has no axial force.
 struct BallEndCoefficients {
@@ -72,7 +72,7 @@ struct LinearEdgeCoefficientSet {
   std::string source;
 };
 
-/// Named ball-end sets: "kim_zas_ball12" — seeds/001 (G. M. Kim, P. J. Cho, B. H. Kim, C. N. Chu,
+/// Named ball-end sets: "kim_zas_ball12" — Kim et al. (G. M. Kim, P. J. Cho, B. H. Kim, C. N. Chu,
 /// "Cutting force prediction in the ball-end milling process of various cutting area using Z-map",
 /// §4.2): zinc alloy ZAS, D = 12 mm, 2 flutes, 30° helix, 600 rpm. Throws std::invalid_argument for an
 /// unknown name.

@@ -1,7 +1,8 @@
 #pragma once
 /// \file engagement.hpp
 /// Which cutter elements cut: an angular window [φ_st, φ_ex] from the milling mode and the radial
-/// depth (DESIGN §2), or a per-disk map of angular bins in material (from a Z-map, seeds/001 §3.2).
+/// depth (docs/conventions.md §2), or a per-disk map of angular bins in material (from a Z-map,
+/// Kim et al. §3.2).
 
 #include <cstdint>
 #include <string>
@@ -16,7 +17,7 @@ const char* to_string(MillingMode m) noexcept;
 MillingMode milling_mode_from_string(const std::string& s);
 
 /// Angular window in which an element cuts, immersion angles measured clockwise from +Y seen from
-/// the spindle (DESIGN §2). An element at immersion φ cuts if φ (mod 2π) ∈ [phi_st, phi_ex].
+/// the spindle (docs/conventions.md §2). An element at immersion φ cuts if φ (mod 2π) ∈ [phi_st, phi_ex].
 struct AngularEngagement {
   double phi_st = 0.0;  ///< start (entry) angle [rad], in [0, 2π)
   double phi_ex = pi;   ///< exit angle [rad], phi_st < phi_ex ≤ phi_st + 2π

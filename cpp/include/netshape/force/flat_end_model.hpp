@@ -1,7 +1,7 @@
 #pragma once
 /// \file flat_end_model.hpp
-/// Flat end mill force model (seeds/000 §3.1, DESIGN §2): the flute is cut into disks of height dz
-/// along the tool axis; each flute's element on a disk carries a tangential, radial and axial force
+/// Flat end mill force model (Cho & Suh §3.1, docs/conventions.md §2): the flute is cut into disks of
+/// height dz along the tool axis; each flute's element on a disk carries a tangential, radial and axial force
 /// from the chip h = c·sin φ; the forces on the cutter in the cutting frame (X feed, Z tool axis from
 /// the tip, forces ON THE CUTTER) are summed over the engaged elements for every rotation angle.
 ///
@@ -18,8 +18,8 @@ namespace netshape::force {
 
 /// Which coefficient model the flat end mill uses.
 enum class FlatCoefficientModel : std::uint8_t {
-  linear_edge = 0,  ///< dFt = (ktc h + kte) dz, … (DESIGN §2)
-  kline_devor = 1,  ///< dF_T = K_T t_c D_z, dF_R = K_R dF_T (seeds/000 eq. 1–5, its α = π − φ inside)
+  linear_edge = 0,  ///< dFt = (ktc h + kte) dz, … (docs/conventions.md §2)
+  kline_devor = 1,  ///< dF_T = K_T t_c D_z, dF_R = K_R dF_T (Cho & Suh eq. 1–5, its α = π − φ inside)
 };
 
 /// Everything that does not change during an angle sweep.

@@ -1,6 +1,6 @@
 #pragma once
 /// \file nurbs_surface.hpp
-/// Non-uniform rational B-spline surface (Piegl & Tiller, The NURBS Book, 2nd ed.; seeds/003 eq. 13–15):
+/// Non-uniform rational B-spline surface (Piegl & Tiller, The NURBS Book, 2nd ed.; Yang & Kweon eq. 13–15):
 ///
 ///     S(u, v) = Σ_i Σ_j N_{i,p}(u) N_{j,q}(v) w_ij P_ij / Σ_i Σ_j N_{i,p}(u) N_{j,q}(v) w_ij      (eq. 13)
 ///     n(u, v) = S_u × S_v / |S_u × S_v|                                                          (eq. 15)

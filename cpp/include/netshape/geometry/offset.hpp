@@ -1,11 +1,11 @@
 #pragma once
 /// \file offset.hpp
-/// Offset surface of a NURBS design surface (seeds/003 eq. 12):
+/// Offset surface of a NURBS design surface (Yang & Kweon eq. 12):
 ///
 ///     O(u, v) = Q(u, v) + d · n(u, v)
 ///
 /// with n the unit normal of eq. 15 (limit at poles, see NurbsSurface::normal) and d the signed offset
-/// distance [mm] (positive along n). seeds/003 writes f(d) for the offset implied by the tool tip; for a
+/// distance [mm] (positive along n). Yang & Kweon write f(d) for the offset implied by the tool tip; for a
 /// ball end mill of radius R the centre of the ball lies on the offset at d = R (see cutter_location.hpp).
 
 #include "netshape/core/types.hpp"

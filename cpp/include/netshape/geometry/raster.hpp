@@ -2,7 +2,7 @@
 /// \file raster.hpp
 /// Iso-parametric raster tool paths over a NURBS design surface: passes along iso-curves, step-over from
 /// a scallop-height target (adjusted for the surface's normal curvature across the passes), CC points
-/// offset by a stock allowance (seeds/003 eq. 12) and turned into CL (tool-tip) points for the cutter
+/// offset by a stock allowance (Yang & Kweon eq. 12) and turned into CL (tool-tip) points for the cutter
 /// (cutter_location.hpp). Normals are flipped as a whole if they face away from the tool on average
 /// (mean n·axis < 0 over a 9 × 9 grid): the material lies on the far side of the surface. The result is a toolpath::Toolpath of rapids and lines.
 

@@ -11,7 +11,7 @@
 /// about X, Y, Z [rad] (roll, pitch, yaw depending on k). Squareness: EC0Y (Y about Z, reference
 /// axis X), EB0Z (Z about Y, reference axis X), EA0Z (Z about X, reference axis Y) [rad].
 ///
-/// seeds/003 (Yang & Kweon) symbols, one to one (first subscript = direction, second = axis):
+/// Yang & Kweon's symbols (docs/references.md), one to one (first subscript = direction, second = axis):
 ///   δ_xx δ_yx δ_zx δ_xy δ_yy δ_zy δ_xz δ_yz δ_zz  →  EXX EYX EZX EXY EYY EZY EXZ EYZ EZZ
 ///   ε_xx ε_yx ε_zx ε_xy ε_yy ε_zy ε_xz ε_yz ε_zz  →  EAX EBX ECX EAY EBY ECY EAZ EBZ ECZ
 ///   S_xy → EC0Y, S_yz (= S_zy in eq. 7) → EA0Z, S_zx → −EB0Z, ε_xs → spindle_tilt_a, ε_ys → spindle_tilt_b,
@@ -63,8 +63,8 @@ struct Machine {
   double ec0y = 0.0;                 ///< squareness of Y about Z, reference X [rad]
   double eb0z = 0.0;                 ///< squareness of Z about Y, reference X [rad]
   double ea0z = 0.0;                 ///< squareness of Z about X, reference Y [rad]
-  double spindle_tilt_a = 0.0;       ///< tilt of the spindle axis about X [rad] (seeds/003 ε_xs)
-  double spindle_tilt_b = 0.0;       ///< tilt of the spindle axis about Y [rad] (seeds/003 ε_ys)
+  double spindle_tilt_a = 0.0;       ///< tilt of the spindle axis about X [rad] (Yang & Kweon ε_xs)
+  double spindle_tilt_b = 0.0;       ///< tilt of the spindle axis about Y [rad] (Yang & Kweon ε_ys)
   Vec3 spindle_nose = Vec3::Zero();  ///< gauge point of the spindle in the last tool-side frame [mm] (T)
   double tool_length = 0.0;          ///< tool length from the gauge point to the tip [mm] (L), ≥ 0
   Vec3 tool_direction = Vec3(0, 0, -1);  ///< unit vector from gauge point to tip, last tool-side frame

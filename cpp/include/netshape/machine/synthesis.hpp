@@ -17,10 +17,10 @@
 ///    relative to the table's current origin.
 ///  - Tool tip in the last tool-side frame: spindle_nose + L·Rx(tilt_a)·Ry(tilt_b)·tool_direction.
 ///  - Actual point W(p): the tool tip expressed in the workpiece frame; error e(p) = W(p) − W_nominal(p),
-///    so the tip lands at p + e(p) in program coordinates. eq. (3) of seeds/003, ΔW_B.
+///    so the tip lands at p + e(p) in program coordinates. eq. (3) of Yang & Kweon, ΔW_B.
 ///  - First order: e₁(p) = Σ_k [δ_k + q_k·(u'_k − u_k)₁ + ε_k × r_k] + L·(θ_s × d), r_k the nominal arm
 ///    from carriage k's frame origin to the tip (tool side) or to the workpiece point (workpiece
-///    side) — seeds/003 eq. (9)–(11) for any chain. exact − first order = O(error²).
+///    side) — Yang & Kweon eq. (9)–(11) for any chain. exact − first order = O(error²).
 
 #include <array>
 #include <cstdint>
@@ -158,7 +158,7 @@ Points3 tip_error(const Machine& machine, const Eigen::Ref<const Points3>& point
 Points3 actual_points(const Machine& machine, const Eigen::Ref<const Points3>& commanded,
                       Order order = Order::exact);
 
-/// Volumetric error VE = |e(p)| (seeds/003 eq. 16) at many points: (n,) [mm].
+/// Volumetric error VE = |e(p)| (Yang & Kweon eq. 16) at many points: (n,) [mm].
 Eigen::VectorXd volumetric_error(const Machine& machine, const Eigen::Ref<const Points3>& points,
                                  Order order = Order::exact);
 

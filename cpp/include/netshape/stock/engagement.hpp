@@ -1,9 +1,9 @@
 #pragma once
 /// \file engagement.hpp
-/// Which cutter elements are in material at a cutter position (seeds/001 §3.2, DESIGN §2).
+/// Which cutter elements are in material at a cutter position (Kim et al. §3.2, docs/conventions.md §2).
 ///
-/// Cutting frame at the tip (DESIGN §2): X_c = horizontal unit feed direction, Z_c = +Z (tool axis,
-/// tip → spindle), Y_c = Z_c × X_c (the left of the feed). The immersion angle φ runs clockwise
+/// Cutting frame at the tip (docs/conventions.md §2): X_c = horizontal unit feed direction, Z_c = +Z
+/// (tool axis, tip → spindle), Y_c = Z_c × X_c (the left of the feed). The immersion angle φ runs clockwise
 /// from +Y_c seen from the spindle (looking down −Z), the direction the cutter turns (M3):
 ///
 ///                    +Y_c  (φ = 0)

@@ -1,6 +1,6 @@
 #pragma once
 /// \file zmap.hpp
-/// The Z-map workpiece (seeds/001 §2): a regular grid of vertical pillars over a rectangle in the
+/// The Z-map workpiece (Kim et al. §2): a regular grid of vertical pillars over a rectangle in the
 /// machine XY plane, each storing the height of the material top at its node [mm].
 ///
 /// Grid: the footprint [x0, x1] × [y0, y1] is cut into nx × ny cells of size dx × dy; each cell has
@@ -15,7 +15,7 @@
 ///
 /// Two readings of the heights, both documented per query:
 /// - pillar (cell) model: a point (x, y) belongs to the cell that contains it and the material there
-///   spans [bottom, heights(i, j)). `cell_height` and `is_material` use it (the seeds/001 reading).
+///   spans [bottom, heights(i, j)). `cell_height` and `is_material` use it (the Kim et al. reading).
 /// - smooth surface: `height_at` interpolates bilinearly between the four surrounding nodes (clamped
 ///   to the outermost nodes within the footprint); use it to measure or plot the surface.
 
