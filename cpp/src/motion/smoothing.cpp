@@ -3,9 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#ifdef SMOOTH_DEBUG
-#include <cstdio>
-#endif
 
 #include "netshape/core/error.hpp"
 #include "netshape/motion/segment.hpp"
@@ -280,15 +277,8 @@ bool fit_run(const std::vector<V2>& pts, const SmoothOptions& opt, RunFit& out) 
   const double fit_arc = 0.1 * eps;
   for (int round = 0; round <= opt.max_refinements; ++round) {
     if (!fit(pts, cum, knots, sp)) {
-#ifdef SMOOTH_DEBUG
-      std::fprintf(stderr, "fit fail\n");
-#endif
       return false;
     }
-#ifdef SMOOTH_DEBUG
-    { double e = 0; for (std::size_t i = 0; i < n; ++i) e = std::max(e, (sp.point(cum[i]) - pts[i]).norm());
-      std::fprintf(stderr, "spline vertex err %g, d(0) %g %g\n", e, sp.deriv(0).x(), sp.deriv(0).y()); }
-#endif
     // biarc chain over the knot spans, split until the spline's quarter points are within fit_arc
     out.pieces.clear();
     std::vector<double> bad;
@@ -325,9 +315,6 @@ bool fit_run(const std::vector<V2>& pts, const SmoothOptions& opt, RunFit& out) 
           continue;
         }
         if (!ok) {
-#ifdef SMOOTH_DEBUG
-          std::fprintf(stderr, "biarc fail %g %g\n", ua, ub);
-#endif
           return false;
         }
         const double um = 0.5 * (ua + ub);
@@ -366,7 +353,7 @@ bool fit_run(const std::vector<V2>& pts, const SmoothOptions& opt, RunFit& out) 
       }
     }
     double bound = 0;
-    const double fine = 0.02 * eps;  // bisect a failing piece down to this length [mm]
+    const double fine = 0.1 * eps;  // bisect a failing piece down to this length [mm]
     // chain -> polyline: every arc point between chord points c0, c1 is within
     // max(d(c0, S), d(c1, S)) + sagitta of segment S (distance to a segment is convex)
     const long ns = static_cast<long>(n) - 1;
@@ -410,9 +397,14 @@ bool fit_run(const std::vector<V2>& pts, const SmoothOptions& opt, RunFit& out) 
     // polyline -> chain: every point of a polyline piece [q0, q1] is within
     // max(d(q0, C), d(q1, C)) + sagitta of the arc over chord C
     const long nch = static_cast<long>(cp.size()) - 1;
-    auto poly_bound = [&](const V2& q0, const V2& q1, long c) {
+    // chords whose parameter lies within ±w of the polyline piece's (the spline parameter follows the
+    // polyline's arc length closely; a miss only overestimates the bound)
+    const double w = 0.75 * mean;
+    auto poly_bound = [&](const V2& q0, const V2& q1, double uq) {
+      const long lo = std::max(0L, static_cast<long>(std::lower_bound(cu.begin(), cu.end(), uq - w) - cu.begin()) - 2);
+      const long hi = std::min(nch - 1, static_cast<long>(std::upper_bound(cu.begin(), cu.end(), uq + w) - cu.begin()) + 1);
       double best = 1e300;
-      for (long q = std::max(0L, c - 4); q <= std::min(nch - 1, c + 4); ++q) {
+      for (long q = lo; q <= hi; ++q) {
         const auto qi = static_cast<std::size_t>(q);
         best = std::min(best, std::max(seg_dist(q0, cp[qi], cp[qi + 1]), seg_dist(q1, cp[qi], cp[qi + 1])) + csag[qi]);
       }
@@ -428,15 +420,14 @@ bool fit_run(const std::vector<V2>& pts, const SmoothOptions& opt, RunFit& out) 
         const V2 q0 = pts[i] + (pts[i + 1] - pts[i]) * (static_cast<double>(k) / np);
         const V2 q1 = pts[i] + (pts[i + 1] - pts[i]) * (static_cast<double>(k + 1) / np);
         const double uq = cum[i] + li * (k + 0.5) / np;
-        const long c = std::clamp(static_cast<long>(std::upper_bound(cu.begin(), cu.end(), uq) - cu.begin()) - 1, 0L, nch - 1);
-        double best = poly_bound(q0, q1, c);
+        double best = poly_bound(q0, q1, uq);
         if (best > eps) {
           pj.assign(1, {q0, q1});
           best = 0;
           while (!pj.empty()) {
             const auto [a0, a1] = pj.back();
             pj.pop_back();
-            const double b = poly_bound(a0, a1, c);
+            const double b = poly_bound(a0, a1, uq);
             if (b > eps && (a1 - a0).norm() > fine) {
               const V2 am = 0.5 * (a0 + a1);
               pj.push_back({a0, am});
@@ -451,9 +442,6 @@ bool fit_run(const std::vector<V2>& pts, const SmoothOptions& opt, RunFit& out) 
       }
     }
     out.bound = bound;
-#ifdef SMOOTH_DEBUG
-    std::fprintf(stderr, "round %d knots %zu pieces %zu bound %g bad %zu\n", round, knots.size(), out.pieces.size(), bound, bad.size());
-#endif
     if (bad.empty()) return true;
     // refine: a knot in the middle of every knot span that holds a failure
     std::vector<double> add;
@@ -462,8 +450,11 @@ bool fit_run(const std::vector<V2>& pts, const SmoothOptions& opt, RunFit& out) 
       const auto it = std::upper_bound(breaks.begin(), breaks.end(), u);
       const std::size_t s = std::clamp<std::size_t>(static_cast<std::size_t>(it - breaks.begin()), 1, breaks.size() - 1);
       const double mid = 0.5 * (breaks[s - 1] + breaks[s]);
+      // spans are not split below a quarter of the mean segment: they would hold too little data
+      if (breaks[s] - breaks[s - 1] < 0.25 * mean) continue;
       if (add.empty() || add.back() != mid) add.push_back(mid);
     }
+    if (add.empty()) return false;
     knots.insert(knots.end(), add.begin(), add.end());
     std::sort(knots.begin(), knots.end());
     knots.erase(std::unique(knots.begin(), knots.end()), knots.end());

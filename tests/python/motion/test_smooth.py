@@ -53,6 +53,13 @@ def _dist_to_polyline(q, pts, k=12):
     a, b = pts[:-1], pts[1:]
     keep = np.linalg.norm(b - a, axis=1) > 0
     a, b = a[keep], b[keep]
+    # long pieces are cut into equal parts of at most 0.5 mm (same polyline) so that the nearest
+    # midpoints find them
+    m = np.maximum(1, np.ceil(np.linalg.norm(b - a, axis=1) / 0.5)).astype(int)
+    rep = np.repeat(np.arange(len(a)), m)
+    j = np.concatenate([np.arange(k) for k in m])
+    f0, f1 = (j / m[rep])[:, None], ((j + 1) / m[rep])[:, None]
+    a, b = a[rep] + f0 * (b[rep] - a[rep]), a[rep] + f1 * (b[rep] - a[rep])
     tree = cKDTree(0.5 * (a + b))
     _, idx = tree.query(q, k=min(k, len(a)))
     idx = np.atleast_2d(idx.T).T if idx.ndim == 1 else idx
@@ -71,8 +78,8 @@ def _random_curve(seed, n_pts, noise, length=60.0):
         y += rng.normal(0, 4.0 / k ** 2) * np.sin(2 * np.pi * k * t + rng.uniform(0, 2 * np.pi))
     curve = np.column_stack([x, y])
     s = np.concatenate([[0], np.cumsum(np.linalg.norm(np.diff(curve, axis=0), axis=1))])
-    sv = np.sort(rng.uniform(0, s[-1], n_pts - 2))
-    sv = np.concatenate([[0.0], sv, [s[-1]]])
+    step = s[-1] / (n_pts - 1)  # jittered spacing, 0.4-0.6 of a step apart at least
+    sv = (np.arange(n_pts) + np.concatenate([[0.0], rng.uniform(-0.3, 0.3, n_pts - 2), [0.0]])) * step
     p = np.column_stack([np.interp(sv, s, curve[:, 0]), np.interp(sv, s, curve[:, 1])])
     p[1:-1] += rng.uniform(-noise, noise, size=(n_pts - 2, 2))
     return np.column_stack([p, np.full(n_pts, -3.0)])

@@ -34,7 +34,7 @@ struct SmoothOptions {
   double max_turn = 0.5236;   ///< a vertex turning more than this (30°) is a corner that is kept [rad]
   int min_blocks = 3;         ///< shortest run that is smoothed [blocks]
   int window = 4096;          ///< longest run fitted at once [blocks] (longer runs are cut at a vertex)
-  int max_refinements = 12;   ///< knot-insertion rounds before a run is left as programmed
+  int max_refinements = 3;    ///< knot-insertion rounds before a run is left as programmed
   double plane_tolerance = 1e-9;  ///< a run is planar when its normal coordinate varies less [mm]
 
   /// Tolerance of the fitted arcs against the polyline [mm].
