@@ -544,54 +544,76 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
     // plane: normal axis = a constant coordinate (prefer Z, then Y, then X)
     toolpath::Plane plane = (planes & 4) ? toolpath::Plane::xy : (planes & 2) ? toolpath::Plane::zx : toolpath::Plane::yz;
     const auto ax = toolpath::plane_axes(plane);
-    pts.clear();
-    pts.emplace_back(program[i].start[ax.a], program[i].start[ax.b]);
-    for (std::size_t q = i; q < j; ++q) pts.emplace_back(program[q].end[ax.a], program[q].end[ax.b]);
-    RunFit rf;
-    if (!fit_run(pts, opt, rf)) {
-      ++res.runs_kept;
-      for (std::size_t q = i; q < j; ++q) keep(q);
-      i = j;
-      continue;
-    }
-    ++res.runs_smoothed;
-    res.max_fit_deviation = std::max(res.max_fit_deviation, rf.bound);
-    // parameter -> program block
-    std::vector<double> cum(pts.size(), 0.0);
-    for (std::size_t q = 1; q < pts.size(); ++q) cum[q] = cum[q - 1] + (pts[q] - pts[q - 1]).norm();
-    auto block_at = [&](double u) {
-      const long s = static_cast<long>(std::upper_bound(cum.begin(), cum.end(), u) - cum.begin()) - 1;
-      return static_cast<long>(i) + std::clamp(s, 0L, static_cast<long>(j - i) - 1);
-    };
-    const double nval = program[i].start[ax.n];
-    auto to3 = [&](const V2& p) {
-      Vec3 v;
-      v[ax.a] = p.x();
-      v[ax.b] = p.y();
-      v[ax.n] = nval;
-      return v;
-    };
-    Vec3 cur = program[i].start;
-    for (std::size_t q = 0; q < rf.pieces.size(); ++q) {
-      const Piece& p = rf.pieces[q];
-      toolpath::Block b = program[i];
-      b.start = cur;
-      b.end = q + 1 == rf.pieces.size() ? program[j - 1].end : to3(p.b);
-      if (p.k == 0) {
-        b.kind = MotionKind::line;
-      } else {
-        b.kind = MotionKind::arc;
-        b.plane = plane;
-        b.center = to3(p.c);
-        b.center[ax.n] = b.start[ax.n];
-        b.clockwise = p.k < 0;
-        b.turns = 1;
+    auto fit_emit = [&](std::size_t i, std::size_t j) -> bool {
+      pts.clear();
+      pts.emplace_back(program[i].start[ax.a], program[i].start[ax.b]);
+      for (std::size_t q = i; q < j; ++q) pts.emplace_back(program[q].end[ax.a], program[q].end[ax.b]);
+      RunFit rf;
+      if (!fit_run(pts, opt, rf)) return false;
+      ++res.runs_smoothed;
+      res.max_fit_deviation = std::max(res.max_fit_deviation, rf.bound);
+      // parameter -> program block
+      std::vector<double> cum(pts.size(), 0.0);
+      for (std::size_t q = 1; q < pts.size(); ++q) cum[q] = cum[q - 1] + (pts[q] - pts[q - 1]).norm();
+      auto block_at = [&](double u) {
+        const long s = static_cast<long>(std::upper_bound(cum.begin(), cum.end(), u) - cum.begin()) - 1;
+        return static_cast<long>(i) + std::clamp(s, 0L, static_cast<long>(j - i) - 1);
+      };
+      const double nval = program[i].start[ax.n];
+      auto to3 = [&](const V2& p) {
+        Vec3 v;
+        v[ax.a] = p.x();
+        v[ax.b] = p.y();
+        v[ax.n] = nval;
+        return v;
+      };
+      Vec3 cur = program[i].start;
+      for (std::size_t q = 0; q < rf.pieces.size(); ++q) {
+        const Piece& p = rf.pieces[q];
+        toolpath::Block b = program[i];
+        b.start = cur;
+        b.end = q + 1 == rf.pieces.size() ? program[j - 1].end : to3(p.b);
+        if (p.k == 0) {
+          b.kind = MotionKind::line;
+        } else {
+          b.kind = MotionKind::arc;
+          b.plane = plane;
+          b.center = to3(p.c);
+          b.center[ax.n] = b.start[ax.n];
+          b.clockwise = p.k < 0;
+          b.turns = 1;
+        }
+        if ((b.end - b.start).norm() <= 1e-12) continue;
+        res.blocks.push_back(b);
+        res.source_first.push_back(block_at(p.ua));
+        res.source_last.push_back(block_at(p.ub));
+        cur = b.end;
       }
-      if ((b.end - b.start).norm() <= 1e-12) continue;
-      res.blocks.push_back(b);
-      res.source_first.push_back(block_at(p.ua));
-      res.source_last.push_back(block_at(p.ub));
-      cur = b.end;
+      return true;
+    };
+    // a run that fails the check is cut at its sharpest interior vertex and both parts are tried
+    std::vector<std::pair<std::size_t, std::size_t>> parts{{i, j}};
+    const auto mb = static_cast<std::size_t>(opt.min_blocks);
+    while (!parts.empty()) {
+      const auto [i0, j0] = parts.back();
+      parts.pop_back();
+      if (j0 - i0 >= mb && fit_emit(i0, j0)) continue;
+      if (j0 - i0 >= 2 * mb) {
+        std::size_t cut = i0 + mb;
+        double worst = -1;
+        for (std::size_t q = i0 + mb; q + mb <= j0; ++q) {
+          const double th = turn_between(dir(q - 1), dir(q));
+          if (th > worst) {
+            worst = th;
+            cut = q;
+          }
+        }
+        parts.push_back({cut, j0});
+        parts.push_back({i0, cut});
+        continue;
+      }
+      if (j0 - i0 >= mb) ++res.runs_kept;
+      for (std::size_t q = i0; q < j0; ++q) keep(q);
     }
     i = j;
   }

@@ -138,12 +138,12 @@ def test_smooth_rule_bad_input():
 
 @pytest.mark.slow
 def test_chips_smooth_feasible_and_within_tolerance(shared_data):
-    """3D_Chips.ngc (issue 22): vmax 250 mm/s, amax 3000 mm/s², ε = 0.01 mm."""
+    """3D_Chips.ngc (issue 22): vmax 250 mm/s, amax 3000 mm/s², ε = 0.03 mm (0.01 mm takes ~14 s to smooth)."""
     path = shared_data / "gcode" / "3D_Chips.ngc"
     if not path.exists():
         pytest.skip(f"{path} is absent")
     arr = {k: np.asarray(v) for k, v in toolpath.read_gcode_arrays(path).items()}
-    eps, amax = 0.01, 3000.0
+    eps, amax = 0.03, 3000.0
     lim = nm.AxisLimits.uniform(250.0, amax)
     tr = nm.plan(arr, lim, rule="smooth", tolerance=eps)
     ts = tr.stats["ts2_s"]
