@@ -9,7 +9,8 @@
 /// both ways — every point of the chain within `fit_tolerance()` of the polyline and every point of
 /// the polyline within it of the chain — with rigorous upper bounds from chord samples (below);
 /// where a bound fails, knots are added in that span and the run is fitted again. A run that still
-/// fails after `max_refinements` rounds is left as programmed. Vertices turning more than
+/// fails after `max_refinements` rounds is cut at its sharpest interior vertex and both parts are
+/// tried again; a part shorter than `min_blocks` that fails is left as programmed. Vertices turning more than
 /// `max_turn` are corners: they end a run and stay (the planner's blend rule blends them within the
 /// rest of the tolerance). Arcs, rapids and long lines pass through unchanged.
 ///
