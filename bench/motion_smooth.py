@@ -78,9 +78,8 @@ def section_throughput(repeat):
             nm.path_points(new, LIM, opts, 1e9)
         t2 = time.process_time()
         best_s, best_p = min(best_s, (t1 - t0) / repeat), min(best_p, (t2 - t1) / repeat)
-    print(f"\n## 3. throughput on 3D_Chips ({n} moves, eps 0.01): smoothing {n / best_s / 1e6:.3f} M blocks/s, "
-          f"planning the smoothed blocks {n / best_p / 1e6:.3f} M blocks/s, together {n / (best_s + best_p) / 1e6:.3f}"
-          " M blocks/s")
+    print(f"\n## 3. throughput on 3D_Chips ({n} moves, eps 0.01): smoothing {n / best_s:.0f} blocks/s, "
+          f"planning the smoothed blocks {n / best_p:.0f} blocks/s, together {n / (best_s + best_p):.0f} blocks/s")
 
 
 def main(argv=None) -> int:
