@@ -185,6 +185,76 @@ void bind_motion(py::module_& m) {
       py::arg("turns"), py::arg("feed"), py::arg("limits"), py::arg("options"), py::arg("with_deviation") = true);
 
   m.def(
+      "_smooth_arrays",
+      [](const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,
+         py_types::RefPoints3 center, const Eigen::Ref<const Eigen::VectorXi>& clockwise,
+         const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
+         py_types::RefVector feed, double tolerance, double fit_share, double max_segment, double max_turn,
+         int min_blocks, int window) {
+        // Tolerance-band smoothing (smoothing.hpp): the new blocks as arrays, per new block the first and
+        // last program block it replaces, and the counts.
+        SmoothOptions o;
+        o.tolerance = tolerance;
+        o.fit_share = fit_share;
+        o.max_segment = max_segment;
+        o.max_turn = max_turn;
+        o.min_blocks = min_blocks;
+        o.window = window;
+        const auto blocks = blocks_from_arrays(kind, start, end, center, clockwise, plane, turns, feed);
+        SmoothResult r;
+        {
+          py::gil_scoped_release release;
+          r = smooth(blocks, o);
+        }
+        const auto n = static_cast<Eigen::Index>(r.blocks.size());
+        Eigen::VectorXi k(n), cw(n), pl(n), tu(n);
+        Points3 s(n, 3), e(n, 3), c(n, 3);
+        VectorXd f(n);
+        for (Eigen::Index i = 0; i < n; ++i) {
+          const auto& b = r.blocks[static_cast<std::size_t>(i)];
+          k[i] = static_cast<int>(b.kind);
+          cw[i] = b.clockwise ? 1 : 0;
+          pl[i] = static_cast<int>(b.plane);
+          tu[i] = b.turns;
+          s.row(i) = b.start.transpose();
+          e.row(i) = b.end.transpose();
+          c.row(i) = b.center.transpose();
+          f[i] = b.feed;
+        }
+        py::dict arrays;
+        arrays["kind"] = k;
+        arrays["start"] = s;
+        arrays["end"] = e;
+        arrays["center"] = c;
+        arrays["clockwise"] = cw;
+        arrays["plane"] = pl;
+        arrays["turns"] = tu;
+        arrays["feed"] = f;
+        py::dict stats;
+        stats["runs_smoothed"] = r.runs_smoothed;
+        stats["runs_kept"] = r.runs_kept;
+        stats["corners_kept"] = r.corners_kept;
+        stats["max_fit_deviation_mm"] = r.max_fit_deviation;
+        return py::make_tuple(arrays, r.source_first, r.source_last, stats);
+      },
+      py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
+      py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("fit_share") = 0.75, py::arg("max_segment") = 4.0,
+      py::arg("max_turn") = 0.5236, py::arg("min_blocks") = 3, py::arg("window") = 4096);
+  m.def(
+      "_deviation_to_program",
+      [](const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,
+         py_types::RefPoints3 center, const Eigen::Ref<const Eigen::VectorXi>& clockwise,
+         const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
+         py_types::RefVector feed, py_types::RefPoints3 points, const std::vector<long>& first,
+         const std::vector<long>& last) {
+        const auto blocks = blocks_from_arrays(kind, start, end, center, clockwise, plane, turns, feed);
+        const Points3 p = points;
+        py::gil_scoped_release release;
+        return deviation_to_program(blocks, p, first, last);
+      },
+      py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
+      py::arg("turns"), py::arg("feed"), py::arg("points"), py::arg("first"), py::arg("last"));
+  m.def(
       "_throughput",
       [](py_types::RefPoints3 points, double feed, const AxisLimits& limits, const PlanOptions& options, int repeat) {
         // planning only (push + look-ahead + freeze of every segment), no sampling: blocks per second

@@ -6,4 +6,5 @@
 #include "netshape/motion/planner.hpp"
 #include "netshape/motion/profile.hpp"
 #include "netshape/motion/segment.hpp"
+#include "netshape/motion/smoothing.hpp"
 #include "netshape/motion/trajectory.hpp"

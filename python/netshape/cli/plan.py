@@ -21,6 +21,11 @@ Corner rules:
                       --junction-deviation (grbl $11) or Klipper's --scv (default 5 mm/s);
                       a per --junction-accel
   blend               a G2 Bézier blend within --tolerance at each corner (feasible, no jump)
+  smooth              runs of micro-segments (lines <= --max-segment mm turning <= --max-turn deg at
+                      each vertex) are replaced by tangent-continuous arcs fitted within 3/4 of
+                      --tolerance of the program (checked both ways); sharper vertices are corners,
+                      kept and blended within the rest; then planned as blend. Adds runs_smoothed,
+                      corners_kept; max_path_deviation_mm is measured against the original program
 """
 
 _EPILOG = """\
@@ -43,8 +48,14 @@ def register(sub) -> None:
     g.add_argument("--amax", type=float, metavar="MM_PER_S2", help="acceleration limit of every axis [mm/s^2]")
     g.add_argument("--jmax", type=float, metavar="MM_PER_S3",
                    help="jerk limit of every axis [mm/s^3] (S-curve profiles)")
-    p.add_argument("--rule", required=True, choices=("paper", "vector", "per-axis", "junction-deviation", "blend"))
-    p.add_argument("--tolerance", type=float, default=0.01, metavar="MM", help="blend tolerance ε [mm] (0.01)")
+    p.add_argument("--rule", required=True, choices=("paper", "vector", "per-axis", "junction-deviation", "blend", "smooth"))
+    p.add_argument("--tolerance", type=float, default=0.01, metavar="MM", help="blend / smooth tolerance ε [mm] (0.01)")
+    p.add_argument("--max-segment", type=float, default=4.0, metavar="MM",
+                   help="smooth rule: longest line that is a micro-segment [mm] (4)")
+    p.add_argument("--max-turn", type=float, default=30.0, metavar="DEG",
+                   help="smooth rule: a vertex turning more is a corner that is kept [deg] (30)")
+    p.add_argument("--smoothed-gcode", metavar="OUT.ngc",
+                   help="smooth rule: write the smoothed program (G1/G2/G3, G17-G19) atomically")
     p.add_argument("--ts1", type=float, default=1e-3, metavar="S", help="rough loop period [s] (0.001)")
     p.add_argument("--ts2", type=float, default=1e-4, metavar="S", help="fine loop period [s] (0.0001)")
     p.add_argument("--lookahead", type=int, default=64, metavar="N", help="look-ahead depth in blocks (64)")
@@ -110,7 +121,8 @@ def run(args) -> int:
         if not (scv > 0 and math.isfinite(scv)):
             raise ValueError(f"--scv = {scv}: must be positive [mm/s]")
         deviation = 0.0
-    options = make_options(args.rule, ts1=args.ts1, ts2=args.ts2, lookahead=args.lookahead, tolerance=args.tolerance,
+    rule = "blend" if args.rule == "smooth" else args.rule
+    options = make_options(rule, ts1=args.ts1, ts2=args.ts2, lookahead=args.lookahead, tolerance=args.tolerance,
                            allowable_speed_difference=args.allowable / 60.0, junction_deviation=deviation,
                            square_corner_velocity=scv, junction_accel=args.junction_accel)
     from netshape.cli._offsets import offset_kwargs, reader_warnings
@@ -119,11 +131,29 @@ def run(args) -> int:
         arrays = toolpath.read_gcode_arrays(args.program, **offset_kwargs(args))
     arrays = {k: np.asarray(v) for k, v in arrays.items()}
     arrays["feed"] = arrays["feed"] * args.feed_scale
-    traj = plan(arrays, limits, options)
+    if args.rule == "smooth":
+        for name, v in (("tolerance", args.tolerance), ("max-segment", args.max_segment)):
+            if not (v > 0 and math.isfinite(v)):
+                raise ValueError(f"--{name} = {v}: must be positive [mm]")
+        if not (0 < args.max_turn < 180):
+            raise ValueError(f"--max-turn = {args.max_turn}: must be in (0, 180) [deg]")
+        skw = dict(max_segment=args.max_segment, max_turn=math.radians(args.max_turn))
+        traj = plan(arrays, limits, rule="smooth", tolerance=args.tolerance, ts1=args.ts1, ts2=args.ts2,
+                    lookahead=args.lookahead, **skw)
+        if args.smoothed_gcode:
+            from netshape.motion import smooth_path
+            from netshape.motion.smooth_gcode import write_smoothed_gcode
+
+            new = smooth_path(arrays, args.tolerance, **skw)[0]
+            write_smoothed_gcode(new, args.smoothed_gcode)
+    else:
+        if args.smoothed_gcode:
+            raise CliError("--smoothed-gcode needs --rule smooth")
+        traj = plan(arrays, limits, options)
     out = {
         "program": str(args.program),
         "rule": args.rule,
-        "tolerance_mm": args.tolerance if args.rule == "blend" else None,
+        "tolerance_mm": args.tolerance if args.rule in ("blend", "smooth") else None,
         "ts1_s": args.ts1,
         "ts2_s": args.ts2,
         "lookahead": args.lookahead,

@@ -40,11 +40,13 @@ junction_deviation_corner_speed = _m.junction_deviation_corner_speed
 reach_speed = _m.reach_speed
 
 RULES = ("paper", "vector", "per-axis", "junction-deviation", "blend")
+#: rules of :func:`plan`: the planner's corner rules plus "smooth" (tolerance-band smoothing, then blend)
+PLAN_RULES = RULES + ("smooth",)
 JUNCTION_ACCELS = ("min-moving-axis", "along-change")
 
 __all__ = [
     "AxisLimits", "PlanOptions", "CornerRule", "JunctionAccel", "Planner", "Sample", "Status", "Trajectory",
-    "plan",
+    "plan", "smooth_path", "PLAN_RULES",
     "make_options", "path_points", "blocks_to_arrays", "polyline_arrays", "rule_name", "parse_rule", "turn_angle",
     "paper_corner_speed", "vector_corner_speed", "per_axis_corner_speed", "junction_deviation_speed",
     "klipper_junction_deviation", "junction_acceleration", "junction_deviation_corner_speed",
@@ -187,6 +189,60 @@ def _dwells(program, n: int):
     return d
 
 
+def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float = 0.75,
+                max_segment: float = 4.0, max_turn: float = 0.5236, min_blocks: int = 3, window: int = 4096):
+    """Tolerance-band smoothing of micro-segment runs (C++ ``netshape::motion::smooth``).
+
+    Runs of line blocks each at most `max_segment` [mm] long, turning at most `max_turn` [rad] at every
+    vertex, with one feed and in one coordinate plane, are replaced by tangent-continuous arcs that
+    follow a least-squares cubic B-spline and stay within ``fit_share·tolerance`` [mm] of the polyline
+    both ways (checked); vertices turning more are corners and are kept. Returns
+    ``(arrays, first, last, stats)``: the new blocks as block arrays, per new block the first and last
+    program block it replaces, and ``runs_smoothed``, ``runs_kept``, ``corners_kept``,
+    ``max_fit_deviation_mm``.
+    """
+    arr, first, last, stats = _m._smooth_arrays(*_call_args(_arrays(program, feed)), float(tolerance),
+                                                float(fit_share), float(max_segment), float(max_turn),
+                                                int(min_blocks), int(window))
+    return {k: np.asarray(v) for k, v in arr.items()}, np.asarray(first), np.asarray(last), dict(stats)
+
+
+def _plan_smooth(program, limits, feed, with_deviation, kw):
+    """rule="smooth": smooth_path, then the blend rule with the rest of the tolerance on the new blocks;
+    the deviation is measured against the original program."""
+    tol = float(kw.pop("tolerance", 0.01))
+    if not (tol > 0 and np.isfinite(tol)):
+        raise ValueError(f"tolerance = {tol}: must be positive [mm]")
+    skw = {k: kw.pop(k) for k in ("fit_share", "max_segment", "max_turn", "min_blocks", "window") if k in kw}
+    arr = _arrays(program, feed)
+    if _dwells(program, len(arr["kind"])) is not None and np.any(_dwells(program, len(arr["kind"]))[1:-1] > 0):
+        raise ValueError("rule = 'smooth': programs with dwells between moves are not supported yet")
+    new, first, last, sstats = smooth_path(arr, tol, **skw)
+    fit_share = float(skw.get("fit_share", 0.75))
+    options = make_options("blend", tolerance=tol * (1.0 - fit_share), **kw)
+    t, pos, vel, fd, blk, stats = _m._plan_arrays(*_call_args(new), limits, options, False)
+    stats = dict(stats)
+    blk = np.asarray(blk)
+    pos = np.asarray(pos)
+    src = np.where(blk >= 0, np.asarray(first)[np.clip(blk, 0, None)], -1)
+    if with_deviation:
+        lo = np.asarray(first)[np.clip(blk, 0, None)]
+        hi = np.asarray(last)[np.clip(np.minimum(blk + 1, len(last) - 1), 0, None)]
+        stats["max_path_deviation_mm"] = float(_m._deviation_to_program(*_call_args(arr), pos, lo.tolist(),
+                                                                           hi.tolist()))
+    else:
+        stats["max_path_deviation_mm"] = 0.0
+    stats.update(sstats)
+    stats["blocks"] = int(np.count_nonzero(np.linalg.norm(np.asarray(arr["end"]) - np.asarray(arr["start"]), axis=1)
+                                           > 1e-9))
+    stats["smoothed_blocks"] = int(len(first))
+    stats["dwell_time_s"] = 0.0
+    stats["rule"] = "smooth"
+    stats["tolerance_mm"] = tol
+    stats["ts1_s"], stats["ts2_s"], stats["lookahead"] = options.ts1, options.ts2, options.lookahead
+    return Trajectory(np.asarray(t), pos, np.asarray(vel), np.asarray(fd), src, stats)
+
+
 def plan(program, limits: AxisLimits, options: PlanOptions | None = None, *, feed=None,
          with_deviation: bool = True, **option_keywords) -> Trajectory:
     """Plan and interpolate a program.
@@ -201,7 +257,17 @@ def plan(program, limits: AxisLimits, options: PlanOptions | None = None, *, fee
     dwell, waits, and starts from rest; the program is planned as independent pieces between dwells and
     the dwell appears as a gap in ``t`` (same position before and after). ``stats["dwell_time_s"]`` is
     the total dwell and ``stats["cycle_time_s"]`` includes it; maxima are over all pieces.
+
+    ``rule="smooth"`` (with ``tolerance`` ε [mm] and optionally the keywords of :func:`smooth_path`):
+    micro-segment runs are first replaced by :func:`smooth_path` within ``fit_share·ε``, then planned
+    with the blend rule at ``(1 − fit_share)·ε``; ``max_path_deviation_mm`` is measured against the
+    original program and ``block`` is the first program block of the smoothed block being run; stats
+    add ``runs_smoothed``, ``runs_kept``, ``corners_kept``, ``max_fit_deviation_mm``,
+    ``smoothed_blocks``.
     """
+    if options is None and str(option_keywords.get("rule", "")) == "smooth":
+        option_keywords.pop("rule")
+        return _plan_smooth(program, limits, feed, with_deviation, option_keywords)
     if options is None:
         options = make_options(**option_keywords)
     elif option_keywords:

@@ -1,0 +1,100 @@
+"""Tolerance-band smoothing benchmark (issue 22), in one run:
+
+1. cycle time of rule "smooth" against "blend" on 3D_Chips.ngc (vmax 250 mm/s, amax 3000 mm/s²) at
+   ε = 0.01, 0.03, 0.1 mm and on tort / cds / arcspiral with feeds ×100 (as bench/motion_plan.py), with
+   the largest axis acceleration by finite differences, the deviation from the original program, the
+   runs smoothed and corners kept;
+2. the ratio to TOPP-RA (toppra, per-axis box on a dense grid) on the smoothed path, first 200 blocks of
+   3D_Chips at ε = 0.01 mm;
+3. throughput of smoothing + planning (blocks of the original program per second; planning without
+   sampling, best of three CPU times).
+
+    PYTHONPATH=python python bench/motion_smooth.py [--quick]
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+import numpy as np
+
+import netshape.motion as nm
+from motion_plan import LIM, load, toppra_time  # bench/ is on sys.path when run as a script
+
+
+def cycle(arr, rule, eps):
+    tr = nm.plan(arr, LIM, rule=rule, tolerance=eps)
+    return tr.stats
+
+
+def section_cycle(quick):
+    print("## 1. cycle time [s] (vmax 250 mm/s, amax 3000 mm/s^2, ts1 1 ms, ts2 0.1 ms, look-ahead 64)")
+    print("  program (feed scale)        eps    blend (accel)        smooth (accel)   dev_mm  runs  corners  blocks->new")
+    progs = [("3D_Chips.ngc", 1.0, (0.01, 0.03, 0.1))]
+    if not quick:
+        progs += [("tort.ngc", 100.0, (0.01, 0.03)), ("cds.ngc", 100.0, (0.01, 0.03)),
+                  ("arcspiral.ngc", 100.0, (0.01, 0.03))]
+    for name, scale, epss in progs:
+        arr = load(name, scale)
+        for eps in epss:
+            b = cycle(arr, "blend", eps)
+            s = cycle(arr, "smooth", eps)
+            print(f"  {name:14s} (x{scale:<5g}) {eps:5.2f} {b['cycle_time_s']:8.3f} ({b['max_axis_accel_mm_s2']:6.0f})"
+                  f"   {s['cycle_time_s']:8.3f} ({s['max_axis_accel_mm_s2']:6.0f})  {s['max_path_deviation_mm']:.4f}"
+                  f"  {s['runs_smoothed']:4d}  {s['corners_kept']:6d}   {s['blocks']}->{s['smoothed_blocks']}")
+
+
+def section_toppra(quick):
+
+    n = 60 if quick else 200
+    arr = load("3D_Chips.ngc", 1.0, n)
+    arr["feed"][:] = 1e4
+    eps = 0.01
+    new = nm.smooth_path(arr, eps)[0]
+    opts = nm.make_options("blend", tolerance=0.25 * eps, lookahead=max(64, n + 2))
+    ds = 0.002
+    p, s, t_ours = nm.path_points(new, LIM, opts, ds)
+    keep = np.concatenate([[True], np.diff(s) > 1e-6])
+    p, s = p[keep], s[keep]
+    step = max(1, int(np.ceil(max(0.01 / ds, len(s) / 60000))))
+    grid = np.unique(np.concatenate([s[::step], s[-1:]]))
+    t_opt = toppra_time(p, s, np.asarray(LIM.velocity), np.asarray(LIM.acceleration), grid)
+    print(f"\n## 2. smooth (eps {eps}) vs toppra on the smoothed path, 3D_Chips first {n} blocks: "
+          f"ours {t_ours:.4f} s, toppra {t_opt:.4f} s, ratio {t_ours / t_opt:.3f}")
+
+
+def section_throughput(repeat):
+    arr = load("3D_Chips.ngc", 1.0)
+    n = int(np.count_nonzero(arr["kind"] != 0))
+    opts = nm.make_options("blend", tolerance=0.0025, lookahead=64)
+    best_s = best_p = float("inf")
+    for _ in range(3):
+        t0 = time.process_time()
+        for _ in range(repeat):
+            new = nm.smooth_path(arr, 0.01)[0]
+        t1 = time.process_time()
+        for _ in range(repeat):
+            nm.path_points(new, LIM, opts, 1e9)
+        t2 = time.process_time()
+        best_s, best_p = min(best_s, (t1 - t0) / repeat), min(best_p, (t2 - t1) / repeat)
+    print(f"\n## 3. throughput on 3D_Chips ({n} moves, eps 0.01): smoothing {n / best_s:.0f} blocks/s, "
+          f"planning the smoothed blocks {n / best_p:.0f} blocks/s, together {n / (best_s + best_p):.0f} blocks/s")
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--quick", action="store_true", help="3D_Chips only, smaller sizes")
+    ap.add_argument("--only", choices=("cycle", "toppra", "throughput"))
+    args = ap.parse_args(argv)
+    if args.only in (None, "cycle"):
+        section_cycle(args.quick)
+    if args.only in (None, "toppra"):
+        section_toppra(args.quick)
+    if args.only in (None, "throughput"):
+        section_throughput(2 if args.quick else 5)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

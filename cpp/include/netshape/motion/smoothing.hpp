@@ -1,0 +1,68 @@
+#pragma once
+/// \file smoothing.hpp
+/// Tolerance-band smoothing of micro-segment programs, a stage before the planner.
+///
+/// A run of short line blocks (each at most `max_segment` long, every interior turn at most
+/// `max_turn`, one feed, all points in one coordinate plane G17/G18/G19) is replaced by a chain of
+/// tangent-continuous circular arcs that follows a least-squares cubic B-spline of the run
+/// (parameter and interior knots by arc length). The chain is checked against the run's polyline
+/// both ways — every point of the chain within `fit_tolerance()` of the polyline and every point of
+/// the polyline within it of the chain — with rigorous upper bounds from chord samples (below);
+/// where a bound fails, knots are added in that span and the run is fitted again. A run that still
+/// fails after `max_refinements` rounds is cut at its sharpest interior vertex and both parts are
+/// tried again; a part shorter than `min_blocks` that fails is left as programmed. Vertices turning more than
+/// `max_turn` are corners: they end a run and stay (the planner's blend rule blends them within the
+/// rest of the tolerance). Arcs, rapids and long lines pass through unchanged.
+///
+/// Error bounds: for two chord points c0, c1 of an arc (sagitta σ = κ·h²/8) and a polyline segment
+/// S, dist(c, S) is convex along the chord, so every arc point between them is within
+/// max(dist(c0, S), dist(c1, S)) + σ of S; likewise a polyline piece [q0, q1] is within
+/// max(dist(q0, C), dist(q1, C)) + σ of the arc when C is the chord [c0, c1].
+///
+/// Units: mm, rad.
+
+#include <vector>
+
+#include "netshape/toolpath/block.hpp"
+
+namespace netshape::motion {
+
+/// Options of the smoothing stage.
+struct SmoothOptions {
+  double tolerance = 0.01;    ///< total contour tolerance ε [mm] (fit plus the planner's corner blends)
+  double fit_share = 0.75;    ///< share of ε given to the fitted arcs; the rest is the blend tolerance
+  double max_segment = 4.0;   ///< a line longer than this is not a micro-segment [mm]
+  double max_turn = 0.5236;   ///< a vertex turning more than this (30°) is a corner that is kept [rad]
+  int min_blocks = 3;         ///< shortest run that is smoothed [blocks]
+  int window = 4096;          ///< longest run fitted at once [blocks] (longer runs are cut at a vertex)
+  int max_refinements = 3;    ///< knot-insertion rounds before a run is left as programmed
+  double plane_tolerance = 1e-9;  ///< a run is planar when its normal coordinate varies less [mm]
+
+  /// Tolerance of the fitted arcs against the polyline [mm].
+  double fit_tolerance() const noexcept { return tolerance * fit_share; }
+  /// Tolerance left for the planner's corner blends [mm].
+  double blend_tolerance() const noexcept { return tolerance * (1.0 - fit_share); }
+  /// Throws std::invalid_argument naming the field.
+  void validate() const;
+};
+
+/// Output of smooth(): the new blocks and, per new block, the range of program blocks it replaces.
+struct SmoothResult {
+  std::vector<toolpath::Block> blocks;
+  std::vector<long> source_first, source_last;  ///< per new block: first / last program block index
+  long runs_smoothed = 0;   ///< runs replaced by arcs
+  long runs_kept = 0;       ///< runs that failed the check and were left as programmed
+  long corners_kept = 0;    ///< vertices between feed moves turning more than max_turn
+  double max_fit_deviation = 0;  ///< largest checked bound over the smoothed runs, both ways [mm]
+};
+
+/// Smooth a program (blocks in order, consecutive blocks joined). Throws std::invalid_argument on
+/// bad options or blocks.
+SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOptions& options);
+
+/// Largest distance of the points to the program [mm]: point k is measured against the program
+/// blocks [first[k] − 1, last[k] + 1] (its source range widened by one block on each side).
+double deviation_to_program(const std::vector<toolpath::Block>& program, const Points3& points,
+                            const std::vector<long>& first, const std::vector<long>& last);
+
+}  // namespace netshape::motion

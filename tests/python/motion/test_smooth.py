@@ -1,0 +1,163 @@
+"""Tolerance-band smoothing (rule "smooth", netshape.motion.smooth_path), issue 22.
+
+Deviation and feasibility are checked here independently of the smoother: the smoothed blocks are
+sampled in Python (lines, arcs from centre and sweep) and distances are exact point-to-segment
+distances to the nearest polyline pieces (k nearest by a KD-tree); accelerations are second finite
+differences of the fine samples.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.spatial import cKDTree
+
+import netshape.motion as nm
+from netshape import toolpath
+
+_AXES = ((0, 1, 2), (2, 0, 1), (1, 2, 0))  # plane -> (a, b, normal), as toolpath::plane_axes
+
+
+def _sample_blocks(arr, ds):
+    """Points along the blocks every <= ds [mm] (lines and single-turn arcs)."""
+    out = []
+    for i in range(len(arr["kind"])):
+        s, e, c = (np.asarray(arr[k][i], float) for k in ("start", "end", "center"))
+        if arr["kind"][i] != 2:
+            n = max(1, int(np.ceil(np.linalg.norm(e - s) / ds)))
+            f = np.linspace(0.0, 1.0, n + 1)[:, None]
+            out.append(s + f * (e - s))
+            continue
+        a, b, nrm = _AXES[int(arr["plane"][i])]
+        a0 = np.arctan2(s[b] - c[b], s[a] - c[a])
+        a1 = np.arctan2(e[b] - c[b], e[a] - c[a])
+        sw = a1 - a0
+        if arr["clockwise"][i]:
+            sw = sw - 2 * np.pi if sw > 0 else sw
+        else:
+            sw = sw + 2 * np.pi if sw < 0 else sw
+        r0 = np.hypot(s[a] - c[a], s[b] - c[b])
+        n = max(1, int(np.ceil(abs(sw) * r0 / ds)))
+        ang = a0 + sw * np.linspace(0.0, 1.0, n + 1)
+        p = np.empty((n + 1, 3))
+        p[:, a] = c[a] + r0 * np.cos(ang)
+        p[:, b] = c[b] + r0 * np.sin(ang)
+        p[:, nrm] = s[nrm] + (e[nrm] - s[nrm]) * np.linspace(0.0, 1.0, n + 1)
+        out.append(p)
+    return np.vstack(out)
+
+
+def _dist_to_polyline(q, pts, k=12):
+    """Exact distance of points q (m, 3) to the polyline through pts (n, 3), over the k pieces whose
+    midpoints are nearest."""
+    a, b = pts[:-1], pts[1:]
+    keep = np.linalg.norm(b - a, axis=1) > 0
+    a, b = a[keep], b[keep]
+    # long pieces are cut into equal parts of at most 0.5 mm (same polyline) so that the nearest
+    # midpoints find them
+    m = np.maximum(1, np.ceil(np.linalg.norm(b - a, axis=1) / 0.5)).astype(int)
+    rep = np.repeat(np.arange(len(a)), m)
+    j = np.concatenate([np.arange(k) for k in m])
+    f0, f1 = (j / m[rep])[:, None], ((j + 1) / m[rep])[:, None]
+    a, b = a[rep] + f0 * (b[rep] - a[rep]), a[rep] + f1 * (b[rep] - a[rep])
+    tree = cKDTree(0.5 * (a + b))
+    _, idx = tree.query(q, k=min(k, len(a)))
+    idx = np.atleast_2d(idx.T).T if idx.ndim == 1 else idx
+    A, B = a[idx], b[idx]
+    d = B - A
+    t = np.clip(np.einsum("mkj,mkj->mk", q[:, None, :] - A, d) / np.einsum("mkj,mkj->mk", d, d), 0.0, 1.0)
+    return np.linalg.norm(q[:, None, :] - (A + t[..., None] * d), axis=2).min(axis=1)
+
+
+def _random_curve(seed, n_pts, noise, length=60.0):
+    rng = np.random.default_rng(seed)
+    t = np.linspace(0.0, 1.0, 4000)
+    x = length * t
+    y = np.zeros_like(t)
+    for k in range(1, 5):
+        y += rng.normal(0, 4.0 / k ** 2) * np.sin(2 * np.pi * k * t + rng.uniform(0, 2 * np.pi))
+    curve = np.column_stack([x, y])
+    s = np.concatenate([[0], np.cumsum(np.linalg.norm(np.diff(curve, axis=0), axis=1))])
+    step = s[-1] / (n_pts - 1)  # jittered spacing, 0.4-0.6 of a step apart at least
+    sv = (np.arange(n_pts) + np.concatenate([[0.0], rng.uniform(-0.3, 0.3, n_pts - 2), [0.0]])) * step
+    p = np.column_stack([np.interp(sv, s, curve[:, 0]), np.interp(sv, s, curve[:, 1])])
+    p[1:-1] += rng.uniform(-noise, noise, size=(n_pts - 2, 2))
+    return np.column_stack([p, np.full(n_pts, -3.0)])
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_random_curves_come_back_within_tolerance(seed):
+    eps = 0.01
+    pts = _random_curve(seed, 150, 0.25 * eps)
+    arr = nm.polyline_arrays(pts, 100.0)
+    new, first, last, st = nm.smooth_path(arr, eps)
+    assert st["runs_smoothed"] == 1 and st["corners_kept"] == 0
+    assert len(first) < len(pts) - 1  # fewer blocks than the program
+    assert np.array_equal(new["start"][0], pts[0]) and np.array_equal(new["end"][-1], pts[-1])
+    fit = 0.75 * eps
+    curve = _sample_blocks(new, 0.0005)
+    d1 = _dist_to_polyline(curve, pts).max()
+    dense_in = _sample_blocks(arr, 0.0005)
+    d2 = _dist_to_polyline(dense_in, curve).max()
+    assert d1 <= fit * (1 + 1e-9), d1
+    assert d2 <= fit + 1e-5, d2  # + the chord error of the 0.5 µm samples of the smoothed curve
+    assert st["max_fit_deviation_mm"] <= fit
+
+
+def test_square_keeps_its_corners():
+    eps = 0.01
+    corners = np.array([[0, 0, 0], [20, 0, 0], [20, 20, 0], [0, 20, 0], [0, 0, 0]], float)
+    pts = [corners[0]]
+    for a, b in zip(corners[:-1], corners[1:]):
+        f = np.linspace(0, 1, 41)[1:, None]
+        pts.extend(a + f * (b - a))
+    pts = np.array(pts)
+    arr = nm.polyline_arrays(pts, 100.0)
+    new, first, last, st = nm.smooth_path(arr, eps)
+    assert st["corners_kept"] == 3 and st["runs_smoothed"] == 4
+    ends = np.asarray(new["end"])
+    for c in corners[1:4]:
+        assert np.min(np.linalg.norm(ends - c, axis=1)) < 1e-12  # every corner is still a block end
+    lim = nm.AxisLimits.uniform(250.0, 3000.0)
+    tr = nm.plan(arr, lim, rule="smooth", tolerance=eps)
+    assert tr.stats["corners_kept"] == 3
+    # the path turns each corner within ε: its samples pass within ε (+ one sample step) of the vertex
+    for c in corners[1:4]:
+        assert np.min(np.linalg.norm(tr.position - c, axis=1)) <= eps + 0.03
+    assert tr.stats["max_path_deviation_mm"] <= eps
+
+
+def test_smooth_rule_bad_input():
+    lim = nm.AxisLimits.uniform(250.0, 3000.0)
+    pts = _random_curve(1, 20, 0.0)
+    with pytest.raises(ValueError, match="tolerance"):
+        nm.plan(pts, lim, feed=100.0, rule="smooth", tolerance=-1.0)
+    with pytest.raises(ValueError, match="max_turn"):
+        nm.smooth_path(pts, 0.01, feed=100.0, max_turn=4.0)
+
+
+@pytest.mark.slow
+def test_chips_smooth_feasible_and_within_tolerance(shared_data):
+    """3D_Chips.ngc (issue 22): vmax 250 mm/s, amax 3000 mm/s², ε = 0.03 mm (0.01 mm takes ~14 s to smooth)."""
+    path = shared_data / "gcode" / "3D_Chips.ngc"
+    if not path.exists():
+        pytest.skip(f"{path} is absent")
+    arr = {k: np.asarray(v) for k, v in toolpath.read_gcode_arrays(path).items()}
+    eps, amax = 0.03, 3000.0
+    lim = nm.AxisLimits.uniform(250.0, amax)
+    tr = nm.plan(arr, lim, rule="smooth", tolerance=eps)
+    ts = tr.stats["ts2_s"]
+    acc = np.abs(np.diff(tr.position, 2, axis=0)) / ts ** 2
+    assert acc.max() <= amax * 1.005
+    assert tr.stats["runs_smoothed"] > 0
+    # the programmed polyline (moves only, rapids included: they are part of the program)
+    moving = np.linalg.norm(arr["end"] - arr["start"], axis=1) > 1e-9
+    prog = np.vstack([arr["start"][moving][:1], arr["end"][moving]])
+    d_samples = _dist_to_polyline(tr.position, prog)
+    assert d_samples.max() <= eps * (1 + 1e-6), d_samples.max()
+    assert tr.stats["max_path_deviation_mm"] <= eps * (1 + 1e-6)
+    # every programmed vertex within ε of the planned path (sampled every 1 µm by the planner's geometry)
+    new = nm.smooth_path(arr, eps)[0]
+    p, _, _ = nm.path_points(new, lim, nm.make_options("blend", tolerance=0.25 * eps), 0.001)
+    d_vertices = _dist_to_polyline(prog, p, k=16)
+    assert d_vertices.max() <= eps * (1 + 1e-6), d_vertices.max()
