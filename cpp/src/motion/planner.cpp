@@ -846,7 +846,7 @@ void Planner::back_pass(long dirty_from) noexcept {
         r.wb[p] = w;
       }
     } else {
-      // seeds/002 eq. 3 (trapezoid; on curves the axis box), capped by the junction limit (without
+      // Lee & Lee eq. 3 (trapezoid; on curves the axis box), capped by the junction limit (without
       // jerk limits reach_sq is the min of three affine terms, inlined here; on a line only the first
       // is finite: the same value with half the latency in the chain)
       w = jerk_        ? std::min(n.w_lim, reach_sq(n, w_next))

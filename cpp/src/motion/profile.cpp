@@ -19,7 +19,7 @@ double ramp_distance(double v0, double v1, double a, double j) noexcept {
 
 double reach_speed(double v, double length, double a, double j) noexcept {
   if (length <= 0) return v;
-  const double trap = std::sqrt(v * v + 2.0 * a * length);  // seeds/002 eq. 3 / eq. 5
+  const double trap = std::sqrt(v * v + 2.0 * a * length);  // Lee & Lee eq. 3 / eq. 5
   if (!std::isfinite(j)) return trap;
   // S-curve needs more distance than the trapezoid for the same change: bisect in [v, trap]
   double lo = v, hi = trap;

@@ -7,14 +7,14 @@ import json
 import math
 
 _DESCRIPTION = """\
-Plan the feedrate of a G-code program under axis limits with a look-ahead buffer (seeds/002), then
+Plan the feedrate of a G-code program under axis limits with a look-ahead buffer (Lee & Lee, see docs/references.md), then
 interpolate it in two loops (rough period --ts1, fine period --ts2). The tool stops for every G4
 dwell and waits its duration (counted in cycle_time_s and in dwell_time_s). Writes a JSON summary:
 blocks, cycle_time_s, dwell_time_s, max_axis_velocity_mm_s, max_axis_accel_mm_s2, max_axis_jerk_mm_s3 (largest over all
 axes and samples, by finite differences of the fine samples) and max_path_deviation_mm.
 
 Corner rules:
-  paper               seeds/002 eq. 4, Acc*Ts1/(1-cos θ) floored by the allowable speed difference
+  paper               Lee & Lee eq. 4, Acc*Ts1/(1-cos θ) floored by the allowable speed difference
   vector              velocity vector jump |Δv| <= Acc*Ts2 (feasible by construction)
   per-axis            each axis' jump |Δv_i| <= A_i*Ts2 (feasible by construction)
   junction-deviation  grbl/Klipper: v² = a·δ·cos(φ/2)/(1-cos(φ/2)) at a turn φ, δ from

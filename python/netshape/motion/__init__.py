@@ -1,4 +1,4 @@
-"""netshape.motion — look-ahead feedrate planning and 2-step interpolation (seeds/002, DESIGN §4.8).
+"""netshape.motion — look-ahead feedrate planning and 2-step interpolation (Lee & Lee; docs/motion.md).
 
 Batch use::
 

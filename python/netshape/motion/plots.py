@@ -4,7 +4,7 @@ from __future__ import annotations
 
 
 def plot_profiles(traj, *, title: str = "", per_minute: bool = True):
-    """Feed profile (top) and per-axis velocity profiles (bottom) against time, as in seeds/002
+    """Feed profile (top) and per-axis velocity profiles (bottom) against time, as in Lee & Lee
     Fig. 12 (b, c) and Fig. 14–15. Feeds in mm/min when `per_minute`, else mm/s."""
     import matplotlib
 

@@ -1,4 +1,4 @@
-"""The test programs of seeds/002 §4, rebuilt from the paper's text (the figures give no coordinates).
+"""The test programs of Lee & Lee §4, rebuilt from the paper's text (the figures give no coordinates).
 
 Reconstruction (stated in docs/motion.md):
 - Fig. 12: four 20 mm single-axis blocks at right angles (a square: +X, +Y, −X, −Y), F5000 mm/min,
@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-#: reconstructed machine and loop constants of seeds/002 §4
+#: reconstructed machine and loop constants of Lee & Lee §4
 ACC = 450.0          # [mm/s^2], every axis
 TS1 = 4e-4           # rough loop period [s]
 TS2 = 1e-4           # fine loop period [s]

@@ -1,6 +1,6 @@
 """Bundles with hidden effects for the discrepancy tests (and bench/discrepancy.py).
 
-Forces come from an independent NumPy evaluation of the element sum (DESIGN frame and formulas:
+Forces come from an independent NumPy evaluation of the element sum (the frame and formulas of docs/conventions.md:
 φ_j(z) = θ + j·2π/N − k_β·z, h = c·sin φ (+ runout offset R_j − R_{j−1}, clamped at 0), linear edge
 forces, dF → (Fx, Fy, Fz)), with disks 5× thinner than the workflow's; a structural mode is applied by
 simulating the continuous 2nd-order system in time (scipy.signal.lsim over 8 revolutions, the last

@@ -5,7 +5,7 @@ time-domain simulation of the mode) with Gaussian noise of σ = 2 N; the manifes
 hidden effect. Three experiments (slot at two feeds, up milling), 3 revolutions of 120 samples,
 D 10 mm, 2 flutes, 30° helix, a_p 3 mm, 6000 rpm.
 
-Runout with 2 flutes: the chip offsets of DESIGN's runout model are ±2ρ·cos λ, so ρ·cos λ is what a
+Runout with 2 flutes: the chip offsets of the runout model (docs/discrepancy.md) are ±2ρ·cos λ, so ρ·cos λ is what a
 2-flute recording determines; the workflow reports it as ρ ≥ 0 with λ = 0° or 180°. A 3-flute bundle
 recovers ρ and λ separately.
 """

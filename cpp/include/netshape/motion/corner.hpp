@@ -12,7 +12,7 @@ namespace netshape::motion {
 /// Turn angle θ between two unit tangents [rad] (0 = straight on, π = reversal).
 double turn_angle(const Vec3& u1, const Vec3& u2) noexcept;
 
-/// seeds/002 eq. 4: Acc·Ts/(1 − cos θ) [mm/s] (+inf for θ = 0), θ the turn angle.
+/// Lee & Lee eq. 4: Acc·Ts/(1 − cos θ) [mm/s] (+inf for θ = 0), θ the turn angle.
 double paper_corner_speed(double acc, double ts, double theta) noexcept;
 
 /// Vector velocity-jump bound: largest F with F·|u2 − u1| ≤ acc·ts [mm/s] (+inf when u1 = u2).
@@ -42,7 +42,7 @@ double junction_deviation_corner_speed(const Vec3& u1, const Vec3& u2, const Vec
 /// Klipper: the junction deviation δ [mm] that makes a 90° corner run at `scv` [mm/s] with `acc`.
 double klipper_junction_deviation(double square_corner_velocity, double acc) noexcept;
 
-/// Smallest acceleration among the axes that move along u1 or u2 [mm/s^2] (seeds/002 "Acc").
+/// Smallest acceleration among the axes that move along u1 or u2 [mm/s^2] (Lee & Lee's "Acc").
 double moving_axes_min(const Vec3& per_axis, const Vec3& u1, const Vec3& u2) noexcept;
 
 /// Largest path acceleration (or velocity) along the unit direction u so that every axis

@@ -8,7 +8,7 @@
 namespace netshape::motion {
 
 /// Corner (junction) rule between two blocks whose tangents differ.
-///  - paper:   seeds/002 eq. 4, F = Acc·Ts1/(1 − cos θ), floored by the allowable speed difference
+///  - paper:   Lee & Lee eq. 4, F = Acc·Ts1/(1 − cos θ), floored by the allowable speed difference
 ///             (θ = turn angle). Velocity jumps at the vertex; the normal part is ignored.
 ///  - vector:  the whole velocity vector may jump by at most Acc·Ts2: 2F·sin(θ/2) ≤ Acc·Ts2.
 ///  - per_axis: each axis' velocity may jump by at most its own A_i·Ts2: F·|u2_i − u1_i| ≤ A_i·Ts2.

@@ -1,6 +1,6 @@
 #pragma once
 /// \file planner.hpp
-/// Streaming look-ahead planner and 2-step interpolator for controllers (seeds/002 §2–3).
+/// Streaming look-ahead planner and 2-step interpolator for controllers (Lee & Lee §2–3).
 ///
 /// Push blocks, pull samples. All memory (the ring buffer of segments) is allocated in the
 /// constructor; push(), next() and next_segment() never allocate and never throw: they return a
@@ -16,7 +16,7 @@
 ///       else drive(sample.position, sample.velocity);
 ///     }
 ///
-/// Look-ahead (seeds/002 §3.2): each new segment gets the largest entry speed it can stop from
+/// Look-ahead (Lee & Lee §3.2): each new segment gets the largest entry speed it can stop from
 /// (eq. 3 with the end speed 0), the corner speed of the junction (eq. 4 or another rule) and the
 /// previous block's reachable end speed (eq. 5); the smallest wins, and the backward pass carries the
 /// change back through the buffer until nothing changes. A segment's profile is frozen when the

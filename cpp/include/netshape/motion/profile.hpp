@@ -15,7 +15,7 @@ namespace netshape::motion {
 double ramp_time(double v0, double v1, double a, double j) noexcept;
 /// Distance [mm] of that speed change.
 double ramp_distance(double v0, double v1, double a, double j) noexcept;
-/// Largest speed reachable from v over a distance L (seeds/002 eq. 3 and 5 for the trapezoid:
+/// Largest speed reachable from v over a distance L (Lee & Lee eq. 3 and 5 for the trapezoid:
 /// sqrt(v² + 2·a·L)) [mm/s].
 double reach_speed(double v, double length, double a, double j) noexcept;
 

@@ -41,7 +41,7 @@ struct Segment {
   Vec3 point_at(double s) const noexcept;
   /// Unit tangent at arc length s.
   Vec3 tangent_at(double s) const noexcept;
-  /// Axes that move on this segment (|component| > 1e-12 anywhere): used for "Acc" of seeds/002.
+  /// Axes that move on this segment (|component| > 1e-12 anywhere): used for "Acc" of Lee & Lee.
   Vec3 moving_axes() const noexcept;
   /// Distance from p to the untrimmed programmed piece between arc lengths [s0, s1] [mm].
   double distance_to_piece(const Vec3& p, double s0, double s1) const noexcept;
