@@ -284,3 +284,27 @@ def test_compensated_program_keeps_the_programs_words(demo_run):
     assert {"M5", "M30", "G54"} <= set(words)
     assert s["job"]["compensations"] == ["deflection", "volumetric"]
     assert [c.text for c in comp.commands if not c.text.startswith("(netshape compensated")] == words
+
+
+@pytest.mark.slow
+def test_unconverged_deflection_contour_reported_or_fatal(tmp_path):
+    """The demo pocket's finishing pass meets a step in the stock where no offset makes the wall error
+    vanish at the step itself: with compensate.deflection_unconverged = "report" (default) the run
+    names the contour, point and residual in stages.deflection and the error after is that residual;
+    with "fail" the run stops at the deflection stage and writes nothing."""
+    d = _demo_copy(tmp_path)
+    doc = tomllib.loads((d / "job.toml").read_text())
+    doc["predict"] = {"forces": True, "deflection": True, "volumetric": False, "feed_plan": False}
+    doc["cutting"].update(step_mm=2.0, samples_per_revolution=12, disk_height_mm=1.0, error_spacing_mm=0.5)
+    doc["compensate"] = {"deflection": True, "deflection_scheme": "accelerated"}
+    doc["report"] = {"plots": False, "zmap_stl": False}
+    s = run_job(job_from_dict(doc, source="job.toml", base_dir=d), tmp_path / "report")
+    status = s["stages"]["deflection"]
+    assert "did not converge" in status and "from line " in status and re.search(r"at point \d+ \(x ", status)
+    e = s["errors"]["deflection"]
+    assert e["max_after_mm"] < e["max_before_mm"] and e["rms_after_mm"] < 0.1 * e["rms_before_mm"]
+    doc["compensate"]["deflection_unconverged"] = "fail"
+    with pytest.raises(StageFailed) as exc:
+        run_job(job_from_dict(doc, source="job.toml", base_dir=d), tmp_path / "fail")
+    assert exc.value.stage == "deflection" and "iteration limit" in str(exc.value)
+    assert not (tmp_path / "fail").exists() or not any((tmp_path / "fail").iterdir())

@@ -64,6 +64,7 @@ def test_demo_job_reads_as_written():
     (lambda d: d["predict"].update(chips=True), "predict.chips"),
     (lambda d: d["predict"].update(forces="yes"), "predict.forces"),
     (lambda d: d["compensate"].update(deflection_scheme="magic"), "compensate.deflection_scheme"),
+    (lambda d: d["compensate"].update(deflection_unconverged="ignore"), "compensate.deflection_unconverged"),
     (lambda d: d.update(program="missing.ngc"), "program"),
     (lambda d: d.update(tool={"file": "tool.toml", "flutes": 0}), "flutes"),
     (lambda d: d.update(tool={"file": "tool.toml", "shank_mm": 6}), "tool.shank_mm"),
