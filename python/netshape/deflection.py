@@ -73,7 +73,8 @@ def parse_coefficients(text: str):
     """``NAME`` (a linear edge set of netshape.force or a Kline–DeVor set of :data:`KLINE_DEVOR_SETS`),
     ``Ktc=…,Krc=…,Kac=…,Kte=…,Kre=…,Kae=…`` (linear edge) or ``KT=…,KR=…`` (Kline–DeVor, paper eq. 1)
     → LinearEdgeCoefficients or KlineDevorCoefficients. ValueError names the bad item."""
-    from netshape.force import parse_coefficients as parse_linear
+    from netshape.force.simulate import parse_coefficients as parse_linear
+    from netshape.force.simulate import parse_named_values
 
     if not isinstance(text, str) or not text.strip():
         raise ValueError(f"coefficients = {text!r}: expected a set name, Ktc=…,… or KT=…,KR=…")
@@ -88,18 +89,7 @@ def parse_coefficients(text: str):
         raise ValueError(f"coefficients = {t!r}: unknown set (known: {', '.join(names + list(KLINE_DEVOR_SETS))})")
     keys = {item.split("=", 1)[0].strip().lower() for item in t.split(",") if "=" in item}
     if keys and keys <= {"kt", "kr"}:
-        vals = {}
-        for item in t.split(","):
-            if not item.strip():
-                continue
-            k, v = (s.strip() for s in item.split("=", 1))
-            try:
-                x = float(v)
-            except ValueError:
-                raise ValueError(f"coefficients {k} = {v!r}: not a number") from None
-            if not math.isfinite(x):
-                raise ValueError(f"coefficients {k} = {v!r}: must be finite")
-            vals[k.lower()] = x
+        vals = parse_named_values(t, ("KT", "KR"))
         if "kt" not in vals or vals["kt"] <= 0:
             raise ValueError(f"coefficients KT = {vals.get('kt')!r}: required and positive [N/mm^2]")
         return _f.KlineDevorCoefficients(kt=vals["kt"], kr=vals.get("kr", 0.0))

@@ -12,13 +12,11 @@ from netshape._core import force as _f
 _LINEAR_KEYS = ("Ktc", "Krc", "Kac", "Kte", "Kre", "Kae")
 
 
-def parse_coefficients(text: str) -> "_f.LinearEdgeCoefficients":
-    """``"Ktc=…,Krc=…,Kac=…,Kte=…,Kre=…,Kae=…"`` (case-insensitive keys; missing keys are 0; at least
-    one key) → LinearEdgeCoefficients. ValueError names the bad item."""
-    if not isinstance(text, str) or not text.strip():
-        raise ValueError(f"coefficients = {text!r}: expected Ktc=…,Krc=…,Kac=…,Kte=…,Kre=…,Kae=…")
+def parse_named_values(text: str, keys: tuple[str, ...]) -> dict[str, float]:
+    """``"NAME=VALUE,…"`` with NAME one of ``keys`` (case-insensitive) → {lower-case name: finite float}.
+    Empty items are skipped; ValueError names the bad item, key or value."""
     values: dict[str, float] = {}
-    known = {k.lower(): k for k in _LINEAR_KEYS}
+    known = {k.lower(): k for k in keys}
     for item in text.split(","):
         if not item.strip():
             continue
@@ -26,14 +24,23 @@ def parse_coefficients(text: str) -> "_f.LinearEdgeCoefficients":
             raise ValueError(f"coefficients item = {item.strip()!r}: expected NAME=VALUE")
         k, v = (s.strip() for s in item.split("=", 1))
         if k.lower() not in known:
-            raise ValueError(f"coefficients key = {k!r}: must be one of {', '.join(_LINEAR_KEYS)}")
+            raise ValueError(f"coefficients key = {k!r}: must be one of {', '.join(keys)}")
         try:
             x = float(v)
         except ValueError:
             raise ValueError(f"coefficients {k} = {v!r}: not a number") from None
         if not math.isfinite(x):
             raise ValueError(f"coefficients {k} = {v!r}: must be finite")
-        values[known[k.lower()].lower()] = x
+        values[k.lower()] = x
+    return values
+
+
+def parse_coefficients(text: str) -> "_f.LinearEdgeCoefficients":
+    """``"Ktc=…,Krc=…,Kac=…,Kte=…,Kre=…,Kae=…"`` (case-insensitive keys; missing keys are 0; at least
+    one key) → LinearEdgeCoefficients. ValueError names the bad item."""
+    if not isinstance(text, str) or not text.strip():
+        raise ValueError(f"coefficients = {text!r}: expected Ktc=…,Krc=…,Kac=…,Kte=…,Kre=…,Kae=…")
+    values = parse_named_values(text, _LINEAR_KEYS)
     if not values:
         raise ValueError(f"coefficients = {text!r}: no NAME=VALUE items")
     return _f.LinearEdgeCoefficients(**values)
