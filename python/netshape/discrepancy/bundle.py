@@ -203,6 +203,24 @@ def _check_keys(table: dict, allowed, where: str) -> None:
         raise _fail(where, f"unknown key {unknown[0]!r} (allowed: {', '.join(allowed)})")
 
 
+def _experiment_head(e: dict, i: int, keys, where: str, root: Path) -> tuple[str, Path]:
+    """Checks common to every ``[[experiment]]`` table: known keys and a CSV ``file``. Returns the
+    error prefix of the table and the CSV's path (relative paths are relative to the bundle)."""
+    we = f"{where}: [[experiment]] {i}"
+    _check_keys(e, keys, we)
+    if not isinstance(e.get("file"), str) or not e["file"]:
+        raise _fail(we, f"file = {e.get('file')!r}: must name a CSV file")
+    path = Path(e["file"])
+    return we, (path if path.is_absolute() else root / path)
+
+
+def _mode(e: dict, we: str) -> str:
+    mode = e.get("mode")
+    if mode not in ("up", "down", "slot"):
+        raise _fail(we, f"mode = {mode!r}: must be 'up', 'down' or 'slot'")
+    return mode
+
+
 def _read_csv(path: Path, required: tuple, optional: tuple, alternatives: tuple = ()) -> dict:
     """Read a CSV of numbers with a header row → {column: (n,) float array}. ``alternatives``: a
     tuple of column names of which exactly one must be present (besides ``required``)."""
@@ -290,13 +308,8 @@ def _load_force(doc: dict, root: Path, where: str) -> Bundle:
         "time_window_s",
     )
     for i, e in enumerate(exps, start=1):
-        we = f"{where}: [[experiment]] {i}"
-        _check_keys(e, keys, we)
-        if not isinstance(e.get("file"), str) or not e["file"]:
-            raise _fail(we, f"file = {e.get('file')!r}: must name a CSV file")
-        mode = e.get("mode")
-        if mode not in ("up", "down", "slot"):
-            raise _fail(we, f"mode = {mode!r}: must be 'up', 'down' or 'slot'")
+        we, path = _experiment_head(e, i, keys, where, root)
+        mode = _mode(e, we)
         rpm = _number(e, "spindle_rpm", we, positive=True)
         c = _number(e, "feed_per_tooth_mm", we, positive=True)
         ap = _number(e, "axial_depth_mm", we, positive=True)
@@ -308,7 +321,6 @@ def _load_force(doc: dict, root: Path, where: str) -> Bundle:
                 we, f"radial_depth_mm = {ae}: larger than the tool diameter {tool_out['diameter']} mm"
             )
         fmt = e.get("format", "csv")
-        path = Path(e["file"]) if Path(e["file"]).is_absolute() else root / e["file"]
         if fmt == "csv":
             if "to_cutter" in e:
                 raise _fail(we, "to_cutter is only for format = 'dynoware'")
@@ -405,14 +417,10 @@ def _load_volumetric(doc: dict, root: Path, where: str) -> Bundle:
         raise _fail(where, "no [[experiment]] tables")
     out = []
     for i, e in enumerate(exps, start=1):
-        we = f"{where}: [[experiment]] {i}"
-        _check_keys(e, ("file", "tool_length_mm"), we)
-        if not isinstance(e.get("file"), str) or not e["file"]:
-            raise _fail(we, f"file = {e.get('file')!r}: must name a CSV file")
+        we, path = _experiment_head(e, i, ("file", "tool_length_mm"), where, root)
         L = _number(e, "tool_length_mm", we, default=length)
         if L < 0:
             raise _fail(we, f"tool_length_mm = {L}: must be ≥ 0")
-        path = Path(e["file"]) if Path(e["file"]).is_absolute() else root / e["file"]
         cols = _read_csv(path, VOLUMETRIC_COLUMNS, VOLUMETRIC_OPTIONAL)
         d = cols.get("direction")
         if d is not None and not np.all(np.abs(d) == 1.0):
@@ -489,13 +497,8 @@ def _load_wall(doc: dict, root: Path, where: str) -> Bundle:
     keys = ("file", "spindle_rpm", "feed_per_tooth_mm", "axial_depth_mm", "radial_depth_mm", "mode", "side", "z_mm")
     out = []
     for i, e in enumerate(exps, start=1):
-        we = f"{where}: [[experiment]] {i}"
-        _check_keys(e, keys, we)
-        if not isinstance(e.get("file"), str) or not e["file"]:
-            raise _fail(we, f"file = {e.get('file')!r}: must name a CSV file")
-        mode = e.get("mode")
-        if mode not in ("up", "down", "slot"):
-            raise _fail(we, f"mode = {mode!r}: must be 'up', 'down' or 'slot'")
+        we, path = _experiment_head(e, i, keys, where, root)
+        mode = _mode(e, we)
         side = e.get("side", {"up": "left", "down": "right"}.get(mode))
         if side not in ("left", "right"):
             raise _fail(we, f"side = {side!r}: must be 'left' or 'right' (required for mode = 'slot')")
@@ -510,7 +513,6 @@ def _load_wall(doc: dict, root: Path, where: str) -> Bundle:
                              inertia=model_out["inertia"], load=model_out["load"])
         except ValueError as exc:
             raise _fail(we, str(exc)) from None
-        path = Path(e["file"]) if Path(e["file"]).is_absolute() else root / e["file"]
         cols = _read_csv(path, ("x_mm", "error_mm"), ("z_mm",))
         if "z_mm" in cols:
             if "z_mm" in e:
