@@ -16,8 +16,6 @@ import numpy as np
 
 from .spec import WORK_OFFSETS, Job
 
-NOT_AVAILABLE = "not available in this build"
-
 # ---------------------------------------------------------------------------------------------- program
 
 
@@ -259,27 +257,6 @@ class DeflectionResult:
     ranges: list = field(default_factory=list)                          # (s0, s1) [mm] of each contour
 
 
-#: The functions of netshape.deflection the deflection stage drives, all needed (the deflection
-#: area's contour API): ``setup_path(program, cutter, stock, *, coefficients, rpm, spacing)`` for one
-#: contiguous 2-D contour, ``predict_path(setup)`` → wall errors (``error`` (n, 3): bottom, middle,
-#: top [mm]), ``compensate_path(setup, *, scheme, level)`` → ``converged``, ``message``, ``positions``,
-#: ``after``, ``iterations``, and ``compensated_blocks(setup, positions)`` → (blocks, index of the contour
-#: block each came from).
-DEFLECTION_API = ("setup_path", "predict_path", "compensate_path", "compensated_blocks")
-
-
-def deflection_api():
-    """The contour functions of netshape.deflection (dict by name), or None where this build lacks any."""
-    try:
-        from netshape import deflection as nd
-    except ImportError:  # pragma: no cover - the package always has the module
-        return None
-    funcs = {n: getattr(nd, n, None) for n in DEFLECTION_API}
-    if not all(callable(f) for f in funcs.values()):
-        return None
-    return funcs
-
-
 def contour_runs(tp) -> list[tuple[int, int]]:
     """(first, last) block indices of the runs of XY cutting moves at one constant Z (lines, and arcs in
     G17), in program order: the 2-D contours whose walls tool deflection shapes."""
@@ -321,11 +298,13 @@ def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> De
     Z, :func:`contour_runs`) is evaluated on the stock as the moves before it left it, compensated with
     the job's scheme and reference level, and replaced by its compensated moves. A contour the model
     cannot evaluate (it never touches the stock, say) keeps its moves and is listed in ``info``. Where
-    netshape.deflection lacks the contour API, or the tool is not a flat end mill, the result says so
-    (``available`` False) instead of reporting zero error."""
-    api = deflection_api()
-    if api is None:
-        return DeflectionResult(available=False, reason=f"deflection wall-error prediction {NOT_AVAILABLE}")
+    the tool is not a flat end mill, the result says so (``available`` False) instead of reporting zero
+    error.
+
+    It drives the deflection area's contour API: ``setup_path`` for one contiguous 2-D contour,
+    ``predict_path`` (wall errors at the bottom, middle and top levels), ``compensate_path`` and
+    ``compensated_blocks`` (the compensated moves and the contour block each came from)."""
+    from netshape import deflection as nd
     from netshape import stock as nst
     from netshape.cutter import CutterKind
     from netshape.errors import Error
@@ -357,8 +336,8 @@ def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> De
         sub = _sub_toolpath(tp, run)
         rpm = job.cutting["spindle_rpm"] or abs(float(run[0].spindle_rpm))
         try:
-            setup = api["setup_path"](sub, cutter, z, coefficients=coeffs, rpm=rpm, spacing=spacing)
-            pred = api["predict_path"](setup)
+            setup = nd.setup_path(sub, cutter, z, coefficients=coeffs, rpm=rpm, spacing=spacing)
+            pred = nd.predict_path(setup)
         except ValueError as exc:
             skipped.append(f"line {run[0].line}: {' '.join(str(exc).split())}")
             out_blocks.extend(run)
@@ -370,7 +349,7 @@ def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> De
             before = np.asarray(pred.error, dtype=float)[:, level]
             before_all.append(before)
             if compensate:
-                res = api["compensate_path"](setup, scheme=job.compensate["deflection_scheme"],
+                res = nd.compensate_path(setup, scheme=job.compensate["deflection_scheme"],
                                              level=job.compensate["deflection_level"])
                 if not res.converged:
                     where = f"deflection compensation of the contour from line {run[0].line}: {res.message}"
@@ -380,7 +359,7 @@ def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> De
                     unconverged.append(" ".join(where.split()))
                 iterations = max(iterations, int(res.iterations))
                 after_all.append(np.asarray(res.after.error, dtype=float)[:, level])
-                new, sub_origin = api["compensated_blocks"](setup, np.asarray(res.positions, dtype=float))
+                new, sub_origin = nd.compensated_blocks(setup, np.asarray(res.positions, dtype=float))
                 for b in new:  # keep the source line (work offset, reports) of the contour
                     if b.line <= 0:
                         b.line = run[0].line
