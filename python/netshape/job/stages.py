@@ -38,25 +38,29 @@ class Program:
         return len(np.unique(self.offset_index)) <= 1
 
 
-_COMMENT = re.compile(r"\([^)]*\)|;.*$")
-_G5X = re.compile(r"G\s*0*5\s*([4-9])(\s*\.\s*\d)?", re.IGNORECASE)
-
-
 def active_work_offsets(path) -> np.ndarray:
-    """Index into WORK_OFFSETS (0 = G54) of the work offset in force on each source line (1-based;
-    entry 0 unused). G59.1–G59.3 are refused: the job has no values for them."""
-    states = [0]
-    cur = 0
-    with open(path, encoding="utf-8", errors="replace") as fh:
-        for no, raw in enumerate(fh, start=1):
-            text = _COMMENT.sub("", raw)
-            for m in _G5X.finditer(text):
-                if m.group(2):
-                    raise ValueError(f"{path}:{no}: G5{m.group(1)}{m.group(2).replace(' ', '')}: this work "
-                                     "offset has no key in the job (offsets.G54_mm … G59_mm)")
-                cur = int(m.group(1)) - 4
-            states.append(cur)
-    return np.asarray(states, dtype=np.int64)
+    """Index into WORK_OFFSETS (0 = G54) of the work offset in force on each source line of the program
+    file (1-based; entry 0 unused). See :func:`work_offsets_per_line`."""
+    return work_offsets_per_line(read_program(path), path)
+
+
+def work_offsets_per_line(tp, source) -> np.ndarray:
+    """Index into WORK_OFFSETS (0 = G54) of the work offset in force on each source line of a program
+    read by :func:`read_program` (1-based; entry 0 unused), from the reader's work-offset records (a
+    G54…G59 word takes effect on its own line). G59.1–G59.3 are refused: the job has no values for them."""
+    from netshape import toolpath as tpm
+
+    last_line = max([b.line for b in tp.blocks] + [c.line for c in tp.commands] + [0])
+    states = np.zeros(last_line + 1, dtype=np.int64)
+    for c in tp.commands:
+        if c.kind != tpm.CommandKind.work_offset:
+            continue
+        k = int(c.value)
+        if k >= len(WORK_OFFSETS):
+            raise ValueError(f"{source}:{c.line}: {c.text}: this work offset has no key in the job "
+                             "(offsets.G54_mm … G59_mm)")
+        states[c.line:] = k
+    return states
 
 
 def _copy_block(tpm, b):
@@ -111,7 +115,7 @@ def stage_program(job: Job) -> Program:
             blocks.append(nb)
         tp = tp.with_blocks(blocks, list(range(len(blocks))))
     lines = np.array([b.line for b in tp.blocks], dtype=np.int64)
-    per_line = active_work_offsets(job.program)
+    per_line = work_offsets_per_line(tp, job.program)
     idx = per_line[np.clip(lines, 0, len(per_line) - 1)]
     offsets = np.array([job.offsets[g] for g in WORK_OFFSETS], dtype=float)
     return Program(toolpath=tp, offset_index=idx, offsets=offsets, lines=lines)
