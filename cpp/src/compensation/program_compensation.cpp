@@ -267,7 +267,7 @@ ProgramResult compensate_program(const Machine& machine, const toolpath::Toolpat
     Vec3 center = b.center + 0.5 * ((s_cmd[i] - b.start) + (e_cmd[i] - b.end));
     center[ax.n] = s_cmd[i][ax.n];
     nb.center = center;
-    const int count = toolpath::chord_count(std::max(b.radius(), 0.0), b.sweep(), 0.5 * tol);
+    const int count = toolpath::chord_count(b.radius(), b.sweep(), 0.5 * tol);
     // in-plane radii (a helix' normal-axis travel is not a radius): the moved arc may spiral as much
     // as the nominal one does, plus half the tolerance
     const double dr_nom = in_plane_radius(b.start, b.center, ax) - in_plane_radius(b.end, b.center, ax);
