@@ -22,17 +22,6 @@ py::array_t<double> new_points(Eigen::Index n) {
 }
 Map3 map3(py::array_t<double>& a) { return Map3(a.mutable_data(), a.shape(0), 3); }
 
-cutter::Cutter make_cutter(const std::string& kind, double R, double r) {
-  cutter::Cutter c;
-  c.kind = cutter::cutter_kind_from_string(kind);
-  c.radius = R;
-  c.corner_radius = c.kind == cutter::CutterKind::ball ? R : (c.kind == cutter::CutterKind::flat ? 0.0 : r);
-  c.flute_length = std::max(c.flute_length, 2.0 * R);
-  c.stick_out = std::max(c.stick_out, c.flute_length);
-  c.validate();
-  return c;
-}
-
 py::array_t<double> derivs_array(const MatrixXdR& d, int order) {
   const py::ssize_t D = order + 1;
   py::array_t<double> out({D, D, static_cast<py::ssize_t>(3)});
@@ -210,27 +199,20 @@ void bind_geometry(py::module_& m) {
         }, py::arg("surface"), py::arg("uv"), py::arg("distance"));
   m.def("offset_grid", &offset_grid, py::arg("surface"), py::arg("us"), py::arg("vs"), py::arg("distance"),
         py::call_guard<py::gil_scoped_release>());
-  m.def("_cc_to_cl", [](const std::string& kind, double R, double r, RefPoints3 cc, RefPoints3 normals,
-                        const Vec3& axis) {
-          const cutter::Cutter c = make_cutter(kind, R, r);
+  m.def("_cc_to_cl", [](const cutter::Cutter& c, RefPoints3 cc, RefPoints3 normals, const Vec3& axis) {
           auto out = new_points(cc.rows());
           Map3 O = map3(out);
           cc_to_cl(c, cc, normals, axis, O);
           return out;
-        }, py::arg("kind"), py::arg("radius"), py::arg("corner_radius"), py::arg("cc"), py::arg("normals"),
-        py::arg("axis"));
-  m.def("_cutter_signed_distance", [](const std::string& kind, double R, double r, const Vec3& tip,
-                                      const Vec3& axis, RefPoints3 pts) {
-          return cutter_signed_distance(make_cutter(kind, R, r), tip, axis, pts);
-        }, py::arg("kind"), py::arg("radius"), py::arg("corner_radius"), py::arg("tip"), py::arg("axis"),
+        }, py::arg("cutter"), py::arg("cc"), py::arg("normals"), py::arg("axis"));
+  m.def("_cutter_signed_distance", &cutter_signed_distance, py::arg("cutter"), py::arg("tip"), py::arg("axis"),
         py::arg("points"));
   m.def("scallop_step", &scallop_step, py::arg("radius"), py::arg("scallop_height"), py::arg("curvature") = 0.0);
-  m.def("_raster_toolpath", [](const NurbsSurface& s, const std::string& kind, double R, double r,
-                               const Vec3& axis, double scallop_height, double step_over, double chord_tolerance,
+  m.def("_raster_toolpath", [](const NurbsSurface& s, const cutter::Cutter& c, const Vec3& axis, double scallop_height, double step_over, double chord_tolerance,
                                double stock_allowance, bool along_u, bool zigzag, double feed, double plunge_feed,
                                double clearance, double spindle_rpm, int tool) {
           RasterOptions o;
-          o.cutter = make_cutter(kind, R, r);
+          o.cutter = c;
           o.axis = axis;
           o.scallop_height = scallop_height;
           o.step_over = step_over;
