@@ -5,6 +5,7 @@
 #include "default_types.hpp"
 #include "netshape/core/error.hpp"
 #include "netshape/geometry.hpp"
+#include "netshape/toolpath/block_arrays.hpp"
 
 namespace py = pybind11;
 using namespace netshape;
@@ -230,26 +231,8 @@ void bind_geometry(py::module_& m) {
             py::gil_scoped_release rel;
             tp = raster_toolpath(s, o);
           }
-          const auto n = static_cast<py::ssize_t>(tp.blocks.size());
-          py::array_t<std::uint8_t> kinds(n);
-          auto start = new_points(n), end = new_points(n);
-          py::array_t<double> feeds(n);
-          for (py::ssize_t i = 0; i < n; ++i) {
-            const auto& b = tp.blocks[i];
-            kinds.mutable_at(i) = static_cast<std::uint8_t>(b.kind);
-            for (int c = 0; c < 3; ++c) {
-              start.mutable_at(i, c) = b.start[c];
-              end.mutable_at(i, c) = b.end[c];
-            }
-            feeds.mutable_at(i) = b.feed;
-          }
-          py::dict d;
-          d["kind"] = kinds;
-          d["start"] = start;
-          d["end"] = end;
-          d["feed"] = feeds;
-          d["toolpath"] = py::cast(std::move(tp));
-          return d;
+          toolpath::BlockArrays arrays = toolpath::BlockArrays::from_blocks(tp.blocks);
+          return py::make_tuple(std::move(arrays), std::move(tp));
         });
 
   // ---- triangle meshes (CGAL AABB tree behind a pimpl) ---------------------------------------------

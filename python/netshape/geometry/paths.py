@@ -143,12 +143,13 @@ def raster_toolpath(
     scallop height (ball radius / bull corner radius, curvature-adjusted) or a fixed ``step_over`` [mm],
     CC points offset by ``stock_allowance`` [mm] along the normal, CL = tool tip. Feeds in mm/s."""
     c = _as_cutter(cutter)
-    d = _g._raster_toolpath(
+    arrays, tp = _g._raster_toolpath(
         surface, c, _axis(axis), float(scallop_height), float(step_over), float(chord_tolerance),
         float(stock_allowance), bool(along_u), bool(zigzag), float(feed), float(plunge_feed), float(clearance),
         float(spindle_rpm), int(tool),
     )
+    d = arrays.to_dict()
     return RasterPath(
         d["kind"], d["start"], d["end"], d["feed"], float(spindle_rpm), int(tool),
-        {"cutter": (_KINDS[int(c.kind)], c.radius, c.corner_radius), "scallop_height": scallop_height, "step_over": step_over}, d["toolpath"],
+        {"cutter": (_KINDS[int(c.kind)], c.radius, c.corner_radius), "scallop_height": scallop_height, "step_over": step_over}, tp,
     )
