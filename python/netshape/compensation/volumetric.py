@@ -5,8 +5,9 @@ actual tool tip of a machine with geometric errors lands on the nominal path.
     cmd = ns.compensation.compensate_points(m, nominal)               # (n, 3) mm
     report = ns.compensation.compensate_gcode(m, "part.ngc", "part_comp.ngc", chord_tolerance=0.002)
 
-The post-processor reads the program with netshape.toolpath (arcs kept), compensates every block
-end point to ``tolerance`` (1e-9 mm), rewrites lines as one or more G1 moves so that the actual path
+The post-processor reads the program with netshape.toolpath (arcs kept) and runs C++
+``netshape::compensation::compensate_program`` on it, which compensates every block end point to
+``tolerance`` (1e-9 mm), rewrites lines as one or more G1 moves so that the actual path
 between compensated points stays within ``chord_tolerance`` of the nominal line (checked at ¼, ½,
 ¾ of every output segment, adaptive halving), keeps an arc as a (moved) arc where its actual path
 stays within ``chord_tolerance`` of the nominal arc and otherwise rewrites it as compensated chords,
