@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # README command 2: install everything, then run every test:
-#   1. the C++ unit tests, built with AddressSanitizer + UndefinedBehaviorSanitizer (ctest);
+#   1. the C++ unit tests and the C++ examples, built with AddressSanitizer + UndefinedBehaviorSanitizer (ctest);
 #   2. the Python suite against the installed package (pytest), which also builds
 #      examples/consumer against the installed C++ library.
 set -euo pipefail
@@ -11,7 +11,7 @@ PY="$(cd "$(dirname "$PY")" && pwd)/$(basename "$PY")"
 
 JOBS="${NETSHAPE_JOBS:-$(nproc)}"
 cmake -S . -B build/sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
-  -DNETSHAPE_BUILD_TESTS=ON -DNETSHAPE_SANITIZE=ON -DPython_EXECUTABLE="$PY" >/dev/null
+  -DNETSHAPE_BUILD_TESTS=ON -DNETSHAPE_BUILD_EXAMPLES=ON -DNETSHAPE_SANITIZE=ON -DPython_EXECUTABLE="$PY" >/dev/null
 cmake --build build/sanitize -j "$JOBS"
 # pytest is registered in ctest too (label "python"); here it runs once, directly, below.
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \

@@ -1,6 +1,7 @@
 // Bindings of the `compensation` area (netshape._core.compensation). Thin: lambdas only turn out-parameters into returns.
 #include "default_types.hpp"
 #include "netshape/compensation/deflection_compensation.hpp"
+#include "netshape/compensation/program_compensation.hpp"
 #include "netshape/compensation/volumetric_compensation.hpp"
 
 namespace py = pybind11;
@@ -152,9 +153,54 @@ void bind_deflection_compensation(py::module_& m) {
       "compensate the path (n, 3) for tool deflection; converged = False with a message when it fails");
 }
 
+// --- volumetric compensation of a whole program (post-processor) ---------------------------------------
+void bind_program_compensation(py::module_& m) {
+  using namespace netshape::compensation;
+  py::class_<ProgramOptions>(m, "ProgramOptions", "Options of compensate_program (lengths [mm]).")
+      .def(py::init<>())
+      .def(py::init([](double chord_tolerance, const VolumetricOptions& point, int max_halvings) {
+             ProgramOptions o;
+             o.chord_tolerance = chord_tolerance;
+             o.point = point;
+             o.max_halvings = max_halvings;
+             o.validate();
+             return o;
+           }),
+           py::arg("chord_tolerance") = 0.002, py::arg_v("point", VolumetricOptions{}, "VolumetricOptions()"),
+           py::arg("max_halvings") = 30)
+      .def_readwrite("chord_tolerance", &ProgramOptions::chord_tolerance, "[mm]")
+      .def_readwrite("point", &ProgramOptions::point)
+      .def_readwrite("max_halvings", &ProgramOptions::max_halvings)
+      .def("validate", &ProgramOptions::validate);
+  py::class_<ProgramReport>(m, "ProgramReport", "What compensate_program did (lengths [mm]).")
+      .def_readonly("source", &ProgramReport::source)
+      .def_readonly("blocks_in", &ProgramReport::blocks_in)
+      .def_readonly("blocks_out", &ProgramReport::blocks_out)
+      .def_readonly("lines_split", &ProgramReport::lines_split)
+      .def_readonly("arcs_kept", &ProgramReport::arcs_kept)
+      .def_readonly("arcs_split", &ProgramReport::arcs_split)
+      .def_readonly("max_correction", &ProgramReport::max_correction, "[mm]")
+      .def_readonly("max_residual", &ProgramReport::max_residual, "[mm]")
+      .def_readonly("max_path_deviation", &ProgramReport::max_path_deviation, "[mm]")
+      .def_readonly("commands", &ProgramReport::commands);
+  m.def(
+      "compensate_program",
+      [](const netshape::machine::Machine& mm, const netshape::toolpath::Toolpath& program, const ProgramOptions& o) {
+        ProgramResult r;
+        {
+          py::gil_scoped_release release;
+          r = compensate_program(mm, program, o);
+        }
+        return py::make_tuple(std::move(r.toolpath), std::move(r.report));
+      },
+      py::arg("machine"), py::arg("program"), py::arg_v("options", ProgramOptions{}, "ProgramOptions()"),
+      "(Toolpath, ProgramReport): the program compensated so the actual tip follows it within chord_tolerance");
+}
+
 }  // namespace
 
 void bind_compensation(py::module_& m) {
   bind_volumetric_compensation(m);
+  bind_program_compensation(m);
   bind_deflection_compensation(m);
 }

@@ -41,4 +41,7 @@ void bind_cutter(py::module_& m) {
         return std::string(buf);
       });
   m.def("cutter_kind_from_string", &netshape::cutter::cutter_kind_from_string, py::arg("name"));
+  m.def("check_flutes", [](int flutes, const std::string& field) { netshape::cutter::check_flutes(flutes, field.c_str()); },
+        py::arg("flutes"), py::arg("field") = "flutes",
+        "ValueError 'field = N: must be between 1 and 64' unless 1 <= flutes <= 64 (the one flute-count check)");
 }

@@ -5,6 +5,7 @@
 #include "default_types.hpp"
 #include "netshape/core/error.hpp"
 #include "netshape/geometry.hpp"
+#include "netshape/toolpath/block_arrays.hpp"
 
 namespace py = pybind11;
 using namespace netshape;
@@ -21,17 +22,6 @@ py::array_t<double> new_points(Eigen::Index n) {
   return py::array_t<double>({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(3)});
 }
 Map3 map3(py::array_t<double>& a) { return Map3(a.mutable_data(), a.shape(0), 3); }
-
-cutter::Cutter make_cutter(const std::string& kind, double R, double r) {
-  cutter::Cutter c;
-  c.kind = cutter::cutter_kind_from_string(kind);
-  c.radius = R;
-  c.corner_radius = c.kind == cutter::CutterKind::ball ? R : (c.kind == cutter::CutterKind::flat ? 0.0 : r);
-  c.flute_length = std::max(c.flute_length, 2.0 * R);
-  c.stick_out = std::max(c.stick_out, c.flute_length);
-  c.validate();
-  return c;
-}
 
 py::array_t<double> derivs_array(const MatrixXdR& d, int order) {
   const py::ssize_t D = order + 1;
@@ -210,27 +200,20 @@ void bind_geometry(py::module_& m) {
         }, py::arg("surface"), py::arg("uv"), py::arg("distance"));
   m.def("offset_grid", &offset_grid, py::arg("surface"), py::arg("us"), py::arg("vs"), py::arg("distance"),
         py::call_guard<py::gil_scoped_release>());
-  m.def("_cc_to_cl", [](const std::string& kind, double R, double r, RefPoints3 cc, RefPoints3 normals,
-                        const Vec3& axis) {
-          const cutter::Cutter c = make_cutter(kind, R, r);
+  m.def("_cc_to_cl", [](const cutter::Cutter& c, RefPoints3 cc, RefPoints3 normals, const Vec3& axis) {
           auto out = new_points(cc.rows());
           Map3 O = map3(out);
           cc_to_cl(c, cc, normals, axis, O);
           return out;
-        }, py::arg("kind"), py::arg("radius"), py::arg("corner_radius"), py::arg("cc"), py::arg("normals"),
-        py::arg("axis"));
-  m.def("_cutter_signed_distance", [](const std::string& kind, double R, double r, const Vec3& tip,
-                                      const Vec3& axis, RefPoints3 pts) {
-          return cutter_signed_distance(make_cutter(kind, R, r), tip, axis, pts);
-        }, py::arg("kind"), py::arg("radius"), py::arg("corner_radius"), py::arg("tip"), py::arg("axis"),
+        }, py::arg("cutter"), py::arg("cc"), py::arg("normals"), py::arg("axis"));
+  m.def("_cutter_signed_distance", &cutter_signed_distance, py::arg("cutter"), py::arg("tip"), py::arg("axis"),
         py::arg("points"));
   m.def("scallop_step", &scallop_step, py::arg("radius"), py::arg("scallop_height"), py::arg("curvature") = 0.0);
-  m.def("_raster_toolpath", [](const NurbsSurface& s, const std::string& kind, double R, double r,
-                               const Vec3& axis, double scallop_height, double step_over, double chord_tolerance,
+  m.def("_raster_toolpath", [](const NurbsSurface& s, const cutter::Cutter& c, const Vec3& axis, double scallop_height, double step_over, double chord_tolerance,
                                double stock_allowance, bool along_u, bool zigzag, double feed, double plunge_feed,
                                double clearance, double spindle_rpm, int tool) {
           RasterOptions o;
-          o.cutter = make_cutter(kind, R, r);
+          o.cutter = c;
           o.axis = axis;
           o.scallop_height = scallop_height;
           o.step_over = step_over;
@@ -248,26 +231,8 @@ void bind_geometry(py::module_& m) {
             py::gil_scoped_release rel;
             tp = raster_toolpath(s, o);
           }
-          const auto n = static_cast<py::ssize_t>(tp.blocks.size());
-          py::array_t<std::uint8_t> kinds(n);
-          auto start = new_points(n), end = new_points(n);
-          py::array_t<double> feeds(n);
-          for (py::ssize_t i = 0; i < n; ++i) {
-            const auto& b = tp.blocks[i];
-            kinds.mutable_at(i) = static_cast<std::uint8_t>(b.kind);
-            for (int c = 0; c < 3; ++c) {
-              start.mutable_at(i, c) = b.start[c];
-              end.mutable_at(i, c) = b.end[c];
-            }
-            feeds.mutable_at(i) = b.feed;
-          }
-          py::dict d;
-          d["kind"] = kinds;
-          d["start"] = start;
-          d["end"] = end;
-          d["feed"] = feeds;
-          d["toolpath"] = py::cast(std::move(tp));
-          return d;
+          toolpath::BlockArrays arrays = toolpath::BlockArrays::from_blocks(tp.blocks);
+          return py::make_tuple(std::move(arrays), std::move(tp));
         });
 
   // ---- triangle meshes (CGAL AABB tree behind a pimpl) ---------------------------------------------

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "default_types.hpp"
+#include "netshape/toolpath/block_arrays.hpp"
 #include "netshape/toolpath/gcode_reader.hpp"
 #include "netshape/toolpath/gcode_writer.hpp"
 
@@ -14,14 +15,6 @@ using namespace netshape;
 using namespace netshape::toolpath;
 
 namespace {
-
-// Hand a std::vector's storage to NumPy (no copy): the capsule owns the vector.
-template <class T>
-py::array to_numpy(std::vector<T>&& v, std::vector<py::ssize_t> shape) {
-  auto* owner = new std::vector<T>(std::move(v));
-  py::capsule cap(owner, [](void* p) { delete static_cast<std::vector<T>*>(p); });
-  return py::array_t<T>(shape, owner->data(), cap);
-}
 
 std::string vec_str(const Vec3& v) {
   char buf[128];
@@ -72,64 +65,53 @@ py::dict summary_dict(const Summary& s) {
 }
 
 // Read every block into column arrays (no per-block Python objects).
-py::dict read_arrays(GcodeReader& reader, bool split, double tol) {
-  std::vector<std::uint8_t> kind, cw, plane;
-  std::vector<double> start, end, center, feed, rpm, dwell, after;
-  std::vector<std::int32_t> tool, turns;
-  std::vector<std::int64_t> line;
+BlockArrays read_arrays(GcodeReader& reader, bool split, double tol) {
+  BlockArrays a;
+  Block b;
   std::vector<Block> pieces;
-  long n = 0;
-  {
-    py::gil_scoped_release nogil;
-    Block b;
-    auto push = [&](const Block& x) {
-      kind.push_back(static_cast<std::uint8_t>(x.kind));
-      for (int i = 0; i < 3; ++i) start.push_back(x.start[i]);
-      for (int i = 0; i < 3; ++i) end.push_back(x.end[i]);
-      for (int i = 0; i < 3; ++i) center.push_back(x.center[i]);
-      cw.push_back(x.clockwise ? 1 : 0);
-      plane.push_back(static_cast<std::uint8_t>(x.plane));
-      turns.push_back(x.turns);
-      feed.push_back(x.feed);
-      rpm.push_back(x.spindle_rpm);
-      tool.push_back(x.tool);
-      line.push_back(x.line);
-      dwell.push_back(0.0);
-      ++n;
-    };
-    double dwelled = 0.0;  // dwell time read before the current block [s]
-    while (reader.next(b)) {
-      const double before = reader.dwell_time() - dwelled;
-      dwelled = reader.dwell_time();
-      const std::size_t first = dwell.size();
-      if (split && b.kind == MotionKind::arc) {
-        pieces.clear();
-        split_block(b, tol, pieces);
-        for (const Block& p : pieces) push(p);
-      } else {
-        push(b);
-      }
-      dwell[first] = before;
+  double dwelled = 0.0;  // dwell time read before the current block [s]
+  while (reader.next(b)) {
+    const double before = reader.dwell_time() - dwelled;
+    dwelled = reader.dwell_time();
+    if (split && b.kind == MotionKind::arc) {
+      pieces.clear();
+      split_block(b, tol, pieces);
+      for (std::size_t k = 0; k < pieces.size(); ++k) a.push_back(pieces[k], k == 0 ? before : 0.0);
+    } else {
+      a.push_back(b, before);
     }
-    // dwells after the last move: in `dwell_after` of the last block (zeros elsewhere)
-    after.assign(dwell.size(), 0.0);
-    if (!after.empty()) after.back() = reader.dwell_time() - dwelled;
   }
+  // dwells after the last move: in `dwell_after` of the last block (zeros elsewhere)
+  if (!a.dwell_after.empty()) a.dwell_after.back() = reader.dwell_time() - dwelled;
+  a.warnings = reader.warnings();
+  return a;
+}
+
+// A NumPy view of one column of `self` (a bound BlockArrays), kept alive by it.
+template <class T>
+py::array column(py::handle self, std::vector<T>& v, std::vector<py::ssize_t> shape, const char* dtype = nullptr) {
+  py::array a = dtype ? py::array(py::dtype(dtype), shape, {}, v.data(), self)
+                      : py::array(py::dtype::of<T>(), shape, {}, v.data(), self);
+  return a;
+}
+
+py::dict arrays_dict(py::object self) {
+  BlockArrays& a = self.cast<BlockArrays&>();
+  const auto n = static_cast<py::ssize_t>(a.size());
   py::dict d;
-  const py::ssize_t m = n;
-  d["kind"] = to_numpy(std::move(kind), {m});
-  d["start"] = to_numpy(std::move(start), {m, 3});
-  d["end"] = to_numpy(std::move(end), {m, 3});
-  d["center"] = to_numpy(std::move(center), {m, 3});
-  d["clockwise"] = to_numpy(std::move(cw), {m}).attr("astype")("bool");
-  d["plane"] = to_numpy(std::move(plane), {m});
-  d["turns"] = to_numpy(std::move(turns), {m});
-  d["feed"] = to_numpy(std::move(feed), {m});
-  d["spindle_rpm"] = to_numpy(std::move(rpm), {m});
-  d["tool"] = to_numpy(std::move(tool), {m});
-  d["line"] = to_numpy(std::move(line), {m});
-  d["dwell"] = to_numpy(std::move(dwell), {m});
-  d["dwell_after"] = to_numpy(std::move(after), {m});
+  d["kind"] = column(self, a.kind, {n});
+  d["start"] = column(self, a.start, {n, 3});
+  d["end"] = column(self, a.end, {n, 3});
+  d["center"] = column(self, a.center, {n, 3});
+  d["clockwise"] = column(self, a.clockwise, {n}, "bool");
+  d["plane"] = column(self, a.plane, {n});
+  d["turns"] = column(self, a.turns, {n});
+  d["feed"] = column(self, a.feed, {n});
+  d["spindle_rpm"] = column(self, a.spindle_rpm, {n});
+  d["tool"] = column(self, a.tool, {n});
+  d["line"] = column(self, a.line, {n});
+  d["dwell"] = column(self, a.dwell, {n});
+  d["dwell_after"] = column(self, a.dwell_after, {n});
   return d;
 }
 
@@ -263,6 +245,18 @@ void bind_toolpath(py::module_& m) {
         return "Toolpath(" + std::to_string(t.blocks.size()) + " blocks, source='" + t.source + "')";
       });
 
+  py::class_<BlockArrays>(m, "BlockArrays",
+                          "A tool path as a structure of arrays (row i = block i); columns are NumPy views.")
+      .def(py::init<>())
+      .def_static("from_blocks", &BlockArrays::from_blocks, py::arg("blocks"))
+      .def("to_blocks", &BlockArrays::to_blocks, "list of Block")
+      .def("to_dict", &arrays_dict,
+           "dict of n-row NumPy views: kind uint8, start/end/center (n, 3) [mm], clockwise bool, plane uint8, "
+           "turns int32, feed [mm/s], spindle_rpm [rev/min], tool int32, line int64, dwell/dwell_after [s]")
+      .def_readonly("warnings", &BlockArrays::warnings)
+      .def("__len__", &BlockArrays::size)
+      .def("__repr__", [](const BlockArrays& a) { return "BlockArrays(" + std::to_string(a.size()) + " blocks)"; });
+
   py::class_<GcodeReader>(m, "GcodeReader", "Streaming reader: iterate to get Blocks one at a time.")
       .def_static("open", [](const std::string& path) { return GcodeReader::open(path); }, py::arg("path"))
       .def_static("from_string", [](const std::string& text, const std::string& source) {
@@ -310,18 +304,16 @@ void bind_toolpath(py::module_& m) {
   }, py::arg("text"), py::arg("source") = "<string>", dflt);
   m.def("read_gcode_arrays", [](const std::string& path, bool split, double tol, ReaderOptions o) {
     o.keep_commands = false;
+    py::gil_scoped_release nogil;
     GcodeReader r = GcodeReader::open(path, o);
-    py::dict d = read_arrays(r, split, tol);
-    d["warnings"] = r.warnings();
-    return d;
+    return read_arrays(r, split, tol);
   }, py::arg("path"), py::arg("split_arcs") = false, py::arg("chord_tolerance") = 0.002, dflt);
   m.def("parse_gcode_arrays", [](const std::string& text, const std::string& source, bool split, double tol,
                                  ReaderOptions o) {
     o.keep_commands = false;
+    py::gil_scoped_release nogil;
     GcodeReader r = GcodeReader::from_string(text, source, o);
-    py::dict d = read_arrays(r, split, tol);
-    d["warnings"] = r.warnings();
-    return d;
+    return read_arrays(r, split, tol);
   }, py::arg("text"), py::arg("source") = "<string>", py::arg("split_arcs") = false,
      py::arg("chord_tolerance") = 0.002, dflt);
   m.def("format_gcode", [](const Toolpath& t, const WriterOptions& o) {

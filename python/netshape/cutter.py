@@ -35,6 +35,7 @@ else:  # pragma: no cover
 
 Cutter = _cutter.Cutter
 CutterKind = _cutter.CutterKind
+check_flutes = _cutter.check_flutes  # the one 1..64 check (C++), with the caller's field name
 
 _KEYS = ("kind", "diameter_mm", "corner_radius_mm", "flutes", "helix_deg", "flute_length_mm", "stick_out_mm",
          "youngs_modulus_MPa", "shank_diameter_mm", "shank_length_mm", "holder_diameter_mm", "holder_length_mm")
@@ -70,9 +71,7 @@ def cutter_from_dict(d: dict, *, source: str = "cutter") -> Cutter:
     flutes = d["flutes"]
     if isinstance(flutes, bool) or not isinstance(flutes, int):
         raise ValueError(f"flutes = {flutes!r}: must be an integer")
-    if not 1 <= flutes <= 64:
-        raise ValueError(f"flutes = {flutes!r}: must be between 1 and 64")
-    c.flutes = flutes
+    c.flutes = flutes  # 1..64: checked by validate() below
     c.helix = math.radians(_number("helix_deg", d["helix_deg"]))
     c.flute_length = _number("flute_length_mm", d["flute_length_mm"])
     c.stick_out = _number("stick_out_mm", d["stick_out_mm"])
@@ -124,4 +123,4 @@ def save_cutter(cutter: Cutter, path: str | os.PathLike) -> None:
         fh.write(text)
 
 
-__all__ = ["Cutter", "CutterKind", "cutter_from_dict", "cutter_to_dict", "load_cutter", "save_cutter"]
+__all__ = ["Cutter", "CutterKind", "check_flutes", "cutter_from_dict", "cutter_to_dict", "load_cutter", "save_cutter"]

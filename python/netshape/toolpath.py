@@ -244,9 +244,9 @@ def read_gcode_arrays(
     other block: only the last entry can be non-zero); their sum is the program's dwell time. ``work_offsets``, ``tool_table``: see :func:`read_gcode`.
     """
     split = _arcs_mode(arcs, chord_tolerance)
-    d = _tp.read_gcode_arrays(_path(path), split, float(chord_tolerance), reader_options(work_offsets, tool_table))
-    _warn(d.pop("warnings"))
-    return d
+    a = _tp.read_gcode_arrays(_path(path), split, float(chord_tolerance), reader_options(work_offsets, tool_table))
+    _warn(a.warnings)
+    return a.to_dict()
 
 
 def parse_gcode_arrays(
@@ -260,9 +260,9 @@ def parse_gcode_arrays(
 ) -> dict:
     """Like :func:`read_gcode_arrays` for program text."""
     split = _arcs_mode(arcs, chord_tolerance)
-    d = _tp.parse_gcode_arrays(text, source, split, float(chord_tolerance), reader_options(work_offsets, tool_table))
-    _warn(d.pop("warnings"))
-    return d
+    a = _tp.parse_gcode_arrays(text, source, split, float(chord_tolerance), reader_options(work_offsets, tool_table))
+    _warn(a.warnings)
+    return a.to_dict()
 
 
 def summary(path: str | os.PathLike, *, work_offsets: Any = None, tool_table: Any = None) -> Summary:

@@ -4,3 +4,4 @@
 #include "netshape/toolpath/toolpath.hpp"
 #include "netshape/toolpath/gcode_reader.hpp"
 #include "netshape/toolpath/gcode_writer.hpp"
+#include "netshape/toolpath/block_arrays.hpp"

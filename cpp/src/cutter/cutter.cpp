@@ -26,7 +26,7 @@ void Cutter::validate() const {
                      "must be between 0 and the radius (exclusive) for a bull-nose end mill [mm]");
       break;
   }
-  NETSHAPE_CHECK(flutes >= 1 && flutes <= 64, "cutter.flutes", flutes, "must be between 1 and 64");
+  check_flutes(flutes, "cutter.flutes");
   NETSHAPE_CHECK_FINITE("cutter.helix", helix);
   NETSHAPE_CHECK(helix >= 0.0 && helix < 1.4835298641951802, "cutter.helix", helix,
                  "must be in [0, 85°) [rad]");
@@ -79,6 +79,10 @@ Cutter Cutter::bull_nose(double diameter, double corner_radius, int flutes, doub
   c.corner_radius = corner_radius;
   c.validate();
   return c;
+}
+
+void check_flutes(int flutes, const char* field) {
+  NETSHAPE_CHECK(flutes >= 1 && flutes <= max_flutes, field, flutes, "must be between 1 and 64");
 }
 
 const char* to_string(CutterKind k) noexcept {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "netshape/core/error.hpp"
+#include "netshape/cutter/cutter.hpp"
 
 namespace netshape::force {
 
@@ -15,7 +16,7 @@ inline double wrap(double a) { return a - two_pi * std::floor(a / two_pi); }
 void BallEndModel::validate() const {
   NETSHAPE_CHECK_FINITE("radius", radius);
   NETSHAPE_CHECK(radius > 0.0, "radius", radius, "must be positive [mm]");
-  NETSHAPE_CHECK(flutes >= 1 && flutes <= 64, "flutes", flutes, "must be between 1 and 64");
+  cutter::check_flutes(flutes);
   NETSHAPE_CHECK_FINITE("helix", helix);
   NETSHAPE_CHECK(helix >= 0.0 && helix < deg2rad(85.0), "helix", helix, "must be in [0, 85°) [rad]");
   NETSHAPE_CHECK_FINITE("axial_depth", axial_depth);

@@ -143,10 +143,7 @@ Points2 OffsetRing::polyline(double tol) const {
   for (const auto& b : blocks) {
     int n = 1;
     if (b.kind == toolpath::MotionKind::arc) {
-      // chord error of a step φ on radius r: r (1 − cos(φ/2)) ≤ tol
-      const double r = b.radius();
-      const double step = tol >= r ? pi / 2 : 2.0 * std::acos(1.0 - tol / r);
-      n = std::max(1, static_cast<int>(std::ceil(std::abs(b.sweep()) / step)));
+      n = toolpath::chord_count(b.radius(), b.sweep(), tol);
     }
     for (int k = 0; k < n; ++k) {
       const Vec3 p = b.point_at(static_cast<double>(k) / n);

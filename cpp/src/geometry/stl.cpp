@@ -11,7 +11,9 @@
 #include <array>
 #include <vector>
 
+#include "netshape/core/atomic_file.hpp"
 #include "netshape/core/error.hpp"
+#include "netshape/core/stl_writer.hpp"
 
 namespace netshape::geometry {
 
@@ -137,51 +139,30 @@ void write_stl(const std::string& path, const Points3& V, const Faces& F, bool b
     for (int c = 0; c < 3; ++c)
       NETSHAPE_CHECK(F(f, c) >= 0 && F(f, c) < V.rows(), ("faces[" + std::to_string(f) + "]").c_str(), F(f, c),
                      "vertex index out of range");
-  const std::string tmp = path + ".tmp-netshape";
-  {
-    std::ofstream o(tmp, binary ? std::ios::binary : std::ios::out);
-    NETSHAPE_CHECK(o.good(), "path", path, "cannot write the STL file");
-    auto normal = [&](Eigen::Index f) {
-      const Vec3 a = V.row(F(f, 0)).transpose(), b = V.row(F(f, 1)).transpose(), c = V.row(F(f, 2)).transpose();
-      const Vec3 x = (b - a).cross(c - a);
-      return x.norm() > 0 ? Vec3(x.normalized()) : Vec3::Zero();
-    };
+  auto normal = [&](Eigen::Index f) {
+    const Vec3 a = V.row(F(f, 0)).transpose(), b = V.row(F(f, 1)).transpose(), c = V.row(F(f, 2)).transpose();
+    const Vec3 x = (b - a).cross(c - a);
+    return x.norm() > 0 ? Vec3(x.normalized()) : Vec3::Zero();
+  };
+  write_file_atomically(path, [&](std::ostream& o) {
     if (binary) {
-      char header[80] = {0};
-      std::snprintf(header, sizeof header, "%s", name.c_str());
-      o.write(header, 80);
-      const std::uint32_t n = static_cast<std::uint32_t>(F.rows());
-      o.write(reinterpret_cast<const char*>(&n), 4);
-      for (Eigen::Index f = 0; f < F.rows(); ++f) {
-        float rec[12];
-        const Vec3 nn = normal(f);
-        for (int c = 0; c < 3; ++c) rec[c] = static_cast<float>(nn[c]);
-        for (int v = 0; v < 3; ++v)
-          for (int c = 0; c < 3; ++c) rec[3 + 3 * v + c] = static_cast<float>(V(F(f, v), c));
-        o.write(reinterpret_cast<const char*>(rec), 48);
-        const std::uint16_t attr = 0;
-        o.write(reinterpret_cast<const char*>(&attr), 2);
-      }
-    } else {
-      o.precision(17);
-      o << "solid " << name << "\n";
-      for (Eigen::Index f = 0; f < F.rows(); ++f) {
-        const Vec3 nn = normal(f);
-        o << "  facet normal " << nn.x() << ' ' << nn.y() << ' ' << nn.z() << "\n    outer loop\n";
-        for (int v = 0; v < 3; ++v)
-          o << "      vertex " << V(F(f, v), 0) << ' ' << V(F(f, v), 1) << ' ' << V(F(f, v), 2) << "\n";
-        o << "    endloop\n  endfacet\n";
-      }
-      o << "endsolid " << name << "\n";
+      BinaryStlWriter w(o, name, static_cast<std::uint32_t>(F.rows()));
+      for (Eigen::Index f = 0; f < F.rows(); ++f)
+        w.triangle(V.row(F(f, 0)).transpose(), V.row(F(f, 1)).transpose(), V.row(F(f, 2)).transpose());
+      w.finish();
+      return;
     }
-    o.flush();
-    if (!o.good()) {
-      o.close();
-      std::remove(tmp.c_str());
-      throw Error("write_stl: writing " + path + " failed");
+    o.precision(17);
+    o << "solid " << name << "\n";
+    for (Eigen::Index f = 0; f < F.rows(); ++f) {
+      const Vec3 nn = normal(f);
+      o << "  facet normal " << nn.x() << ' ' << nn.y() << ' ' << nn.z() << "\n    outer loop\n";
+      for (int v = 0; v < 3; ++v)
+        o << "      vertex " << V(F(f, v), 0) << ' ' << V(F(f, v), 1) << ' ' << V(F(f, v), 2) << "\n";
+      o << "    endloop\n  endfacet\n";
     }
-  }
-  std::filesystem::rename(tmp, path);
+    o << "endsolid " << name << "\n";
+  }, binary);
 }
 
 }  // namespace netshape::geometry

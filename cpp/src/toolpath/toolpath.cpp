@@ -17,12 +17,20 @@ int chord_count(double radius, double sweep, double tol) {
   const double r = std::abs(radius);
   const double s = std::abs(sweep);
   if (r == 0.0 || s == 0.0) return 1;
-  // A chord spanning the angle θ deviates r·(1 − cos(θ/2)) from the arc.
-  const double theta = tol >= r ? pi : 2.0 * std::acos(1.0 - tol / r);
+  // A chord spanning the angle θ deviates r·(1 − cos(θ/2)) from the arc. When the radius is within
+  // the tolerance every chord is, and a chord spans a quarter turn (a small full circle keeps its
+  // four quadrant points).
+  const double theta = tol >= r ? 0.5 * pi : 2.0 * std::acos(1.0 - tol / r);
   const double n = std::ceil(s / theta * (1.0 - 1e-12));
   NETSHAPE_CHECK(n <= 1e7, "chord_tolerance", tol,
                  "too small for this arc: more than 10 million chords would be needed [mm]");
   return std::max(1, static_cast<int>(n));
+}
+
+bool continues_run(const Vec3& a, const Vec3& b, const Vec3& c, double tolerance) noexcept {
+  const Vec3 ab = b - a;
+  const double lab = ab.norm();
+  return lab > 0.0 && ab.dot(c - b) > 0.0 && ab.cross(c - a).norm() / lab <= tolerance;
 }
 
 void split_block(const Block& b, double chord_tolerance, std::vector<Block>& out) {

@@ -3,10 +3,11 @@ import netshape._core.cutter
 import netshape._core.deflection
 import netshape._core.machine
 import netshape._core.stock
+import netshape._core.toolpath
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['DeflectionCompensationOptions', 'DeflectionCompensationResult', 'DeflectionScheme', 'PathOptions', 'PathWallErrors', 'ReferenceLevel', 'VolumetricOptions', 'VolumetricResult', 'VolumetricStatus', 'compensate_deflection', 'compensate_points', 'compensate_points_status', 'deflection_scheme_from_string', 'one_d_compensation', 'path_wall_errors', 'reference_level_from_string', 'wall_normals']
+__all__: list[str] = ['DeflectionCompensationOptions', 'DeflectionCompensationResult', 'DeflectionScheme', 'PathOptions', 'PathWallErrors', 'ProgramOptions', 'ProgramReport', 'ReferenceLevel', 'VolumetricOptions', 'VolumetricResult', 'VolumetricStatus', 'compensate_deflection', 'compensate_points', 'compensate_points_status', 'compensate_program', 'deflection_scheme_from_string', 'one_d_compensation', 'path_wall_errors', 'reference_level_from_string', 'wall_normals']
 class VolumetricOptions:
     check_travel: bool
     @typing.overload
@@ -99,6 +100,73 @@ class VolumetricResult:
         ...
     @property
     def status(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        ...
+class ProgramOptions:
+    """
+    Options of compensate_program (lengths [mm]).
+    """
+    point: VolumetricOptions
+    @typing.overload
+    def __init__(self) -> None:
+        ...
+    @typing.overload
+    def __init__(self, chord_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.002, point: VolumetricOptions = ..., max_halvings: typing.SupportsInt | typing.SupportsIndex = 30) -> None:
+        ...
+    def validate(self) -> None:
+        ...
+    @property
+    def chord_tolerance(self) -> float:
+        """
+        [mm]
+        """
+    @chord_tolerance.setter
+    def chord_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_halvings(self) -> int:
+        ...
+    @max_halvings.setter
+    def max_halvings(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+class ProgramReport:
+    """
+    What compensate_program did (lengths [mm]).
+    """
+    @property
+    def arcs_kept(self) -> int:
+        ...
+    @property
+    def arcs_split(self) -> int:
+        ...
+    @property
+    def blocks_in(self) -> int:
+        ...
+    @property
+    def blocks_out(self) -> int:
+        ...
+    @property
+    def commands(self) -> int:
+        ...
+    @property
+    def lines_split(self) -> int:
+        ...
+    @property
+    def max_correction(self) -> float:
+        """
+        [mm]
+        """
+    @property
+    def max_path_deviation(self) -> float:
+        """
+        [mm]
+        """
+    @property
+    def max_residual(self) -> float:
+        """
+        [mm]
+        """
+    @property
+    def source(self) -> str:
         ...
 class ReferenceLevel:
     """
@@ -336,6 +404,10 @@ def compensate_points(machine: netshape._core.machine.Machine, nominal: typing.A
 def compensate_points_status(machine: netshape._core.machine.Machine, nominal: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], options: VolumetricOptions = ...) -> VolumetricResult:
     """
     Like compensate_points, with per-point status instead of raising
+    """
+def compensate_program(machine: netshape._core.machine.Machine, program: netshape._core.toolpath.Toolpath, options: ProgramOptions = ...) -> tuple[netshape._core.toolpath.Toolpath, ProgramReport]:
+    """
+    (Toolpath, ProgramReport): the program compensated so the actual tip follows it within chord_tolerance
     """
 def deflection_scheme_from_string(name: str) -> DeflectionScheme:
     ...

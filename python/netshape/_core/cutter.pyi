@@ -3,7 +3,7 @@ End mills: flat, ball and bull-nose (C++ netshape::cutter).
 """
 from __future__ import annotations
 import typing
-__all__: list[str] = ['Cutter', 'CutterKind', 'cutter_kind_from_string']
+__all__: list[str] = ['Cutter', 'CutterKind', 'check_flutes', 'cutter_kind_from_string']
 class CutterKind:
     """
     Members:
@@ -138,5 +138,9 @@ class Cutter:
     @youngs_modulus.setter
     def youngs_modulus(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+def check_flutes(flutes: typing.SupportsInt | typing.SupportsIndex, field: str = 'flutes') -> None:
+    """
+    ValueError 'field = N: must be between 1 and 64' unless 1 <= flutes <= 64 (the one flute-count check)
+    """
 def cutter_kind_from_string(name: str) -> CutterKind:
     ...

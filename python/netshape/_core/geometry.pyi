@@ -1,5 +1,6 @@
 from __future__ import annotations
 import collections.abc
+import netshape._core.cutter
 import netshape._core.toolpath
 import numpy
 import numpy.typing
@@ -198,9 +199,9 @@ class TriangleMesh:
     @property
     def vertices(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         ...
-def _cc_to_cl(kind: str, radius: typing.SupportsFloat | typing.SupportsIndex, corner_radius: typing.SupportsFloat | typing.SupportsIndex, cc: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], normals: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], axis: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> numpy.typing.NDArray[numpy.float64]:
+def _cc_to_cl(cutter: netshape._core.cutter.Cutter, cc: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], normals: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], axis: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> numpy.typing.NDArray[numpy.float64]:
     ...
-def _cutter_signed_distance(kind: str, radius: typing.SupportsFloat | typing.SupportsIndex, corner_radius: typing.SupportsFloat | typing.SupportsIndex, tip: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], axis: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], points: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+def _cutter_signed_distance(cutter: netshape._core.cutter.Cutter, tip: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], axis: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], points: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
     ...
 def _offset_region(outer: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 2]"], islands: collections.abc.Sequence[typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 2]"]], distance: typing.SupportsFloat | typing.SupportsIndex, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-06) -> list:
     ...
@@ -208,7 +209,7 @@ def _pocket_rings(outer: typing.Annotated[numpy.typing.ArrayLike, numpy.float64,
     ...
 def _pocket_toolpath(outer: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 2]"], islands: collections.abc.Sequence[typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 2]"]], tool_radius: typing.SupportsFloat | typing.SupportsIndex, step_over: typing.SupportsFloat | typing.SupportsIndex, z: typing.SupportsFloat | typing.SupportsIndex, clearance: typing.SupportsFloat | typing.SupportsIndex, feed: typing.SupportsFloat | typing.SupportsIndex, spindle_rpm: typing.SupportsFloat | typing.SupportsIndex, tool: typing.SupportsInt | typing.SupportsIndex, tolerance: typing.SupportsFloat | typing.SupportsIndex) -> netshape._core.toolpath.Toolpath:
     ...
-def _raster_toolpath(arg0: NurbsSurface, arg1: str, arg2: typing.SupportsFloat | typing.SupportsIndex, arg3: typing.SupportsFloat | typing.SupportsIndex, arg4: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], arg5: typing.SupportsFloat | typing.SupportsIndex, arg6: typing.SupportsFloat | typing.SupportsIndex, arg7: typing.SupportsFloat | typing.SupportsIndex, arg8: typing.SupportsFloat | typing.SupportsIndex, arg9: bool, arg10: bool, arg11: typing.SupportsFloat | typing.SupportsIndex, arg12: typing.SupportsFloat | typing.SupportsIndex, arg13: typing.SupportsFloat | typing.SupportsIndex, arg14: typing.SupportsFloat | typing.SupportsIndex, arg15: typing.SupportsInt | typing.SupportsIndex) -> dict:
+def _raster_toolpath(arg0: NurbsSurface, arg1: netshape._core.cutter.Cutter, arg2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], arg3: typing.SupportsFloat | typing.SupportsIndex, arg4: typing.SupportsFloat | typing.SupportsIndex, arg5: typing.SupportsFloat | typing.SupportsIndex, arg6: typing.SupportsFloat | typing.SupportsIndex, arg7: bool, arg8: bool, arg9: typing.SupportsFloat | typing.SupportsIndex, arg10: typing.SupportsFloat | typing.SupportsIndex, arg11: typing.SupportsFloat | typing.SupportsIndex, arg12: typing.SupportsFloat | typing.SupportsIndex, arg13: typing.SupportsInt | typing.SupportsIndex) -> tuple[netshape._core.toolpath.BlockArrays, netshape._core.toolpath.Toolpath]:
     ...
 def basis_function_derivatives(u: typing.SupportsFloat | typing.SupportsIndex, degree: typing.SupportsInt | typing.SupportsIndex, knots: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], order: typing.SupportsInt | typing.SupportsIndex = 0) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
     """

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Block', 'Command', 'CommandKind', 'GcodeReader', 'MotionKind', 'Plane', 'ReaderOptions', 'Summary', 'Toolpath', 'WriterOptions', 'block_bounds', 'chord_count', 'format_gcode', 'parse_gcode', 'parse_gcode_arrays', 'read_gcode', 'read_gcode_arrays', 'summarize_gcode', 'summarize_gcode_text']
+__all__: list[str] = ['Block', 'BlockArrays', 'Command', 'CommandKind', 'GcodeReader', 'MotionKind', 'Plane', 'ReaderOptions', 'Summary', 'Toolpath', 'WriterOptions', 'block_bounds', 'chord_count', 'format_gcode', 'parse_gcode', 'parse_gcode_arrays', 'read_gcode', 'read_gcode_arrays', 'summarize_gcode', 'summarize_gcode_text']
 class MotionKind:
     """
     Kind of motion block (values are the `kind` array codes).
@@ -494,6 +494,30 @@ class Toolpath:
     @work_offsets.setter
     def work_offsets(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[9, 3]"]) -> None:
         ...
+class BlockArrays:
+    """
+    A tool path as a structure of arrays (row i = block i); columns are NumPy views.
+    """
+    @staticmethod
+    def from_blocks(blocks: collections.abc.Sequence[Block]) -> BlockArrays:
+        ...
+    def __init__(self) -> None:
+        ...
+    def __len__(self) -> int:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def to_blocks(self) -> list[Block]:
+        """
+        list of Block
+        """
+    def to_dict(self) -> dict:
+        """
+        dict of n-row NumPy views: kind uint8, start/end/center (n, 3) [mm], clockwise bool, plane uint8, turns int32, feed [mm/s], spindle_rpm [rev/min], tool int32, line int64, dwell/dwell_after [s]
+        """
+    @property
+    def warnings(self) -> list[str]:
+        ...
 class GcodeReader:
     """
     Streaming reader: iterate to get Blocks one at a time.
@@ -554,11 +578,11 @@ def format_gcode(toolpath: Toolpath, options: WriterOptions = ...) -> str:
     ...
 def parse_gcode(text: str, source: str = '<string>', options: ReaderOptions = ...) -> Toolpath:
     ...
-def parse_gcode_arrays(text: str, source: str = '<string>', split_arcs: bool = False, chord_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.002, options: ReaderOptions = ...) -> dict:
+def parse_gcode_arrays(text: str, source: str = '<string>', split_arcs: bool = False, chord_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.002, options: ReaderOptions = ...) -> BlockArrays:
     ...
 def read_gcode(path: str, options: ReaderOptions = ...) -> Toolpath:
     ...
-def read_gcode_arrays(path: str, split_arcs: bool = False, chord_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.002, options: ReaderOptions = ...) -> dict:
+def read_gcode_arrays(path: str, split_arcs: bool = False, chord_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.002, options: ReaderOptions = ...) -> BlockArrays:
     ...
 def summarize_gcode(path: str, options: ReaderOptions = ...) -> Summary:
     ...

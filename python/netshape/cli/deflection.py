@@ -111,6 +111,7 @@ def _write_json(path, data) -> None:
 def run_wall(args) -> int:
     from netshape import deflection as d
     from netshape.cli import CliError
+    from netshape.cutter import check_flutes
 
     if args.tool:
         from netshape.cutter import load_cutter
@@ -128,8 +129,7 @@ def run_wall(args) -> int:
         if missing:
             raise CliError(f"{missing[0]}: required without --tool")
         diameter, flutes, helix, stick, e = args.diameter, args.flutes, args.helix, args.stick_out, args.youngs_modulus
-    if not 1 <= flutes <= 64:
-        raise CliError(f"--flutes = {flutes}: must be an integer in 1..64")
+    check_flutes(flutes, "--flutes")
     if not 0.0 <= helix < 85.0:
         raise CliError(f"--helix = {helix}: must be in [0, 85) degrees")
     if not e > 0:

@@ -85,10 +85,10 @@ def run(args) -> int:
 
     from netshape._atomic import atomic_write
     from netshape.cli import CliError
+    from netshape.cutter import check_flutes
     from netshape.force import cutter_forces, parse_coefficients
 
-    if args.flutes < 1 or args.flutes > 64:
-        raise CliError(f"--flutes = {args.flutes}: must be an integer in 1..64")
+    check_flutes(args.flutes, "--flutes")
     if not (0.0 <= args.helix < 85.0):
         raise CliError(f"--helix = {args.helix}: must be in [0, 85) degrees")
     if args.samples < 8 or args.samples > 1_000_000:

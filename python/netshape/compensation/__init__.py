@@ -14,11 +14,12 @@ from .volumetric import (
     compensate_program,
 )
 
+ProgramOptions = _compensation.ProgramOptions
 VolumetricOptions = _compensation.VolumetricOptions
 VolumetricResult = _compensation.VolumetricResult
 VolumetricStatus = _compensation.VolumetricStatus
 
 __all__ = [
-    "ProgramReport", "VolumetricOptions", "VolumetricResult", "VolumetricStatus",
+    "ProgramOptions", "ProgramReport", "VolumetricOptions", "VolumetricResult", "VolumetricStatus",
     "compensate_gcode", "compensate_points", "compensate_points_status", "compensate_program",
 ]

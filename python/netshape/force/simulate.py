@@ -80,8 +80,8 @@ def cutter_forces(
             raise ValueError(f"{name} = {v!r}: must be a finite number")
     if diameter <= 0:
         raise ValueError(f"diameter = {diameter}: must be positive [mm]")
-    if not isinstance(flutes, int) or flutes < 1 or flutes > 64:
-        raise ValueError(f"flutes = {flutes!r}: must be an integer in 1..64")
+    if isinstance(flutes, bool) or not isinstance(flutes, int):
+        raise ValueError(f"flutes = {flutes!r}: must be an integer")  # 1..64: checked by the C++ model
     if feed_per_tooth <= 0:
         raise ValueError(f"feed_per_tooth = {feed_per_tooth}: must be positive [mm]")
     if ap <= 0:

@@ -9,33 +9,40 @@ from typing import Any
 
 import numpy as np
 
+from .._core import cutter as _cutter
 from .._core import geometry as _g
 
 _KINDS = ("flat", "ball", "bull")
 
 
-def _cutter_args(cutter: Any) -> tuple[str, float, float]:
-    """(kind, radius, corner_radius) from a netshape Cutter, a mapping or a (kind, radius[, corner]) tuple."""
+def _as_cutter(cutter: Any) -> _cutter.Cutter:
+    """The netshape Cutter itself (passed whole to C++), or one made from a mapping
+    ``{"kind", "radius", "corner_radius"}`` or a tuple ``(kind, radius[, corner_radius])`` [mm] with the
+    Cutter factories' flutes, helix and lengths (the geometry uses only the shape)."""
+    if isinstance(cutter, _cutter.Cutter):
+        return cutter
     if isinstance(cutter, dict):
         kind, radius, corner = cutter.get("kind"), cutter.get("radius"), cutter.get("corner_radius", 0.0)
     elif isinstance(cutter, (tuple, list)):
         kind, radius = cutter[0], cutter[1]
         corner = cutter[2] if len(cutter) > 2 else 0.0
     else:
-        kind = getattr(cutter, "kind", None)
-        radius = getattr(cutter, "radius", None)
-        corner = getattr(cutter, "corner_radius", 0.0)
-    kind = getattr(kind, "name", kind)
-    kind = str(kind).split(".")[-1].lower()
-    if kind not in _KINDS and kind not in ("bullnose", "bull-nose"):
+        raise ValueError(f"cutter = {cutter!r}: must be a netshape Cutter, a dict or a (kind, radius[, corner_radius]) "
+                         "tuple [mm]")
+    kind = str(getattr(kind, "name", kind)).split(".")[-1].lower()
+    if kind in ("bullnose", "bull-nose"):
+        kind = "bull"
+    if kind not in _KINDS:
         raise ValueError(f"cutter.kind = {kind!r}: must be one of flat, ball, bull")
     if radius is None:
         raise ValueError("cutter.radius = None: must be a positive number [mm]")
+    d = 2.0 * float(radius)
+    helix = _cutter.Cutter().helix
     if kind == "ball":
-        corner = radius
-    elif kind == "flat":
-        corner = 0.0
-    return kind, float(radius), float(corner or 0.0)
+        return _cutter.Cutter.ball_end(d, 2, helix)
+    if kind == "bull":
+        return _cutter.Cutter.bull_nose(d, float(corner or 0.0), 2, helix)
+    return _cutter.Cutter.flat_end(d, 2, helix)
 
 
 def _axis(axis) -> np.ndarray:
@@ -56,17 +63,16 @@ def cc_to_cl(cutter: Any, cc, normals, axis=(0.0, 0.0, 1.0)) -> np.ndarray:
     -------
     float64 (m, 3) tool-tip positions [mm]: ``tip = cc + r n + (R - r) e - r a`` (docs/geometry.md).
     """
-    kind, R, r = _cutter_args(cutter)
+    c = _as_cutter(cutter)
     cc = np.ascontiguousarray(np.atleast_2d(cc), dtype=float)
     normals = np.ascontiguousarray(np.atleast_2d(normals), dtype=float)
-    return _g._cc_to_cl(kind, R, r, cc, normals, _axis(axis))
+    return _g._cc_to_cl(c, cc, normals, _axis(axis))
 
 
 def cutter_signed_distance(cutter: Any, tip, axis, points) -> np.ndarray:
     """Signed distance [mm] from points (m, 3) to the cutter solid with its tip at ``tip``: < 0 inside."""
-    kind, R, r = _cutter_args(cutter)
     pts = np.ascontiguousarray(np.atleast_2d(points), dtype=float)
-    return _g._cutter_signed_distance(kind, R, r, np.asarray(tip, dtype=float), _axis(axis), pts)
+    return _g._cutter_signed_distance(_as_cutter(cutter), np.asarray(tip, dtype=float), _axis(axis), pts)
 
 
 @dataclass
@@ -136,13 +142,14 @@ def raster_toolpath(
     """Iso-parametric raster over ``surface`` (see raster.hpp): passes along u (or v), step-over from the
     scallop height (ball radius / bull corner radius, curvature-adjusted) or a fixed ``step_over`` [mm],
     CC points offset by ``stock_allowance`` [mm] along the normal, CL = tool tip. Feeds in mm/s."""
-    kind, R, r = _cutter_args(cutter)
-    d = _g._raster_toolpath(
-        surface, kind, R, r, _axis(axis), float(scallop_height), float(step_over), float(chord_tolerance),
+    c = _as_cutter(cutter)
+    arrays, tp = _g._raster_toolpath(
+        surface, c, _axis(axis), float(scallop_height), float(step_over), float(chord_tolerance),
         float(stock_allowance), bool(along_u), bool(zigzag), float(feed), float(plunge_feed), float(clearance),
         float(spindle_rpm), int(tool),
     )
+    d = arrays.to_dict()
     return RasterPath(
         d["kind"], d["start"], d["end"], d["feed"], float(spindle_rpm), int(tool),
-        {"cutter": (kind, R, r), "scallop_height": scallop_height, "step_over": step_over}, d["toolpath"],
+        {"cutter": (_KINDS[int(c.kind)], c.radius, c.corner_radius), "scallop_height": scallop_height, "step_over": step_over}, tp,
     )

@@ -34,3 +34,7 @@ def test_consumer_builds_against_installed_library(repo_root, tmp_path):
     assert fields["blocks"].startswith(f"{s.blocks} (rapid {s.rapids}, line {s.lines}, arc {s.arcs})")
     assert float(fields["feed_length_mm"]) == pytest.approx(s.feed_length, rel=1e-6)
     assert float(fields["feed_time_s"]) == pytest.approx(s.feed_time, rel=1e-6)
+    # the plugin's compensation: its report says the compensated program follows the nominal one
+    proc = subprocess.run([str(build / "consumer_compensate")], capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.startswith("(compensated for plugin demo)") and "arcs split" in proc.stderr

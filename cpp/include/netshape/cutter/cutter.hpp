@@ -36,6 +36,13 @@ struct Cutter {
   static Cutter bull_nose(double diameter, double corner_radius, int flutes, double helix_rad);
 };
 
+/// Largest number of flutes netshape models.
+inline constexpr int max_flutes = 64;
+/// The one flute-count check: throws std::invalid_argument "`field` = N: must be between 1 and 64"
+/// unless 1 ≤ flutes ≤ max_flutes. Cutter::validate and the force models call it; the layers above
+/// rely on it and pass its message through.
+void check_flutes(int flutes, const char* field = "flutes");
+
 const char* to_string(CutterKind k) noexcept;
 /// "flat", "ball" or "bull" (also "bullnose", "bull-nose"); throws std::invalid_argument otherwise.
 CutterKind cutter_kind_from_string(const std::string& s);

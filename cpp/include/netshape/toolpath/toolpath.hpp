@@ -80,9 +80,16 @@ struct Toolpath {
 };
 
 /// Number of chords needed so that an arc of radius r [mm] and |sweep| [rad] deviates at most tol [mm]
-/// from its chords. Throws std::invalid_argument for a non-positive or non-finite tolerance, or when
-/// more than 10 million chords would be needed.
+/// from its chords: ceil(|sweep| / θ) with θ = 2·acos(1 − tol/r), a quarter turn when tol ≥ r; at least
+/// 1. The one arc chord count of netshape: the reader/writer's arc splitting, contour offsets, the
+/// program compensation and the stock sweep all use it. Throws std::invalid_argument for a
+/// non-positive or non-finite tolerance, or when more than 10 million chords would be needed.
 int chord_count(double radius, double sweep, double tol);
+
+/// Whether the point c continues the straight run a → b [mm]: b ≠ a, c lies ahead of b (the step b → c
+/// goes the same way as a → b) and c is within `tolerance` [mm] of the line through a and b. The one
+/// collinear-run test of netshape (the stock sweep merges runs of lines with it).
+bool continues_run(const Vec3& a, const Vec3& b, const Vec3& c, double tolerance = 1e-9) noexcept;
 
 /// Append the chords of `arc` (an arc block) to `out`: lines (kind line) through points of the arc
 /// with chord error at most `chord_tolerance` [mm]; they carry the arc's feed, spindle, tool and line.
