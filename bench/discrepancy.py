@@ -7,7 +7,9 @@ evaluated directly at the measured angles), measured in the same run.
 Bundles (tests/python/discrepancy/generators.py): a cutting-force bundle of 4 experiments (slot at
 0.04 and 0.1 mm, up and down milling; 3 revolutions of 180 samples; hidden runout), the same as time
 series (the angle of flute 1 fitted as well), a volumetric bundle of 2 × 105 points (hidden
-squareness) and a wall-error bundle of 3 steady cuts × 804 points (hidden holder spring and runout). Times are CPU times of this process (time.process_time) and wall clock.
+squareness), a wall-error bundle of 3 steady cuts × 804 points and one of 2 contours (program, tool,
+stock) × 2005 points (hidden holder spring and runout; the contour time includes the deflection
+prediction along each program). Times are CPU times of this process (time.process_time) and wall clock.
 """
 
 from __future__ import annotations
@@ -25,7 +27,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests" / "python" / "discrepancy"))
 
 import netshape.discrepancy as nd  # noqa: E402
-from generators import CONDITIONS, MODEL, force_bundle, oracle_forces, volumetric_bundle, wall_bundle  # noqa: E402
+from generators import CONDITIONS, MODEL, force_bundle, oracle_forces, volumetric_bundle, wall_bundle, wall_contour_bundle  # noqa: E402
 
 
 def timed(fn, repeats):
@@ -60,6 +62,10 @@ def main(argv=None):
             (
                 "wall error, 3 cuts x 804 points, hidden holder spring + runout",
                 wall_bundle(tmp / "w", holder_stiffness=10.0, runout=(0.004, 40.0)),
+            ),
+            (
+                "wall error along 2 contours (program + tool + stock) x 2005 points, hidden holder spring + runout",
+                wall_contour_bundle(tmp / "wc", holder_stiffness=10.0, runout=(0.004, 40.0)),
             ),
         ]
         print("| bundle | effect found | CPU s | wall s | rms before → after |")

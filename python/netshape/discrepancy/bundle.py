@@ -168,6 +168,27 @@ class WallExperiment:
 
 
 @dataclass
+class WallContourExperiment:
+    """One wall-error measurement along a program's 2-D contour cut over a stock (the case of
+    ``netshape deflection predict``): the program, tool and stock files, the spindle speed [rpm], the
+    contour sampling ``spacing`` [mm] and wall ``side`` (auto | left | right); positions x (n,) along
+    the contour from its start and z (n,) above the tip [mm] (NaN: the middle of the cut), errors
+    (n, 1) [mm] (+ material left). ``cutter`` is the tool file's Cutter."""
+
+    file: str
+    program: str
+    tool: str
+    stock: str
+    spindle_rpm: float
+    spacing: float
+    side: str
+    x: np.ndarray
+    z: np.ndarray
+    errors: np.ndarray
+    cutter: Any = None
+
+
+@dataclass
 class Bundle:
     """A loaded measurement bundle. ``tool`` / ``machine`` / ``model`` are the manifest tables with
     units stripped into plain keys (see :func:`load_bundle`); ``experiments`` one per CSV."""
@@ -449,11 +470,9 @@ WALL_TOOL_KEYS = ("type", "diameter_mm", "flutes", "helix_deg", "stick_out_mm", 
 WALL_MODEL_KEYS = ("coefficients", "inertia", "load")
 
 
-def _load_wall(doc: dict, root: Path, where: str) -> Bundle:
-    from netshape import deflection as _defl
-
-    _check_keys(doc, ("kind", "tool", "model", "experiment"), where)
-    tool = doc.get("tool")
+def _wall_tool_table(tool: Any, where: str) -> dict:
+    """The [tool] table of a wall bundle in plain keys (diameter, flutes, helix_deg, stick_out,
+    youngs_modulus)."""
     if not isinstance(tool, dict):
         raise _fail(where, "missing table [tool] (diameter_mm, flutes, helix_deg, stick_out_mm, youngs_modulus_MPa)")
     w = f"{where}: [tool]"
@@ -466,7 +485,7 @@ def _load_wall(doc: dict, root: Path, where: str) -> Bundle:
     helix = _number(tool, "helix_deg", w)
     if not 0.0 <= helix < 80.0:
         raise _fail(w, f"helix_deg = {helix}: must be in [0, 80) [deg]")
-    tool_out = {
+    return {
         "type": "flat",
         "diameter": _number(tool, "diameter_mm", w, positive=True),
         "flutes": flutes,
@@ -474,6 +493,89 @@ def _load_wall(doc: dict, root: Path, where: str) -> Bundle:
         "stick_out": _number(tool, "stick_out_mm", w, positive=True),
         "youngs_modulus": _number(tool, "youngs_modulus_MPa", w, positive=True, default=600e3),
     }
+
+
+def _file_key(e: dict, key: str, we: str, root: Path) -> Path:
+    """A file named by key ``key`` of an experiment table (relative to the bundle); must exist."""
+    v = e.get(key)
+    if not isinstance(v, str) or not v:
+        raise _fail(we, f"{key} = {v!r}: must name a file")
+    path = Path(v) if Path(v).is_absolute() else root / v
+    if not path.is_file():
+        raise FileNotFoundError(2, f"No such file or directory ({we}: {key})", str(path))
+    return path
+
+
+WALL_CONTOUR_KEYS = ("file", "program", "tool", "stock", "spindle_rpm", "spacing_mm", "side", "z_mm")
+
+
+def _load_wall_contour(e: dict, i: int, where: str, root: Path) -> WallContourExperiment:
+    """An [[experiment]] of a wall bundle that names a program, a tool TOML and a stock TOML."""
+    from netshape.cutter import CutterKind, load_cutter
+
+    we, path = _experiment_head(e, i, WALL_CONTOUR_KEYS, where, root)
+    program = _file_key(e, "program", we, root)
+    tool = _file_key(e, "tool", we, root)
+    stock = _file_key(e, "stock", we, root)
+    try:
+        cutter = load_cutter(tool)
+    except ValueError as exc:
+        raise _fail(we, f"tool: {exc}") from None
+    if cutter.kind != CutterKind.flat:
+        raise _fail(we, f"tool = {str(tool)!r}: the deflection model needs a flat end mill (kind = 'flat')")
+    if not cutter.stick_out > 0:
+        raise _fail(we, f"tool = {str(tool)!r}: stick_out_mm must be given (the cantilever length) [mm]")
+    rpm = _number(e, "spindle_rpm", we, positive=True)
+    spacing = _number(e, "spacing_mm", we, positive=True, default=0.5)
+    side = e.get("side", "auto")
+    if side not in ("auto", "left", "right"):
+        raise _fail(we, f"side = {side!r}: must be 'auto', 'left' or 'right'")
+    cols = _read_csv(path, ("x_mm", "error_mm"), ("z_mm",))
+    if "z_mm" in cols:
+        if "z_mm" in e:
+            raise _fail(we, "z_mm: given both here and as a column of the CSV (keep one)")
+        z = cols["z_mm"]
+    else:
+        z = np.full(len(cols["x_mm"]), _number(e, "z_mm", we, default=math.nan))
+    bad = z < 0
+    if bad.any():
+        j = int(np.argmax(bad))
+        src = f"{path}: line {j + 2}, column 'z_mm'" if "z_mm" in cols else f"{we}: z_mm"
+        raise ValueError(f"{src}: {float(z[j])!r} must be ≥ 0 (height above the tool tip) [mm]")
+    bad = cols["x_mm"] < 0
+    if bad.any():
+        j = int(np.argmax(bad))
+        raise ValueError(f"{path}: line {j + 2}, column 'x_mm': {float(cols['x_mm'][j])!r} must be ≥ 0 "
+                         "(distance along the contour from its start) [mm]")
+    return WallContourExperiment(file=str(path), program=str(program), tool=str(tool), stock=str(stock),
+                                 spindle_rpm=rpm, spacing=spacing, side=side, x=cols["x_mm"], z=z,
+                                 errors=cols["error_mm"][:, None], cutter=cutter)
+
+
+def _cutter_table(c) -> dict:
+    """Diameter [mm], flutes and helix [deg] of a netshape Cutter in the keys of a [tool] table."""
+    return {"diameter": float(c.diameter()), "flutes": int(c.flutes), "helix_deg": math.degrees(float(c.helix))}
+
+
+def _same_tool(tool_out: dict, c, we: str) -> None:
+    """Every experiment of a wall bundle uses one tool geometry (the runout and holder parameters are
+    the tool's)."""
+    mine = _cutter_table(c)
+    for k, v in mine.items():
+        if not math.isclose(float(tool_out[k]), v, rel_tol=1e-9, abs_tol=1e-9):
+            raise _fail(we, f"tool: {k} = {v:g} differs from the bundle's other experiments ({tool_out[k]:g}); "
+                        "one bundle holds one tool")
+
+
+def _load_wall(doc: dict, root: Path, where: str) -> Bundle:
+    from netshape import deflection as _defl
+
+    _check_keys(doc, ("kind", "tool", "model", "experiment"), where)
+    exps = doc.get("experiment")
+    if not isinstance(exps, list) or not exps:
+        raise _fail(where, "no [[experiment]] tables")
+    contour = [isinstance(e, dict) and "program" in e for e in exps]
+    tool_out = _wall_tool_table(doc.get("tool"), where) if ("tool" in doc or not all(contour)) else None
     model = doc.get("model")
     wm = f"{where}: [model]"
     if not isinstance(model, dict):
@@ -491,12 +593,20 @@ def _load_wall(doc: dict, root: Path, where: str) -> Bundle:
         if v not in allowed:
             raise _fail(wm, f"{key} = {v!r}: must be {' or '.join(map(repr, allowed))}")
         model_out[key] = v
-    exps = doc.get("experiment")
-    if not isinstance(exps, list) or not exps:
-        raise _fail(where, "no [[experiment]] tables")
     keys = ("file", "spindle_rpm", "feed_per_tooth_mm", "axial_depth_mm", "radial_depth_mm", "mode", "side", "z_mm")
     out = []
     for i, e in enumerate(exps, start=1):
+        if contour[i - 1]:
+            ce = _load_wall_contour(e, i, where, root)
+            c = ce.cutter
+            if tool_out is None:
+                tool_out = dict(_cutter_table(c), type="flat", stick_out=float(c.stick_out),
+                                youngs_modulus=float(c.youngs_modulus))
+            else:
+                _same_tool(tool_out, c, f"{where}: [[experiment]] {i}")
+            out.append(ce)
+            continue
+        flutes, helix = tool_out["flutes"], tool_out["helix_deg"]
         we, path = _experiment_head(e, i, keys, where, root)
         mode = _mode(e, we)
         side = e.get("side", {"up": "left", "down": "right"}.get(mode))

@@ -26,6 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .bundle import WallContourExperiment
 from .catalogue import Effect, register_effect
 from .problem import Problem, robust_difference_noise
 
@@ -39,6 +40,80 @@ class WallSpec:
     compliance: float = 0.0
     runout: tuple | None = None
     additive: tuple = ()
+
+
+def contour_arc_length(nominal: np.ndarray) -> np.ndarray:
+    """Distance along the polyline ``nominal`` (n, 3) from its first point, in XY [mm] (the x_mm of a
+    contour experiment)."""
+    step = np.hypot(np.diff(nominal[:, 0]), np.diff(nominal[:, 1]))
+    return np.concatenate([[0.0], np.cumsum(step)])
+
+
+def contour_wall_model(e, model: dict):
+    """The deflection prediction along a contour experiment's program: (s (n,) arc length [mm],
+    profile (n, L) wall error at z_k = A·k/(L − 1) [mm], A (n,) axial depth [mm], F·n (n,) force on
+    the cutter along the wall normal at the middle level's generating instant [N], engaged (n,) bool,
+    feed per tooth [mm]). The program, tool and stock are read here (netshape.deflection.setup_path /
+    predict_path: the Z-map engagement and the cantilever deflection are C++)."""
+    from netshape import deflection as d
+    from netshape.deflection import load_stock
+    from netshape.toolpath import read_gcode
+
+    where = f"{e.file}: program {e.program!r}"
+    try:
+        stock = load_stock(e.stock)
+        prog = read_gcode(e.program)
+        setup = d.setup_path(prog, e.cutter, stock, coefficients=model["coefficients"], rpm=e.spindle_rpm,
+                             spacing=e.spacing, inertia=model["inertia"], load=model["load"], side=e.side,
+                             profile_levels=PROFILE_LEVELS)
+        r = d.predict_path(setup)
+    except ValueError as exc:
+        raise ValueError(f"{where}: {exc}") from None
+    nominal = np.asarray(setup.nominal, float)
+    normals = np.asarray(d.wall_normals(nominal, setup.side), float)
+    fn = np.sum(np.asarray(r.force, float) * normals, axis=1)
+    feed = float(prog.blocks[setup.first].feed)
+    c = feed * 60.0 / (e.spindle_rpm * e.cutter.flutes)
+    return (contour_arc_length(nominal), np.asarray(r.profile, float), np.asarray(r.depth, float), fn,
+            np.asarray(r.engaged) > 0, c)
+
+
+#: heights per point at which the contour prediction gives the wall error (bottom to top of the cut)
+PROFILE_LEVELS = 21
+
+
+def _contour_model(e, model: dict):
+    """(e₀ (n,) [mm], F·n (n,) [N], z (n,) [mm], feed per tooth [mm]) at a contour experiment's measured points:
+    linear in x between the prediction's points and in z between its profile levels; z NaN is the
+    middle of the cut."""
+    s, profile, depth, fn, engaged, c = contour_wall_model(e, model)
+    x = e.x
+    if x.max() > s[-1] + 1e-9:
+        j = int(np.argmax(x > s[-1] + 1e-9))
+        raise ValueError(f"{e.file}: line {j + 2}, column 'x_mm': {float(x[j])!r} lies beyond the contour's "
+                         f"end ({s[-1]:.6g} mm along it)")
+    k = np.clip(np.searchsorted(s, x, side="right") - 1, 0, len(s) - 2)
+    t = np.clip((x - s[k]) / np.maximum(s[k + 1] - s[k], 1e-300), 0.0, 1.0)
+    off = ~(engaged[k] & engaged[k + 1])
+    if off.any():
+        j = int(np.argmax(off))
+        raise ValueError(f"{e.file}: line {j + 2}, column 'x_mm': {float(x[j])!r}: the tool does not cut "
+                         "there (no wall is generated at this distance along the contour)")
+    A = (1 - t) * depth[k] + t * depth[k + 1]
+    z = np.where(np.isnan(e.z), 0.5 * A, e.z)
+    high = z > A * (1 + 1e-9)
+    if high.any():
+        j = int(np.argmax(high))
+        raise ValueError(f"{e.file}: line {j + 2}: z_mm = {float(z[j])!r} lies above the cut "
+                         f"(axial depth {float(A[j]):.6g} mm there)")
+    L = profile.shape[1]
+    f = np.clip(z / np.maximum(A, 1e-300) * (L - 1), 0.0, L - 1)
+    lo = np.minimum(np.floor(f).astype(int), L - 2)
+    u = f - lo
+    prof = (1 - t)[:, None] * profile[k] + t[:, None] * profile[k + 1]
+    rows = np.arange(len(x))
+    base = (1 - u) * prof[rows, lo] + u * prof[rows, lo + 1]
+    return base, (1 - t) * fn[k] + t * fn[k + 1], z, c
 
 
 class WallProblem(Problem):
@@ -56,8 +131,18 @@ class WallProblem(Problem):
         self.flutes = int(t["flutes"])
         self.k_beta = math.tan(math.radians(t["helix_deg"])) / self.radius
         self.notes = []
-        self._base, self._fn, self._shift = [], [], []
+        # per experiment: e₀, F·n, height z of each point, feed per tooth, flute 1's pass position
+        self._base, self._fn, self._z, self._c, self._shift = [], [], [], [], []
         for e in self.experiments:
+            if isinstance(e, WallContourExperiment):
+                base, fn, z, c = _contour_model(e, bundle.model)
+                self._base.append(base)
+                self._fn.append(fn)
+                self._z.append(z)
+                self._c.append(c)
+                self._shift.append(self.flutes * c * self.k_beta * z / (2 * math.pi))
+                continue
+            self._z.append(np.asarray(e.z, float))
             m = d.make_model(
                 diameter=t["diameter"], flutes=self.flutes, helix_deg=t["helix_deg"], stick_out=t["stick_out"],
                 youngs_modulus=t["youngs_modulus"], feed_per_tooth=e.feed_per_tooth, ap=e.axial_depth,
@@ -69,6 +154,7 @@ class WallProblem(Problem):
             ny = 1.0 if e.side == "left" else -1.0
             self._base.append(np.asarray(w.error, float)[inv])
             self._fn.append(np.asarray(w.force, float)[inv, 1] * ny)  # F·n [N] at the generating instant
+            self._c.append(e.feed_per_tooth)
             # feed position of flute 1's generating pass at height z [mm]
             self._shift.append(self.flutes * e.feed_per_tooth * self.k_beta * e.z / (2 * math.pi))
 
@@ -78,7 +164,7 @@ class WallProblem(Problem):
     def runout_term(self, i, rho, lam) -> np.ndarray:
         """−max over passes of the reach r_j − d²/(2R_j) at the points of experiment i [mm]."""
         e = self.experiments[i]
-        N, c, R = self.flutes, e.feed_per_tooth, self.radius
+        N, c, R = self.flutes, self._c[i], self.radius
         r = rho * np.cos(lam - 2 * np.pi * np.arange(N) / N)
         s = e.x - self._shift[i]
         # passes farther than D from a point cannot be the deepest (see the module docstring)
@@ -98,20 +184,20 @@ class WallProblem(Problem):
                 p = p + self.runout_term(i, *spec.runout)
             p = p[:, None]
             for add in spec.additive:
-                p = p + np.asarray(add(e, np.column_stack([e.x, e.z])), float).reshape(-1, 1)
+                p = p + np.asarray(add(e, np.column_stack([e.x, self._z[i]])), float).reshape(-1, 1)
             out.append(p)
         return out
 
     def _order(self, i):
         e = self.experiments[i]
-        return np.lexsort((e.x, e.z))
+        return np.lexsort((e.x, self._z[i]))
 
     def noise_estimate(self, spec) -> float:
         """Robust second-difference noise of the model residual along x within each height z [mm]."""
         num, den = 0.0, 0
         for i, r in enumerate(self.residuals(spec)):
             o = self._order(i)
-            v, c = robust_difference_noise(r[o], self.experiments[i].z[o])
+            v, c = robust_difference_noise(r[o], self._z[i][o])
             num += v * c
             den += c
         return math.sqrt(num / den) if den else 0.0
@@ -120,7 +206,7 @@ class WallProblem(Problem):
         """Angle of the spindle revolution [deg] at which each point's wall was generated by flute 1's
         position (0 where flute 1 generates it)."""
         e = self.experiments[i]
-        return np.degrees(np.mod(2 * np.pi * (e.x - self._shift[i]) / (self.flutes * e.feed_per_tooth), 2 * np.pi))
+        return np.degrees(np.mod(2 * np.pi * (e.x - self._shift[i]) / (self.flutes * self._c[i]), 2 * np.pi))
 
     def localise(self, spec) -> dict:
         """Mean residual per experiment, correlation of the residual with the normal force at the
@@ -131,7 +217,7 @@ class WallProblem(Problem):
         out = {"residual_rms": self.rms(spec), "mean_per_experiment_mm": [float(ri.mean()) for ri in res]}
         corr = {}
         for name, v in (("normal_force_N", np.concatenate(self._fn)),
-                        ("z_mm", np.concatenate([e.z for e in self.experiments]))):
+                        ("z_mm", np.concatenate(self._z))):
             if np.std(v) > 0 and np.std(r) > 0:
                 corr[f"error~{name}"] = float(np.corrcoef(v, r)[0, 1])
         out["correlation"] = corr
@@ -151,11 +237,15 @@ class WallProblem(Problem):
         }
 
     def experiment_notes(self, spec) -> list:
-        return [
-            {"file": e.file, "mode": e.mode, "side": e.side, "feed_per_tooth_mm": e.feed_per_tooth,
-             "axial_depth_mm": e.axial_depth, "radial_depth_mm": e.radial_depth}
-            for e in self.experiments
-        ]
+        out = []
+        for i, e in enumerate(self.experiments):
+            if isinstance(e, WallContourExperiment):
+                out.append({"file": e.file, "program": e.program, "side": e.side, "spindle_rpm": e.spindle_rpm,
+                            "feed_per_tooth_mm": self._c[i]})
+            else:
+                out.append({"file": e.file, "mode": e.mode, "side": e.side, "feed_per_tooth_mm": e.feed_per_tooth,
+                            "axial_depth_mm": e.axial_depth, "radial_depth_mm": e.radial_depth})
+        return out
 
 
 class HolderCompliance(Effect):

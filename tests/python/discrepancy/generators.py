@@ -314,3 +314,85 @@ def wall_bundle(folder, *, holder_stiffness=None, runout=None, noise=1e-3, seed=
                      "mode": mode, "spindle_rpm": 8000.0})
     write_manifest(folder, "wall_error", {"tool": t, "model": WALL_MODEL}, exps)
     return folder
+
+
+# --- wall error along a program's contour ------------------------------------------------------
+
+CONTOUR_TOOL_TOML = ('kind = "flat"\ndiameter_mm = 6.0\nflutes = 3\nhelix_deg = 30.0\nflute_length_mm = 20.0\n'
+                     'stick_out_mm = 30.0\nyoungs_modulus_MPa = 600000.0\n')
+#: a block of stock below Y = 0, 4 mm deep under the cut at Z = −4
+CONTOUR_STOCK_TOML = "min_mm = [0.0, -10.0, -8.0]\nmax_mm = [40.0, 0.0, 0.0]\nspacing_mm = 0.1\n"
+CONTOUR_RPM = 8000.0
+#: (program, feed per tooth [mm]) of the contour experiments: a straight down-milling cut along +X
+#: (ae 1 mm, right wall at Y = −1) and an up-milling cut back along −X (ae 0.5 mm, left wall at Y = −0.5)
+CONTOUR_CUTS = [
+    ("G21 G90 G17\nS8000 M3\nG0 X-5 Y2 Z5\nG1 Z-4 F600\nG1 X30 Y2 F4800\nG0 Z10\nM30\n", 0.2),
+    ("G21 G90 G17\nS8000 M3\nG0 X35 Y2.5 Z5\nG1 Z-4 F600\nG1 X5 Y2.5 F3600\nG0 Z10\nM30\n", 0.15),
+]
+
+
+def wall_contour_bundle(folder, *, holder_stiffness=None, runout=None, noise=1e-3, seed=5, form="xz",
+                        s_range=(12.0, 16.0), ds=0.01, z_levels=(0.4, 1.2, 2.0, 2.8, 3.6)):
+    """Write a wall_error bundle of contour experiments (program, tool.toml, stock.toml as
+    ``netshape deflection predict`` takes them; CSV x_mm along the contour from its start). The base
+    wall error and the force at the generating instant are netshape.deflection.predict_path's, read at
+    the measured heights (on its profile levels) and linearly between its points along the contour;
+    hidden: ``holder_stiffness`` [N/µm] (rigid translation F·n/k) and ``runout`` (ρ [mm], λ [deg]) as
+    exact circles of radius R + ρ·cos(λ − j·2π/N) placed by the flute angles along the straight cut.
+    ``form``: "xz" (x_mm,z_mm,error_mm over ``z_levels``) or "x" (x_mm,error_mm at the middle of
+    the 4 mm cut, z = 2)."""
+    import netshape as ns
+    from netshape import deflection as d
+
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "tool.toml").write_text(CONTOUR_TOOL_TOML)
+    (folder / "stock.toml").write_text(CONTOUR_STOCK_TOML)
+    rng = np.random.default_rng(seed)
+    cutter = ns.cutter.load_cutter(folder / "tool.toml")
+    stock = d.load_stock(folder / "stock.toml")
+    R, N = 3.0, 3
+    kb = math.tan(math.radians(30.0)) / R
+    s_meas = np.arange(s_range[0], s_range[1] + 1e-9, ds)
+    zs = np.asarray(z_levels if form == "xz" else [2.0], float)
+    exps = []
+    for i, (text, c) in enumerate(CONTOUR_CUTS):
+        name = f"contour{i + 1}"
+        (folder / f"{name}.ngc").write_text(text)
+        prog = ns.toolpath.read_gcode(folder / f"{name}.ngc")
+        setup = d.setup_path(prog, cutter, stock, coefficients=WALL_MODEL["coefficients"], rpm=CONTOUR_RPM,
+                             spacing=0.5, profile_levels=21)
+        r = d.predict_path(setup)
+        nominal = np.asarray(setup.nominal)
+        s_pts = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(nominal[:, :2], axis=0).T))])
+        depth = np.asarray(r.depth)
+        assert np.allclose(depth[(s_pts > 10) & (s_pts < 18)], 4.0)
+        profile = np.asarray(r.profile)
+        fn = np.sum(np.asarray(r.force) * np.asarray(d.wall_normals(nominal, setup.side)), axis=1)
+        S, Z = np.meshgrid(s_meas, zs)
+        levels = np.rint(Z / 4.0 * 20).astype(int)  # the measured heights are profile levels z_k = 0.2·k
+        E = np.empty(S.shape)
+        for row in range(len(zs)):
+            E[row] = np.interp(s_meas, s_pts, profile[:, levels[row, 0]])
+        if holder_stiffness is not None:
+            E -= np.interp(S, s_pts, fn) / (holder_stiffness * 1e3)
+        if runout is not None:
+            rho, lam = runout[0], math.radians(runout[1])
+            reach = np.full(S.shape, -np.inf)
+            for j in range(N):
+                Rj = R + rho * math.cos(lam - 2 * math.pi * j / N)
+                for mrev in range(-2, int(s_range[1] / (N * c)) + 3):
+                    xp = N * c * (kb * Z + 2 * math.pi * j / N + 2 * math.pi * mrev) / (2 * math.pi)
+                    dd = np.minimum(np.abs(S - xp), Rj)
+                    reach = np.maximum(reach, np.sqrt(Rj**2 - dd**2) - R)
+            E -= reach
+        E += rng.normal(0.0, noise, E.shape)
+        if form == "xz":
+            write_csv(folder / f"{name}.csv", ["x_mm", "z_mm", "error_mm"],
+                      np.column_stack([S.ravel(), Z.ravel(), E.ravel()]))
+        else:
+            write_csv(folder / f"{name}.csv", ["x_mm", "error_mm"], np.column_stack([s_meas, E[0]]))
+        exps.append({"file": f"{name}.csv", "program": f"{name}.ngc", "tool": "tool.toml", "stock": "stock.toml",
+                     "spindle_rpm": CONTOUR_RPM, "spacing_mm": 0.5})
+    write_manifest(folder, "wall_error", {"model": WALL_MODEL}, exps)
+    return folder
