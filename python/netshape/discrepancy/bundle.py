@@ -73,6 +73,21 @@ error = the wall's deviation from its nominal position along its normal [mm], + 
 left; x_mm along the feed from a position where flute 1 generates the wall at the tool tip (z = 0);
 z_mm above the tool tip.
 
+An experiment that names a ``program`` is a wall along that program's 2-D contour over a stock (the
+case of ``netshape deflection predict``; ``[tool]`` may then be left out)::
+
+    [[experiment]]
+    file = "contour1.csv"       # columns x_mm,error_mm or x_mm,z_mm,error_mm
+    program = "contour1.ngc"    # one 2-D contour
+    tool = "tool.toml"          # cutter TOML of a flat end mill with stick_out_mm, youngs_modulus_MPa
+    stock = "stock.toml"        # min_mm, max_mm, spacing_mm, optional [[pre_cut]]
+    spindle_rpm = 8000.0
+    spacing_mm = 0.5            # optional: prediction point spacing [mm]
+    side = "auto"               # optional: auto | left | right
+    z_mm = 2.0                  # optional (default: the middle of the cut)
+
+x_mm there is the distance along the contour (XY) from its first point [mm].
+
 Every problem raises one ValueError naming the file and the field (FileNotFoundError for a missing
 file).
 """
