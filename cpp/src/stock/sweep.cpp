@@ -1030,12 +1030,6 @@ void sweep_arc_k(ZMap& zm, const TipProfile& p, const ArcSetup& s, SweepStats& s
   }
 }
 
-int chords_for(double radius, double sweep_abs, double tol) {
-  if (radius <= tol) return std::max(1, static_cast<int>(std::ceil(sweep_abs / (0.5 * pi))));
-  const double step = 2.0 * std::acos(1.0 - tol / radius);
-  const double n = std::ceil(sweep_abs / step);
-  return static_cast<int>(std::clamp(n, 1.0, 1e7));
-}
 
 }  // namespace
 
@@ -1122,14 +1116,9 @@ SweepStats sweep_polyline(ZMap& zmap, const cutter::Cutter& cutter, const Eigen:
   for (Eigen::Index k = 2; k <= points.rows(); ++k) {
     if (k < points.rows()) {
       const Vec3 c = points.row(k).transpose();
-      if (merge_collinear) {
-        // extend the run a→b to c if c continues along the line a→b (within 1e-9 mm)
-        const Vec3 ab = b - a, bc = c - b;
-        const double lab = ab.norm();
-        if (lab > 0.0 && ab.dot(bc) > 0.0 && ab.cross(c - a).norm() / lab <= 1e-9) {
-          b = c;
-          continue;
-        }
+      if (merge_collinear && toolpath::continues_run(a, b, c, 1e-9)) {  // extend the run a→b to c
+        b = c;
+        continue;
       }
       st += sweep_line_impl(zmap, p, kind, a, b);
       a = b;
@@ -1182,7 +1171,7 @@ SweepStats sweep_block(ZMap& zmap, const cutter::Cutter& cutter, const toolpath:
     return st;
   }
   // other planes / varying radius: chords
-  const int n = chords_for(std::max(block.radius(), 1e-12), std::abs(sw), options.chord_tolerance);
+  const int n = toolpath::chord_count(std::max(block.radius(), 1e-12), sw, options.chord_tolerance);
   SweepStats st;
   Vec3 a = block.start;
   for (int k = 1; k <= n; ++k) {
@@ -1209,13 +1198,9 @@ SweepStats sweep(ZMap& zmap, const cutter::Cutter& cutter, const toolpath::Toolp
   for (const toolpath::Block& blk : program.blocks) {
     blk.validate();
     if (blk.kind == toolpath::MotionKind::line && options.merge_collinear) {
-      if (run && blk.start == b) {
-        const Vec3 ab = b - a, bc = blk.end - b;
-        const double lab = ab.norm();
-        if (lab > 0.0 && ab.dot(bc) > 0.0 && ab.cross(blk.end - a).norm() / lab <= 1e-9) {
-          b = blk.end;
-          continue;
-        }
+      if (run && blk.start == b && toolpath::continues_run(a, b, blk.end, 1e-9)) {
+        b = blk.end;
+        continue;
       }
       flush();
       run = true;
