@@ -537,6 +537,9 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       ++j;
     }
     if (static_cast<long>(j - i) < opt.min_blocks) {
+      // too short to smooth; a micro-segment that is in no coordinate plane by itself (j == i) is
+      // kept too, so every pass of this loop moves past at least one block
+      j = std::max(j, i + 1);
       for (std::size_t q = i; q < j; ++q) keep(q);
       i = j;
       continue;

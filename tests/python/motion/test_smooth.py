@@ -127,6 +127,18 @@ def test_square_keeps_its_corners():
     assert tr.stats["max_path_deviation_mm"] <= eps
 
 
+def test_non_planar_micro_segments_pass_through():
+    """Short 3-D moves (a helix as lines: every coordinate changes on every move) lie in no coordinate
+    plane: they are kept as programmed, and smoothing ends (it once looped forever on such a move)."""
+    t = np.linspace(0.0, 4 * np.pi, 81)
+    pts = np.column_stack([5 * np.cos(t), 5 * np.sin(t), 0.2 * t])
+    arr = nm.polyline_arrays(pts, 50.0)
+    new, first, last, st = nm.smooth_path(arr, 0.01)
+    assert st["runs_smoothed"] == 0
+    np.testing.assert_array_equal(np.asarray(new["end"]), np.asarray(arr["end"]))
+    np.testing.assert_array_equal(first, np.arange(len(pts) - 1))
+
+
 def test_smooth_rule_bad_input():
     lim = nm.AxisLimits.uniform(250.0, 3000.0)
     pts = _random_curve(1, 20, 0.0)
