@@ -150,7 +150,7 @@ def run_case(name, spec, outdir, schemes, plot=True):
             np.asarray(results["integrated"].offsets) - np.asarray(results["sectional"].offsets)))) * 1e3
     if plot:
         from netshape._atomic import atomic_save_figure
-        from netshape.deflection_plots import plot_case
+        from netshape.deflection.plots import plot_case
 
         best = results.get("accelerated") or results.get("integrated") or next(iter(results.values()))
         fig = plot_case(setup.nominal, before, best.after, positions=np.asarray(best.positions),

@@ -199,7 +199,7 @@ def run_predict(args) -> int:
                                 "points": d.path_table(r, setup.nominal),
                                 "profile": {"levels": int(prof.shape[1]), "error_mm": prof.tolist()}})
     if args.plot:
-        from netshape.deflection_plots import plot_prediction
+        from netshape.deflection.plots import plot_prediction
 
         plot_prediction(setup, r, args.plot)
     return 0

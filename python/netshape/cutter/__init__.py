@@ -25,8 +25,8 @@ import math
 import os
 import sys
 
-from ._atomic import atomic_write
-from ._core import cutter as _cutter
+from .._atomic import atomic_write
+from .._core import cutter as _cutter
 
 if sys.version_info >= (3, 11):
     import tomllib

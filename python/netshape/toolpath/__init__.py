@@ -18,8 +18,8 @@ from typing import Any, Literal
 
 import numpy as np
 
-from ._atomic import atomic_write
-from ._core import toolpath as _tp
+from .._atomic import atomic_write
+from .._core import toolpath as _tp
 
 Block = _tp.Block
 Toolpath = _tp.Toolpath

@@ -26,9 +26,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._core import compensation as _comp
-from ._core import deflection as _d
-from ._core import force as _f
+from .._core import compensation as _comp
+from .._core import deflection as _d
+from .._core import force as _f
 
 if sys.version_info >= (3, 11):
     import tomllib
