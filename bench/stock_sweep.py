@@ -1,5 +1,5 @@
 """Z-map sweep benchmark (issue 3): cell updates per second of the exact C++ sweep and its ratio to
-a vectorised NumPy implementation of the same exact algorithm (netshape.stock.reference), measured (process CPU time, so that other load on the machine counts less)
+a vectorised NumPy implementation of the same exact algorithm (tests/python/stock/zmap_reference.py), measured (process CPU time, so that other load on the machine counts less)
 in the same run on the same moves; and the time to sweep a 10 000-block surfacing program on a
 0.1 mm grid (100 x 100 mm block = 1000 x 1000 nodes).
 
@@ -14,12 +14,17 @@ from __future__ import annotations
 
 import argparse
 import os
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
 import netshape as ns
-from netshape.stock.reference import sweep_line_numpy
+
+# the NumPy oracle lives with the tests (tests/python/stock/zmap_reference.py)
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests" / "python" / "stock"))
+from zmap_reference import sweep_line_numpy  # noqa: E402
 
 
 def random_moves(n: int, rng: np.random.Generator, top: float) -> list[tuple[np.ndarray, np.ndarray]]:

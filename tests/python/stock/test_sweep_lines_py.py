@@ -65,7 +65,7 @@ def test_bad_input_names_the_field_and_changes_nothing(starts, ends, field):
 @pytest.mark.parametrize("make", [lambda: Cutter.flat_end(6.0, 2, 0.5236), lambda: Cutter.ball_end(6.0, 2, 0.5236)])
 def test_flat_and_ball_ramps_and_level_lines_equal_the_reference_bit_for_bit(make):
     """The SIMD kernels (ramps and, since they share them, level lines) against the NumPy reference."""
-    from netshape.stock.reference import sweep_line_numpy
+    from zmap_reference import sweep_line_numpy
 
     cutter = make()
     starts, ends = _moves(60, 9)

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import netshape as ns
-from netshape.stock.reference import sweep_line_numpy
+from zmap_reference import sweep_line_numpy
 
 Cutter = ns.stock.Cutter
 

@@ -8,7 +8,7 @@ feasible travel σ ∈ [max(0, τ_q − ρ), min(L, τ_q + ρ)] with ρ = sqrt(R
 - horizontal moves (all cutters): the point of the segment nearest to the node, d² = s² + (τ_q − clamp(τ_q, 0, L))².
 
 It exists to cross-check the C++ kernel and to measure its speed-up (bench/stock_sweep.py); use the
-C++ functions in netshape.stock for work.
+C++ functions in netshape.stock for work. A test oracle: it ships with the tests, not in the package.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ import numpy as np
 
 
 def _profile(cutter):
-    from . import TipProfile
+    from netshape.stock import TipProfile
 
     p = TipProfile.of(cutter)
     R, rc, a = float(p.radius), float(p.corner_radius), float(p.flat_radius)
