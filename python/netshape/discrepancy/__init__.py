@@ -13,7 +13,14 @@ C++ kernels of netshape.force, netshape.machine and netshape.deflection; the fit
 
 from __future__ import annotations
 
-from .bundle import Bundle, ForceExperiment, VolumetricExperiment, WallContourExperiment, WallExperiment, load_bundle
+from .bundle import (
+    Bundle,
+    ForceExperiment,
+    VolumetricExperiment,
+    WallContourExperiment,
+    WallExperiment,
+    load_bundle,
+)
 from .catalogue import Effect, EffectFit, catalogue, register_effect, unregister_effect
 from . import force_effects as _force_effects  # noqa: F401  (registers the cutting-force catalogue)
 from . import volumetric_effects as _volumetric_effects  # noqa: F401  (registers the volumetric catalogue)

@@ -569,7 +569,8 @@ def _load_wall_contour(e: dict, i: int, where: str, root: Path) -> WallContourEx
 
 def _cutter_table(c) -> dict:
     """Diameter [mm], flutes and helix [deg] of a netshape Cutter in the keys of a [tool] table."""
-    return {"diameter": float(c.diameter()), "flutes": int(c.flutes), "helix_deg": math.degrees(float(c.helix))}
+    return {"diameter": float(c.diameter()), "flutes": int(c.flutes),
+            "helix_deg": math.degrees(float(c.helix))}
 
 
 def _same_tool(tool_out: dict, c, we: str) -> None:
@@ -578,8 +579,8 @@ def _same_tool(tool_out: dict, c, we: str) -> None:
     mine = _cutter_table(c)
     for k, v in mine.items():
         if not math.isclose(float(tool_out[k]), v, rel_tol=1e-9, abs_tol=1e-9):
-            raise _fail(we, f"tool: {k} = {v:g} differs from the bundle's other experiments ({tool_out[k]:g}); "
-                        "one bundle holds one tool")
+            raise _fail(we, f"tool: {k} = {v:g} differs from the bundle's other experiments "
+                        f"({tool_out[k]:g}); one bundle holds one tool")
 
 
 def _load_wall(doc: dict, root: Path, where: str) -> Bundle:

@@ -83,9 +83,9 @@ PROFILE_LEVELS = 21
 
 
 def _contour_model(e, model: dict):
-    """(e₀ (n,) [mm], F·n (n,) [N], z (n,) [mm], feed per tooth [mm]) at a contour experiment's measured points:
-    linear in x between the prediction's points and in z between its profile levels; z NaN is the
-    middle of the cut."""
+    """(e₀ (n,) [mm], F·n (n,) [N], z (n,) [mm], feed per tooth [mm]) at a contour experiment's
+    measured points: linear in x between the prediction's points and in z between its profile levels;
+    z NaN is the middle of the cut."""
     s, profile, depth, fn, engaged, c = contour_wall_model(e, model)
     x = e.x
     if x.max() > s[-1] + 1e-9:
@@ -243,8 +243,8 @@ class WallProblem(Problem):
                 out.append({"file": e.file, "program": e.program, "side": e.side, "spindle_rpm": e.spindle_rpm,
                             "feed_per_tooth_mm": self._c[i]})
             else:
-                out.append({"file": e.file, "mode": e.mode, "side": e.side, "feed_per_tooth_mm": e.feed_per_tooth,
-                            "axial_depth_mm": e.axial_depth, "radial_depth_mm": e.radial_depth})
+                out.append({"file": e.file, "mode": e.mode, "side": e.side,
+                            "feed_per_tooth_mm": e.feed_per_tooth, "axial_depth_mm": e.axial_depth, "radial_depth_mm": e.radial_depth})
         return out
 
 
