@@ -521,6 +521,27 @@ def _file_key(e: dict, key: str, we: str, root: Path) -> Path:
     return path
 
 
+def _wall_csv(e: dict, we: str, path: Path, *, z_default: float, axial_depth: float | None = None):
+    """The ``x_mm,error_mm[,z_mm]`` CSV of a wall experiment and the height z (n,) of each point [mm]:
+    the CSV's z_mm column, else the experiment's ``z_mm`` key, else ``z_default``. A height below 0, or
+    above ``axial_depth`` when it is given, is refused naming the CSV line or the key."""
+    cols = _read_csv(path, ("x_mm", "error_mm"), ("z_mm",))
+    if "z_mm" in cols:
+        if "z_mm" in e:
+            raise _fail(we, "z_mm: given both here and as a column of the CSV (keep one)")
+        z = cols["z_mm"]
+    else:
+        z = np.full(len(cols["x_mm"]), _number(e, "z_mm", we, default=z_default))
+    bad = (z < 0) if axial_depth is None else (z < 0) | (z > axial_depth)
+    if bad.any():
+        j = int(np.argmax(bad))
+        src = f"{path}: line {j + 2}, column 'z_mm'" if "z_mm" in cols else f"{we}: z_mm"
+        what = ("must be ≥ 0 (height above the tool tip) [mm]" if axial_depth is None
+                else f"must lie within the cut, 0..axial_depth_mm = {axial_depth} [mm]")
+        raise ValueError(f"{src}: {float(z[j])!r} {what}")
+    return cols, z
+
+
 WALL_CONTOUR_KEYS = ("file", "program", "tool", "stock", "spindle_rpm", "spacing_mm", "side", "z_mm")
 
 
@@ -545,18 +566,7 @@ def _load_wall_contour(e: dict, i: int, where: str, root: Path) -> WallContourEx
     side = e.get("side", "auto")
     if side not in ("auto", "left", "right"):
         raise _fail(we, f"side = {side!r}: must be 'auto', 'left' or 'right'")
-    cols = _read_csv(path, ("x_mm", "error_mm"), ("z_mm",))
-    if "z_mm" in cols:
-        if "z_mm" in e:
-            raise _fail(we, "z_mm: given both here and as a column of the CSV (keep one)")
-        z = cols["z_mm"]
-    else:
-        z = np.full(len(cols["x_mm"]), _number(e, "z_mm", we, default=math.nan))
-    bad = z < 0
-    if bad.any():
-        j = int(np.argmax(bad))
-        src = f"{path}: line {j + 2}, column 'z_mm'" if "z_mm" in cols else f"{we}: z_mm"
-        raise ValueError(f"{src}: {float(z[j])!r} must be ≥ 0 (height above the tool tip) [mm]")
+    cols, z = _wall_csv(e, we, path, z_default=math.nan)
     bad = cols["x_mm"] < 0
     if bad.any():
         j = int(np.argmax(bad))
@@ -639,19 +649,7 @@ def _load_wall(doc: dict, root: Path, where: str) -> Bundle:
                              inertia=model_out["inertia"], load=model_out["load"])
         except ValueError as exc:
             raise _fail(we, str(exc)) from None
-        cols = _read_csv(path, ("x_mm", "error_mm"), ("z_mm",))
-        if "z_mm" in cols:
-            if "z_mm" in e:
-                raise _fail(we, "z_mm: given both here and as a column of the CSV (keep one)")
-            z = cols["z_mm"]
-        else:
-            z0 = _number(e, "z_mm", we, default=0.5 * ap)
-            z = np.full(len(cols["x_mm"]), z0)
-        bad = (z < 0) | (z > ap)
-        if bad.any():
-            j = int(np.argmax(bad))
-            src = f"{path}: line {j + 2}, column 'z_mm'" if "z_mm" in cols else f"{we}: z_mm"
-            raise ValueError(f"{src}: {float(z[j])!r} must lie within the cut, 0..axial_depth_mm = {ap} [mm]")
+        cols, z = _wall_csv(e, we, path, z_default=0.5 * ap, axial_depth=ap)
         out.append(
             WallExperiment(file=str(path), feed_per_tooth=c, axial_depth=ap, radial_depth=ae, mode=mode,
                            side=side, x=cols["x_mm"], z=z, errors=cols["error_mm"][:, None], spindle_rpm=rpm)
