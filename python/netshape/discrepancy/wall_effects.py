@@ -42,6 +42,10 @@ class WallSpec:
     additive: tuple = ()
 
 
+#: heights per point at which the contour prediction gives the wall error (bottom to top of the cut)
+PROFILE_LEVELS = 21
+
+
 def contour_arc_length(nominal: np.ndarray) -> np.ndarray:
     """Distance along the polyline ``nominal`` (n, 3) from its first point, in XY [mm] (the x_mm of a
     contour experiment)."""
@@ -76,10 +80,6 @@ def contour_wall_model(e, model: dict):
     c = feed * 60.0 / (e.spindle_rpm * e.cutter.flutes)
     return (contour_arc_length(nominal), np.asarray(r.profile, float), np.asarray(r.depth, float), fn,
             np.asarray(r.engaged) > 0, c)
-
-
-#: heights per point at which the contour prediction gives the wall error (bottom to top of the cut)
-PROFILE_LEVELS = 21
 
 
 def _contour_model(e, model: dict):

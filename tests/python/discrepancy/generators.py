@@ -88,6 +88,14 @@ def write_manifest(folder: Path, kind: str, tables: dict, experiments: list) -> 
     (folder / "manifest.toml").write_text("\n".join(lines) + "\n")
 
 
+def replace_once(path: Path, old: str, new: str) -> None:
+    """Replace the first ``old`` in the text file ``path`` by ``new`` (``old`` must be there): how the
+    malformed-bundle tests break one field of a good bundle."""
+    text = path.read_text()
+    assert old in text
+    path.write_text(text.replace(old, new, 1))
+
+
 def write_csv(path: Path, header: list, data: np.ndarray) -> None:
     np.savetxt(path, data, delimiter=",", header=",".join(header), comments="", fmt="%.10g")
 

@@ -10,18 +10,12 @@ import pytest
 import netshape.discrepancy as nd
 from netshape.cli import main
 
-from generators import force_bundle, volumetric_bundle
+from generators import force_bundle, replace_once, volumetric_bundle
 
 
 @pytest.fixture()
 def fb(tmp_path):
     return force_bundle(tmp_path / "b", revolutions=2, per_rev=60, conditions=[("slot", 10.0, 0.05)])
-
-
-def _edit(path, old, new):
-    text = path.read_text()
-    assert old in text
-    path.write_text(text.replace(old, new, 1))
 
 
 @pytest.mark.parametrize(
@@ -51,7 +45,7 @@ def _edit(path, old, new):
     ],
 )
 def test_malformed_force_bundle(fb, edit, words):
-    _edit(fb / edit[0], edit[1], edit[2])
+    replace_once(fb / edit[0], edit[1], edit[2])
     with pytest.raises(ValueError) as exc:
         nd.load_bundle(fb)
     for w in words:
@@ -78,11 +72,11 @@ def test_missing_files(fb, tmp_path):
 
 def test_malformed_volumetric_bundle(tmp_path):
     vb = volumetric_bundle(tmp_path / "v", experiments=1)
-    _edit(vb / "manifest.toml", 'tool_side = ["Z"]', 'tool_side = ["Z", "X"]')
+    replace_once(vb / "manifest.toml", 'tool_side = ["Z"]', 'tool_side = ["Z", "X"]')
     with pytest.raises(ValueError, match=r"manifest.toml: \[machine\].*every axis X, Y, Z exactly once"):
         nd.load_bundle(vb)
     vb = volumetric_bundle(tmp_path / "w", experiments=1)
-    _edit(vb / "manifest.toml", "EXX = ", "EXQ = ")
+    replace_once(vb / "manifest.toml", "EXX = ", "EXQ = ")
     with pytest.raises(ValueError, match=r"\[model\]: unknown key 'EXQ'"):
         nd.load_bundle(vb)
     vb = volumetric_bundle(tmp_path / "x", experiments=1)
@@ -94,7 +88,7 @@ def test_malformed_volumetric_bundle(tmp_path):
 
 
 def test_cli_bad_bundle_exits_2_and_writes_nothing(fb, tmp_path, capsys):
-    _edit(fb / "manifest.toml", "spindle_rpm = 6000.0\n", "")
+    replace_once(fb / "manifest.toml", "spindle_rpm = 6000.0\n", "")
     out = tmp_path / "d.json"
     assert main(["diagnose", str(fb), "--json", str(out)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
@@ -173,7 +167,7 @@ def test_user_registered_effect(tmp_path):
 def test_ball_end_mill_is_refused_by_the_force_workflow(fb):
     """The force catalogue extends the flat linear edge-force model: a ball end mill bundle loads but
     diagnose says why it cannot be diagnosed."""
-    _edit(fb / "manifest.toml", 'type = "flat"', 'type = "ball"')
+    replace_once(fb / "manifest.toml", 'type = "flat"', 'type = "ball"')
     b = nd.load_bundle(fb)
     with pytest.raises(ValueError, match=r"\[tool\] type = 'ball'.*flat end mills"):
         nd.diagnose(b)

@@ -18,7 +18,7 @@ import pytest
 import netshape.discrepancy as nd
 from netshape.cli import main
 
-from generators import WALL_TOOL, wall_bundle
+from generators import WALL_TOOL, replace_once, wall_bundle
 
 NOISE = 1e-3  # mm
 K_TRUE = 10.0  # N/µm
@@ -101,12 +101,6 @@ def test_cli_wall_bundle(tmp_path, capsys):
     assert (tmp_path / "rep" / "index.html").exists()
 
 
-def _edit(path, old, new):
-    text = path.read_text()
-    assert old in text
-    path.write_text(text.replace(old, new, 1))
-
-
 @pytest.mark.parametrize(
     "edit, words",
     [
@@ -126,7 +120,7 @@ def _edit(path, old, new):
 )
 def test_malformed_wall_bundle(tmp_path, edit, words):
     b = wall_bundle(tmp_path / "b", form="x", length=0.2)
-    _edit(b / edit[0], edit[1], edit[2])
+    replace_once(b / edit[0], edit[1], edit[2])
     with pytest.raises(ValueError) as exc:
         nd.load_bundle(b)
     for w in words:
@@ -135,10 +129,10 @@ def test_malformed_wall_bundle(tmp_path, edit, words):
 
 def test_wall_csv_z_outside_the_cut(tmp_path):
     b = wall_bundle(tmp_path / "b", form="xz", length=0.2, z_levels=(1.0, 2.0))
-    _edit(b / "wall2.csv", ",2,", ",7.5,")
+    replace_once(b / "wall2.csv", ",2,", ",7.5,")
     with pytest.raises(ValueError, match=r"wall2\.csv: line \d+, column 'z_mm': 7\.5"):
         nd.load_bundle(b)
-    _edit(b / "wall2.csv", ",7.5,", ",2,")
+    replace_once(b / "wall2.csv", ",7.5,", ",2,")
     (b / "wall3.csv").unlink()
     with pytest.raises(FileNotFoundError, match="wall3.csv"):
         nd.load_bundle(b)

@@ -20,7 +20,7 @@ import pytest
 import netshape.discrepancy as nd
 from netshape.cli import main
 
-from generators import wall_contour_bundle
+from generators import replace_once, wall_contour_bundle
 
 NOISE = 1e-3  # mm
 K_TRUE = 10.0  # N/µm
@@ -81,12 +81,6 @@ def test_cli_contour_bundle(tmp_path):
     assert abs(data["parameters"]["stiffness_N_per_um"] - K_TRUE) < TOL["stiffness_N_per_um"]
 
 
-def _edit(path, old, new):
-    text = path.read_text()
-    assert old in text
-    path.write_text(text.replace(old, new, 1))
-
-
 @pytest.mark.parametrize(
     "edit, words, exc",
     [
@@ -105,7 +99,7 @@ def _edit(path, old, new):
 )
 def test_malformed_contour_bundle(tmp_path, edit, words, exc):
     b = wall_contour_bundle(tmp_path / "b", form="x", s_range=(12.0, 12.2))
-    _edit(b / edit[0], edit[1], edit[2])
+    replace_once(b / edit[0], edit[1], edit[2])
     with pytest.raises(exc) as info:
         nd.load_bundle(b)
     for w in words:
@@ -118,7 +112,7 @@ def test_contour_points_where_no_wall_is_cut(tmp_path):
     b = wall_contour_bundle(tmp_path / "b", form="xz", s_range=(12.0, 12.2), z_levels=(2.0,))
     csv = b / "contour1.csv"
     good = csv.read_text()
-    _edit(csv, "\n12,", "\n99,")
+    replace_once(csv, "\n12,", "\n99,")
     with pytest.raises(ValueError, match=r"contour1\.csv: line 2, column 'x_mm': 99.*beyond the contour"):
         nd.diagnose(b)
     csv.write_text(good.replace("\n12,", "\n0.5,", 1))
