@@ -95,15 +95,6 @@ class Compensator {
   MachineData data_;
 };
 
-// Distance [mm] of p from the segment [a, b].
-double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double l2 = ab.dot(ab);
-  double t = l2 > 0.0 ? (p - a).dot(ab) / l2 : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  return (p - (a + t * ab)).norm();
-}
-
 // In-plane distance [mm] of p from the centre c (the plane's two axes).
 double in_plane_radius(const Vec3& p, const Vec3& c, const toolpath::PlaneAxes& ax) {
   return std::hypot(p[ax.a] - c[ax.a], p[ax.b] - c[ax.b]);
@@ -154,7 +145,7 @@ std::vector<std::vector<Vec3>> subdivide(const Machine& machine, MachineData& da
       for (double t : ts) {
         const Vec3 c = AC[k] + t * (BC[k] - AC[k]);
         const Vec3 act = c + machine::tip_error(machine, data, c);
-        dev = std::max(dev, segment_distance(act, A[k], B[k]));
+        dev = std::max(dev, point_segment_distance(act, A[k], B[k]));
       }
       if (dev > tol)
         bad.push_back(k);

@@ -30,13 +30,6 @@ double bezier_length(const std::array<Vec3, 4>& c, double a, double b) noexcept 
   return s * h;
 }
 
-double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) noexcept {
-  const Vec3 d = b - a;
-  const double l2 = d.squaredNorm();
-  double t = l2 > 0 ? (p - a).dot(d) / l2 : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  return (p - (a + t * d)).norm();
-}
 }  // namespace
 
 Segment Segment::line(const toolpath::Block& b, long source) {

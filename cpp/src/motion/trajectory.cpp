@@ -10,13 +10,6 @@
 namespace netshape::motion {
 
 namespace {
-double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 d = b - a;
-  const double l2 = d.squaredNorm();
-  const double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * d)).norm();
-}
-
 // Distance from p to a programmed block [mm] (arcs: through the angle of p about the centre).
 double distance_to_block(const Vec3& p, const toolpath::Block& b) {
   if (b.kind != toolpath::MotionKind::arc) return point_segment_distance(p, b.start, b.end);
