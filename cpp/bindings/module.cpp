@@ -3,6 +3,7 @@
 #include <pybind11/pybind11.h>
 
 #include "netshape/core/error.hpp"
+#include "netshape/core/isa.hpp"
 
 namespace py = pybind11;
 
@@ -33,6 +34,10 @@ PYBIND11_MODULE(_core, m) {
       PyErr_SetObject(cls.ptr(), cls(e.what()).ptr());
     }
   });
+
+  m.def("kernel_isa", &netshape::kernel_isa,
+        "Instruction set of the SIMD kernels in this process: 'baseline', 'avx2' or 'avx512' (the best the "
+        "CPU runs unless NETSHAPE_ISA names a lower one).");
 
   auto sub = [&m](const char* name) { return m.def_submodule(name); };
   auto toolpath = sub("toolpath");

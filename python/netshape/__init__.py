@@ -40,6 +40,17 @@ def __getattr__(name: str):
     raise AttributeError(f"module 'netshape' has no attribute {name!r}")
 
 
+def kernel_isa() -> str:
+    """Instruction set of the C++ SIMD kernels in this process: ``"baseline"``, ``"avx2"`` or ``"avx512"``.
+
+    The best one the CPU runs is chosen once per process; the environment variable ``NETSHAPE_ISA``
+    (set before netshape is imported) forces a lower one. Every choice gives the same results.
+    """
+    from . import _core
+
+    return _core.kernel_isa()
+
+
 def cmake_dir() -> str:
     """Folder holding ``netshapeConfig.cmake`` of the C++ library installed with this package.
 
@@ -57,4 +68,4 @@ def cmake_dir() -> str:
     )
 
 
-__all__ = ["Error", "ParseError", "cmake_dir", "__version__", *_AREAS]
+__all__ = ["Error", "ParseError", "cmake_dir", "kernel_isa", "__version__", *_AREAS]

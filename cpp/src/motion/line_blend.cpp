@@ -2,6 +2,8 @@
 // instruction set (line_blend.hpp).
 #include "line_blend.hpp"
 
+#include "core/dispatch.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -59,11 +61,8 @@ const LineBlendKernels& line_blend_kernels() {
   static const LineBlendKernels* const chosen = [] {
     const LineBlendKernels* best = &plain_kernels;
 #if defined(NETSHAPE_MOTION_AVX2)
-    __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx2")) best = &avx2_line_blend_kernels;
+    if (simd::active_isa() >= simd::Isa::avx2) best = &avx2_line_blend_kernels;
 #endif
-    const char* env = std::getenv("NETSHAPE_MOTION_ISA");
-    if (env != nullptr && std::strcmp(env, "plain") == 0) best = &plain_kernels;
     return best;
   }();
   return *chosen;

@@ -100,7 +100,7 @@ class ZMap {
   double height_bound(int i0, int i1) const noexcept;
 
  private:
-  friend struct SweepAccess;  // the sweeps (sweep.cpp): heights without staling the bounds, bounds
+  friend struct SweepAccess;  // the sweeps (src/stock/sweep_internal.hpp): heights without staling the bounds, bounds
   ZMap() = default;
   void size_bands(double bound);  // band sizes (≥ 64 nodes per band), every band's bound set to `bound`
   void init_bounds();           // band sizes and exact bounds from the heights
