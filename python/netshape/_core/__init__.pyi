@@ -12,4 +12,8 @@ from . import machine
 from . import compensation
 from . import motion
 from . import posture
-__all__: list[str] = ['compensation', 'cutter', 'deflection', 'force', 'geometry', 'machine', 'motion', 'posture', 'stock', 'toolpath']
+__all__: list[str] = ['compensation', 'cutter', 'deflection', 'force', 'geometry', 'kernel_isa', 'machine', 'motion', 'posture', 'stock', 'toolpath']
+def kernel_isa() -> str:
+    """
+    Instruction set of the SIMD kernels in this process: 'baseline', 'avx2' or 'avx512' (the best the CPU runs unless NETSHAPE_ISA names a lower one).
+    """
