@@ -29,6 +29,7 @@ def register(sub) -> None:
     p = sub.add_parser("posture", help="5-axis tool posture planning", description=_DESCRIPTION, epilog=_EPILOG,
                        formatter_class=argparse.RawDescriptionHelpFormatter)
     ps = p.add_subparsers(dest="posture_command", metavar="ACTION")
+    ps.required = True
     q = ps.add_parser("plan", help="plan postures along a path", description=_DESCRIPTION, epilog=_EPILOG,
                       formatter_class=argparse.RawDescriptionHelpFormatter)
     src = q.add_mutually_exclusive_group(required=True)
@@ -56,7 +57,6 @@ def register(sub) -> None:
     q.add_argument("--plot", action="store_true", help="write cspace.png and angles.png")
     q.add_argument("--plot-point", type=a.integer("--plot-point", ge=0), metavar="I", help="CC point of cspace.png (default: first collision)")
     q.set_defaults(func=run)
-    p.set_defaults(func=run, _posture_parser=p)
 
 
 def run(args) -> int:
@@ -67,9 +67,6 @@ def run(args) -> int:
     from netshape import posture as npost
     from netshape.cli import CliError
 
-    if getattr(args, "posture_command", None) is None:
-        args._posture_parser.print_help()
-        return 2
     # options checked against each other (single values were checked while parsing; --plot-point against
     # the number of points by PostureRun.write)
     if args.impeller is not None and args.obstacles:

@@ -30,6 +30,7 @@ def register(sub) -> None:
                        description=_DESCRIPTION, epilog=_EPILOG,
                        formatter_class=argparse.RawDescriptionHelpFormatter)
     vs = p.add_subparsers(dest="volumetric_command", metavar="ACTION")
+    vs.required = True
     m = vs.add_parser("map", help="volumetric error over a grid of the workspace",
                       description="Tool-tip error relative to the workpiece over a regular grid of the "
                       "axes' travel (exact product of transforms; Yang & Kweon eq. 16 for |error|).")
@@ -59,16 +60,12 @@ def register(sub) -> None:
 
     add_offset_options(c)
     c.set_defaults(func=run)
-    p.set_defaults(func=run, _volumetric_parser=p)
 
 
 def run(args) -> int:
     from netshape.cli import CliError
 
-    action = getattr(args, "volumetric_command", None)
-    if action is None:
-        args._volumetric_parser.print_help()
-        return 2
+    action = args.volumetric_command
     from netshape import machine as nm
     from netshape._atomic import atomic_save_figure, atomic_write
 
