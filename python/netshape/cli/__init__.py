@@ -10,8 +10,12 @@ Bad input, one convention for every subcommand (netshape.cli._args):
 - options checked against each other are checked after parsing, in one place per subcommand, by
   raising ``CliError("--opt = value: rule")``; the library's own ValueError is the backstop;
 - either way stderr gets exactly one line ``netshape COMMAND: error: --opt = value: rule [unit]``,
-  e.g. ``netshape plan: error: --vmax = -3: must be positive [mm/s]``; argparse's own errors (a value
-  that is not a number, a missing option, a bad choice, an unknown option) get the same one line.
+  e.g. ``netshape plan: error: --vmax = -3: must be positive [mm/s]`` (COMMAND the innermost one, e.g.
+  ``deflection wall``); argparse's own errors (a value that is not a number, a missing option or
+  action, a bad choice, an unknown option) get the same one line, printed by ``_args.Parser``, the
+  class of the top-level parser and, through ``add_subparsers``, of every subparser.
+A new subcommand follows it by passing ``type=_args.<validator>("--opt", "unit")`` for every value
+option and raising CliError for cross-option checks at the top of its ``run``.
 """
 
 from __future__ import annotations
