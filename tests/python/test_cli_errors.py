@@ -31,7 +31,8 @@ def _one_line(capsys, argv: list[str], prefix: str, *needles: str) -> str:
     assert cap.out == ""
     lines = cap.err.splitlines()
     assert len(lines) == 1 and cap.err.endswith("\n"), cap.err
-    assert lines[0].startswith(f"netshape {prefix}: error: "), lines[0]
+    prog = f"netshape {prefix}" if prefix else "netshape"
+    assert lines[0].startswith(f"{prog}: error: "), lines[0]
     for n in needles:
         assert n in lines[0], (n, lines[0])
     return lines[0]
@@ -80,6 +81,8 @@ def test_bad_value_is_one_line(tmp_path, monkeypatch, capsys, argv, prefix, line
     (["demo", "--out"], "demo", ["--out", "expected one argument"]),
     (["diagnose", "bundle/"], "diagnose", ["required", "--json"]),
     (["volumetric"], "volumetric", ["required", "ACTION"]),
+    (["volumetric", "draw"], "volumetric", ["ACTION = draw: must be one of map, compensate"]),
+    (["nope"], "", ["COMMAND = nope: must be one of info, forces,"]),
     (["posture"], "posture", ["required", "ACTION"]),
     (["deflection", "wall", "--rpm", "600"], "deflection wall", ["required", "--feed-per-tooth"]),
     (POSTURE + ["--surface", "s.json"], "posture plan", ["--surface", "not allowed with", "--impeller"]),

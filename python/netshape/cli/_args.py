@@ -203,7 +203,7 @@ def _message(err: argparse.ArgumentError) -> str:
     if any(msg.startswith((n + " ", n + ":")) for n in names):  # a validator named the option itself
         return msg
     m = _INVALID_CHOICE.match(msg)
-    if m and names[-1].startswith("-"):
+    if m:
         value, choices = m.group(1).strip("'"), m.group(2).replace("'", "")
         return f"{names[-1]} = {value}: must be one of {choices}"
     return f"argument {name}: {msg}"
