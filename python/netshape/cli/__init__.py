@@ -1,7 +1,21 @@
 """The ``netshape`` command. Each subcommand lives in its own module here with a
 ``register(subparsers)`` function that adds its parser and sets ``func``.
 
-Exit codes: 0 success, 2 bad input (one clear line on stderr), 1 other failure.
+Exit codes: 0 success, 2 bad input (one clear line on stderr), 1 other failure. :func:`main` returns
+the code (it does not raise SystemExit); the ``netshape`` script exits with it.
+
+Bad input, one convention for every subcommand (netshape.cli._args):
+- a single value is checked while parsing by a ``type=`` validator of ``_args`` (positive, non_negative,
+  finite, real with bounds, integer with bounds, flutes, counts, parsed by a library parser);
+- options checked against each other are checked after parsing, in one place per subcommand, by
+  raising ``CliError("--opt = value: rule")``; the library's own ValueError is the backstop;
+- either way stderr gets exactly one line ``netshape COMMAND: error: --opt = value: rule [unit]``,
+  e.g. ``netshape plan: error: --vmax = -3: must be positive [mm/s]`` (COMMAND the innermost one, e.g.
+  ``deflection wall``); argparse's own errors (a value that is not a number, a missing option or
+  action, a bad choice, an unknown option) get the same one line, printed by ``_args.Parser``, the
+  class of the top-level parser and, through ``add_subparsers``, of every subparser.
+A new subcommand follows it by passing ``type=_args.<validator>("--opt", "unit")`` for every value
+option and raising CliError for cross-option checks at the top of its ``run``.
 """
 
 from __future__ import annotations
@@ -26,7 +40,9 @@ Units: mm, s, N, MPa, rad; feeds in mm/min on the command line where the option 
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    from netshape.cli._args import Parser
+
+    parser = Parser(
         prog="netshape",
         description="Predict the shape errors a CNC program will produce and rewrite it so the part "
         "comes out right.",
@@ -48,14 +64,17 @@ class CliError(Exception):
 
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
-    args = parser.parse_args(argv)
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # 2 after the one-line parse error, 0 after --help / --version
+        return int(exc.code or 0)
     if not getattr(args, "func", None):
         parser.print_help()
         return 2
     try:
         result = args.func(args)
     except (ValueError, CliError, FileNotFoundError, IsADirectoryError, PermissionError) as exc:
-        print(f"netshape {args.command}: error: {_one_line(exc)}", file=sys.stderr)
+        print(f"{args._prog}: error: {_one_line(exc)}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("netshape: interrupted", file=sys.stderr)

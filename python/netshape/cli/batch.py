@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from netshape.cli import _args as a
+
 _DESCRIPTION = """\
 Run job files (docs/job.md) on Dask (dask.distributed): every job, and for a job with a [grid] table
 every combination of its values (e.g. feeds x tool stick-outs x machine error scalings). Each run
@@ -22,7 +24,8 @@ def register(sub) -> None:
     p.add_argument("jobs", nargs="+", metavar="JOB.toml", help="job files (with an optional [grid])")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="address of a running Dask scheduler (default: a LocalCluster); 'none' runs here")
-    p.add_argument("--workers", type=int, default=2, metavar="N", help="LocalCluster worker processes (2)")
+    p.add_argument("--workers", type=a.integer("--workers", ge=1), default=2, metavar="N",
+                   help="LocalCluster worker processes, >= 1 (2)")
     p.add_argument("--out", default="netshape-batch", metavar="DIR", help="output folder (netshape-batch)")
     p.add_argument("--parquet", action="store_true", help="also write batch.parquet (needs pandas, pyarrow)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
@@ -35,8 +38,6 @@ def run(args) -> int:
     from netshape.cli import CliError
     from netshape.job.batch import run_batch
 
-    if args.workers < 1:
-        raise CliError(f"--workers = {args.workers}: must be at least 1")
     try:
         rows = run_batch(args.jobs, args.out, scheduler=args.scheduler, workers=args.workers,
                          parquet=args.parquet, progress=not args.quiet)

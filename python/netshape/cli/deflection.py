@@ -7,7 +7,7 @@ import argparse
 import math
 import time
 
-from netshape.cli.forces import _finite, _positive
+from netshape.cli import _args as a
 
 _DESCRIPTION = """\
 Tool deflection and the wall error it leaves (Cho & Suh 1993). The tool is a cantilever of length
@@ -41,18 +41,22 @@ def register(sub) -> None:
     w = dsub.add_parser("wall", help="wall error of one steady straight cut",
                         formatter_class=argparse.RawDescriptionHelpFormatter, epilog=_EPILOG)
     w.add_argument("--tool", metavar="TOOL.toml", help="cutter TOML (diameter, flutes, helix, stick-out, E)")
-    w.add_argument("--diameter", type=_positive("--diameter"), metavar="MM", help="tool diameter [mm]")
-    w.add_argument("--flutes", type=int, metavar="N", help="number of flutes")
-    w.add_argument("--helix", type=_finite("--helix"), metavar="DEG", help="helix angle [deg]")
-    w.add_argument("--stick-out", type=_finite("--stick-out"), metavar="MM", help="holder face to tip [mm]")
-    w.add_argument("--youngs-modulus", type=_finite("--youngs-modulus"), metavar="MPA", help="E of the tool [MPa]")
+    w.add_argument("--diameter", type=a.positive("--diameter", "mm"), metavar="MM", help="tool diameter [mm]")
+    w.add_argument("--flutes", type=a.flutes(), metavar="N", help="number of flutes, 1..64")
+    w.add_argument("--helix", type=a.real("--helix", "deg", ge=0, lt=85), metavar="DEG",
+                   help="helix angle [deg] in [0, 85)")
+    w.add_argument("--stick-out", type=a.positive("--stick-out", "mm"), metavar="MM", help="holder face to tip [mm]")
+    w.add_argument("--youngs-modulus", type=a.positive("--youngs-modulus", "MPa"), metavar="MPA",
+                   help="E of the tool [MPa]")
     _common(w)
-    w.add_argument("--feed-per-tooth", type=_positive("--feed-per-tooth"), required=True, metavar="MM",
+    w.add_argument("--feed-per-tooth", type=a.positive("--feed-per-tooth", "mm"), required=True, metavar="MM",
                    help="feed per tooth c [mm]")
-    w.add_argument("--ap", type=_positive("--ap"), required=True, metavar="MM", help="axial depth of cut [mm]")
-    w.add_argument("--ae", type=_positive("--ae"), metavar="MM", help="radial depth of cut [mm] (up/down)")
+    w.add_argument("--ap", type=a.positive("--ap", "mm"), required=True, metavar="MM",
+                   help="axial depth of cut [mm]")
+    w.add_argument("--ae", type=a.positive("--ae", "mm"), metavar="MM", help="radial depth of cut [mm] (up/down)")
     w.add_argument("--mode", choices=("up", "down", "slot"), default="down", help="milling mode (default down)")
-    w.add_argument("--levels", type=int, default=21, metavar="N", help="profile levels, bottom to top (default 21)")
+    w.add_argument("--levels", type=a.integer("--levels", ge=3, le=10001), default=21, metavar="N",
+                   help="profile levels, bottom to top, 3..10001 (default 21)")
     w.add_argument("--json", metavar="OUT.json", help="write the result as JSON")
     w.set_defaults(func=run_wall)
 
@@ -65,7 +69,7 @@ def register(sub) -> None:
         q.add_argument("--stock", required=True, metavar="STOCK.toml",
                        help="min_mm, max_mm, spacing_mm, optional [[pre_cut]] program/tool")
         _common(q)
-        q.add_argument("--spacing", type=_positive("--spacing"), default=0.5, metavar="MM",
+        q.add_argument("--spacing", type=a.positive("--spacing", "mm"), default=0.5, metavar="MM",
                        help="path point spacing [mm] (default 0.5)")
         q.add_argument("--side", choices=("auto", "left", "right"), default="auto",
                        help="wall side: left of the feed (up milling) or right (down milling); default auto")
@@ -78,11 +82,12 @@ def register(sub) -> None:
                            default="accelerated", help="compensation scheme (default accelerated)")
             q.add_argument("--level", choices=("bottom", "middle", "top"), default="middle",
                            help="reference level of the wall (default middle)")
-            q.add_argument("--tolerance", type=_positive("--tolerance"), default=5e-4, metavar="MM",
+            q.add_argument("--tolerance", type=a.positive("--tolerance", "mm"), default=5e-4, metavar="MM",
                            help="largest wall error accepted at the level [mm] (default 0.0005)")
-            q.add_argument("--discount", type=_positive("--discount"), default=1.0, metavar="LAMBDA",
+            q.add_argument("--discount", type=a.real("--discount", gt=0, le=1), default=1.0, metavar="LAMBDA",
                            help="discount factor lambda in (0, 1] of the update (default 1)")
-            q.add_argument("--max-iterations", type=int, default=50, metavar="N", help="iteration limit (default 50)")
+            q.add_argument("--max-iterations", type=a.integer("--max-iterations", ge=1, le=100000), default=50,
+                           metavar="N", help="iteration limit, 1..100000 (default 50)")
             q.add_argument("-o", "--output", required=True, metavar="OUT.nc", help="compensated program")
             q.add_argument("--json", metavar="OUT.json", help="also write the summary as JSON")
             q.set_defaults(func=run_compensate)
@@ -93,9 +98,17 @@ def _common(p) -> None:
                    help="I from the inscribed square D^4/48 or an equivalent diameter 0.8 D (default square)")
     p.add_argument("--load", choices=("resultant", "distributed"), default="distributed",
                    help="resultant at L - A/2 (eq. 7) or distributed element loads (default)")
-    p.add_argument("--rpm", type=_positive("--rpm"), required=True, metavar="RPM", help="spindle speed [rev/min]")
-    p.add_argument("--coefficients", required=True, metavar="NAME|K=V,...",
+    p.add_argument("--rpm", type=a.positive("--rpm", "rev/min"), required=True, metavar="RPM",
+                   help="spindle speed [rev/min]")
+    p.add_argument("--coefficients", type=a.parsed("--coefficients", _coefficients), required=True,
+                   metavar="NAME|K=V,...",
                    help="named set, Ktc=...,Krc=...,Kac=...,Kte=...,Kre=...,Kae=... or KT=...,KR=...")
+
+
+def _coefficients(text: str):
+    from netshape.deflection import parse_coefficients
+
+    return parse_coefficients(text)
 
 
 def _write_json(path, data) -> None:
@@ -111,8 +124,9 @@ def _write_json(path, data) -> None:
 def run_wall(args) -> int:
     from netshape import deflection as d
     from netshape.cli import CliError
-    from netshape.cutter import check_flutes
 
+    # options checked against each other (single values were checked while parsing, a --tool file's
+    # values by load_cutter)
     if args.tool:
         from netshape.cutter import load_cutter
 
@@ -121,7 +135,8 @@ def run_wall(args) -> int:
         stick, e = c.stick_out, c.youngs_modulus
         for name in ("diameter", "flutes", "helix", "stick_out", "youngs_modulus"):
             if getattr(args, name) is not None:
-                raise CliError(f"--{name.replace('_', '-')}: give either --tool or the tool options, not both")
+                raise CliError(f"--{name.replace('_', '-')} = {getattr(args, name):g}: give either --tool "
+                               "or the tool options, not both")
     else:
         missing = [o for o, v in (("--diameter", args.diameter), ("--flutes", args.flutes), ("--helix", args.helix),
                                   ("--stick-out", args.stick_out), ("--youngs-modulus", args.youngs_modulus))
@@ -129,28 +144,15 @@ def run_wall(args) -> int:
         if missing:
             raise CliError(f"{missing[0]}: required without --tool")
         diameter, flutes, helix, stick, e = args.diameter, args.flutes, args.helix, args.stick_out, args.youngs_modulus
-    check_flutes(flutes, "--flutes")
-    if not 0.0 <= helix < 85.0:
-        raise CliError(f"--helix = {helix}: must be in [0, 85) degrees")
-    if not e > 0:
-        raise CliError(f"--youngs-modulus = {e:g}: must be positive [MPa]")
-    if not stick > 0:
-        raise CliError(f"--stick-out = {stick:g}: must be positive [mm]")
     if stick < args.ap:
         raise CliError(f"--stick-out = {stick:g}: shorter than the axial depth --ap = {args.ap:g} [mm]")
     if args.mode != "slot" and args.ae is None:
-        raise CliError(f"--ae is required for --mode {args.mode}")
+        raise CliError(f"--mode = {args.mode}: needs --ae, the radial depth of cut [mm]")
     if args.ae is not None and args.ae > diameter:
         raise CliError(f"--ae = {args.ae:g}: must not exceed the diameter ({diameter:g}) [mm]")
-    if not 3 <= args.levels <= 10001:
-        raise CliError(f"--levels = {args.levels}: must be in 3..10001")
-    try:
-        k = d.parse_coefficients(args.coefficients)
-    except ValueError as exc:
-        raise CliError(f"--{exc}") from None
     model = d.make_model(diameter=diameter, flutes=flutes, helix_deg=helix, stick_out=stick, youngs_modulus=e,
                          feed_per_tooth=args.feed_per_tooth, ap=args.ap, ae=args.ae, mode=args.mode,
-                         coefficients=k, inertia=args.inertia, load=args.load)
+                         coefficients=args.coefficients, inertia=args.inertia, load=args.load)
     res = d.steady_wall(model, args.mode, levels=args.levels)
     res.update({"mode": args.mode, "load": args.load, "inertia": args.inertia, "rpm": args.rpm})
     w = res["wall_error_mm"]
@@ -163,18 +165,13 @@ def run_wall(args) -> int:
 
 def _setup(args):
     from netshape import deflection as d
-    from netshape.cli import CliError
     from netshape.cutter import load_cutter
     from netshape.toolpath import read_gcode
 
-    try:
-        k = d.parse_coefficients(args.coefficients)
-    except ValueError as exc:
-        raise CliError(f"--{exc}") from None
     cutter = load_cutter(args.tool)
     stock = d.load_stock(args.stock)
     program = read_gcode(args.program)
-    return d.setup_path(program, cutter, stock, coefficients=k, rpm=args.rpm, spacing=args.spacing,
+    return d.setup_path(program, cutter, stock, coefficients=args.coefficients, rpm=args.rpm, spacing=args.spacing,
                         inertia=args.inertia, load=args.load, side=args.side)
 
 
@@ -212,10 +209,6 @@ def run_compensate(args) -> int:
     from netshape.cli import CliError
     from netshape.toolpath import write_gcode
 
-    if not 0 < args.discount <= 1:
-        raise CliError(f"--discount = {args.discount:g}: must be in (0, 1]")
-    if not 1 <= args.max_iterations <= 100000:
-        raise CliError(f"--max-iterations = {args.max_iterations}: must be in 1..100000")
     t0 = time.perf_counter()
     setup = _setup(args)
     res = d.compensate_path(setup, scheme=args.scheme, level=args.level, tolerance=args.tolerance,

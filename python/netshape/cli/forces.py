@@ -4,7 +4,8 @@
 from __future__ import annotations
 
 import argparse
-import math
+
+from netshape.cli import _args as a
 
 _DESCRIPTION = """\
 Simulate the cutting forces ON THE CUTTER of a flat or ball end mill over whole revolutions and
@@ -24,30 +25,10 @@ named coefficient sets: flat: leekunhwee_flat_slot; ball: kim_zas_ball12 (Kim et
 """
 
 
-def _positive(name):
-    def conv(text):
-        try:
-            v = float(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{name} = {text!r}: not a number") from None
-        if not math.isfinite(v) or v <= 0:
-            raise argparse.ArgumentTypeError(f"{name} = {text!r}: must be a positive number")
-        return v
+def _linear_coefficients(text: str):
+    from netshape.force import parse_coefficients
 
-    return conv
-
-
-def _finite(name):
-    def conv(text):
-        try:
-            v = float(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{name} = {text!r}: not a number") from None
-        if not math.isfinite(v):
-            raise argparse.ArgumentTypeError(f"{name} = {text!r}: must be finite")
-        return v
-
-    return conv
+    return parse_coefficients(text)
 
 
 def register(sub) -> None:
@@ -55,26 +36,31 @@ def register(sub) -> None:
                        description=_DESCRIPTION, epilog=_EPILOG,
                        formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--tool", choices=("flat", "ball"), default="flat", help="end mill kind (default flat)")
-    p.add_argument("--diameter", type=_positive("--diameter"), required=True, metavar="MM", help="tool diameter [mm]")
-    p.add_argument("--flutes", type=int, required=True, metavar="N", help="number of flutes")
-    p.add_argument("--helix", type=_finite("--helix"), default=30.0, metavar="DEG", help="helix angle [deg] (default 30)")
-    p.add_argument("--rpm", type=_positive("--rpm"), required=True, metavar="RPM",
+    p.add_argument("--diameter", type=a.positive("--diameter", "mm"), required=True, metavar="MM",
+                   help="tool diameter [mm]")
+    p.add_argument("--flutes", type=a.flutes(), required=True, metavar="N", help="number of flutes, 1..64")
+    p.add_argument("--helix", type=a.real("--helix", "deg", ge=0, lt=85), default=30.0, metavar="DEG",
+                   help="helix angle [deg] in [0, 85) (default 30)")
+    p.add_argument("--rpm", type=a.positive("--rpm", "rev/min"), required=True, metavar="RPM",
                    help="spindle speed [rev/min] (sets the time axis of the plot)")
-    p.add_argument("--feed-per-tooth", type=_positive("--feed-per-tooth"), required=True, metavar="MM",
+    p.add_argument("--feed-per-tooth", type=a.positive("--feed-per-tooth", "mm"), required=True, metavar="MM",
                    help="feed per tooth c [mm]")
-    p.add_argument("--ap", type=_positive("--ap"), required=True, metavar="MM", help="axial depth of cut [mm]")
-    p.add_argument("--ae", type=_positive("--ae"), metavar="MM",
+    p.add_argument("--ap", type=a.positive("--ap", "mm"), required=True, metavar="MM", help="axial depth of cut [mm]")
+    p.add_argument("--ae", type=a.positive("--ae", "mm"), metavar="MM",
                    help="radial depth of cut [mm] (up/down milling), from the wall to the tool's largest radius; "
                         "ball elements of smaller radius meet the wall at their own angle")
     p.add_argument("--mode", choices=("up", "down", "slot"), default="slot", help="milling mode (default slot)")
     g = p.add_mutually_exclusive_group(required=True)
-    g.add_argument("--coefficients", metavar="K=V,...",
+    g.add_argument("--coefficients", type=a.parsed("--coefficients", _linear_coefficients), metavar="K=V,...",
                    help="linear edge coefficients Ktc,Krc,Kac [N/mm^2], Kte,Kre,Kae [N/mm] (flat tool)")
     g.add_argument("--coefficient-set", metavar="NAME", help="a named coefficient set (see below)")
-    p.add_argument("--inclination", type=_finite("--inclination"), default=0.0, metavar="DEG",
-                   help="ball end mill: ramp angle xi of the feed [deg], > 0 climbing (default 0)")
-    p.add_argument("--revolutions", type=_positive("--revolutions"), default=1.0, help="revolutions (>= 1, default 1)")
-    p.add_argument("--samples", type=int, default=360, metavar="N", help="samples per revolution (default 360)")
+    p.add_argument("--inclination", type=a.real("--inclination", "deg", gt=-80, lt=80), default=0.0,
+                   metavar="DEG", help="ball end mill: ramp angle xi of the feed [deg] in (-80, 80), > 0 climbing "
+                   "(default 0)")
+    p.add_argument("--revolutions", type=a.real("--revolutions", ge=1), default=1.0,
+                   help="revolutions (>= 1, default 1)")
+    p.add_argument("--samples", type=a.integer("--samples", ge=8, le=1_000_000), default=360, metavar="N",
+                   help="samples per revolution, 8..1000000 (default 360)")
     p.add_argument("--csv", required=True, metavar="OUT.csv", help="output CSV: angle_deg,fx_N,fy_N,fz_N")
     p.add_argument("--plot", metavar="OUT.png", help="also write a PNG of Fx, Fy, Fz against the angle")
     p.set_defaults(func=run)
@@ -85,46 +71,33 @@ def run(args) -> int:
 
     from netshape._atomic import atomic_write
     from netshape.cli import CliError
-    from netshape.cutter import check_flutes
-    from netshape.force import cutter_forces, parse_coefficients
+    from netshape.force import cutter_forces
 
-    check_flutes(args.flutes, "--flutes")
-    if not (0.0 <= args.helix < 85.0):
-        raise CliError(f"--helix = {args.helix}: must be in [0, 85) degrees")
-    if args.samples < 8 or args.samples > 1_000_000:
-        raise CliError(f"--samples = {args.samples}: must be in 8..1000000")
-    if args.revolutions < 1:
-        raise CliError(f"--revolutions = {args.revolutions}: must be at least 1")
+    # options checked against each other (single values were checked while parsing)
     if args.mode != "slot" and args.ae is None:
-        raise CliError(f"--ae is required for --mode {args.mode}")
+        raise CliError(f"--mode = {args.mode}: needs --ae, the radial depth of cut [mm]")
     if args.ae is not None and args.ae > args.diameter:
-        raise CliError(f"--ae = {args.ae}: must not exceed --diameter ({args.diameter}) [mm]")
+        raise CliError(f"--ae = {args.ae:g}: must not exceed --diameter ({args.diameter:g}) [mm]")
     if args.mode == "slot" and args.ae is not None and abs(args.ae - args.diameter) > 1e-9 * args.diameter:
-        raise CliError(f"--ae = {args.ae}: a slot is cut by the whole tool; give --ae {args.diameter:g} "
+        raise CliError(f"--ae = {args.ae:g}: a slot is cut by the whole tool; give --ae {args.diameter:g} "
                        f"(the diameter) or leave it out")
-    if abs(args.inclination) >= 80:
-        raise CliError(f"--inclination = {args.inclination}: must be in (-80, 80) degrees")
-    coefficients = None
     if args.coefficients is not None:
         if args.tool == "ball":
-            raise CliError("--coefficients: a ball end mill takes --coefficient-set (e.g. kim_zas_ball12)")
-        try:
-            coefficients = parse_coefficients(args.coefficients)
-        except ValueError as exc:
-            raise CliError(f"--coefficients = {args.coefficients!r}: {exc}") from None
+            raise CliError("--coefficients: a ball end mill (--tool ball) takes --coefficient-set "
+                           "(e.g. kim_zas_ball12)")
     else:
         from netshape.force import ball_end_coefficient_set_names, linear_edge_coefficient_set_names
 
         names = linear_edge_coefficient_set_names() if args.tool == "flat" else ball_end_coefficient_set_names()
         if args.coefficient_set not in names:
-            raise CliError(f"--coefficient-set = {args.coefficient_set!r}: unknown for a {args.tool} tool "
+            raise CliError(f"--coefficient-set = {args.coefficient_set}: unknown for a {args.tool} tool "
                            f"(known: {', '.join(names)})")
     if args.tool == "flat" and args.inclination != 0:
-        raise CliError(f"--inclination = {args.inclination}: ramp cuts are modelled for --tool ball only")
+        raise CliError(f"--inclination = {args.inclination:g}: ramp cuts are modelled for --tool ball only")
     angles, forces = cutter_forces(
         tool=args.tool, diameter=args.diameter, flutes=args.flutes, helix_deg=args.helix,
         feed_per_tooth=args.feed_per_tooth, ap=args.ap, ae=args.ae, mode=args.mode,
-        coefficients=coefficients, coefficient_set=args.coefficient_set, inclination_deg=args.inclination,
+        coefficients=args.coefficients, coefficient_set=args.coefficient_set, inclination_deg=args.inclination,
         samples_per_revolution=args.samples, revolutions=args.revolutions)
     deg = np.degrees(angles)
     table = np.column_stack([deg, forces])

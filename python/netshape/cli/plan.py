@@ -6,6 +6,8 @@ import argparse
 import json
 import math
 
+from netshape.cli import _args as a
+
 _DESCRIPTION = """\
 Plan the feedrate of a G-code program under axis limits with a look-ahead buffer (Lee & Lee, see docs/references.md), then
 interpolate it in two loops (rough period --ts1, fine period --ts2). The tool stops for every G4
@@ -44,32 +46,38 @@ def register(sub) -> None:
     p.add_argument("program", help="G-code program (RS274/NGC)")
     g = p.add_argument_group("limits (either --limits or --vmax and --amax)")
     g.add_argument("--limits", metavar="MACHINE.toml", help="per-axis limits in a TOML file")
-    g.add_argument("--vmax", type=float, metavar="MM_PER_S", help="velocity limit of every axis [mm/s]")
-    g.add_argument("--amax", type=float, metavar="MM_PER_S2", help="acceleration limit of every axis [mm/s^2]")
-    g.add_argument("--jmax", type=float, metavar="MM_PER_S3",
+    g.add_argument("--vmax", type=a.positive("--vmax", "mm/s"), metavar="MM_PER_S", help="velocity limit of every axis [mm/s]")
+    g.add_argument("--amax", type=a.positive("--amax", "mm/s^2"), metavar="MM_PER_S2", help="acceleration limit of every axis [mm/s^2]")
+    g.add_argument("--jmax", type=a.positive("--jmax", "mm/s^3"), metavar="MM_PER_S3",
                    help="jerk limit of every axis [mm/s^3] (S-curve profiles)")
     p.add_argument("--rule", required=True, choices=("paper", "vector", "per-axis", "junction-deviation", "blend", "smooth"))
-    p.add_argument("--tolerance", type=float, default=0.01, metavar="MM", help="blend / smooth tolerance ε [mm] (0.01)")
-    p.add_argument("--max-segment", type=float, default=4.0, metavar="MM",
+    p.add_argument("--tolerance", type=a.positive("--tolerance", "mm"), default=0.01, metavar="MM",
+                   help="blend / smooth tolerance ε [mm] (0.01)")
+    p.add_argument("--max-segment", type=a.positive("--max-segment", "mm"), default=4.0, metavar="MM",
                    help="smooth rule: longest line that is a micro-segment [mm] (4)")
-    p.add_argument("--max-turn", type=float, default=30.0, metavar="DEG",
-                   help="smooth rule: a vertex turning more is a corner that is kept [deg] (30)")
+    p.add_argument("--max-turn", type=a.real("--max-turn", "deg", gt=0, lt=180), default=30.0, metavar="DEG",
+                   help="smooth rule: a vertex turning more is a corner that is kept [deg] in (0, 180) (30)")
     p.add_argument("--smoothed-gcode", metavar="OUT.ngc",
                    help="smooth rule: write the smoothed program (G1/G2/G3, G17-G19) atomically")
-    p.add_argument("--ts1", type=float, default=1e-3, metavar="S", help="rough loop period [s] (0.001)")
-    p.add_argument("--ts2", type=float, default=1e-4, metavar="S", help="fine loop period [s] (0.0001)")
-    p.add_argument("--lookahead", type=int, default=64, metavar="N", help="look-ahead depth in blocks (64)")
-    p.add_argument("--allowable", type=float, default=100.0, metavar="MM_PER_MIN",
+    p.add_argument("--ts1", type=a.real("--ts1", "s", gt=0, le=1), default=1e-3, metavar="S",
+                   help="rough loop period [s], a whole multiple of --ts2 (0.001)")
+    p.add_argument("--ts2", type=a.real("--ts2", "s", gt=0, le=1), default=1e-4, metavar="S",
+                   help="fine loop period [s] (0.0001)")
+    p.add_argument("--lookahead", type=a.integer("--lookahead", "blocks", ge=2, le=1_000_000), default=64,
+                   metavar="N", help="look-ahead depth in blocks, 2..1000000 (64)")
+    p.add_argument("--allowable", type=a.non_negative("--allowable", "mm/min"), default=100.0,
+                   metavar="MM_PER_MIN",
                    help="paper rule: allowable speed difference [mm/min] (100)")
-    p.add_argument("--scv", type=float, default=None, metavar="MM_PER_S",
+    p.add_argument("--scv", type=a.positive("--scv", "mm/s"), default=None, metavar="MM_PER_S",
                    help="junction-deviation rule: Klipper square corner velocity [mm/s], "
                         "δ = scv²·(√2-1)/a (5 unless --junction-deviation is given)")
-    p.add_argument("--junction-deviation", type=float, default=None, metavar="MM",
+    p.add_argument("--junction-deviation", type=a.positive("--junction-deviation", "mm"), default=None, metavar="MM",
                    help="junction-deviation rule: δ [mm] as grbl's $11 (instead of --scv)")
     p.add_argument("--junction-accel", choices=("min-moving-axis", "along-change"), default="min-moving-axis",
                    help="junction-deviation rule: acceleration at a corner, the smallest limit of the moving "
                         "axes (default) or grbl's axis-limited value along the velocity change")
-    p.add_argument("--feed-scale", type=float, default=1.0, metavar="K", help="multiply programmed feeds by K")
+    p.add_argument("--feed-scale", type=a.positive("--feed-scale"), default=1.0, metavar="K",
+                   help="multiply programmed feeds by K")
     p.add_argument("--json", required=True, metavar="OUT.json", help="summary (written atomically)")
     p.add_argument("--samples", metavar="OUT.csv", help="fine samples: t_s,x_mm,...,vx_mm_s,...,feed_mm_s,block")
     p.add_argument("--plot", metavar="OUT.png", help="feed and per-axis velocity plot")
@@ -79,21 +87,36 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
-def _limits(args):
+def _check(args) -> None:
+    """The options checked against each other (single values were checked while parsing; the library's
+    PlanOptions.validate stays the backstop)."""
     from netshape.cli import CliError
+
+    if args.limits:
+        for name in ("vmax", "amax", "jmax"):
+            if getattr(args, name) is not None:
+                raise CliError(f"--{name} = {getattr(args, name):g}: give either --limits or "
+                               "--vmax/--amax/--jmax, not both")
+    else:
+        for name in ("vmax", "amax"):
+            if getattr(args, name) is None:
+                raise CliError(f"--{name}: required without --limits (give --limits MACHINE.toml or both --vmax "
+                               "and --amax)")
+    periods = args.ts1 / args.ts2
+    if args.ts1 < args.ts2 or abs(periods - round(periods)) > 1e-6 * periods:
+        raise CliError(f"--ts1 = {args.ts1:g}: must be a whole multiple of --ts2 = {args.ts2:g} [s]")
+    if args.junction_deviation is not None and args.scv is not None:
+        raise CliError(f"--scv = {args.scv:g}: give either --junction-deviation or --scv, not both")
+    if args.smoothed_gcode and args.rule != "smooth":
+        raise CliError(f"--smoothed-gcode = {args.smoothed_gcode}: needs --rule smooth, not --rule {args.rule}")
+
+
+def _limits(args):
     from netshape.motion import AxisLimits
     from netshape.motion.limits_file import read_limits
 
     if args.limits:
-        if args.vmax is not None or args.amax is not None or args.jmax is not None:
-            raise CliError("give either --limits or --vmax/--amax/--jmax, not both")
         return read_limits(args.limits)
-    if args.vmax is None or args.amax is None:
-        raise CliError("limits missing: give --limits MACHINE.toml or both --vmax and --amax")
-    for name in ("vmax", "amax", "jmax"):
-        v = getattr(args, name)
-        if v is not None and not (v > 0 and math.isfinite(v)):
-            raise ValueError(f"--{name} = {v}: must be positive and finite")
     return AxisLimits.uniform(args.vmax, args.amax, math.inf if args.jmax is None else args.jmax)
 
 
@@ -102,25 +125,14 @@ def run(args) -> int:
 
     from netshape import toolpath
     from netshape._atomic import atomic_write
-    from netshape.cli import CliError
     from netshape.motion import make_options, plan
 
+    _check(args)
     limits = _limits(args)
-    if not (args.feed_scale > 0 and math.isfinite(args.feed_scale)):
-        raise ValueError(f"--feed-scale = {args.feed_scale}: must be positive")
-    if not (args.allowable >= 0 and math.isfinite(args.allowable)):
-        raise ValueError(f"--allowable = {args.allowable}: must be >= 0 [mm/min]")
-    if args.junction_deviation is not None and args.scv is not None:
-        raise CliError("give either --junction-deviation or --scv, not both")
     if args.junction_deviation is not None:
-        if not (args.junction_deviation > 0 and math.isfinite(args.junction_deviation)):
-            raise ValueError(f"--junction-deviation = {args.junction_deviation}: must be positive [mm]")
         deviation, scv = args.junction_deviation, 0.0
     else:
-        scv = 5.0 if args.scv is None else args.scv
-        if not (scv > 0 and math.isfinite(scv)):
-            raise ValueError(f"--scv = {scv}: must be positive [mm/s]")
-        deviation = 0.0
+        deviation, scv = 0.0, (5.0 if args.scv is None else args.scv)
     rule = "blend" if args.rule == "smooth" else args.rule
     options = make_options(rule, ts1=args.ts1, ts2=args.ts2, lookahead=args.lookahead, tolerance=args.tolerance,
                            allowable_speed_difference=args.allowable / 60.0, junction_deviation=deviation,
@@ -132,11 +144,6 @@ def run(args) -> int:
     arrays = {k: np.asarray(v) for k, v in arrays.items()}
     arrays["feed"] = arrays["feed"] * args.feed_scale
     if args.rule == "smooth":
-        for name, v in (("tolerance", args.tolerance), ("max-segment", args.max_segment)):
-            if not (v > 0 and math.isfinite(v)):
-                raise ValueError(f"--{name} = {v}: must be positive [mm]")
-        if not (0 < args.max_turn < 180):
-            raise ValueError(f"--max-turn = {args.max_turn}: must be in (0, 180) [deg]")
         skw = dict(max_segment=args.max_segment, max_turn=math.radians(args.max_turn))
         traj = plan(arrays, limits, rule="smooth", tolerance=args.tolerance, ts1=args.ts1, ts2=args.ts2,
                     lookahead=args.lookahead, **skw)
@@ -147,8 +154,6 @@ def run(args) -> int:
             new = smooth_path(arrays, args.tolerance, **skw)[0]
             write_smoothed_gcode(new, args.smoothed_gcode)
     else:
-        if args.smoothed_gcode:
-            raise CliError("--smoothed-gcode needs --rule smooth")
         traj = plan(arrays, limits, options)
     out = {
         "program": str(args.program),

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from netshape.cli import _args as a
+
 _DESCRIPTION = """\
 Choose a collision-free, smoothly changing tool posture at every cutter-contact (CC) point of a 5-axis
 ball-end path (Park, Jung, Hwang, Jung, "A theoretical consideration for continuity control of cutter
@@ -27,6 +29,7 @@ def register(sub) -> None:
     p = sub.add_parser("posture", help="5-axis tool posture planning", description=_DESCRIPTION, epilog=_EPILOG,
                        formatter_class=argparse.RawDescriptionHelpFormatter)
     ps = p.add_subparsers(dest="posture_command", metavar="ACTION")
+    ps.required = True
     q = ps.add_parser("plan", help="plan postures along a path", description=_DESCRIPTION, epilog=_EPILOG,
                       formatter_class=argparse.RawDescriptionHelpFormatter)
     src = q.add_mutually_exclusive_group(required=True)
@@ -39,17 +42,21 @@ def register(sub) -> None:
                    help="ball-end cutter TOML with shank_diameter_mm, shank_length_mm, holder_diameter_mm, "
                    "holder_length_mm (default with --impeller: Ø6 ball, Ø20 holder)")
     q.add_argument("--out", required=True, metavar="DIR", help="output folder (created if missing)")
-    q.add_argument("--clearance", type=float, default=0.5, metavar="MM", help="safety clearance [mm] (default 0.5)")
+    q.add_argument("--clearance", type=a.non_negative("--clearance", "mm"), default=0.5, metavar="MM",
+                   help="safety clearance [mm] (default 0.5)")
     q.add_argument("--machine", metavar="KIN.toml",
                    help="machine kinematics (table_ac or head_bc): also write program.ngc with A/C or B/C words")
-    q.add_argument("--points", type=int, default=40, metavar="N", help="CC points along the path (default 40)")
-    q.add_argument("--passes", type=int, default=3, metavar="K", help="MB-spline smoothing passes (default 3)")
-    q.add_argument("--tilt-max", type=float, default=60.0, metavar="DEG", help="largest tilt searched [deg]")
-    q.add_argument("--feed", type=float, default=1000.0, metavar="MM_PER_MIN", help="feed of program.ngc")
+    q.add_argument("--points", type=a.integer("--points", ge=4), default=40, metavar="N",
+                   help="CC points along the path, >= 4 (default 40)")
+    q.add_argument("--passes", type=a.integer("--passes", ge=0), default=3, metavar="K",
+                   help="MB-spline smoothing passes (default 3)")
+    q.add_argument("--tilt-max", type=a.real("--tilt-max", "deg", gt=0, lt=90), default=60.0, metavar="DEG",
+                   help="largest tilt searched [deg] in (0, 90) (default 60)")
+    q.add_argument("--feed", type=a.positive("--feed", "mm/min"), default=1000.0, metavar="MM_PER_MIN",
+                   help="feed of program.ngc [mm/min] (default 1000)")
     q.add_argument("--plot", action="store_true", help="write cspace.png and angles.png")
-    q.add_argument("--plot-point", type=int, metavar="I", help="CC point of cspace.png (default: first collision)")
+    q.add_argument("--plot-point", type=a.integer("--plot-point", ge=0), metavar="I", help="CC point of cspace.png (default: first collision)")
     q.set_defaults(func=run)
-    p.set_defaults(func=run, _posture_parser=p)
 
 
 def run(args) -> int:
@@ -60,30 +67,22 @@ def run(args) -> int:
     from netshape import posture as npost
     from netshape.cli import CliError
 
-    if getattr(args, "posture_command", None) is None:
-        args._posture_parser.print_help()
-        return 2
-    if not math.isfinite(args.clearance) or args.clearance < 0:
-        raise CliError(f"--clearance = {args.clearance}: must be a finite number ≥ 0 [mm]")
-    if not 0 < args.tilt_max < 90:
-        raise CliError(f"--tilt-max = {args.tilt_max}: must be in (0, 90) [deg]")
-    if args.points < 4:
-        raise CliError(f"--points = {args.points}: must be ≥ 4")
-    if args.passes < 0:
-        raise CliError(f"--passes = {args.passes}: must be ≥ 0")
+    # options checked against each other (single values were checked while parsing; --plot-point against
+    # the number of points by PostureRun.write)
+    if args.impeller is not None and args.obstacles:
+        raise CliError(f"--obstacles = {args.obstacles}: not used with --impeller (the impeller's blades are "
+                       "the obstacles)")
+    if args.surface is not None:
+        for name in ("obstacles", "tool"):
+            if not getattr(args, name):
+                raise CliError(f"--{name}: required with --surface")
     kin = npost.load_kinematics(args.machine) if args.machine else None
     if args.impeller is not None:
-        if args.obstacles:
-            raise CliError("--obstacles: not used with --impeller (the impeller's blades are the obstacles)")
         imp = npost.load_impeller(args.impeller or None)
         cc, normals = imp.cc_path(args.points)
         verts, faces = imp.obstacles()
         assembly = npost.load_tool(args.tool) if args.tool else npost.default_assembly()
     else:
-        if not args.obstacles:
-            raise CliError("--obstacles: required with --surface")
-        if not args.tool:
-            raise CliError("--tool: required with --surface")
         from netshape import geometry as ng
 
         surf = (ng.load_toml if str(args.surface).endswith(".toml") else ng.load_json)(args.surface)

@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 import json
 
+from netshape.cli import _args as a
+
 _DESCRIPTION = """\
 Volumetric error of a 3-axis machine from its ISO 230-1 geometric errors (machine TOML, see
 docs/machine.md), and post-processor compensation of G-code so the actual tool tip lands on the
@@ -23,26 +25,18 @@ examples:
 """
 
 
-def _grid(text: str) -> tuple[int, int, int]:
-    try:
-        parts = [int(v) for v in text.split(",")]
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"--grid {text!r}: must be NX,NY,NZ (integers)") from None
-    if len(parts) != 3 or min(parts) < 1:
-        raise argparse.ArgumentTypeError(f"--grid {text!r}: must be three counts ≥ 1, e.g. 9,9,5")
-    return parts[0], parts[1], parts[2]
-
-
 def register(sub) -> None:
     p = sub.add_parser("volumetric", help="machine volumetric error map and program compensation",
                        description=_DESCRIPTION, epilog=_EPILOG,
                        formatter_class=argparse.RawDescriptionHelpFormatter)
     vs = p.add_subparsers(dest="volumetric_command", metavar="ACTION")
+    vs.required = True
     m = vs.add_parser("map", help="volumetric error over a grid of the workspace",
                       description="Tool-tip error relative to the workpiece over a regular grid of the "
                       "axes' travel (exact product of transforms; Yang & Kweon eq. 16 for |error|).")
     m.add_argument("machine", metavar="MACHINE.toml", help="machine description")
-    m.add_argument("--grid", type=_grid, default=(9, 9, 5), metavar="NX,NY,NZ",
+    m.add_argument("--grid", type=a.counts("--grid", 3, ge=1, example="9,9,5"), default=(9, 9, 5),
+                   metavar="NX,NY,NZ",
                    help="grid points per axis over the travel (default 9,9,5)")
     m.add_argument("--program", metavar="PROGRAM",
                    help="map along this G-code program (block end points, arcs split at 0.01 mm) "
@@ -57,7 +51,8 @@ def register(sub) -> None:
     c.add_argument("program", metavar="PROGRAM", help="G-code program (RS274/NGC)")
     c.add_argument("--machine", required=True, metavar="MACHINE.toml", help="machine description")
     c.add_argument("-o", "--output", required=True, metavar="OUT.nc", help="compensated program")
-    c.add_argument("--chord-tolerance", type=float, default=0.002, metavar="MM",
+    c.add_argument("--chord-tolerance", type=a.positive("--chord-tolerance", "mm"), default=0.002,
+                   metavar="MM",
                    help="largest deviation of the actual path from the nominal lines and arcs [mm] "
                    "(default 0.002)")
     c.add_argument("--json", metavar="OUT.json", help="write the report as JSON")
@@ -65,16 +60,12 @@ def register(sub) -> None:
 
     add_offset_options(c)
     c.set_defaults(func=run)
-    p.set_defaults(func=run, _volumetric_parser=p)
 
 
 def run(args) -> int:
     from netshape.cli import CliError
 
-    action = getattr(args, "volumetric_command", None)
-    if action is None:
-        args._volumetric_parser.print_help()
-        return 2
+    action = args.volumetric_command
     from netshape import machine as nm
     from netshape._atomic import atomic_save_figure, atomic_write
 
@@ -98,13 +89,10 @@ def run(args) -> int:
     if action == "compensate":
         from netshape import compensation as nc
 
-        tol = args.chord_tolerance
-        if not (tol > 0 and tol < float("inf")):
-            raise CliError(f"--chord-tolerance {tol}: must be a positive number [mm]")
         from netshape.cli._offsets import offset_kwargs, reader_warnings
 
         with reader_warnings("volumetric"):
-            rep = nc.compensate_gcode(machine, args.program, args.output, chord_tolerance=tol, **offset_kwargs(args))
+            rep = nc.compensate_gcode(machine, args.program, args.output, chord_tolerance=args.chord_tolerance, **offset_kwargs(args))
         d = rep.to_dict()
         print(f"{args.output}: {d['blocks_in']} blocks in, {d['blocks_out']} out; largest correction "
               f"{d['max_correction_mm'] * 1e3:.3f} µm, residual ≤ {d['max_residual_mm']:.2g} mm, "

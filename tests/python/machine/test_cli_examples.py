@@ -68,9 +68,9 @@ def test_cli_bad_input_exits_2(tmp_path, monkeypatch, capsys, argv, message):
     assert message in err and len(err.strip().splitlines()) == 1
 
 
-def test_cli_grid_syntax():
-    with pytest.raises(SystemExit):
-        main(["volumetric", "map", str(VMC), "--grid", "3,3"])
+def test_cli_grid_syntax(capsys):
+    assert main(["volumetric", "map", str(VMC), "--grid", "3,3"]) == 2
+    assert "--grid = 3,3" in capsys.readouterr().err
 
 
 def test_example_volumetric_seeds003(tmp_path):
