@@ -1,18 +1,11 @@
-// The line-blend kernels for plain x86-64 (and any other CPU), their tables and the choice of the
-// instruction set (line_blend.hpp).
-#include "line_blend.hpp"
+// The line-blend kernels' constant tables and the choice of their instruction set (line_blend.hpp;
+// the kernels themselves are in kernels/line_blend.cpp).
+#include "motion/line_blend.hpp"
+
+#include <algorithm>
 
 #include "core/dispatch.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <cstdlib>
-#include <cstring>
-#include <limits>
-
-#define NETSHAPE_LINE_BLEND_ISA plain
-#include "line_blend_kernels.inc"
-#undef NETSHAPE_LINE_BLEND_ISA
 
 namespace netshape::motion::detail {
 
@@ -47,25 +40,11 @@ const LineBlendTables& line_blend_tables() {
   return tables;
 }
 
-namespace {
-const LineBlendKernels plain_kernels{&plain::build, &plain::freeze, "plain"};
-}  // namespace
-
-const LineBlendKernels& line_blend_kernels_plain() { return plain_kernels; }
-
-#if defined(NETSHAPE_MOTION_AVX2)
-extern const LineBlendKernels avx2_line_blend_kernels;  // line_blend_avx2.cpp
-#endif
+const LineBlendKernels& line_blend_kernels_plain() { return baseline::line_blend_kernel_table; }
 
 const LineBlendKernels& line_blend_kernels() {
-  static const LineBlendKernels* const chosen = [] {
-    const LineBlendKernels* best = &plain_kernels;
-#if defined(NETSHAPE_MOTION_AVX2)
-    if (simd::active_isa() >= simd::Isa::avx2) best = &avx2_line_blend_kernels;
-#endif
-    return best;
-  }();
-  return *chosen;
+  static const LineBlendKernels& chosen = NETSHAPE_SIMD_SELECT(detail, line_blend_kernel_table);
+  return chosen;
 }
 
 }  // namespace netshape::motion::detail

@@ -1,14 +1,11 @@
 #pragma once
 /// \file line_blend.hpp
 /// Internal: the array work of a corner blend between two lines (the planner's common case), in two
-/// kernels compiled once per instruction set (line_blend_kernels.inc): plain x86-64 (SSE2) in
-/// line_blend.cpp, AVX2 in line_blend_avx2.cpp. Everything here is 4 lanes wide (one per piece),
-/// which AVX2 runs as one packet instead of two (-10 % instructions per block on the blend rule). The
-/// AVX2 build has no FMA, so both give the same bits. Only plain doubles and Vec3 (no vectorisable
-/// Eigen type, whose alignment would differ between the two builds) cross between the kernels and
-/// the rest of the library, and the kernels are flattened: no Eigen function is left out of line in
-/// the AVX2 object for the linker to share with plain code.
+/// kernels (kernels/line_blend.cpp) compiled once per instruction set (docs/simd.md). Everything here is
+/// 4 lanes wide, one lane per piece. No copy contracts to FMA, so every instruction set gives the same
+/// bits. Only plain doubles and Vec3 cross between the kernels and the rest of the library.
 
+#include "core/dispatch.hpp"
 #include "netshape/motion/planner.hpp"
 
 namespace netshape::motion::detail {
@@ -48,12 +45,12 @@ struct LineBlendKernels {
   /// Freeze the pieces of r one after the other from speed vs [mm/s], the piece after the blend
   /// allowing squared speed wt: trapezoids, and start times from t_start [s]. Returns the end speed.
   double (*freeze)(LineBlendRecord& r, double vs, double wt, const Vec3& A, double t_start);
-  const char* isa;  ///< "plain" or "avx2"
+  const char* isa;  ///< "baseline", "avx2" or "avx512"
 };
-/// The kernels for the best instruction set the CPU has, chosen once; NETSHAPE_MOTION_ISA=plain
-/// forces the plain ones (tests, benchmarks).
+NETSHAPE_SIMD_DECLARE(LineBlendKernels, line_blend_kernel_table)
+/// The kernels of the instruction set chosen for this process (core/dispatch.hpp, NETSHAPE_ISA).
 const LineBlendKernels& line_blend_kernels();
-/// The plain kernels (tests compare them with the chosen ones).
+/// The baseline kernels (tests compare them with the chosen ones).
 const LineBlendKernels& line_blend_kernels_plain();
 
 }  // namespace netshape::motion::detail

@@ -1,5 +1,5 @@
-// netshape::motion line-blend kernels (src/motion/line_blend.hpp): the AVX2 build gives the same bits
-// as the plain one, and the kernels agree with an independent evaluation of the blend.
+// netshape::motion line-blend kernels (src/motion/line_blend.hpp): the copy of the chosen instruction
+// set gives the same bits as the baseline one, and the kernels agree with an independent evaluation of the blend.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -21,7 +21,7 @@ Vec3 random_unit(std::mt19937& rng) {
 }
 }  // namespace
 
-TEST_CASE("line-blend kernels: the chosen instruction set gives the same bits as plain x86-64") {
+TEST_CASE("line-blend kernels: the chosen instruction set gives the same bits as the baseline") {
   const auto& best = detail::line_blend_kernels();
   const auto& plain = detail::line_blend_kernels_plain();
   MESSAGE("line-blend kernels in use: " << std::string(best.isa));

@@ -319,7 +319,7 @@ TEST_CASE("blend rule: the segments next_segment hands out chain up and agree wi
 
 TEST_CASE("blend rule: every blend piece's peak speed keeps each axis within its limits along the piece") {
   // The pieces of a blend between two lines get per-axis bounds of |u_c| and |κ n_c| from their end
-  // nodes only (the `bounds` of line_blend_kernels.inc). Sample every handed-out piece densely and check that
+  // nodes only (the `bounds` of kernels/line_blend.cpp). Sample every handed-out piece densely and check that
   // at its peak speed vp the axis velocity |u_c|·vp and centripetal acceleration |κ n_c|·vp² stay
   // within V_c and A_c: a bound that missed an interior maximum would show here. Corners turn in
   // all three axes, and the limits differ per axis.

@@ -1,7 +1,34 @@
-// The line-blend kernels (line_blend.hpp), included once per instruction set by line_blend.cpp and
-// line_blend_avx2.cpp with NETSHAPE_LINE_BLEND_ISA naming the namespace. No include guard.
+// The planner's line-blend kernels (line_blend.hpp): the array work of a corner blend between two
+// lines, 4 lanes wide (one per piece), compiled once per instruction set by netshape_add_kernels.
+// Only plain doubles and Vec3 (no vectorisable Eigen type, whose alignment differs between the
+// copies) cross between the kernels and the rest of the library, and both entry points are flattened,
+// so no Eigen function is left out of line for the linker to share with baseline code.
+#include "core/simd.hpp"  // first: it wraps the intrinsic headers (see there)
 
-namespace netshape::motion::detail::NETSHAPE_LINE_BLEND_ISA {
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "motion/line_blend.hpp"
+
+#if defined(__AVX512F__)
+// The blends are 4 lanes wide, which AVX2 already runs as one packet, and Eigen's AVX-512 packets fuse
+// multiply-adds (the AVX2 and baseline copies give the same bits, an AVX-512 one would not): the
+// AVX-512 copy hands out the AVX2 kernels.
+namespace netshape::motion::detail {
+namespace avx2 {
+int build(const LineBlendTables& T, Segment& whole, const Vec3& p0, const Vec3& vtx, const Vec3& p3, const Vec3& u1,
+          const Vec3& u2, double d, long source, const Vec3& A, const Vec3& V, const Vec3& inv_acc, double vfeed,
+          double v_prev, LineBlendRecord& r);
+double freeze(LineBlendRecord& r, double vs, double wt, const Vec3& A, double t_start);
+}  // namespace avx2
+namespace avx512 {
+extern const LineBlendKernels line_blend_kernel_table;
+const LineBlendKernels line_blend_kernel_table{&avx2::build, &avx2::freeze, "avx2"};
+}  // namespace avx512
+}  // namespace netshape::motion::detail
+#else
+namespace netshape::motion::detail::NETSHAPE_KERNEL_ISA {
 namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
@@ -233,4 +260,8 @@ __attribute__((flatten)) double freeze(LineBlendRecord& r, double vs, double wt,
   return VE[np - 1];
 }
 
-}  // namespace netshape::motion::detail::NETSHAPE_LINE_BLEND_ISA
+extern const LineBlendKernels line_blend_kernel_table;
+const LineBlendKernels line_blend_kernel_table{&build, &freeze, NETSHAPE_KERNEL_ISA_NAME};
+
+}  // namespace netshape::motion::detail::NETSHAPE_KERNEL_ISA
+#endif
