@@ -94,10 +94,9 @@ file).
 
 from __future__ import annotations
 
-import csv
 import math
 import os
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -107,6 +106,13 @@ try:  # Python ≥ 3.11
     import tomllib
 except ModuleNotFoundError:  # pragma: no cover - Python 3.10 needs the tomli package
     import tomli as tomllib
+
+from ._manifest import Bundle, _check_keys, _experiment_head, _fail, _mode, _number, _read_csv
+from .wall_bundle import WallContourExperiment, WallExperiment, _load_wall
+
+__all__ = ["Bundle", "ForceExperiment", "VolumetricExperiment", "WallExperiment", "WallContourExperiment",
+           "load_bundle", "KINDS"]
+
 
 KINDS = ("cutting_force", "volumetric_error", "wall_error")
 FORCE_COLUMNS = ("fx_N", "fy_N", "fz_N")
@@ -163,142 +169,6 @@ class VolumetricExperiment:
     tool_length: float
     times: np.ndarray | None = None
     directions: np.ndarray | None = None
-
-
-@dataclass
-class WallExperiment:
-    """One wall-error measurement of a steady straight cut: positions x (n,) along the feed and z
-    (n,) above the tip [mm], errors (n, 1) [mm] (+ material left); the cut's data in mm."""
-
-    file: str
-    feed_per_tooth: float
-    axial_depth: float
-    radial_depth: float
-    mode: str
-    side: str
-    x: np.ndarray
-    z: np.ndarray
-    errors: np.ndarray
-    spindle_rpm: float | None = None
-
-
-@dataclass
-class WallContourExperiment:
-    """One wall-error measurement along a program's 2-D contour cut over a stock (the case of
-    ``netshape deflection predict``): the program, tool and stock files, the spindle speed [rpm], the
-    contour sampling ``spacing`` [mm] and wall ``side`` (auto | left | right); positions x (n,) along
-    the contour from its start and z (n,) above the tip [mm] (NaN: the middle of the cut), errors
-    (n, 1) [mm] (+ material left). ``cutter`` is the tool file's Cutter."""
-
-    file: str
-    program: str
-    tool: str
-    stock: str
-    spindle_rpm: float
-    spacing: float
-    side: str
-    x: np.ndarray
-    z: np.ndarray
-    errors: np.ndarray
-    cutter: Any = None
-
-
-@dataclass
-class Bundle:
-    """A loaded measurement bundle. ``tool`` / ``machine`` / ``model`` are the manifest tables with
-    units stripped into plain keys (see :func:`load_bundle`); ``experiments`` one per CSV."""
-
-    kind: str
-    path: str
-    model: dict
-    experiments: list
-    tool: dict = field(default_factory=dict)
-    machine: dict = field(default_factory=dict)
-
-
-def _fail(where: str, msg: str) -> ValueError:
-    return ValueError(f"{where}: {msg}")
-
-
-def _number(table: dict, key: str, where: str, *, positive: bool = False, default: Any = None) -> float:
-    if key not in table:
-        if default is not None:
-            return default
-        raise _fail(where, f"missing key {key!r}")
-    v = table[key]
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-        raise _fail(where, f"{key} = {v!r}: must be a finite number")
-    if positive and v <= 0:
-        raise _fail(where, f"{key} = {v!r}: must be positive")
-    return float(v)
-
-
-def _check_keys(table: dict, allowed, where: str) -> None:
-    unknown = sorted(set(table) - set(allowed))
-    if unknown:
-        raise _fail(where, f"unknown key {unknown[0]!r} (allowed: {', '.join(allowed)})")
-
-
-def _experiment_head(e: dict, i: int, keys, where: str, root: Path) -> tuple[str, Path]:
-    """Checks common to every ``[[experiment]]`` table: known keys and a CSV ``file``. Returns the
-    error prefix of the table and the CSV's path (relative paths are relative to the bundle)."""
-    we = f"{where}: [[experiment]] {i}"
-    _check_keys(e, keys, we)
-    if not isinstance(e.get("file"), str) or not e["file"]:
-        raise _fail(we, f"file = {e.get('file')!r}: must name a CSV file")
-    path = Path(e["file"])
-    return we, (path if path.is_absolute() else root / path)
-
-
-def _mode(e: dict, we: str) -> str:
-    mode = e.get("mode")
-    if mode not in ("up", "down", "slot"):
-        raise _fail(we, f"mode = {mode!r}: must be 'up', 'down' or 'slot'")
-    return mode
-
-
-def _read_csv(path: Path, required: tuple, optional: tuple, alternatives: tuple = ()) -> dict:
-    """Read a CSV of numbers with a header row → {column: (n,) float array}. ``alternatives``: a
-    tuple of column names of which exactly one must be present (besides ``required``)."""
-    if not path.is_file():
-        raise FileNotFoundError(2, "No such file or directory", str(path))
-    with open(path, newline="", encoding="utf-8") as fh:
-        rows = [r for r in csv.reader(fh) if r and not r[0].lstrip().startswith("#")]
-    if not rows:
-        raise _fail(str(path), "empty file (expected a header row and data rows)")
-    header = [h.strip() for h in rows[0]]
-    allowed = set(required) | set(optional) | set(alternatives)
-    for h in header:
-        if h not in allowed:
-            raise _fail(
-                str(path),
-                f"unknown column {h!r} (expected {', '.join((*alternatives, *required, *optional))})",
-            )
-    if len(set(header)) != len(header):
-        raise _fail(str(path), f"repeated column in header {header}")
-    for r in required:
-        if r not in header:
-            raise _fail(str(path), f"missing column {r!r}")
-    if alternatives and sum(a in header for a in alternatives) != 1:
-        raise _fail(str(path), f"needs exactly one of the columns {' or '.join(map(repr, alternatives))}")
-    data = rows[1:]
-    if len(data) < 2:
-        raise _fail(str(path), f"{len(data)} data rows: need at least 2")
-    out = np.empty((len(data), len(header)))
-    for i, row in enumerate(data, start=2):
-        if len(row) != len(header):
-            raise _fail(str(path), f"line {i}: {len(row)} fields, header has {len(header)}")
-        for j, text in enumerate(row):
-            try:
-                v = float(text)
-            except ValueError:
-                raise _fail(
-                    str(path), f"line {i}, column {header[j]!r}: {text.strip()!r} is not a number"
-                ) from None
-            if not math.isfinite(v):
-                raise _fail(str(path), f"line {i}, column {header[j]!r}: {text.strip()!r} is not finite")
-            out[i - 2, j] = v
-    return {h: out[:, j].copy() for j, h in enumerate(header)}
 
 
 def _load_force(doc: dict, root: Path, where: str) -> Bundle:
@@ -479,182 +349,6 @@ def _load_volumetric(doc: dict, root: Path, where: str) -> Bundle:
         experiments=out,
         machine={"tool_side": ts, "workpiece_side": ws, "tool_length": length},
     )
-
-
-WALL_TOOL_KEYS = ("type", "diameter_mm", "flutes", "helix_deg", "stick_out_mm", "youngs_modulus_MPa")
-WALL_MODEL_KEYS = ("coefficients", "inertia", "load")
-
-
-def _wall_tool_table(tool: Any, where: str) -> dict:
-    """The [tool] table of a wall bundle in plain keys (diameter, flutes, helix_deg, stick_out,
-    youngs_modulus)."""
-    if not isinstance(tool, dict):
-        raise _fail(where, "missing table [tool] (diameter_mm, flutes, helix_deg, stick_out_mm, youngs_modulus_MPa)")
-    w = f"{where}: [tool]"
-    _check_keys(tool, WALL_TOOL_KEYS, w)
-    if tool.get("type", "flat") != "flat":
-        raise _fail(w, f"type = {tool['type']!r}: the deflection model needs a flat end mill ('flat')")
-    flutes = tool.get("flutes")
-    if isinstance(flutes, bool) or not isinstance(flutes, int) or not 1 <= flutes <= 64:
-        raise _fail(w, f"flutes = {flutes!r}: must be an integer in 1..64")
-    helix = _number(tool, "helix_deg", w)
-    if not 0.0 <= helix < 80.0:
-        raise _fail(w, f"helix_deg = {helix}: must be in [0, 80) [deg]")
-    return {
-        "type": "flat",
-        "diameter": _number(tool, "diameter_mm", w, positive=True),
-        "flutes": flutes,
-        "helix_deg": helix,
-        "stick_out": _number(tool, "stick_out_mm", w, positive=True),
-        "youngs_modulus": _number(tool, "youngs_modulus_MPa", w, positive=True, default=600e3),
-    }
-
-
-def _file_key(e: dict, key: str, we: str, root: Path) -> Path:
-    """A file named by key ``key`` of an experiment table (relative to the bundle); must exist."""
-    v = e.get(key)
-    if not isinstance(v, str) or not v:
-        raise _fail(we, f"{key} = {v!r}: must name a file")
-    path = Path(v) if Path(v).is_absolute() else root / v
-    if not path.is_file():
-        raise FileNotFoundError(2, f"No such file or directory ({we}: {key})", str(path))
-    return path
-
-
-def _wall_csv(e: dict, we: str, path: Path, *, z_default: float, axial_depth: float | None = None):
-    """The ``x_mm,error_mm[,z_mm]`` CSV of a wall experiment and the height z (n,) of each point [mm]:
-    the CSV's z_mm column, else the experiment's ``z_mm`` key, else ``z_default``. A height below 0, or
-    above ``axial_depth`` when it is given, is refused naming the CSV line or the key."""
-    cols = _read_csv(path, ("x_mm", "error_mm"), ("z_mm",))
-    if "z_mm" in cols:
-        if "z_mm" in e:
-            raise _fail(we, "z_mm: given both here and as a column of the CSV (keep one)")
-        z = cols["z_mm"]
-    else:
-        z = np.full(len(cols["x_mm"]), _number(e, "z_mm", we, default=z_default))
-    bad = (z < 0) if axial_depth is None else (z < 0) | (z > axial_depth)
-    if bad.any():
-        j = int(np.argmax(bad))
-        src = f"{path}: line {j + 2}, column 'z_mm'" if "z_mm" in cols else f"{we}: z_mm"
-        what = ("must be ≥ 0 (height above the tool tip) [mm]" if axial_depth is None
-                else f"must lie within the cut, 0..axial_depth_mm = {axial_depth} [mm]")
-        raise ValueError(f"{src}: {float(z[j])!r} {what}")
-    return cols, z
-
-
-WALL_CONTOUR_KEYS = ("file", "program", "tool", "stock", "spindle_rpm", "spacing_mm", "side", "z_mm")
-
-
-def _load_wall_contour(e: dict, i: int, where: str, root: Path) -> WallContourExperiment:
-    """An [[experiment]] of a wall bundle that names a program, a tool TOML and a stock TOML."""
-    from netshape.cutter import CutterKind, load_cutter
-
-    we, path = _experiment_head(e, i, WALL_CONTOUR_KEYS, where, root)
-    program = _file_key(e, "program", we, root)
-    tool = _file_key(e, "tool", we, root)
-    stock = _file_key(e, "stock", we, root)
-    try:
-        cutter = load_cutter(tool)
-    except ValueError as exc:
-        raise _fail(we, f"tool: {exc}") from None
-    if cutter.kind != CutterKind.flat:
-        raise _fail(we, f"tool = {str(tool)!r}: the deflection model needs a flat end mill (kind = 'flat')")
-    if not cutter.stick_out > 0:
-        raise _fail(we, f"tool = {str(tool)!r}: stick_out_mm must be given (the cantilever length) [mm]")
-    rpm = _number(e, "spindle_rpm", we, positive=True)
-    spacing = _number(e, "spacing_mm", we, positive=True, default=0.5)
-    side = e.get("side", "auto")
-    if side not in ("auto", "left", "right"):
-        raise _fail(we, f"side = {side!r}: must be 'auto', 'left' or 'right'")
-    cols, z = _wall_csv(e, we, path, z_default=math.nan)
-    bad = cols["x_mm"] < 0
-    if bad.any():
-        j = int(np.argmax(bad))
-        raise ValueError(f"{path}: line {j + 2}, column 'x_mm': {float(cols['x_mm'][j])!r} must be ≥ 0 "
-                         "(distance along the contour from its start) [mm]")
-    return WallContourExperiment(file=str(path), program=str(program), tool=str(tool), stock=str(stock),
-                                 spindle_rpm=rpm, spacing=spacing, side=side, x=cols["x_mm"], z=z,
-                                 errors=cols["error_mm"][:, None], cutter=cutter)
-
-
-def _cutter_table(c) -> dict:
-    """Diameter [mm], flutes and helix [deg] of a netshape Cutter in the keys of a [tool] table."""
-    return {"diameter": float(c.diameter()), "flutes": int(c.flutes),
-            "helix_deg": math.degrees(float(c.helix))}
-
-
-def _same_tool(tool_out: dict, c, we: str) -> None:
-    """Every experiment of a wall bundle uses one tool geometry (the runout and holder parameters are
-    the tool's)."""
-    mine = _cutter_table(c)
-    for k, v in mine.items():
-        if not math.isclose(float(tool_out[k]), v, rel_tol=1e-9, abs_tol=1e-9):
-            raise _fail(we, f"tool: {k} = {v:g} differs from the bundle's other experiments "
-                        f"({tool_out[k]:g}); one bundle holds one tool")
-
-
-def _load_wall(doc: dict, root: Path, where: str) -> Bundle:
-    from netshape import deflection as _defl
-
-    _check_keys(doc, ("kind", "tool", "model", "experiment"), where)
-    exps = doc.get("experiment")
-    if not isinstance(exps, list) or not exps:
-        raise _fail(where, "no [[experiment]] tables")
-    contour = [isinstance(e, dict) and "program" in e for e in exps]
-    tool_out = _wall_tool_table(doc.get("tool"), where) if ("tool" in doc or not all(contour)) else None
-    model = doc.get("model")
-    wm = f"{where}: [model]"
-    if not isinstance(model, dict):
-        raise _fail(where, "missing table [model] (coefficients, inertia, load)")
-    _check_keys(model, WALL_MODEL_KEYS, wm)
-    if not isinstance(model.get("coefficients"), str):
-        raise _fail(wm, f"coefficients = {model.get('coefficients')!r}: must be a set name, 'Ktc=…,…' or 'KT=…,KR=…'")
-    try:
-        _defl.parse_coefficients(model["coefficients"])
-    except ValueError as exc:
-        raise _fail(wm, str(exc)) from None
-    model_out = {"coefficients": model["coefficients"]}
-    for key, allowed in (("inertia", ("square", "equivalent")), ("load", ("resultant", "distributed"))):
-        v = model.get(key, allowed[0] if key == "inertia" else allowed[1])
-        if v not in allowed:
-            raise _fail(wm, f"{key} = {v!r}: must be {' or '.join(map(repr, allowed))}")
-        model_out[key] = v
-    keys = ("file", "spindle_rpm", "feed_per_tooth_mm", "axial_depth_mm", "radial_depth_mm", "mode", "side", "z_mm")
-    out = []
-    for i, e in enumerate(exps, start=1):
-        if contour[i - 1]:
-            ce = _load_wall_contour(e, i, where, root)
-            c = ce.cutter
-            if tool_out is None:
-                tool_out = dict(_cutter_table(c), type="flat", stick_out=float(c.stick_out),
-                                youngs_modulus=float(c.youngs_modulus))
-            else:
-                _same_tool(tool_out, c, f"{where}: [[experiment]] {i}")
-            out.append(ce)
-            continue
-        flutes, helix = tool_out["flutes"], tool_out["helix_deg"]
-        we, path = _experiment_head(e, i, keys, where, root)
-        mode = _mode(e, we)
-        side = e.get("side", {"up": "left", "down": "right"}.get(mode))
-        if side not in ("left", "right"):
-            raise _fail(we, f"side = {side!r}: must be 'left' or 'right' (required for mode = 'slot')")
-        c = _number(e, "feed_per_tooth_mm", we, positive=True)
-        ap = _number(e, "axial_depth_mm", we, positive=True)
-        ae = _number(e, "radial_depth_mm", we, positive=True, default=tool_out["diameter"] if mode == "slot" else None)
-        rpm = _number(e, "spindle_rpm", we, positive=True) if "spindle_rpm" in e else None
-        try:
-            _defl.make_model(diameter=tool_out["diameter"], flutes=flutes, helix_deg=helix,
-                             stick_out=tool_out["stick_out"], youngs_modulus=tool_out["youngs_modulus"],
-                             feed_per_tooth=c, ap=ap, ae=ae, mode=mode, coefficients=model["coefficients"],
-                             inertia=model_out["inertia"], load=model_out["load"])
-        except ValueError as exc:
-            raise _fail(we, str(exc)) from None
-        cols, z = _wall_csv(e, we, path, z_default=0.5 * ap, axial_depth=ap)
-        out.append(
-            WallExperiment(file=str(path), feed_per_tooth=c, axial_depth=ap, radial_depth=ae, mode=mode,
-                           side=side, x=cols["x_mm"], z=z, errors=cols["error_mm"][:, None], spindle_rpm=rpm)
-        )
-    return Bundle(kind="wall_error", path=str(root), model=model_out, experiments=out, tool=tool_out)
 
 
 def load_bundle(path: str | os.PathLike) -> Bundle:
