@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from . import stages as st
+from .stage_deflection import stage_deflection
 from .spec import Job
 
 
@@ -134,7 +135,7 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True) -> d
 
     defl = None
     if p["deflection"]:
-        defl = S.run("deflection", st.stage_deflection, job, stock0, prog, compensate=c["deflection"])
+        defl = S.run("deflection", stage_deflection, job, stock0, prog, compensate=c["deflection"])
         status["deflection"] = "ok" if defl.available and not defl.reason else defl.reason
         if defl.available and defl.after_mm is None:
             defl.after_mm = defl.before_mm  # program not changed for deflection: the same error after

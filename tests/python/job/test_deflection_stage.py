@@ -13,6 +13,7 @@ import pytest
 
 import netshape
 from netshape.job import job_from_dict, run_job
+from netshape.job import stage_deflection as sd
 from netshape.job import stages as st
 
 from .conftest import DEMO
@@ -75,7 +76,7 @@ def test_contour_runs_of_the_demo_pocket():
     import netshape.toolpath as tpm
 
     tp = tpm.read_gcode(DEMO / "part.ngc")
-    runs = st.contour_runs(tp)
+    runs = sd.contour_runs(tp)
     assert len(runs) == 2
     for first, last in runs:
         zs = {round(float(b.start[2]), 9) for b in tp.blocks[first:last + 1]}
@@ -105,5 +106,5 @@ def test_ball_end_mill_is_reported_not_available(tmp_path, monkeypatch):
     job = _job(tmp_path)
     job.tool = dict(job.tool, kind="ball", corner_radius_mm=3.0)
     job.coefficients = "kim_zas_ball12"
-    res = st.stage_deflection(job, st.stage_stock(job), st.stage_program(job), compensate=True)
+    res = sd.stage_deflection(job, st.stage_stock(job), st.stage_program(job), compensate=True)
     assert not res.available and "flat end mill" in res.reason
