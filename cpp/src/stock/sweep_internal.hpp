@@ -86,6 +86,7 @@ inline bool node_range(double lo, double hi, double o, double h, int n, int& k0,
   return true;
 }
 
+/// h = max(z, bottom) where that is lower than h, booking the removed height and the lowered node.
 inline void lower(double& h, double z, double bottom, SweepStats& st) noexcept {
   if (z < h) {
     const double nz = z > bottom ? z : bottom;
@@ -96,7 +97,6 @@ inline void lower(double& h, double z, double bottom, SweepStats& st) noexcept {
     }
   }
 }
-
 
 /// The move a → b of the tool tip.
 LineSetup make_line(const Vec3& a, const Vec3& b);
