@@ -26,8 +26,8 @@ struct LineBlendRecord {
   int np = 0;      ///< pieces in use (1 or `pieces`)
   int cursor = 0;  ///< next piece to hand out (next_segment) or the piece being sampled (next)
   double trim_s[pieces] = {}, trim_e[pieces] = {}, len[pieces] = {}, vmax[pieces] = {};  ///< [mm], [mm/s]
-  double w_lim[pieces] = {};  ///< squared junction limit at the piece's start [mm²/s²]
-  double wb[pieces] = {};     ///< squared speed the backward pass allows at the piece's start [mm²/s²]
+  double w_junction[pieces] = {};  ///< squared junction limit at the piece's start [mm²/s²]
+  double w_backward[pieces] = {};  ///< squared speed the backward pass allows at the piece's start [mm²/s²]
   // per axis i and piece k: [i][k]
   double alpha[3][pieces] = {}, beta[3][pieces] = {};
   double p1[3][pieces] = {}, p0[3][pieces] = {}, iu[3][pieces] = {}, K[3][pieces] = {};
@@ -66,7 +66,7 @@ struct LineBlendKernels {
   /// The symmetric blend P0 = V − d·u1, P1 = P2 = V, P3 = V + d·u2 between two lines (u1, u2 unit)
   /// into `whole` (the fields of Segment::blend, source `source`) and its pieces into `r`: trims,
   /// lengths, caps (|u_i|·v ≤ V_i, K_i·v² ≤ A_i, the feed vfeed), junction limits (piece 0: also
-  /// v_prev, the cap before the blend), reach, peak and budget coefficients; wb = 0. A gentle
+  /// v_prev, the cap before the blend), reach, peak and budget coefficients; w_backward = 0. A gentle
   /// turn (the centripetal part takes at most 2 % of the smallest A at full speed) is one piece.
   /// Returns the number of pieces. A, V: per-axis accelerations and velocities, inv_acc = 1/A.
   int (*build)(const LineBlendTables& T, Segment& whole, const Vec3& p0, const Vec3& vtx, const Vec3& p3,

@@ -245,11 +245,11 @@ void PlannerState::append_line_blend(long source, long psource, const Vec3& p0, 
   bn.bound = SpeedBound::axis_box;
   bn.path_jerk = inf;
   bn.path_accel = amin_blend;
-  bn.v_junction = bn.v_corner = std::min(v_prev, r.vmax[0]);  // (its square is r.w_lim[0])
+  bn.v_junction = bn.v_corner = std::min(v_prev, r.vmax[0]);  // (its square is r.w_junction[0])
   v_prev = r.vmax[np - 1];
   bn.v_max = v_prev;
   PassRecord& x = passes_[slot];
-  x.w_junction = r.w_lim[0];
+  x.w_junction = r.w_junction[0];
   x.length = whole.full_length;
   x.path_accel = bn.path_accel;
   x.path_jerk = inf;

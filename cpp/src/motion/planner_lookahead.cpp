@@ -29,13 +29,13 @@ void PlannerState::back_pass(long dirty_from) noexcept {
       LineBlendRecord& r = line_blends_[static_cast<std::size_t>(n.line_blend)];
       w = w_next;
       for (int p = r.np - 1; p >= 0; --p) {
-        w = std::min(std::min(r.w_lim[p], r.alpha[0][p] * w + r.beta[0][p]),
+        w = std::min(std::min(r.w_junction[p], r.alpha[0][p] * w + r.beta[0][p]),
                      std::min(r.alpha[1][p] * w + r.beta[1][p], r.alpha[2][p] * w + r.beta[2][p]));
-        if (k < dirty_from && w == r.wb[p]) {  // so are the pieces before it (and w == n.w_backward below)
-          w = r.wb[0];
+        if (k < dirty_from && w == r.w_backward[p]) {  // so are the pieces before it (and w == n.w_backward below)
+          w = r.w_backward[0];
           break;
         }
-        r.wb[p] = w;
+        r.w_backward[p] = w;
       }
     } else {
       // Lee & Lee eq. 3 (trapezoid; on curves the axis box), capped by the junction limit (without
