@@ -32,6 +32,24 @@ std::vector<toolpath::Block> polyline(int n, double feed, Step step) {
   }
   return out;
 }
+// 60 short lines turning in all directions at 400 mm/s, then a half circle of radius 2 mm and a line:
+// corners between lines and corners next to an arc in one program.
+std::vector<toolpath::Block> lines_arc_line() {
+  auto prog = polyline(60, 400, [](int i) {
+    return Vec3(0.4 + 0.3 * std::cos(1.7 * i), 0.5 * std::sin(2.3 * i), 0.02 * ((i % 3) - 1));
+  });
+  const Vec3 p = prog.back().end;
+  toolpath::Block arc;
+  arc.kind = toolpath::MotionKind::arc;
+  arc.start = p;
+  arc.center = p + Vec3(2, 0, 0);
+  arc.end = p + Vec3(4, 0, 0);
+  arc.clockwise = true;
+  arc.feed = 400;
+  prog.push_back(arc);
+  prog.push_back(line(arc.end, arc.end + Vec3(0, -3, 0), 400));
+  return prog;
+}
 std::vector<toolpath::Block> square(double feed) {
   const Vec3 p[5] = {{0, 0, 0}, {20, 0, 0}, {20, 20, 0}, {0, 20, 0}, {0, 0, 0}};
   std::vector<toolpath::Block> out;
@@ -253,19 +271,7 @@ TEST_CASE("blend rule: the segments next_segment hands out chain up and agree wi
   o.lookahead = 8;
   o.tolerance = 0.01;
   const AxisLimits lim = AxisLimits::uniform(250, 3000);
-  auto prog = polyline(60, 400, [](int i) {
-    return Vec3(0.4 + 0.3 * std::cos(1.7 * i), 0.5 * std::sin(2.3 * i), 0.02 * ((i % 3) - 1));
-  });
-  const Vec3 p = prog.back().end;
-  toolpath::Block arc;
-  arc.kind = toolpath::MotionKind::arc;
-  arc.start = p;
-  arc.center = p + Vec3(2, 0, 0);
-  arc.end = p + Vec3(4, 0, 0);
-  arc.clockwise = true;
-  arc.feed = 400;
-  prog.push_back(arc);
-  prog.push_back(line(arc.end, arc.end + Vec3(0, -3, 0), 400));
+  const auto prog = lines_arc_line();
 
   auto drive = [&](Planner& pl, auto&& take) {
     std::size_t i = 0;
@@ -378,17 +384,7 @@ TEST_CASE("Planner copies and moves: a copy taken mid-stream continues with the 
   PlanOptions o;
   o.rule = CornerRule::blend;
   o.lookahead = 8;
-  auto prog = polyline(40, 300, [](int i) { return Vec3(0.5 + 0.2 * std::cos(1.3 * i), 0.4 * std::sin(2.1 * i), 0.0); });
-  const Vec3 p = prog.back().end;
-  toolpath::Block arc;
-  arc.kind = toolpath::MotionKind::arc;
-  arc.start = p;
-  arc.center = p + Vec3(1.5, 0, 0);
-  arc.end = p + Vec3(3, 0, 0);
-  arc.clockwise = true;
-  arc.feed = 300;
-  prog.push_back(arc);
-  prog.push_back(line(arc.end, arc.end + Vec3(0, -2, 0), 300));
+  const auto prog = lines_arc_line();
 
   // samples of `pl` from now to the end, pushing prog[i...] when it asks for blocks
   auto run = [&](Planner& pl, std::size_t i, std::vector<Sample>& out) {
