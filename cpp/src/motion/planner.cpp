@@ -29,12 +29,23 @@ void Planner::finish() noexcept { state_->finish(); }
 Status Planner::next(Sample& out) noexcept { return state_->next(out); }
 Status Planner::next_segment(PlannedSegment& out) noexcept { return state_->next_segment(out); }
 void Planner::reset() noexcept { state_->reset(); }
-int Planner::free_blocks() const noexcept { return state_->free_blocks(); }
-double Planner::end_time() const noexcept { return state_->end_time(); }
-long Planner::blocks_pushed() const noexcept { return state_->blocks_pushed(); }
-const char* Planner::last_error() const noexcept { return state_->last_error(); }
-const AxisLimits& Planner::limits() const noexcept { return state_->limits(); }
-const PlanOptions& Planner::options() const noexcept { return state_->options(); }
+
+int Planner::free_blocks() const noexcept {
+  const detail::PlannerState& s = *state_;
+  const long by_nodes = (s.capacity_ - (s.tail_ - s.head_)) / detail::nodes_per_push;
+  const long by_blocks = s.options_.lookahead + 1 - s.blocks_in_buffer();
+  return static_cast<int>(std::max(0L, std::min(by_nodes, by_blocks)));
+}
+
+double Planner::end_time() const noexcept {
+  const detail::PlannerState& s = *state_;
+  return (s.finished_ && s.frozen_ == s.tail_) ? s.t_frozen_end_ : -1.0;
+}
+
+long Planner::blocks_pushed() const noexcept { return state_->pushed_; }
+const char* Planner::last_error() const noexcept { return state_->error_; }
+const AxisLimits& Planner::limits() const noexcept { return state_->limits_; }
+const PlanOptions& Planner::options() const noexcept { return state_->options_; }
 
 namespace detail {
 
@@ -72,14 +83,6 @@ void PlannerState::reset() noexcept {
   last_point_ = Vec3::Zero();
   error_ = "";
 }
-
-int PlannerState::free_blocks() const noexcept {
-  const long by_nodes = (capacity_ - (tail_ - head_)) / nodes_per_push;
-  const long by_blocks = options_.lookahead + 1 - blocks_in_buffer();
-  return static_cast<int>(std::max(0L, std::min(by_nodes, by_blocks)));
-}
-
-double PlannerState::end_time() const noexcept { return (finished_ && frozen_ == tail_) ? t_frozen_end_ : -1.0; }
 
 Status PlannerState::fail(const char* msg) noexcept {
   error_ = msg;

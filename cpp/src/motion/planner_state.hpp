@@ -125,11 +125,14 @@ struct PassRecord {
   SpeedBound bound = SpeedBound::path;  ///< SpeedBound::path: w = w0 + beta[0]
 };
 
-/// The planner's state and operations (Planner forwards to these).
+/// The planner's state and operations. Planner's streaming calls run the operations of the same
+/// name here; its queries read the state directly.
 class PlannerState {
  public:
   /// Validates limits and options (throws std::invalid_argument) and allocates every buffer.
   PlannerState(const AxisLimits& limits, const PlanOptions& options);
+  /// Back to the empty state (limits, options and memory kept).
+  void reset() noexcept;
 
   // planner_push.cpp
   Status push(const toolpath::Block& block) noexcept;
@@ -137,16 +140,10 @@ class PlannerState {
   // planner_output.cpp
   Status next(Sample& out) noexcept;
   Status next_segment(PlannedSegment& out) noexcept;
-  // planner.cpp
-  void reset() noexcept;
-  int free_blocks() const noexcept;
-  double end_time() const noexcept;
-  long blocks_pushed() const noexcept { return pushed_; }
-  const char* last_error() const noexcept { return error_; }
-  const AxisLimits& limits() const noexcept { return limits_; }
-  const PlanOptions& options() const noexcept { return options_; }
 
  private:
+  friend class motion::Planner;
+
   // --- addressing (sizes are powers of two: a mask, not a division, per lookup) ---
   std::size_t ring_slot(long k) const noexcept { return static_cast<std::size_t>(k) & ring_mask_; }
   std::size_t block_slot(long block) const noexcept { return static_cast<std::size_t>(block) & block_mask_; }
