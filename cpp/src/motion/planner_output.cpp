@@ -45,7 +45,7 @@ void PlannerState::copy_segment(const Node& n, Segment& out) noexcept {
     const Segment& s = n.segment;
     out.kind = SegmentKind::line;
     out.block = s.block;
-    out.ctrl = {};
+    out.ctrl.fill(Vec3::Zero());  // (Vec3 value-initialisation leaves its coefficients undefined)
     out.table = {};
     out.full_length = s.full_length;
     out.trim_start = s.trim_start;
