@@ -1,18 +1,47 @@
 #pragma once
 /// \file line_blend.hpp
-/// Internal: the array work of a corner blend between two lines (the planner's common case), in two
-/// kernels (kernels/line_blend.cpp) compiled once per instruction set (docs/simd.md). Everything here is
-/// 4 lanes wide, one lane per piece. No copy contracts to FMA, so every instruction set gives the same
-/// bits. Only plain doubles and Vec3 cross between the kernels and the rest of the library.
+/// Internal: the array work of a corner blend between two lines (the planner's common case) and the
+/// record it fills, in two kernels (kernels/line_blend.cpp) compiled once per instruction set
+/// (docs/simd.md). Everything here is 4 lanes wide, one lane per piece. No copy contracts to FMA, so
+/// every instruction set gives the same bits. Only plain doubles and Vec3 cross between the kernels and
+/// the rest of the library.
 
 #include "core/dispatch.hpp"
-#include "netshape/motion/planner.hpp"
+#include "netshape/core/types.hpp"
+#include "netshape/motion/profile.hpp"
+#include "netshape/motion/segment.hpp"
 
 namespace netshape::motion::detail {
 
+/// The pieces of a corner blend between two lines, kept once per blend by the planner.
+/// Per piece: trims of the whole blend, length, speed cap, squared junction limit (piece 0: with the
+/// cap before the blend), the reach w = min_i alpha_i·w0 + beta_i in squared speeds, the coefficients
+/// of the peak squared speed min_i p1_i·(vs² + ve²) + p0_i and of the tangential budget
+/// min_i (A_i − K_i·w)·iu_i (so that neither pass divides), the backward squared speed at its start,
+/// and once frozen its trapezoid (speeds, acceleration, phase times and distances) and start time.
+/// Every field is an array over the pieces (plain doubles, see the file comment).
+struct LineBlendRecord {
+  static constexpr int pieces = 4;
+  int np = 0;      ///< pieces in use (1 or `pieces`)
+  int cursor = 0;  ///< next piece to hand out (next_segment) or the piece being sampled (next)
+  double trim_s[pieces] = {}, trim_e[pieces] = {}, len[pieces] = {}, vmax[pieces] = {};  ///< [mm], [mm/s]
+  double w_junction[pieces] = {};  ///< squared junction limit at the piece's start [mm²/s²]
+  double w_backward[pieces] = {};  ///< squared speed the backward pass allows at the piece's start [mm²/s²]
+  // per axis i and piece k: [i][k]
+  double alpha[3][pieces] = {}, beta[3][pieces] = {};
+  double p1[3][pieces] = {}, p0[3][pieces] = {}, iu[3][pieces] = {}, K[3][pieces] = {};
+  // frozen: speed-up, cruise, slow-down
+  double vs[pieces] = {}, ve[pieces] = {}, vp[pieces] = {}, acc[pieces] = {};
+  double t1[pieces] = {}, t2[pieces] = {}, t3[pieces] = {};
+  double d1[pieces] = {}, d2[pieces] = {}, d3[pieces] = {};
+  double dur[pieces] = {}, t0[pieces] = {};
+  /// The frozen profile of piece k (a trapezoid without windows).
+  void profile(int k, Profile& p) const noexcept;
+};
+
 // Between two lines (symmetric blends, curvature peak at node 8) four pieces, narrower around the
-// peak: with the exact piece bounds they come within 1.05 of toppra's optimum on the bench paths
-// (1.042 / 1.047; six pieces 1.030 / 1.045 at ~1 000 more instructions per block).
+// peak, given as the table node indices of the piece ends; they keep the blend rule's cycle time within
+// 1.05 of the time-optimal one on the same path (bench/motion_plan.py).
 constexpr int n_cuts_lines = LineBlendRecord::pieces;
 constexpr int cuts_lines[n_cuts_lines + 1] = {0, 5, 8, 11, 16};
 // lanes of the per-piece-end arrays: the n + 1 piece ends padded to whole AVX packets
@@ -36,9 +65,9 @@ struct LineBlendKernels {
   /// The symmetric blend P0 = V − d·u1, P1 = P2 = V, P3 = V + d·u2 between two lines (u1, u2 unit)
   /// into `whole` (the fields of Segment::blend, source `source`) and its pieces into `r`: trims,
   /// lengths, caps (|u_i|·v ≤ V_i, K_i·v² ≤ A_i, the feed vfeed), junction limits (piece 0: also
-  /// v_prev, the cap before the blend), reach, peak and budget coefficients; wb = 0. A gentle turn
-  /// (the centripetal part takes at most 2 % of the smallest A at full speed) is one piece. Returns
-  /// the number of pieces. A, V: per-axis accelerations and velocities, inv_acc = 1/A.
+  /// v_prev, the cap before the blend), reach, peak and budget coefficients; w_backward = 0. A gentle
+  /// turn (the centripetal part takes at most 2 % of the smallest A at full speed) is one piece.
+  /// Returns the number of pieces. A, V: per-axis accelerations and velocities, inv_acc = 1/A.
   int (*build)(const LineBlendTables& T, Segment& whole, const Vec3& p0, const Vec3& vtx, const Vec3& p3,
                const Vec3& u1, const Vec3& u2, double d, long source, const Vec3& A, const Vec3& V,
                const Vec3& inv_acc, double vfeed, double v_prev, LineBlendRecord& r);

@@ -52,7 +52,7 @@ TEST_CASE("line-blend kernels: the chosen instruction set gives the same bits as
     CHECK(std::memcmp(&sa.curvature_rate, &sb.curvature_rate, sizeof(double)) == 0);
     CHECK(std::memcmp(&ra, &rb, sizeof(ra)) == 0);
     // freeze from some start speed into some allowed end speed
-    const double vs = std::sqrt(ra.w_lim[0]) * uni(rng), wt = ra.w_lim[na - 1] * uni(rng);
+    const double vs = std::sqrt(ra.w_junction[0]) * uni(rng), wt = ra.w_junction[na - 1] * uni(rng);
     const double ea = best.freeze(ra, vs, wt, A, 1.5), eb = plain.freeze(rb, vs, wt, A, 1.5);
     CHECK(std::memcmp(&ea, &eb, sizeof(double)) == 0);
     CHECK(std::memcmp(&ra, &rb, sizeof(ra)) == 0);

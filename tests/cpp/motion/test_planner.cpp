@@ -2,6 +2,8 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "netshape/motion.hpp"
@@ -29,6 +31,24 @@ std::vector<toolpath::Block> polyline(int n, double feed, Step step) {
     p = q;
   }
   return out;
+}
+// 60 short lines turning in all directions at 400 mm/s, then a half circle of radius 2 mm and a line:
+// corners between lines and corners next to an arc in one program.
+std::vector<toolpath::Block> lines_arc_line() {
+  auto prog = polyline(60, 400, [](int i) {
+    return Vec3(0.4 + 0.3 * std::cos(1.7 * i), 0.5 * std::sin(2.3 * i), 0.02 * ((i % 3) - 1));
+  });
+  const Vec3 p = prog.back().end;
+  toolpath::Block arc;
+  arc.kind = toolpath::MotionKind::arc;
+  arc.start = p;
+  arc.center = p + Vec3(2, 0, 0);
+  arc.end = p + Vec3(4, 0, 0);
+  arc.clockwise = true;
+  arc.feed = 400;
+  prog.push_back(arc);
+  prog.push_back(line(arc.end, arc.end + Vec3(0, -3, 0), 400));
+  return prog;
 }
 std::vector<toolpath::Block> square(double feed) {
   const Vec3 p[5] = {{0, 0, 0}, {20, 0, 0}, {20, 20, 0}, {0, 20, 0}, {0, 0, 0}};
@@ -251,19 +271,7 @@ TEST_CASE("blend rule: the segments next_segment hands out chain up and agree wi
   o.lookahead = 8;
   o.tolerance = 0.01;
   const AxisLimits lim = AxisLimits::uniform(250, 3000);
-  auto prog = polyline(60, 400, [](int i) {
-    return Vec3(0.4 + 0.3 * std::cos(1.7 * i), 0.5 * std::sin(2.3 * i), 0.02 * ((i % 3) - 1));
-  });
-  const Vec3 p = prog.back().end;
-  toolpath::Block arc;
-  arc.kind = toolpath::MotionKind::arc;
-  arc.start = p;
-  arc.center = p + Vec3(2, 0, 0);
-  arc.end = p + Vec3(4, 0, 0);
-  arc.clockwise = true;
-  arc.feed = 400;
-  prog.push_back(arc);
-  prog.push_back(line(arc.end, arc.end + Vec3(0, -3, 0), 400));
+  const auto prog = lines_arc_line();
 
   auto drive = [&](Planner& pl, auto&& take) {
     std::size_t i = 0;
@@ -367,4 +375,77 @@ TEST_CASE("blend rule: every blend piece's peak speed keeps each axis within its
   CHECK(worst_v <= 1.0 + 1e-9);
   CHECK(worst_a <= 1.0 + 1e-3);  // finite differences of the tangent
   CHECK(worst_a > 0.5);          // the check bites: some piece runs near its centripetal limit
+}
+
+TEST_CASE("Planner copies and moves: a copy taken mid-stream continues with the same bits as the original") {
+  static_assert(std::is_copy_constructible_v<Planner> && std::is_copy_assignable_v<Planner>);
+  static_assert(std::is_nothrow_move_constructible_v<Planner> && std::is_nothrow_move_assignable_v<Planner>);
+  // line-line blends (one ring node each), a blend next to an arc (separate nodes) and the arc's pieces
+  PlanOptions o;
+  o.rule = CornerRule::blend;
+  o.lookahead = 8;
+  const auto prog = lines_arc_line();
+
+  // samples of `pl` from now to the end, pushing prog[i...] when it asks for blocks
+  auto run = [&](Planner& pl, std::size_t i, std::vector<Sample>& out) {
+    Sample s;
+    for (;;) {
+      const Status st = pl.next(s);
+      if (st == Status::finished) break;
+      if (st == Status::ok) {
+        out.push_back(s);
+        continue;
+      }
+      REQUIRE(st == Status::need_blocks);
+      while (i < prog.size() && pl.push(prog[i]) == Status::ok) ++i;
+      if (i == prog.size()) pl.finish();
+    }
+  };
+  auto same = [](const std::vector<Sample>& a, const std::vector<Sample>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t k = 0; k < a.size(); ++k)
+      if (a[k].t != b[k].t || a[k].position != b[k].position || a[k].velocity != b[k].velocity ||
+          a[k].feed != b[k].feed || a[k].block != b[k].block)
+        return false;
+    return true;
+  };
+  const AxisLimits lim = AxisLimits::uniform(250, 3000);
+  std::vector<Sample> whole;
+  {
+    Planner ref(lim, o);
+    run(ref, 0, whole);
+  }
+  REQUIRE(whole.size() > 1000);
+
+  // the original up to half of the samples, then copies of it
+  Planner a(lim, o);
+  std::size_t i = 0;
+  std::vector<Sample> head;
+  Sample s;
+  while (head.size() < whole.size() / 2) {
+    const Status st = a.next(s);
+    if (st == Status::ok) {
+      head.push_back(s);
+    } else {
+      while (i < prog.size() && a.push(prog[i]) == Status::ok) ++i;
+      if (i == prog.size()) a.finish();
+    }
+  }
+  Planner b(a);                // copy construction
+  Planner c(lim, PlanOptions{});
+  c = a;                       // copy assignment over a planner with other options
+  CHECK(c.options().rule == CornerRule::blend);
+  std::vector<Sample> rest_a, rest_b, rest_c, rest_d;
+  run(a, i, rest_a);           // the original first: the copies must not share its state
+  run(b, i, rest_b);
+  Planner d(std::move(c));     // moving hands the state over
+  run(d, i, rest_d);
+  head.insert(head.end(), rest_a.begin(), rest_a.end());
+  CHECK(same(head, whole));
+  CHECK(same(rest_b, rest_a));
+  CHECK(same(rest_d, rest_a));
+  Planner e(lim, o);
+  e = std::move(d);            // move assignment of a finished planner
+  CHECK(e.next(s) == Status::finished);
+  CHECK(e.blocks_pushed() == static_cast<long>(prog.size()));
 }

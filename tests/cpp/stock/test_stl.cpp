@@ -9,6 +9,8 @@
 #include <tuple>
 #include <vector>
 
+#include <unistd.h>
+
 #include "netshape/stock/stl.hpp"
 #include "netshape/stock/sweep.hpp"
 
@@ -18,7 +20,8 @@ using netshape::stock::ZMap;
 TEST_CASE("stl: closed, outward oriented solid with the documented triangle count") {
   ZMap z(0.0, 10.0, 0.0, 6.0, 0.5, 5.0, 1.0);
   netshape::stock::sweep_line(z, netshape::cutter::Cutter::ball_end(4.0, 2, 0.5), Vec3(-1, 3, 3), Vec3(11, 3, 3));
-  const auto dir = std::filesystem::temp_directory_path() / "netshape_test_stl";
+  // one folder per process: ctest runs this test under several instruction sets at once
+  const auto dir = std::filesystem::temp_directory_path() / ("netshape_test_stl_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const auto path = (dir / "z.stl").string();
   netshape::stock::write_stl(z, path);
@@ -44,10 +47,10 @@ TEST_CASE("stl: closed, outward oriented solid with the documented triangle coun
   for (const auto& [e, count] : edges) closed = closed && count == 1 && edges.count({e.second, e.first}) == 1;
   CHECK(closed);
   CHECK(signed_volume > 0.0);  // outward normals
-  std::filesystem::remove_all(dir);
   CHECK_THROWS_WITH_AS(netshape::stock::write_stl(z, "/nonexistent-folder/x.stl"), doctest::Contains("folder"),
                        std::invalid_argument);
   ZMap thin(0.0, 1.0, 0.0, 10.0, 1.0, 1.0, 0.0);
-  CHECK_THROWS_AS(netshape::stock::write_stl(thin, (std::filesystem::temp_directory_path() / "t.stl").string()),
+  CHECK_THROWS_AS(netshape::stock::write_stl(thin, (dir / "t.stl").string()),
                   std::invalid_argument);
+  std::filesystem::remove_all(dir);
 }

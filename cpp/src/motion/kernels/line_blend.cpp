@@ -180,8 +180,8 @@ __attribute__((flatten)) int build(const LineBlendTables& T, Segment& whole, con
   Map(r.len) = L;
   Map(r.trim_s) = ts;
   Map(r.trim_e) = te;
-  Map(r.w_lim) = v_lim * v_lim;
-  Map(r.wb).setZero();
+  Map(r.w_junction) = v_lim * v_lim;
+  Map(r.w_backward).setZero();
   return np;
 }
 
@@ -200,7 +200,7 @@ __attribute__((flatten)) double freeze(LineBlendRecord& r, double vs, double wt,
   Arr WE;
   double w = vs * vs;
   for (int k = 0; k < np; ++k) {
-    const double w_end = k + 1 < np ? r.wb[k + 1] : wt;
+    const double w_end = k + 1 < np ? r.w_backward[k + 1] : wt;
     const double reach = std::min({r.alpha[0][k] * w + r.beta[0][k], r.alpha[1][k] * w + r.beta[1][k],
                                    r.alpha[2][k] * w + r.beta[2][k]});
     w = std::min(w_end, reach);

@@ -1,0 +1,70 @@
+// Arc geometry for the planner: per-axis bounds of the tangent and curvature vector over an arc
+// window, the pieces an arc is cut into, curvature vectors at segment ends.
+#include "planner_geometry.hpp"
+
+#include <cmath>
+#include <utility>
+
+#include "planner_state.hpp"
+
+namespace netshape::motion::detail {
+
+namespace {
+// largest |cos| and |sin| over the angles between p0 and p1 [rad]
+void trig_max(double p0, double p1, double& mc, double& ms) {
+  if (p0 > p1) std::swap(p0, p1);
+  if (p1 - p0 >= pi) {
+    mc = ms = 1.0;
+    return;
+  }
+  mc = std::max(std::abs(std::cos(p0)), std::abs(std::cos(p1)));
+  ms = std::max(std::abs(std::sin(p0)), std::abs(std::sin(p1)));
+  if (std::floor(p1 / pi) >= std::ceil(p0 / pi)) mc = 1.0;                          // k·π inside
+  if (std::floor((p1 - 0.5 * pi) / pi) >= std::ceil((p0 - 0.5 * pi) / pi)) ms = 1.0;  // π/2 + k·π inside
+}
+}  // namespace
+
+int arc_piece_count(const Segment& s) {
+  const double sweep = std::abs(s.block.sweep()) * s.length() / s.full_length;
+  return std::clamp(static_cast<int>(std::ceil(sweep / arc_piece_angle - 1e-9)), 1, max_arc_pieces);
+}
+
+void arc_bounds(const Segment& s, double s0, double s1, Vec3& U, Vec3& K) {
+  const toolpath::Block& b = s.block;
+  const auto ax = toolpath::plane_axes(b.plane);
+  const double r0 = std::hypot(b.start[ax.a] - b.center[ax.a], b.start[ax.b] - b.center[ax.b]);
+  const double r1 = std::hypot(b.end[ax.a] - b.center[ax.a], b.end[ax.b] - b.center[ax.b]);
+  const double sw = b.sweep(), dn = b.end[ax.n] - b.start[ax.n];
+  const double ang0 = std::atan2(b.start[ax.b] - b.center[ax.b], b.start[ax.a] - b.center[ax.a]);
+  double mc, ms;
+  trig_max(ang0 + sw * s0 / s.full_length, ang0 + sw * s1 / s.full_length, mc, ms);
+  const double rmin = std::min(r0, r1), rmax = std::max(r0, r1), dr = rmax - rmin;
+  const double rho = std::hypot(rmin * sw, dn);  // |dp/df| (lower bound when the radius varies)
+  U[ax.a] = std::min(1.0, (rmax * std::abs(sw) * ms + dr) / rho);
+  U[ax.b] = std::min(1.0, (rmax * std::abs(sw) * mc + dr) / rho);
+  U[ax.n] = std::min(1.0, std::abs(dn) / rho);
+  const double c = sw != 0.0 ? dn / sw : 0.0;
+  const double kappa = std::max(r0 / (r0 * r0 + c * c), r1 / (r1 * r1 + c * c)) * (1.0 + 1e-9);
+  K[ax.a] = kappa * mc;
+  K[ax.b] = kappa * ms;
+  K[ax.n] = 0.0;
+}
+
+Vec3 curvature_vector(const Segment& s, bool at_end) {
+  if (s.kind == SegmentKind::line) return Vec3::Zero();
+  if (s.kind == SegmentKind::blend) {
+    const double u = at_end ? 1.0 : 0.0;
+    const Vec3 d1 = bezier_d1(s.ctrl, u), d2 = bezier_d2(s.ctrl, u);
+    const double n2 = d1.squaredNorm();
+    return n2 > 0 ? Vec3((d2 - d1 * (d1.dot(d2) / n2)) / n2) : Vec3::Zero();
+  }
+  const Vec3 p = s.point_at(at_end ? s.length() : 0.0);
+  const auto ax = toolpath::plane_axes(s.block.plane);
+  Vec3 r = Vec3::Zero();
+  r[ax.a] = s.block.center[ax.a] - p[ax.a];
+  r[ax.b] = s.block.center[ax.b] - p[ax.b];
+  const double rn = r.norm();
+  return rn > 0 ? Vec3(r * (s.block.curvature() / rn)) : Vec3::Zero();
+}
+
+}  // namespace netshape::motion::detail

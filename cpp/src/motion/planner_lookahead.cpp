@@ -1,0 +1,130 @@
+// The look-ahead over the ring: the backward pass (Lee & Lee eq. 3, 5 in squared speeds) and the
+// freeze of the next segment's profile once the buffer is deep enough.
+#include <algorithm>
+#include <cmath>
+
+#include "planner_state.hpp"
+
+namespace netshape::motion::detail {
+
+double PlannerState::reach_squared(const PassRecord& n, double w0) const noexcept {
+  if (std::isfinite(n.path_jerk)) {
+    const double r = reach_speed(std::sqrt(w0), n.length, n.path_accel, n.path_jerk);
+    return r * r;
+  }
+  return std::min({n.alpha[0] * w0 + n.beta[0], n.alpha[1] * w0 + n.beta[1], n.alpha[2] * w0 + n.beta[2]});
+}
+
+// From the tail (which ends at rest) back to the frozen prefix: each node's backward squared speed is
+// the smallest of its junction limit and what it reaches from the next node's. Nodes before
+// dirty_from did not change themselves, so the pass stops at the first of them whose value stays.
+void PlannerState::back_pass(long dirty_from) noexcept {
+  double w_next = 0.0;  // the buffer always ends at rest (squared speeds: no root per node)
+  if (tail_ <= frozen_) return;
+  for (long k = tail_ - 1; k >= frozen_; --k) {
+    PassRecord& n = passes_[ring_slot(k)];
+    double w;
+    if (n.line_blend >= 0) {
+      // a line-blend node: its pieces from the last to the first
+      LineBlendRecord& r = line_blends_[static_cast<std::size_t>(n.line_blend)];
+      w = w_next;
+      for (int p = r.np - 1; p >= 0; --p) {
+        w = std::min(std::min(r.w_junction[p], r.alpha[0][p] * w + r.beta[0][p]),
+                     std::min(r.alpha[1][p] * w + r.beta[1][p], r.alpha[2][p] * w + r.beta[2][p]));
+        if (k < dirty_from && w == r.w_backward[p]) {  // so are the pieces before it (and w == n.w_backward below)
+          w = r.w_backward[0];
+          break;
+        }
+        r.w_backward[p] = w;
+      }
+    } else {
+      // Lee & Lee eq. 3 (trapezoid; on curves the axis box), capped by the junction limit (without
+      // jerk limits reach_squared is the min of three affine terms, inlined here; on a line only the
+      // first is finite: the same value with a shorter dependency chain)
+      w = jerk_limited_                   ? std::min(n.w_junction, reach_squared(n, w_next))
+          : n.bound == SpeedBound::path   ? std::min(n.w_junction, w_next + n.beta[0])
+                                          : std::min(std::min(n.w_junction, n.alpha[0] * w_next + n.beta[0]),
+                                                     std::min(n.alpha[1] * w_next + n.beta[1],
+                                                              n.alpha[2] * w_next + n.beta[2]));
+    }
+    if (k < dirty_from && w == n.w_backward) break;  // nothing changes further back
+    n.w_backward = w;
+    w_next = w;
+  }
+}
+
+bool PlannerState::buffer_ready() const noexcept {
+  // free_blocks() == 0 without its division
+  return finished_ || capacity_ - (tail_ - head_) < nodes_per_push || blocks_in_buffer() >= options_.lookahead + 1;
+}
+
+// The profile of segment frozen_ from the end speed of the frozen prefix to the smaller of what the
+// next segment allows (its backward speed) and what it reaches; only when the buffer is full or
+// finished, and never the last segment before finish().
+bool PlannerState::freeze_next() noexcept {
+  if (frozen_ >= tail_) return false;
+  const bool is_tail = frozen_ == tail_ - 1;
+  if (is_tail && !finished_) return false;
+  if (!buffer_ready()) return false;
+  const std::size_t slot = ring_slot(frozen_);
+  Node& n = nodes_[slot];
+  const PassRecord& qn = passes_[slot];
+  const double vs = v_frozen_end_;
+  const double wt = is_tail ? 0.0 : passes_[(slot + 1) & ring_mask_].w_backward;
+  if (qn.line_blend >= 0) {
+    freeze_line_blend(n, line_blends_[static_cast<std::size_t>(qn.line_blend)], vs, wt);
+    return true;
+  }
+  const double ve = std::sqrt(std::min(wt, reach_squared(qn, vs * vs)));
+  const double wf = window_periods();
+  const double ws = n.start.velocity_jump ? wf * options_.ts2 * vs : 0.0;
+  const double we = n.end.velocity_jump ? wf * options_.ts2 * ve : 0.0;
+  const double len = n.segment.length();
+  if (n.bound == SpeedBound::axis_box && !std::isfinite(qn.path_jerk)) {
+    // peak speed and tangential acceleration from the axis box at that speed:
+    // 2·w − vs² − ve² = 2·L·(A_i − K_i·w)/U_i for the binding axis
+    const Vec3& U = n.tangent_bound;
+    const Vec3& K = n.curvature_bound;
+    const double lr = std::max(0.0, len - std::min(ws, len) - std::min(we, len));
+    const double S = vs * vs + ve * ve;
+    double num[3], den[3];
+    for (int i = 0; i < 3; ++i) {
+      num[i] = U[i] * S + 2.0 * lr * limits_.acceleration[i];
+      den[i] = 2.0 * U[i] + 2.0 * lr * K[i];
+    }
+    double wp = std::min(n.v_max * n.v_max, min_ratio(num, den));
+    wp = std::max(wp, std::max(vs * vs, ve * ve));
+    for (int i = 0; i < 3; ++i) num[i] = limits_.acceleration[i] - K[i] * wp;
+    double a = min_ratio(num, U.data());
+    // at the curvature cap the tangential budget is 0: a floor of 1e-6·A keeps the rounding-size speed
+    // differences of neighbouring pieces from turning into long ramps
+    const double amin = limits_.acceleration.minCoeff();
+    if (!(a > 1e-6 * amin)) a = 1e-6 * amin;
+    if (!std::isfinite(a)) a = amin;
+    n.profile = Profile::make(len, vs, ve, std::sqrt(wp), a, inf, ws, we);
+  } else {
+    n.profile = Profile::make(len, vs, ve, std::max(n.v_max, std::max(vs, ve)), n.path_accel, n.path_jerk, ws, we);
+  }
+  n.t0 = t_frozen_end_;
+  t_frozen_end_ += n.profile.duration;
+  v_frozen_end_ = ve;
+  ++frozen_;
+  return true;
+}
+
+// The pieces of a line-blend node one after the other (the freeze kernel, line_blend.hpp), as
+// freeze_next() does for single nodes.
+void PlannerState::freeze_line_blend(Node& n, LineBlendRecord& r, double vs, double wt) noexcept {
+  const double v_end = line_blend_kernels_->freeze(r, vs, wt, limits_.acceleration, t_frozen_end_);
+  const double t = r.t0[r.np - 1] + r.dur[r.np - 1];
+  // of the node's profile only the end speeds and the duration are read (the pieces have their own)
+  n.profile.vs = vs;
+  n.profile.ve = v_end;
+  n.profile.duration = t - t_frozen_end_;
+  n.t0 = t_frozen_end_;
+  t_frozen_end_ = t;
+  v_frozen_end_ = v_end;
+  ++frozen_;
+}
+
+}  // namespace netshape::motion::detail

@@ -1,0 +1,268 @@
+#pragma once
+/// \file planner_state.hpp
+/// Internal: the state of a motion::Planner, which holds one through a pointer. The ring of nodes
+/// (segments with their limits and, once frozen, their profiles), the pass records the look-ahead
+/// walks, the blend stores, and the operations on them; each planner_*.cpp file implements one
+/// concept of it (see the comment at the top of each).
+///
+/// Invariants: segments [head_, frozen_) are frozen (their profiles fixed, times increasing from
+/// t0 = 0), [frozen_, tail_) are planned and may still change; node k lives in ring slot
+/// k & ring_mask_ and its pass record in the same slot of passes_; the blend of program block b lives
+/// in slot b & block_mask_ of the blend stores. The buffer always ends at rest.
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "line_blend.hpp"
+#include "netshape/motion/planner.hpp"
+
+namespace netshape::motion::detail {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+/// An arc is cut into at most this many pieces ...
+constexpr int max_arc_pieces = 64;
+/// ... of at most this sweep [rad] (when it can).
+constexpr double arc_piece_angle = pi / 32;
+/// Most pieces (ring nodes) of a corner blend.
+constexpr int max_blend_pieces = 8;
+/// Ring nodes one push() may add: the previous arc's pieces, the blend pieces, the new block.
+constexpr long nodes_per_push = max_arc_pieces + max_blend_pieces + 2;
+
+/// Smallest of `per_axis` over the axes that move (moving[i] > 0); all axes if none moves.
+inline double min_over_moving(const Vec3& per_axis, const Vec3& moving) {
+  double m = inf;
+  for (int i = 0; i < 3; ++i)
+    if (moving[i] > 0) m = std::min(m, per_axis[i]);
+  return std::isfinite(m) ? m : per_axis.minCoeff();
+}
+
+/// Smallest num[i]/den[i] over the i with den[i] > 0, +inf if none; one division (the fractions are
+/// compared by cross-multiplication).
+inline double min_ratio(const double* num, const double* den) noexcept {
+  int best = -1;
+  for (int i = 0; i < 3; ++i)
+    if (den[i] > 0 && (best < 0 || num[i] * den[best] < num[best] * den[i])) best = i;
+  return best < 0 ? inf : num[best] / den[best];
+}
+
+/// How a node's speed is bounded.
+enum class SpeedBound : std::uint8_t {
+  /// Along the path: cruise cap, path acceleration and path jerk (lines; in jerk mode also curves).
+  path,
+  /// A curved piece without jerk limits, per axis: |u_i|·v ≤ V_i and |u_i·s̈ + κ n_i·v²| ≤ A_i with the
+  /// piece's bounds U_i of |u_i| and K_i of |κ n_i|, which holds for |s̈| ≤ min_i (A_i − K_i·v²)/U_i.
+  axis_box,
+};
+
+/// Where a node's path geometry is kept.
+enum class Geometry : std::uint8_t {
+  /// `Node::segment` is complete.
+  in_node,
+  /// A blend piece: `segment` holds kind, trims, length, curvature and source only; the control points
+  /// and table stay once per blend in the blend store until segment_of() copies them in (sampling).
+  in_blend_store,
+  /// One node for a whole blend between two lines: its pieces are in the line-blend record of its
+  /// block (the passes and the freeze loop over them, next() and next_segment() hand them out one by
+  /// one), its geometry in the blend store.
+  line_blend_record,
+};
+
+/// Whether a node's extent is final.
+enum class Extent : std::uint8_t {
+  /// Trims and bounds are final.
+  settled,
+  /// The last block pushed: one node with bounds over the whole block until its end is known; then
+  /// split_last_block() cuts arcs into pieces.
+  whole_block,
+  /// As whole_block, and the blend rule has not placed the blend at its end yet: the node is planned
+  /// with the largest end trim a blend may take (0.45 of its length).
+  whole_block_blend_pending,
+};
+
+/// What happens at one end of a node.
+struct NodeEnd {
+  double window = 0;            ///< distance reserved for a constant-speed window [mm]
+  bool velocity_jump = false;   ///< the velocity jumps here (vector, per-axis rules): constant-speed window
+  bool curvature_step = false;  ///< jerk mode: the curvature vector steps here; the node's jerk is halved once
+};
+
+/// One segment of the ring with its limits and, once frozen, its profile.
+struct Node {
+  Segment segment;
+  double v_max = 0;       ///< cruise cap [mm/s] (on entry to set_limits(): the programmed feed cap)
+  double path_accel = 1;  ///< path acceleration [mm/s²] (lines; jerk mode)
+  double path_jerk = 0;   ///< path jerk [mm/s³] (+inf without jerk limits)
+  /// SpeedBound::axis_box: per-axis bounds over the piece of |u_i| (U) and of the curvature vector
+  /// |κ n_i| [1/mm] (K)
+  Vec3 tangent_bound = Vec3::Zero(), curvature_bound = Vec3::Zero();
+  SpeedBound bound = SpeedBound::path;
+  double v_junction = 0;  ///< junction limit at the start [mm/s]
+  double v_corner = 0;    ///< corner speed before this node's own cap [mm/s]
+  double feed_cap = 0;    ///< programmed feed cap [mm/s] (+inf for rapids)
+  NodeEnd start, end;
+  Extent extent = Extent::settled;
+  Geometry geometry = Geometry::in_node;
+  long block = 0;  ///< index of the program block that brought this node in
+  Profile profile;
+  double t0 = 0;  ///< start time once frozen [s]
+};
+
+/// Compact copy of what the backward pass reads and writes, so it walks small records, not Nodes.
+/// The reach of a trapezoidal node is w = min_i alpha_i·w0 + beta_i in squared speeds w = v²: lines
+/// alpha = (1, 0, 0), beta = (2·a·L, inf, inf); curved pieces the axis box, alpha_i = U_i/(U_i + 2·L·K_i),
+/// beta_i = 2·L·A_i/(U_i + 2·L·K_i); set by update_pass() so the passes need no division.
+struct PassRecord {
+  double w_junction = 0;  ///< squared junction limit [mm²/s²]
+  double w_backward = 0;  ///< squared speed the backward pass allows at the start [mm²/s²]
+  double length = 0;      ///< planned length (see planned_length) [mm]
+  double path_accel = 1, path_jerk = 0;
+  double alpha[3] = {1, 0, 0}, beta[3] = {0, 0, 0};
+  int line_blend = -1;                  ///< Geometry::line_blend_record: its slot in line_blends_, else −1
+  SpeedBound bound = SpeedBound::path;  ///< SpeedBound::path: w = w0 + beta[0]
+};
+
+/// The planner's state and operations. Planner's streaming calls run the operations of the same
+/// name here; its queries read the state directly.
+class PlannerState {
+ public:
+  /// Validates limits and options (throws std::invalid_argument) and allocates every buffer.
+  PlannerState(const AxisLimits& limits, const PlanOptions& options);
+  /// Back to the empty state (limits, options and memory kept).
+  void reset() noexcept;
+
+  // planner_push.cpp
+  Status push(const toolpath::Block& block) noexcept;
+  void finish() noexcept;
+  // planner_output.cpp
+  Status next(Sample& out) noexcept;
+  Status next_segment(PlannedSegment& out) noexcept;
+
+ private:
+  friend class motion::Planner;
+
+  // --- addressing (sizes are powers of two: a mask, not a division, per lookup) ---
+  std::size_t ring_slot(long k) const noexcept { return static_cast<std::size_t>(k) & ring_mask_; }
+  std::size_t block_slot(long block) const noexcept { return static_cast<std::size_t>(block) & block_mask_; }
+  Node& node(long k) noexcept { return nodes_[ring_slot(k)]; }
+  const Node& node(long k) const noexcept { return nodes_[ring_slot(k)]; }
+  PassRecord& pass(long k) noexcept { return passes_[ring_slot(k)]; }
+  Segment& blend_geometry(long block) noexcept { return blends_[block_slot(block)]; }
+  long blocks_in_buffer() const noexcept;
+  Status fail(const char* msg) noexcept;
+
+  // --- nodes and their pass records (planner_push.cpp, inline below) ---
+  /// Length the passes plan with: the node's length minus its windows (and, while the blend at its
+  /// end is pending, minus the largest end trim a blend may take) [mm].
+  double planned_length(const Node& n) const noexcept;
+  /// Cruise cap, path acceleration and jerk, speed bound of n from its segment and bounds.
+  /// n.v_max holds the programmed feed cap on entry; line_dir: a line's unit direction if known.
+  void set_limits(Node& n, const Vec3* line_dir = nullptr) const noexcept;
+  /// The reach coefficients of x (see PassRecord) from its length and acceleration.
+  void set_reach(PassRecord& x, SpeedBound bound, const Vec3& U, const Vec3& K) const noexcept;
+  /// Pass record of node k from the node (w_backward and line_blend: the caller).
+  void update_pass(long k) noexcept;
+  /// Largest squared speed at one end of a node when the other end runs at sqrt(w0) [mm²/s²].
+  double reach_squared(const PassRecord& n, double w0) const noexcept;
+  /// Node n at the tail with its pass record (w_backward = 0).
+  void append(const Node& n) noexcept;
+  /// The last node holds a whole block whose end is now known: cut arcs into pieces.
+  void split_last_block() noexcept;
+  /// Jerk mode: a curvature step at the start (or end) of n; its S-curve jerk is halved once.
+  static void mark_curvature_step(Node& n, bool at_start) noexcept;
+  /// Jerk mode: largest speed at a tangent junction where the curvature vector steps by dk [1/mm]:
+  /// v²·|dk_i| ≤ J_i·ts2/2 (the acceleration step's third difference gets half of the jerk limit).
+  double curvature_step_speed(const Vec3& dk) const noexcept;
+  /// Fine periods of constant speed on each side of a velocity jump: 2 (second differences see the
+  /// jump alone), 3 with jerk limits (third differences too).
+  double window_periods() const noexcept { return jerk_limited_ ? 3.0 : 2.0; }
+
+  // --- corner blends (planner_blend.cpp) ---
+  /// The blend rule's corner between the previous block's node `prev` (ring index) and the new
+  /// block's node nn (not yet appended): blend nodes appended, nn's junction speeds set.
+  void append_corner_blend(long prev, Node& nn, const Vec3& u1, const Vec3& u2, double sin_half, long source) noexcept;
+  void init_blend_piece(Node& bn, const Segment& whole, int i0, int i1, long source, double vfeed,
+                        Geometry geometry) noexcept;
+  void append_line_blend(long source, long psource, const Vec3& p0, const Vec3& vtx, const Vec3& p3, const Vec3& u1,
+                         const Vec3& u2, double d, double vfeed, double& v_prev) noexcept;
+
+  // --- look-ahead: backward pass and freeze (planner_lookahead.cpp) ---
+  void back_pass(long dirty_from) noexcept;
+  bool buffer_ready() const noexcept;
+  bool freeze_next() noexcept;
+  void freeze_line_blend(Node& n, LineBlendRecord& r, double vs, double wt) noexcept;
+
+  // --- output (planner_output.cpp) ---
+  Status ensure_frozen_until(double t) noexcept;
+  void copy_blend_geometry(const Segment& whole, Segment& out) const noexcept;
+  /// The node's segment with its geometry (blend pieces: copied in from the blend store on first use).
+  const Segment& segment_of(Node& n) noexcept;
+  /// Copy of the node's full segment (blend pieces: the blend with the piece's trims).
+  void copy_segment(const Node& n, Segment& out) noexcept;
+
+  AxisLimits limits_;
+  PlanOptions options_;
+  bool jerk_limited_ = false;     // limits_.jerk_limited()
+  Vec3 inv_acceleration_ = Vec3::Zero();  // 1/A_i
+  // the array work of blends between two lines, for the best instruction set the CPU has
+  const LineBlendKernels* line_blend_kernels_ = nullptr;
+  const LineBlendTables* line_blend_tables_ = nullptr;
+
+  std::vector<Node> nodes_;        // the ring
+  std::vector<PassRecord> passes_; // pass record of each node, same slot
+  Node scratch_;                   // a new node push() cannot build in its ring slot
+  std::vector<Segment> blends_;    // whole blend of each block in the buffer, by block slot
+  std::vector<LineBlendRecord> line_blends_;  // pieces of the line-blend node of each block, by block slot
+  long capacity_ = 0;              // ring size
+  std::size_t ring_mask_ = 0, block_mask_ = 0;  // capacity_ − 1, blends_.size() − 1
+
+  long head_ = 0;    // first segment in the buffer
+  long frozen_ = 0;  // segments [head_, frozen_) are frozen
+  long tail_ = 0;    // one past the last
+  bool finished_ = false;
+  bool done_ = false;
+  long pushed_ = 0;
+  long next_sample_ = 0;     // index of the next fine sample
+  double t_frozen_end_ = 0;  // end time of the frozen prefix [s]
+  double v_frozen_end_ = 0;  // speed at the end of the frozen prefix [mm/s]
+  Vec3 last_point_ = Vec3::Zero();
+  bool have_last_ = false;
+  Vec3 last_dir_ = Vec3::Zero();  // unit direction of the last block pushed (lines)
+  const char* error_ = "";
+};
+
+// ---------------------------------------------------------------------------------------------------
+// Small operations every pass runs per node, inline so each translation unit can inline them.
+
+inline long PlannerState::blocks_in_buffer() const noexcept {
+  return tail_ > head_ ? pushed_ - node(head_).block : 0;
+}
+
+inline double PlannerState::planned_length(const Node& n) const noexcept {
+  const Segment& s = n.segment;
+  const double te = n.extent == Extent::whole_block_blend_pending ? 0.45 * s.full_length : s.trim_end;
+  return std::max(0.0, s.full_length - s.trim_start - te - n.start.window - n.end.window);
+}
+
+inline void PlannerState::update_pass(long k) noexcept {
+  const Node& n = node(k);
+  PassRecord& x = pass(k);
+  x.w_junction = n.v_junction * n.v_junction;
+  x.length = planned_length(n);
+  x.path_accel = n.path_accel;
+  x.path_jerk = n.path_jerk;
+  x.line_blend = -1;
+  set_reach(x, n.bound, n.tangent_bound, n.curvature_bound);
+}
+
+inline void PlannerState::append(const Node& n) noexcept {
+  if (&n != &node(tail_)) node(tail_) = n;  // (push builds most lines in place)
+  update_pass(tail_);
+  pass(tail_).w_backward = 0.0;
+  ++tail_;
+}
+
+}  // namespace netshape::motion::detail
