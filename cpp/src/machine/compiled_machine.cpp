@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "axis_components.hpp"
 #include "netshape/machine/synthesis.hpp"
 #include "rotation.hpp"
 
@@ -79,12 +78,6 @@ detail::AxisKernel prepare_kernel(const Machine& machine, int k) {
   return ker;
 }
 }  // namespace
-
-double detail::PreparedFunction::operator()(double q) const {
-  double value = 0.0, unused = 0.0;
-  if (!prepared_value<false>(*this, q, value, unused)) throw_refused(*source, q);
-  return value;
-}
 
 CompiledMachine::CompiledMachine(const Machine& machine) {
   machine.validate();

@@ -18,8 +18,8 @@
 namespace netshape::machine {
 
 namespace detail {
-/// One error function prepared for evaluation (points into the machine's vectors). A polynomial
-/// without coefficients is `zero`.
+/// One error function prepared for evaluation (points into the machine's vectors; evaluated by
+/// `prepared_value` in cpp/src/machine/axis_components.hpp). A polynomial without coefficients is `zero`.
 struct PreparedFunction {
   ErrorFunction::Kind kind = ErrorFunction::Kind::zero;
   OutOfRange out_of_range = OutOfRange::error;
@@ -27,8 +27,6 @@ struct PreparedFunction {
   const double* c = nullptr;              ///< coefficients c0, c1, … or table values
   TableGrid grid;                         ///< table positions
   const ErrorFunction* source = nullptr;  ///< the function itself (its message for a refused position)
-  /// e(q); throws std::invalid_argument as the source does for a refused position.
-  double operator()(double q) const;
 };
 
 /// The six components of one axis prepared to be evaluated in one pass: all polynomials packed
