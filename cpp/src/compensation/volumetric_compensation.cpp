@@ -203,7 +203,7 @@ VolumetricResult compensate_points_status(const Machine& machine, const Eigen::R
   unsigned char state[lanes];
   bool have_step[lanes], fresh[lanes], computed[lanes], second[lanes];
   // grows[m][k]: axis k's Abbe arm grows with q_m (second-order step)
-  const auto& grows = data.arm_grows;
+  const auto& grows = data.compiled().arm_grows;
   Eigen::Index index[lanes];
   for (;;) {
     // a point from each stream

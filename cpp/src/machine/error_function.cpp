@@ -1,4 +1,5 @@
-// Error components of a linear axis: polynomial or table with linear interpolation.
+// Error components of a linear axis: construction, validation and evaluation (polynomial by Horner,
+// table through table_interpolation.hpp).
 #include "netshape/machine/error_function.hpp"
 
 #include <algorithm>
@@ -7,6 +8,7 @@
 #include <stdexcept>
 
 #include "netshape/core/error.hpp"
+#include "netshape/machine/table_interpolation.hpp"
 
 namespace netshape::machine {
 
@@ -46,31 +48,31 @@ void ErrorFunction::validate() const {
       for (std::size_t i = 0; i < coefficients.size(); ++i) {
         if (!std::isfinite(coefficients[i])) {
           const std::string field = who + " coefficient[" + std::to_string(i) + "]";
-          detail::throw_invalid(field.c_str(), coefficients[i], "must be a finite number");
+          netshape::detail::throw_invalid(field.c_str(), coefficients[i], "must be a finite number");
         }
       }
       return;
     case Kind::table: {
       if (positions.size() < 2) {
         const std::string field = who + " table points";
-        detail::throw_invalid(field.c_str(), positions.size(), "a table needs at least 2 positions");
+        netshape::detail::throw_invalid(field.c_str(), positions.size(), "a table needs at least 2 positions");
       }
       if (positions.size() != values.size()) {
         const std::string field = who + " table values";
-        detail::throw_invalid(field.c_str(), values.size(), "must have as many values as positions");
+        netshape::detail::throw_invalid(field.c_str(), values.size(), "must have as many values as positions");
       }
       for (std::size_t i = 0; i < positions.size(); ++i) {
         if (!std::isfinite(positions[i])) {
           const std::string field = who + " position[" + std::to_string(i) + "]";
-          detail::throw_invalid(field.c_str(), positions[i], "must be a finite number [mm]");
+          netshape::detail::throw_invalid(field.c_str(), positions[i], "must be a finite number [mm]");
         }
         if (!std::isfinite(values[i])) {
           const std::string field = who + " value[" + std::to_string(i) + "]";
-          detail::throw_invalid(field.c_str(), values[i], "must be a finite number");
+          netshape::detail::throw_invalid(field.c_str(), values[i], "must be a finite number");
         }
         if (i > 0 && !(positions[i] > positions[i - 1])) {
           const std::string field = who + " position[" + std::to_string(i) + "]";
-          detail::throw_invalid(field.c_str(), positions[i],
+          netshape::detail::throw_invalid(field.c_str(), positions[i],
                                 "table positions must be strictly increasing [mm]");
         }
       }
@@ -90,27 +92,18 @@ double ErrorFunction::operator()(double q) const {
       return r;
     }
     case Kind::table: {
-      const std::size_t n = positions.size();
-      const double lo = positions.front(), hi = positions.back();
-      std::size_t i;  // segment [i, i+1]
-      if (q < lo || q > hi || !std::isfinite(q)) {
-        if (out_of_range == OutOfRange::error || !std::isfinite(q)) {
-          std::ostringstream os;
-          os.precision(17);
-          os << (name.empty() ? std::string("error component") : name) << " position = " << q
-             << ": outside the table range [" << lo << ", " << hi
-             << "] mm (out_of_range = \"error\"; use \"clamp\" or \"extrapolate\" to allow it)";
-          throw std::invalid_argument(os.str());
-        }
-        if (out_of_range == OutOfRange::clamp) return q < lo ? values.front() : values.back();
-        i = q < lo ? 0 : n - 2;
-      } else {
-        i = static_cast<std::size_t>(std::upper_bound(positions.begin(), positions.end(), q) -
-                                     positions.begin());
-        i = i == 0 ? 0 : std::min(i - 1, n - 2);
+      // positions are not scanned for equal spacing here (binary search); a CompiledMachine does that once
+      const detail::TableGrid grid = detail::table_grid(positions, false);
+      const detail::TableLookup at = detail::look_up<false>(grid, out_of_range, q);
+      if (at.where == detail::TableLookup::Where::refused) {
+        std::ostringstream os;
+        os.precision(17);
+        os << (name.empty() ? std::string("error component") : name) << " position = " << q
+           << ": outside the table range [" << grid.lo << ", " << grid.hi
+           << "] mm (out_of_range = \"error\"; use \"clamp\" or \"extrapolate\" to allow it)";
+        throw std::invalid_argument(os.str());
       }
-      const double t = (q - positions[i]) / (positions[i + 1] - positions[i]);
-      return values[i] + t * (values[i + 1] - values[i]);
+      return detail::table_value<false>(at, values.data(), grid.n, 1, 0, nullptr);
     }
   }
   return 0.0;

@@ -389,7 +389,7 @@ TEST_CASE("many points at once: exact Jacobian and second-order terms match fini
         for (int k = 0; k < 3; ++k) {
           Vec3 wk = Vec3::Zero();
           for (int j = 0; j < 3; ++j)
-            if (data.arm_grows[j][k]) wk[j] = d[j];
+            if (data.compiled().arm_grows[j][k]) wk[j] = d[j];
           const Vec3 g(data.lane_curvature[3 * k][l], data.lane_curvature[3 * k + 1][l],
                        data.lane_curvature[3 * k + 2][l]);
           const Vec3 es(data.lane_curvature[9 + 3 * k][l], data.lane_curvature[10 + 3 * k][l],

@@ -3,8 +3,9 @@
 /// A 3-axis machine tool with linear axes X, Y, Z as two kinematic chains from the bed: the tool
 /// side (bed → … → spindle → tool tip) and the workpiece side (bed → … → table → workpiece), each
 /// axis carrying its six ISO 230-1 error components as functions of its own position, three
-/// squareness errors and the spindle tilt. This is the immutable *model*; evaluation scratch lives
-/// in `MachineData` (synthesis.hpp).
+/// squareness errors and the spindle tilt. This is the user's plain description; the constants the
+/// synthesis derives from it live in `CompiledMachine` (compiled_machine.hpp), evaluation scratch in
+/// `MachineData` (synthesis.hpp).
 ///
 /// ISO 230-1 names (axis k ∈ {X, Y, Z}): EXk, EYk, EZk translation error motions along X, Y, Z
 /// [mm] (EKk: positioning, the two others: straightness); EAk, EBk, ECk rotation error motions

@@ -24,9 +24,11 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "netshape/core/types.hpp"
+#include "netshape/machine/compiled_machine.hpp"
 #include "netshape/machine/machine.hpp"
 
 namespace netshape::machine {
@@ -34,73 +36,23 @@ namespace netshape::machine {
 /// Which synthesis to use.
 enum class Order : std::uint8_t { exact = 0, first = 1 };
 
-namespace detail {
-/// An error function prepared for fast evaluation (points into the machine's vectors).
-struct PreparedFunction {
-  ErrorFunction::Kind kind = ErrorFunction::Kind::zero;
-  OutOfRange out_of_range = OutOfRange::error;
-  bool uniform = false;            ///< table with equally spaced positions
-  int n = 0;                       ///< coefficients or table points
-  const double* c = nullptr;       ///< coefficients, or table values
-  const double* x = nullptr;       ///< table positions
-  double lo = 0, hi = 0, inv_step = 0;
-  const ErrorFunction* source = nullptr;  ///< for the out-of-range message
-  double operator()(double q) const;
-};
-
-/// The six components of one axis prepared to be evaluated in one pass: all polynomials packed
-/// (coefficient j of component c at [j * 6 + c], zero-padded to the highest degree: Horner gives the
-/// same numbers as on the unpadded polynomial), or all tables on the same positions with the same
-/// out-of-range policy (value i of component c at [i * 6 + c]: one lookup for six interpolations).
-/// Other mixes fall back to the per-function evaluation.
-struct AxisKernel {
-  enum class Mode : std::uint8_t { generic = 0, polynomial = 1, table = 2 };
-  Mode mode = Mode::generic;
-  int terms = 0;                     ///< polynomial: coefficients per component; table: points
-  std::vector<double> packed;        ///< packed coefficients or table values (see above)
-  const double* x = nullptr;         ///< table positions (in the machine's ErrorFunction)
-  double lo = 0, hi = 0, inv_step = 0;
-  bool uniform = false;
-  OutOfRange out_of_range = OutOfRange::error;
-  const ErrorFunction* source = nullptr;  ///< a table of this axis, for the out-of-range message
-};
-
-/// One carriage of a chain in evaluation order (tool side from the spindle down to the bed, then the
-/// workpiece side from the bed up to the table).
-struct ChainStep {
-  int axis = 0;
-  bool tool = true;
-  Vec3 origin = Vec3::Zero();
-};
-}  // namespace detail
-
-/// Workspace for evaluating a `Machine` (Model/Data split, pinocchio style): constants derived from
-/// the machine once (directions with squareness, tilted tip, error functions prepared for fast
-/// evaluation), and per-point scratch. Build one per thread; the evaluation functions never
-/// allocate. A MachineData refers to its machine's error tables: keep the machine alive and
-/// unchanged while the data is in use (build a new MachineData after changing the machine).
 /// Points per call of `tip_error_lanes`.
 constexpr int batch_lanes = 8;
 
+/// Workspace for evaluating a `Machine` (the *data* half of the pinocchio-style Model/Data split): the
+/// per-point scratch and the outputs the evaluation functions leave, next to a shared, immutable
+/// `CompiledMachine` (the constants). Build one per thread; the evaluation functions never allocate.
+/// Through its CompiledMachine a MachineData refers to its machine's error tables: keep the machine
+/// alive and unchanged while the data is in use (build a new one after changing the machine).
 struct MachineData {
+  /// Compiles `machine` (validates it) for this workspace alone.
   explicit MachineData(const Machine& machine);
+  /// A workspace on an already compiled machine (several workspaces, e.g. one per thread, share it).
+  explicit MachineData(std::shared_ptr<const CompiledMachine> compiled);
 
-  std::array<detail::PreparedFunction, 18> functions;  ///< [axis * 6 + component]
-  std::array<detail::AxisKernel, 3> kernels;           ///< per axis: six components in one pass
-  /// All three axes polynomial: the 18 components as one polynomial in 18 lanes (lane 3k + c: rotation
-  /// c of axis k; lane 9 + 3k + c: translation c of axis k), coefficient j of lane l at [j * 18 + l].
-  bool all_polynomial = false;
-  int lane_terms = 0;
-  std::vector<double> lane_coefficients;
-  std::array<detail::ChainStep, 3> steps;              ///< the chains in evaluation order
-  int tool_steps = 0;                                  ///< steps[0, tool_steps) are tool side
-  std::array<std::array<bool, 3>, 3> arm_grows{};      ///< [k][j]: axis j's Abbe arm grows with q_k
+  /// The constants this workspace evaluates.
+  const CompiledMachine& compiled() const noexcept { return *compiled_; }
 
-  std::array<Vec3, 3> direction;          ///< u'_k: axis directions with squareness (exact), unit
-  std::array<Vec3, 3> direction_linear;   ///< u_k + first-order squareness deviation
-  Vec3 tip_local;                         ///< tip in the last tool-side frame with spindle tilt (exact) [mm]
-  Vec3 tip_local_linear;                  ///< same, tilt to first order [mm]
-  Vec3 tip_nominal;                       ///< tip without tilt [mm]
   // per-point scratch (filled by evaluate_components, first-order tip_error and tip_error_and_jacobian)
   std::array<Vec3, 3> delta;              ///< (EXk, EYk, EZk) at the current point [mm]
   std::array<Vec3, 3> epsilon;            ///< (EAk, EBk, ECk) at the current point [rad]
@@ -116,6 +68,9 @@ struct MachineData {
   /// `tip_error_lanes` when it computes Jacobians: [3 * col + row][i] (approximate for a point whose
   /// angles exceed 1e-3 rad).
   double lane_jacobian[9][batch_lanes];
+
+ private:
+  std::shared_ptr<const CompiledMachine> compiled_;
 };
 
 /// Evaluate the six components of each axis at program point p into `data.delta`/`data.epsilon`.
