@@ -1,5 +1,7 @@
 #pragma once
-// netshape's one SIMD vocabulary, for kernel translation units only (cpp/src/<area>/kernels/*.cpp).
+// netshape's one SIMD vocabulary. Wide packs exist only in kernel translation units
+// (cpp/src/<area>/kernels/*.cpp, compiled for their instruction set); elsewhere W = 1 and W = 2 do, so a
+// kernel template can also be instantiated one point at a time in ordinary code.
 //
 // `Batch<W>` is a pack of W doubles (`D`), its lane mask (`M`) and the operations the kernels use:
 //
@@ -66,6 +68,7 @@ template <>
 struct Batch<1> {
   using D = double;
   using M = bool;
+  using I = int;  // one int per lane
   static constexpr int W = 1;
   static NETSHAPE_SIMD_INLINE D set(double x) { return x; }
   static NETSHAPE_SIMD_INLINE D iota() { return 0.0; }
@@ -103,6 +106,7 @@ template <>
 struct Batch<2> {
   typedef double D __attribute__((vector_size(16)));
   typedef std::int64_t M __attribute__((vector_size(16)));  // all ones or zero per lane
+  typedef int I __attribute__((vector_size(8)));            // one int per lane
   static constexpr int W = 2;
   static NETSHAPE_SIMD_INLINE D set(double x) { return D{x, x}; }
   static NETSHAPE_SIMD_INLINE D iota() { return D{0.0, 1.0}; }
@@ -158,6 +162,7 @@ template <>
 struct Batch<4> {
   using D = __m256d;
   using M = __m256d;  // all ones or zero per lane
+  typedef int I __attribute__((vector_size(16)));  // one int per lane
   static constexpr int W = 4;
   static NETSHAPE_SIMD_INLINE D set(double x) { return _mm256_set1_pd(x); }
   static NETSHAPE_SIMD_INLINE D iota() { return _mm256_set_pd(3, 2, 1, 0); }
@@ -209,6 +214,7 @@ template <>
 struct Batch<8> {
   using D = __m512d;
   using M = __mmask8;
+  typedef int I __attribute__((vector_size(32)));  // one int per lane
   static constexpr int W = 8;
   static NETSHAPE_SIMD_INLINE D set(double x) { return _mm512_set1_pd(x); }
   static NETSHAPE_SIMD_INLINE D iota() { return _mm512_set_pd(7, 6, 5, 4, 3, 2, 1, 0); }
@@ -260,8 +266,5 @@ NETSHAPE_SIMD_INLINE void prefetch_for_write(const double* p) noexcept {
 // The namespace of the kernel copy being compiled (baseline, avx2 or avx512), set by the CMake helper.
 #define NETSHAPE_SIMD_STR2(x) #x
 #define NETSHAPE_SIMD_STR(x) NETSHAPE_SIMD_STR2(x)
-/// "baseline", "avx2" or "avx512": the copy being compiled.
+/// "baseline", "avx2" or "avx512": the copy being compiled (kernel files only).
 #define NETSHAPE_KERNEL_ISA_NAME NETSHAPE_SIMD_STR(NETSHAPE_KERNEL_ISA)
-#if !defined(NETSHAPE_KERNEL_ISA)
-#error "core/simd.hpp is for kernel files (cpp/src/<area>/kernels/*.cpp), built by netshape_add_kernels"
-#endif

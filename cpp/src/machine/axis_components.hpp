@@ -85,4 +85,11 @@ inline const ErrorFunction* axis_components(const CompiledMachine& cm, int k, do
   }
 }
 
+/// axis_components compiled once, in baseline code (compiled_machine.cpp): the batch kernels, whose
+/// copies are compiled for wider instruction sets, call this one per lane instead of instantiating the
+/// inline template themselves (an out-of-line copy of it in a wide object could be shared by the linker
+/// with baseline callers).
+template <bool Slope>
+const ErrorFunction* axis_components_outlined(const CompiledMachine& cm, int k, double q, double* e, double* s);
+
 }  // namespace netshape::machine::detail

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "axis_components.hpp"
 #include "netshape/machine/synthesis.hpp"
 #include "rotation.hpp"
 
@@ -127,5 +128,15 @@ MachineData::MachineData(std::shared_ptr<const CompiledMachine> compiled) : comp
     epsilon_slope[k].setZero();
   }
 }
+
+template <bool Slope>
+const ErrorFunction* detail::axis_components_outlined(const CompiledMachine& cm, int k, double q, double* e,
+                                                      double* s) {
+  return axis_components<Slope>(cm, k, q, e, s);
+}
+template const ErrorFunction* detail::axis_components_outlined<false>(const CompiledMachine&, int, double, double*,
+                                                                      double*);
+template const ErrorFunction* detail::axis_components_outlined<true>(const CompiledMachine&, int, double, double*,
+                                                                     double*);
 
 }  // namespace netshape::machine

@@ -88,8 +88,8 @@ Vec3 tip_error_and_jacobian(const Machine& machine, MachineData& data, const Vec
 
 /// Exact tip errors of `batch_lanes` points at once, vectorised over the points (structure of arrays;
 /// AVX-512 or AVX2 when the CPU has them, else SSE2), the same synthesis as `tip_error(…, Order::exact)`
-/// (the same operations in the same order per point; the AVX-512 code may fuse multiply-adds, so results
-/// can differ from the one-point function by rounding, ~1e-16 relative). p[c][i]: coordinate c of point i [mm]; e[c][i]: error
+/// (the same operations in the same order per point and no fused multiply-add, so every instruction set
+/// gives the one-point function's results bit for bit). p[c][i]: coordinate c of point i [mm]; e[c][i]: error
 /// component c [mm]. With `jacobian` non-null, also the first-order Jacobian of each point as
 /// `tip_error_and_jacobian` gives it: (*jacobian)[3 * col + row][i]. Never throws: returns a bit mask
 /// of the points (bit i = point i) that left a table with out_of_range = error or are not finite
