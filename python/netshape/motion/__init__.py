@@ -190,7 +190,8 @@ def _dwells(program, n: int):
 
 
 def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float = 0.75,
-                max_segment: float = 4.0, max_turn: float = 0.5236, min_blocks: int = 3, window: int = 4096):
+                max_segment: float = 4.0, max_turn: float = 0.5236, min_blocks: int = 3, window: int = 4096,
+                smoothing_length: float = 4.0, lead_length: float = 2.0):
     """Tolerance-band smoothing of micro-segment runs (C++ ``netshape::motion::smooth``).
 
     Runs of line blocks each at most `max_segment` [mm] long, turning at most `max_turn` [rad] at every
@@ -203,7 +204,8 @@ def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float
     """
     arr, first, last, stats = _m._smooth_arrays(*_call_args(_arrays(program, feed)), float(tolerance),
                                                 float(fit_share), float(max_segment), float(max_turn),
-                                                int(min_blocks), int(window))
+                                                int(min_blocks), int(window), float(smoothing_length),
+                                                float(lead_length))
     return {k: np.asarray(v) for k, v in arr.items()}, np.asarray(first), np.asarray(last), dict(stats)
 
 
@@ -213,7 +215,8 @@ def _plan_smooth(program, limits, feed, with_deviation, kw):
     tol = float(kw.pop("tolerance", 0.01))
     if not (tol > 0 and np.isfinite(tol)):
         raise ValueError(f"tolerance = {tol}: must be positive [mm]")
-    skw = {k: kw.pop(k) for k in ("fit_share", "max_segment", "max_turn", "min_blocks", "window") if k in kw}
+    skw = {k: kw.pop(k) for k in ("fit_share", "max_segment", "max_turn", "min_blocks", "window",
+                                          "smoothing_length", "lead_length") if k in kw}
     arr = _arrays(program, feed)
     if _dwells(program, len(arr["kind"])) is not None and np.any(_dwells(program, len(arr["kind"]))[1:-1] > 0):
         raise ValueError("rule = 'smooth': programs with dwells between moves are not supported yet")
