@@ -236,13 +236,14 @@ void bind_motion(py::module_& m) {
         stats["runs_smoothed"] = r.runs_smoothed;
         stats["runs_kept"] = r.runs_kept;
         stats["corners_kept"] = r.corners_kept;
+        stats["corners_rounded"] = r.corners_rounded;
         stats["max_fit_deviation_mm"] = r.max_fit_deviation;
         return py::make_tuple(arrays, r.source_first, r.source_last, stats);
       },
       py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
-      py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("fit_share") = 0.75, py::arg("max_segment") = 4.0,
+      py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("fit_share") = 0.9, py::arg("max_segment") = 4.0,
       py::arg("max_turn") = 0.5236, py::arg("min_blocks") = 3, py::arg("window") = 4096,
-      py::arg("smoothing_length") = 4.0, py::arg("lead_length") = 2.0);
+      py::arg("smoothing_length") = 10.0, py::arg("lead_length") = 2.0);
   m.def(
       "_deviation_to_program",
       [](const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,

@@ -710,12 +710,14 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
   }
   // a line whose first part became the lead-out of the run before it starts later
   long start_override_block = -1;
+  std::vector<bool> program_line;  // per new block: a program line block or a part of one
   Vec3 start_override = Vec3::Zero();
   auto keep = [&](std::size_t i) {
     res.blocks.push_back(program[i]);
     if (static_cast<long>(i) == start_override_block) res.blocks.back().start = start_override;
     res.source_first.push_back(static_cast<long>(i));
     res.source_last.push_back(static_cast<long>(i));
+    program_line.push_back(program[i].kind == MotionKind::line);
   };
   std::size_t i = 0;
   std::vector<V2> pts;
@@ -783,11 +785,13 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       return turn_between(u1, u2) <= opt.max_turn;
     };
     auto fit_emit = [&](std::size_t i, std::size_t j) -> bool {
-      // the lead-in may only shorten the block just emitted, when that is block i − 1 as a line
-      const bool lead_in = lead_block(static_cast<long>(i) - 1, i) && !res.blocks.empty() &&
-                           res.source_first.back() == static_cast<long>(i) - 1 &&
-                           res.blocks.back().kind == MotionKind::line;
-      const bool lead_out = lead_block(static_cast<long>(j), j - 1);
+      // Leads: the kept long line i − 1 (the block just emitted, shortened) and the long line j lend the
+      // run their parts next to the joints, so the curve starts / ends tangent to them.
+      long lin = -1, lout = -1;
+      if (lead_block(static_cast<long>(i) - 1, i) && !res.blocks.empty() &&
+          res.source_first.back() == static_cast<long>(i) - 1 && res.blocks.back().kind == MotionKind::line)
+        lin = static_cast<long>(i) - 1;
+      if (lead_block(static_cast<long>(j), j - 1)) lout = static_cast<long>(j);
       std::vector<long> src;  // per polyline segment: its program block
       double run_len = 0;
       for (std::size_t q = i; q < j; ++q) run_len += program[q].length();
@@ -795,15 +799,16 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       pts.clear();
       RunEnds ends;
       Vec3 first3 = program[i].start, last3 = program[j - 1].end;
-      if (lead_in) {
-        const auto& b = program[i - 1];
-        const double a = std::min({opt.lead_length, 0.5 * b.length(), (res.blocks.back().end - res.blocks.back().start).norm()});
-        const Vec3 d = dir(i - 1);
+      if (lin >= 0) {
+        const auto& b = program[static_cast<std::size_t>(lin)];
+        double a = std::min(opt.lead_length, 0.5 * b.length());
+        a = std::min(a, (res.blocks.back().end - res.blocks.back().start).norm());
+        const Vec3 d = dir(static_cast<std::size_t>(lin));
         first3 = b.end - a * d;
         const int k = std::max(1, static_cast<int>(std::ceil(a / mean)));
         for (int q = 0; q < k; ++q) {
           pts.push_back(to2(first3 + (a * q / k) * d));
-          src.push_back(static_cast<long>(i) - 1);
+          src.push_back(lin);
         }
         ends.fix0 = true;
         ends.d0 = to2(d).normalized();
@@ -813,19 +818,20 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
         pts.push_back(to2(program[q].end));
         src.push_back(static_cast<long>(q));
       }
-      if (lead_out) {
-        const auto& b = program[j];
+      if (lout >= 0) {
+        const auto& b = program[static_cast<std::size_t>(lout)];
         const double a = std::min(opt.lead_length, 0.5 * b.length());
-        const Vec3 d = dir(j);
+        const Vec3 d = dir(static_cast<std::size_t>(lout));
         last3 = b.start + a * d;
         const int k = std::max(1, static_cast<int>(std::ceil(a / mean)));
         for (int q = 1; q <= k; ++q) {
           pts.push_back(to2(q == k ? last3 : Vec3(b.start + (a * q / k) * d)));
-          src.push_back(static_cast<long>(j));
+          src.push_back(lout);
         }
         ends.fix1 = true;
         ends.d1 = to2(d).normalized();
       }
+      const bool lead_in = lin >= 0, lead_out = lout >= 0;
       RunFit rf;
       if (!fit_run(pts, ends, mean, opt, rf)) return false;
       ++res.runs_smoothed;
@@ -836,6 +842,7 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
           res.blocks.pop_back();
           res.source_first.pop_back();
           res.source_last.pop_back();
+          program_line.pop_back();
         }
       }
       if (lead_out) {  // the line after starts where the curve ends
@@ -869,6 +876,7 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
         res.blocks.push_back(b);
         res.source_first.push_back(block_at(p.ua));
         res.source_last.push_back(block_at(p.ub));
+        program_line.push_back(false);
         cur = b.end;
       }
       return true;
@@ -898,6 +906,77 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       for (std::size_t q = i0; q < j0; ++q) keep(q);
     }
     i = j;
+  }
+  // Corners between two program lines (kept corners, the vertices of runs left as programmed, joints
+  // of long lines): a tangent arc inside the corner whose distance from the vertex is the fit tolerance
+  // e, so the planner no longer has to turn there within the blend tolerance. For a turn θ (half
+  // interior angle φ = (π − θ)/2) the arc has radius R = e·sin φ / (1 − sin φ) and touches the lines at
+  // T = R·tan(θ/2) from the vertex; T is capped at half of each line's length before rounding (R and
+  // the vertex distance shrink with it). Every point of the arc and of the two cut-off line pieces is
+  // then within e of the other.
+  if (opt.round_corners) {
+    const double e = opt.fit_tolerance();
+    std::vector<double> len0(res.blocks.size());
+    for (std::size_t k = 0; k < res.blocks.size(); ++k) len0[k] = res.blocks[k].length();
+    SmoothResult out;
+    out.blocks.reserve(res.blocks.size());
+    for (std::size_t k = 0; k < res.blocks.size(); ++k) {
+      out.blocks.push_back(res.blocks[k]);
+      out.source_first.push_back(res.source_first[k]);
+      out.source_last.push_back(res.source_last[k]);
+      if (k + 1 == res.blocks.size() || !program_line[k] || !program_line[k + 1]) continue;
+      toolpath::Block& b1 = out.blocks.back();
+      const toolpath::Block& b2 = res.blocks[k + 1];
+      if (b1.feed != b2.feed || (b2.start - b1.end).norm() > 1e-9) continue;
+      const double l1 = b1.length(), l2 = b2.length();
+      if (l1 <= 1e-9 || l2 <= 1e-9) continue;
+      const Vec3 d1 = (b1.end - b1.start) / l1, d2 = (b2.end - b2.start) / l2;
+      const double th = turn_between(d1, d2);
+      if (th < 1e-6 || th > pi - 1e-3) continue;
+      int n = -1;  // the normal axis of a coordinate plane holding both lines (Z, then Y, then X)
+      for (int a : {2, 1, 0})
+        if (n < 0 && std::abs(b1.start[a] - b1.end[a]) <= opt.plane_tolerance &&
+            std::abs(b2.end[a] - b1.end[a]) <= opt.plane_tolerance)
+          n = a;
+      if (n < 0) continue;
+      const toolpath::Plane plane = n == 2 ? toolpath::Plane::xy : n == 1 ? toolpath::Plane::zx : toolpath::Plane::yz;
+      const auto ax = toolpath::plane_axes(plane);
+      const double sphi = std::cos(0.5 * th);  // sin φ
+      const double tan_half = std::tan(0.5 * th);
+      double R = e * sphi / (1.0 - sphi);
+      double T = R * tan_half;
+      const double cap = std::min({0.5 * len0[k], 0.5 * len0[k + 1], l1 - 1e-9, l2 - 1e-9});
+      if (T > cap) {
+        T = cap;
+        R = T / tan_half;
+      }
+      if (!(T > 1e-9)) continue;
+      const Vec3 V = b1.end;
+      const Vec3 p1 = V - T * d1, p2 = V + T * d2;
+      const V2 t1(d1[ax.a], d1[ax.b]), t2(d2[ax.a], d2[ax.b]);
+      const bool ccw = cross2(t1, t2) > 0;
+      const V2 nrm = ccw ? perp(t1) : V2(-perp(t1));
+      toolpath::Block arc = b2;
+      arc.kind = MotionKind::arc;
+      arc.plane = plane;
+      arc.start = p1;
+      arc.end = p2;
+      arc.center = p1;
+      arc.center[ax.a] += R * nrm.x();
+      arc.center[ax.b] += R * nrm.y();
+      arc.clockwise = !ccw;
+      arc.turns = 1;
+      b1.end = p1;
+      res.blocks[k + 1].start = p2;
+      out.blocks.push_back(arc);
+      out.source_first.push_back(res.source_first[k]);
+      out.source_last.push_back(res.source_last[k + 1]);
+      ++out.corners_rounded;
+    }
+    res.blocks = std::move(out.blocks);
+    res.source_first = std::move(out.source_first);
+    res.source_last = std::move(out.source_last);
+    res.corners_rounded = out.corners_rounded;
   }
   return res;
 }
