@@ -561,18 +561,21 @@ struct RunEnds {
   V2 d0 = V2::Zero(), d1 = V2::Zero();
 };
 
-// Fit a planar run (polyline pts) with a smoothing spline pulled back into the tolerance tube.
+// Fit a planar run (polyline pts, mean segment length `mean` without the leads) with a smoothing spline
+// pulled back into the tolerance tube.
 //
-// The spline (cubic, uniform knots in arc length about 1.5 mean segments apart, end points fixed, end
-// tangents fixed where `ends` says) minimises the weighted squared distance to samples of the polyline
-// plus smoothing_length⁴ · ∫|s''|² (second differences of the control points). A large smoothing length
-// lets the curve use the whole tube (both sides of the polyline) and keeps its curvature low; where the
-// curve then leaves the tube the weights of those samples are raised and the curve is fitted again, so
-// it is pulled back only where it has to be. Each round the sample parameters move to their foot points
-// on the curve, so a residual is the distance of the sample from the curve. When every residual is
-// within 0.8 of the fit tolerance the arc chain is built and checked both ways with rigorous bounds;
-// where the check fails, the weights of the nearby samples are raised and the round repeats. False when
-// the check still fails after max_refinements rounds.
+// The spline (cubic; knots uniform in arc length about knot_spacing mean segments apart; end points
+// fixed, end tangents fixed where `ends` says) minimises Σ w_k·|s(u_k) − p_k|² over samples p_k of the
+// polyline (every ≤ mean/2, w_k first the arc length each stands for) plus smoothing_length⁴·∫|s''|².
+// A long smoothing length lets the curve use the whole tube (both sides of the polyline) and keeps its
+// curvature low; where the curve then leaves the tube the weights of those samples are raised and the
+// curve is fitted again, so it is pulled back only where it has to be. Each round the sample
+// parameters move to their foot points on the curve, so a residual is the distance of the sample from
+// the curve. A sample still out after a few rounds gets a knot next to it (its knot span is halved,
+// down to mean/16). When every residual is within 0.8 of the fit tolerance the arc chain is built and
+// checked both ways with rigorous bounds; where the check fails, the weights of the samples within one
+// mean segment are raised and the round repeats. False when the check still fails after
+// max_refinements rounds.
 bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const SmoothOptions& opt,
              RunFit& out) {
   const std::size_t n = pts.size();  // vertices
@@ -932,7 +935,7 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       if (l1 <= 1e-9 || l2 <= 1e-9) continue;
       const Vec3 d1 = (b1.end - b1.start) / l1, d2 = (b2.end - b2.start) / l2;
       const double th = turn_between(d1, d2);
-      if (th < 1e-6 || th > pi - 1e-3) continue;
+      if (th < 1e-3 || th > pi - 1e-3) continue;  // nearly straight: the planner blends it; reversals stay
       int n = -1;  // the normal axis of a coordinate plane holding both lines (Z, then Y, then X)
       for (int a : {2, 1, 0})
         if (n < 0 && std::abs(b1.start[a] - b1.end[a]) <= opt.plane_tolerance &&
