@@ -787,25 +787,52 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       const Vec3 u2 = before ? dir(e) : dir(static_cast<std::size_t>(q));
       return turn_between(u1, u2) <= opt.max_turn;
     };
+    // A run's end block q next to a corner (the vertex at its other end turns more than max_turn) may
+    // lend the run its inner half, so the corner stays between two lines and is rounded below: when it
+    // is long enough for its direction to be sure (≥ 20·ε and ≥ 0.05 mm) and turns at most
+    // max_turn / 2 against its neighbour r in the run.
+    auto corner_lead = [&](std::size_t q, std::size_t r) {
+      const bool at_start = r > q;
+      const std::size_t c = at_start ? q : q + 1;  // the corner is at the start of block c
+      if (c == 0 || c >= nb) return false;
+      const auto &b0 = program[c - 1], &b1 = program[c];
+      if (b0.kind == MotionKind::rapid || b1.kind == MotionKind::rapid || b0.length() <= 1e-9 ||
+          b1.length() <= 1e-9 || (b1.start - b0.end).norm() > 1e-9)
+        return false;
+      if (turn_between(b0.tangent_at(1.0), b1.tangent_at(0.0)) <= opt.max_turn) return false;
+      if (program[q].length() < std::max(0.05, 20.0 * opt.tolerance)) return false;
+      return turn_between(dir(std::min(q, r)), dir(std::max(q, r))) <= 0.5 * opt.max_turn;
+    };
     auto fit_emit = [&](std::size_t i, std::size_t j) -> bool {
       // Leads: the kept long line i − 1 (the block just emitted, shortened) and the long line j lend the
       // run their parts next to the joints, so the curve starts / ends tangent to them.
       long lin = -1, lout = -1;
+      bool lin_inner = false, lout_inner = false;
       if (lead_block(static_cast<long>(i) - 1, i) && !res.blocks.empty() &&
-          res.source_first.back() == static_cast<long>(i) - 1 && res.blocks.back().kind == MotionKind::line)
+          res.source_first.back() == static_cast<long>(i) - 1 && res.blocks.back().kind == MotionKind::line) {
         lin = static_cast<long>(i) - 1;
-      if (lead_block(static_cast<long>(j), j - 1)) lout = static_cast<long>(j);
+      } else if (j - i > static_cast<std::size_t>(opt.min_blocks) && corner_lead(i, i + 1)) {
+        lin = static_cast<long>(i);
+        lin_inner = true;
+      }
+      if (lead_block(static_cast<long>(j), j - 1)) {
+        lout = static_cast<long>(j);
+      } else if (j - i - (lin_inner ? 1 : 0) > static_cast<std::size_t>(opt.min_blocks) && corner_lead(j - 1, j - 2)) {
+        lout = static_cast<long>(j) - 1;
+        lout_inner = true;
+      }
+      const std::size_t r0 = i + (lin_inner ? 1 : 0), r1 = j - (lout_inner ? 1 : 0);  // blocks wholly in the run
       std::vector<long> src;  // per polyline segment: its program block
       double run_len = 0;
-      for (std::size_t q = i; q < j; ++q) run_len += program[q].length();
-      const double mean = run_len / static_cast<double>(j - i);
+      for (std::size_t q = r0; q < r1; ++q) run_len += program[q].length();
+      const double mean = run_len / static_cast<double>(r1 - r0);
       pts.clear();
       RunEnds ends;
-      Vec3 first3 = program[i].start, last3 = program[j - 1].end;
+      Vec3 first3 = program[r0].start, last3 = program[r1 - 1].end;
       if (lin >= 0) {
         const auto& b = program[static_cast<std::size_t>(lin)];
         double a = std::min(opt.lead_length, 0.5 * b.length());
-        a = std::min(a, (res.blocks.back().end - res.blocks.back().start).norm());
+        if (!lin_inner) a = std::min(a, (res.blocks.back().end - res.blocks.back().start).norm());
         const Vec3 d = dir(static_cast<std::size_t>(lin));
         first3 = b.end - a * d;
         const int k = std::max(1, static_cast<int>(std::ceil(a / mean)));
@@ -816,8 +843,8 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
         ends.fix0 = true;
         ends.d0 = to2(d).normalized();
       }
-      pts.push_back(to2(program[i].start));
-      for (std::size_t q = i; q < j; ++q) {
+      pts.push_back(to2(program[r0].start));
+      for (std::size_t q = r0; q < r1; ++q) {
         pts.push_back(to2(program[q].end));
         src.push_back(static_cast<long>(q));
       }
@@ -834,7 +861,7 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
         ends.fix1 = true;
         ends.d1 = to2(d).normalized();
       }
-      const bool lead_in = lin >= 0, lead_out = lout >= 0;
+      const bool lead_in = lin >= 0 && !lin_inner, lead_out = lout >= 0 && !lout_inner;
       RunFit rf;
       if (!fit_run(pts, ends, mean, opt, rf)) return false;
       ++res.runs_smoothed;
@@ -859,6 +886,10 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
         const long s = static_cast<long>(std::upper_bound(cum.begin(), cum.end(), u) - cum.begin()) - 1;
         return src[static_cast<std::size_t>(std::clamp(s, 0L, static_cast<long>(src.size()) - 1))];
       };
+      if (lin_inner) {  // the first part of block i, from the corner to where the curve starts
+        keep(i);
+        res.blocks.back().end = first3;
+      }
       Vec3 cur = first3;
       for (std::size_t q = 0; q < rf.pieces.size(); ++q) {
         const Piece& p = rf.pieces[q];
@@ -881,6 +912,10 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
         res.source_last.push_back(block_at(p.ub));
         program_line.push_back(false);
         cur = b.end;
+      }
+      if (lout_inner) {  // the last part of block j − 1, from where the curve ends to the corner
+        keep(j - 1);
+        res.blocks.back().start = last3;
       }
       return true;
     };
