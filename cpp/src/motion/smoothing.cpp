@@ -503,9 +503,9 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   // polyline -> chain: every point of a polyline piece [q0, q1] is within
   // max(d(q0, C), d(q1, C)) + sagitta of the arc over chord C
   const long nch = static_cast<long>(cp.size()) - 1;
-  // chords whose parameter lies within ±w of the polyline piece's (the spline parameter follows the
-  // polyline's arc length closely; a miss only overestimates the bound)
-  const double w = 0.75 * mean;
+  // chords whose arc length along the polyline (through the parameter map) lies within ±w of the
+  // piece's; a chord outside the window can only make the bound larger, never smaller
+  const double w = 0.25 * mean + 4.0 * eps;
   auto poly_bound = [&](const V2& q0, const V2& q1, double uq) {
     const long lo = std::max(0L, static_cast<long>(std::lower_bound(cu.begin(), cu.end(), uq - w) - cu.begin()) - 2);
     const long hi = std::min(nch - 1, static_cast<long>(std::upper_bound(cu.begin(), cu.end(), uq + w) - cu.begin()) + 1);
@@ -599,7 +599,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   }
   const double ell = opt.smoothing_length;
   const double pen = ell * ell * ell * ell;
-  const double target = 0.8 * eps;
+  const double target = 0.9 * eps;
   Spline sp;
   ParamMap amap;
   std::vector<double> bad, add;
@@ -620,7 +620,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
       V2 c0, c1, c2;
       sp.eval(u, c0, c1, c2);
       const double r_old = (c0 - s.p).norm();
-      for (int it = 0; it < 3; ++it) {
+      for (int it = 0; it < 2; ++it) {
         const V2 r = c0 - s.p;
         const double fp = c1.squaredNorm() + r.dot(c2);
         if (!(fp > 0)) break;
@@ -637,7 +637,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
       }
       if (res > target) {
         const double g = res / target;
-        s.w *= std::clamp(2.0 * g * g, 2.0, 100.0);
+        s.w *= std::clamp(1.2 * g * g, 1.2, 100.0);
         over = true;
         // a sample that stays out of the tube for a few rounds gets a knot next to it: the spline's
         // curvature may then change there (the ∫|s''|² penalty keeps the added freedom smooth)
