@@ -196,11 +196,13 @@ def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float
 
     Runs of line blocks each at most `max_segment` [mm] long, turning at most `max_turn` [rad] at every
     vertex, with one feed and in one coordinate plane, are replaced by tangent-continuous arcs that
-    follow a least-squares cubic B-spline and stay within ``fit_share·tolerance`` [mm] of the polyline
-    both ways (checked); vertices turning more are corners and are kept. Returns
-    ``(arrays, first, last, stats)``: the new blocks as block arrays, per new block the first and last
-    program block it replaces, and ``runs_smoothed``, ``runs_kept``, ``corners_kept``,
-    ``max_fit_deviation_mm``.
+    follow a smoothing spline (penalty ``smoothing_length⁴·∫|s''|²``, `smoothing_length` [mm]) pulled back
+    into the tube, and stay within ``fit_share·tolerance`` [mm] of the polyline both ways (checked); a
+    run borrows up to `lead_length` [mm] of an adjoining long line so that it joins it tangentially.
+    Vertices turning more are corners; a vertex between two program lines becomes an arc within
+    ``fit_share·tolerance``. Returns ``(arrays, first, last, stats)``: the new blocks as block arrays,
+    per new block the first and last program block it replaces, and ``runs_smoothed``, ``runs_kept``,
+    ``corners_kept``, ``corners_rounded``, ``max_fit_deviation_mm``.
     """
     arr, first, last, stats = _m._smooth_arrays(*_call_args(_arrays(program, feed)), float(tolerance),
                                                 float(fit_share), float(max_segment), float(max_turn),
@@ -265,7 +267,7 @@ def plan(program, limits: AxisLimits, options: PlanOptions | None = None, *, fee
     micro-segment runs are first replaced by :func:`smooth_path` within ``fit_share·ε``, then planned
     with the blend rule at ``(1 − fit_share)·ε``; ``max_path_deviation_mm`` is measured against the
     original program and ``block`` is the first program block of the smoothed block being run; stats
-    add ``runs_smoothed``, ``runs_kept``, ``corners_kept``, ``max_fit_deviation_mm``,
+    add ``runs_smoothed``, ``runs_kept``, ``corners_kept``, ``corners_rounded``, ``max_fit_deviation_mm``,
     ``smoothed_blocks``.
     """
     if options is None and str(option_keywords.get("rule", "")) == "smooth":
