@@ -243,8 +243,11 @@ struct ParamMap {
 //   Σ_k w_k |s(u_k) − p_k|² + pen · ∫ |s''(u)|² du
 // with the first front.size() and the last back.size() control points fixed to the given values
 // (end points, and end tangents when the second control point is fixed too). Banded Cholesky, O(n).
+// pen_band caches the penalty's band for these knots: it is filled when empty and must be cleared
+// when the knots change.
 bool fit(const std::vector<Sample>& samples, double L, const std::vector<double>& interior, double pen,
-         const std::vector<V2>& front, const std::vector<V2>& back, Spline& sp) {
+         const std::vector<V2>& front, const std::vector<V2>& back, Spline& sp,
+         std::vector<std::array<double, 4>>& pen_band) {
   const int m = static_cast<int>(interior.size()) + 4;
   const int nf = static_cast<int>(front.size()), nk = static_cast<int>(back.size());
   if (nf + nk > m) return false;
@@ -252,7 +255,25 @@ bool fit(const std::vector<Sample>& samples, double L, const std::vector<double>
   sp.t.insert(sp.t.end(), interior.begin(), interior.end());
   sp.t.insert(sp.t.end(), 4, L);
   sp.P.assign(static_cast<std::size_t>(m), V2::Zero());
-  std::vector<std::array<double, 4>> band(static_cast<std::size_t>(m), std::array<double, 4>{0, 0, 0, 0});
+  if (pen_band.empty()) {
+    // pen·∫|s''|² over [0, L]: s'' is linear on each knot span, so two Gauss points per span are exact
+    pen_band.assign(static_cast<std::size_t>(m), std::array<double, 4>{0, 0, 0, 0});
+    const double g = 0.5 / std::sqrt(3.0);
+    for (int k = 3; k < m; ++k) {
+      const double t0 = sp.t[static_cast<std::size_t>(k)], t1 = sp.t[static_cast<std::size_t>(k + 1)];
+      const double h = t1 - t0;
+      if (!(h > 0)) continue;
+      for (const double x : {0.5 - g, 0.5 + g}) {
+        double D[3][4];
+        sp.ders(k, t0 + x * h, D);
+        for (int r = 0; r < 4; ++r)
+          for (int q = r; q < 4; ++q)
+            pen_band[static_cast<std::size_t>(k - 3 + r)][static_cast<std::size_t>(q - r)] +=
+                pen * 0.5 * h * D[2][r] * D[2][q];
+      }
+    }
+  }
+  std::vector<std::array<double, 4>> band = pen_band;
   std::vector<V2> rhs(static_cast<std::size_t>(m), V2::Zero());
   for (const Sample& s : samples) {
     const int k = sp.span(s.u);
@@ -262,20 +283,6 @@ bool fit(const std::vector<Sample>& samples, double L, const std::vector<double>
       const auto i = static_cast<std::size_t>(k - 3 + r);
       rhs[i] += s.w * N[r] * s.p;
       for (int q = r; q < 4; ++q) band[i][static_cast<std::size_t>(q - r)] += s.w * N[r] * N[q];
-    }
-  }
-  // pen·∫|s''|² over [0, L]: s'' is linear on each knot span, so two Gauss points per span are exact
-  const double g = 0.5 / std::sqrt(3.0);
-  for (int k = 3; k < m; ++k) {
-    const double t0 = sp.t[static_cast<std::size_t>(k)], t1 = sp.t[static_cast<std::size_t>(k + 1)];
-    const double h = t1 - t0;
-    if (!(h > 0)) continue;
-    for (const double x : {0.5 - g, 0.5 + g}) {
-      double D[3][4];
-      sp.ders(k, t0 + x * h, D);
-      for (int r = 0; r < 4; ++r)
-        for (int q = r; q < 4; ++q)
-          band[static_cast<std::size_t>(k - 3 + r)][static_cast<std::size_t>(q - r)] += pen * 0.5 * h * D[2][r] * D[2][q];
     }
   }
   for (int q = 0; q < nf; ++q) sp.P[static_cast<std::size_t>(q)] = front[static_cast<std::size_t>(q)];
@@ -604,6 +611,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   ParamMap amap;
   std::vector<double> bad, add;
   std::vector<V2> front, back;
+  std::vector<std::array<double, 4>> pen_band;
   for (int round = 0; round < opt.max_refinements; ++round) {
     // clamped cubic: s'(0) = 3 (P1 − P0) / t4 and s'(L) = 3 (P_{m−1} − P_{m−2}) / (L − t_{m−1});
     // a fixed end tangent fixes the second control point for unit speed
@@ -611,7 +619,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
     back.assign(1, pts.back());
     if (ends.fix0) front.push_back(pts.front() + (knots.front() / 3.0) * ends.d0);
     if (ends.fix1) back.insert(back.begin(), pts.back() - ((L - knots.back()) / 3.0) * ends.d1);
-    if (!fit(samples, L, knots, pen, front, back, sp)) return false;
+    if (!fit(samples, L, knots, pen, front, back, sp, pen_band)) return false;
     bool over = false;
     add.clear();
     for (Sample& s : samples) {
@@ -666,6 +674,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
       }
       std::sort(knots.begin(), knots.end());
       knots.erase(std::unique(knots.begin(), knots.end()), knots.end());
+      pen_band.clear();
     }
   }
   return false;
