@@ -14,6 +14,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 import time
 from pathlib import Path
 
@@ -22,7 +23,8 @@ import numpy as np
 import netshape.motion as nm
 from netshape import toolpath
 
-DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "gcode"
+# the shared data folder: $NETSHAPE_SHARED_DATA, else ../shared/data next to the repository
+DATA = Path(os.environ.get("NETSHAPE_SHARED_DATA", Path(__file__).resolve().parents[1].parent / "shared" / "data")) / "gcode"
 LIM = nm.AxisLimits.uniform(250.0, 3000.0)
 
 

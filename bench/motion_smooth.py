@@ -22,6 +22,8 @@ import numpy as np
 import netshape.motion as nm
 from motion_plan import LIM, load, toppra_time  # bench/ is on sys.path when run as a script
 
+FIT_SHARE = 0.9  # netshape.motion.smooth_path default: the planner blends within (1 - FIT_SHARE)·ε
+
 
 def cycle(arr, rule, eps):
     tr = nm.plan(arr, LIM, rule=rule, tolerance=eps)
@@ -52,7 +54,7 @@ def section_toppra(quick):
     arr["feed"][:] = 1e4
     eps = 0.01
     new = nm.smooth_path(arr, eps)[0]
-    opts = nm.make_options("blend", tolerance=0.25 * eps, lookahead=max(64, n + 2))
+    opts = nm.make_options("blend", tolerance=(1.0 - FIT_SHARE) * eps, lookahead=max(64, n + 2))
     ds = 0.002
     p, s, t_ours = nm.path_points(new, LIM, opts, ds)
     keep = np.concatenate([[True], np.diff(s) > 1e-6])
@@ -67,7 +69,7 @@ def section_toppra(quick):
 def section_throughput(repeat):
     arr = load("3D_Chips.ngc", 1.0)
     n = int(np.count_nonzero(arr["kind"] != 0))
-    opts = nm.make_options("blend", tolerance=0.0025, lookahead=64)
+    opts = nm.make_options("blend", tolerance=(1.0 - FIT_SHARE) * 0.01, lookahead=64)
     best_s = best_p = float("inf")
     for _ in range(3):
         t0 = time.process_time()

@@ -190,7 +190,7 @@ void bind_motion(py::module_& m) {
          py_types::RefPoints3 center, const Eigen::Ref<const Eigen::VectorXi>& clockwise,
          const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
          py_types::RefVector feed, double tolerance, double fit_share, double max_segment, double max_turn,
-         int min_blocks, int window) {
+         int min_blocks, int window, double smoothing_length, double lead_length) {
         // Tolerance-band smoothing (smoothing.hpp): the new blocks as arrays, per new block the first and
         // last program block it replaces, and the counts.
         SmoothOptions o;
@@ -200,6 +200,8 @@ void bind_motion(py::module_& m) {
         o.max_turn = max_turn;
         o.min_blocks = min_blocks;
         o.window = window;
+        o.smoothing_length = smoothing_length;
+        o.lead_length = lead_length;
         const auto blocks = blocks_from_arrays(kind, start, end, center, clockwise, plane, turns, feed);
         SmoothResult r;
         {
@@ -234,12 +236,14 @@ void bind_motion(py::module_& m) {
         stats["runs_smoothed"] = r.runs_smoothed;
         stats["runs_kept"] = r.runs_kept;
         stats["corners_kept"] = r.corners_kept;
+        stats["corners_rounded"] = r.corners_rounded;
         stats["max_fit_deviation_mm"] = r.max_fit_deviation;
         return py::make_tuple(arrays, r.source_first, r.source_last, stats);
       },
       py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
-      py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("fit_share") = 0.75, py::arg("max_segment") = 4.0,
-      py::arg("max_turn") = 0.5236, py::arg("min_blocks") = 3, py::arg("window") = 4096);
+      py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("fit_share") = 0.9, py::arg("max_segment") = 4.0,
+      py::arg("max_turn") = 0.5236, py::arg("min_blocks") = 3, py::arg("window") = 4096,
+      py::arg("smoothing_length") = 10.0, py::arg("lead_length") = 2.0);
   m.def(
       "_deviation_to_program",
       [](const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,

@@ -24,10 +24,12 @@ Corner rules:
                       a per --junction-accel
   blend               a G2 Bézier blend within --tolerance at each corner (feasible, no jump)
   smooth              runs of micro-segments (lines <= --max-segment mm turning <= --max-turn deg at
-                      each vertex) are replaced by tangent-continuous arcs fitted within 3/4 of
-                      --tolerance of the program (checked both ways); sharper vertices are corners,
-                      kept and blended within the rest; then planned as blend. Adds runs_smoothed,
-                      corners_kept; max_path_deviation_mm is measured against the original program
+                      each vertex) are replaced by tangent-continuous arcs following a smoothing
+                      spline pulled back within 0.9 of --tolerance of the program (checked both ways);
+                      sharper vertices are corners, rounded by an arc where they lie between lines and
+                      blended within the rest; then planned as blend. Adds runs_smoothed,
+                      corners_kept, corners_rounded; max_path_deviation_mm is measured against the
+                      original program
 """
 
 _EPILOG = """\

@@ -189,21 +189,25 @@ def _dwells(program, n: int):
     return d
 
 
-def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float = 0.75,
-                max_segment: float = 4.0, max_turn: float = 0.5236, min_blocks: int = 3, window: int = 4096):
+def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float = 0.9,
+                max_segment: float = 4.0, max_turn: float = 0.5236, min_blocks: int = 3, window: int = 4096,
+                smoothing_length: float = 10.0, lead_length: float = 2.0):
     """Tolerance-band smoothing of micro-segment runs (C++ ``netshape::motion::smooth``).
 
     Runs of line blocks each at most `max_segment` [mm] long, turning at most `max_turn` [rad] at every
     vertex, with one feed and in one coordinate plane, are replaced by tangent-continuous arcs that
-    follow a least-squares cubic B-spline and stay within ``fit_share·tolerance`` [mm] of the polyline
-    both ways (checked); vertices turning more are corners and are kept. Returns
-    ``(arrays, first, last, stats)``: the new blocks as block arrays, per new block the first and last
-    program block it replaces, and ``runs_smoothed``, ``runs_kept``, ``corners_kept``,
-    ``max_fit_deviation_mm``.
+    follow a smoothing spline (penalty ``smoothing_length⁴·∫|s''|²``, `smoothing_length` [mm]) pulled back
+    into the tube, and stay within ``fit_share·tolerance`` [mm] of the polyline both ways (checked); a
+    run borrows up to `lead_length` [mm] of an adjoining long line so that it joins it tangentially.
+    Vertices turning more are corners; a vertex between two program lines becomes an arc within
+    ``fit_share·tolerance``. Returns ``(arrays, first, last, stats)``: the new blocks as block arrays,
+    per new block the first and last program block it replaces, and ``runs_smoothed``, ``runs_kept``,
+    ``corners_kept``, ``corners_rounded``, ``max_fit_deviation_mm``.
     """
     arr, first, last, stats = _m._smooth_arrays(*_call_args(_arrays(program, feed)), float(tolerance),
                                                 float(fit_share), float(max_segment), float(max_turn),
-                                                int(min_blocks), int(window))
+                                                int(min_blocks), int(window), float(smoothing_length),
+                                                float(lead_length))
     return {k: np.asarray(v) for k, v in arr.items()}, np.asarray(first), np.asarray(last), dict(stats)
 
 
@@ -213,12 +217,13 @@ def _plan_smooth(program, limits, feed, with_deviation, kw):
     tol = float(kw.pop("tolerance", 0.01))
     if not (tol > 0 and np.isfinite(tol)):
         raise ValueError(f"tolerance = {tol}: must be positive [mm]")
-    skw = {k: kw.pop(k) for k in ("fit_share", "max_segment", "max_turn", "min_blocks", "window") if k in kw}
+    skw = {k: kw.pop(k) for k in ("fit_share", "max_segment", "max_turn", "min_blocks", "window",
+                                          "smoothing_length", "lead_length") if k in kw}
     arr = _arrays(program, feed)
     if _dwells(program, len(arr["kind"])) is not None and np.any(_dwells(program, len(arr["kind"]))[1:-1] > 0):
         raise ValueError("rule = 'smooth': programs with dwells between moves are not supported yet")
     new, first, last, sstats = smooth_path(arr, tol, **skw)
-    fit_share = float(skw.get("fit_share", 0.75))
+    fit_share = float(skw.get("fit_share", 0.9))
     options = make_options("blend", tolerance=tol * (1.0 - fit_share), **kw)
     t, pos, vel, fd, blk, stats = _m._plan_arrays(*_call_args(new), limits, options, False)
     stats = dict(stats)
@@ -262,7 +267,7 @@ def plan(program, limits: AxisLimits, options: PlanOptions | None = None, *, fee
     micro-segment runs are first replaced by :func:`smooth_path` within ``fit_share·ε``, then planned
     with the blend rule at ``(1 − fit_share)·ε``; ``max_path_deviation_mm`` is measured against the
     original program and ``block`` is the first program block of the smoothed block being run; stats
-    add ``runs_smoothed``, ``runs_kept``, ``corners_kept``, ``max_fit_deviation_mm``,
+    add ``runs_smoothed``, ``runs_kept``, ``corners_kept``, ``corners_rounded``, ``max_fit_deviation_mm``,
     ``smoothed_blocks``.
     """
     if options is None and str(option_keywords.get("rule", "")) == "smooth":

@@ -4,15 +4,20 @@
 ///
 /// A run of short line blocks (each at most `max_segment` long, every interior turn at most
 /// `max_turn`, one feed, all points in one coordinate plane G17/G18/G19) is replaced by a chain of
-/// tangent-continuous circular arcs that follows a least-squares cubic B-spline of the run
-/// (parameter and interior knots by arc length). The chain is checked against the run's polyline
-/// both ways — every point of the chain within `fit_tolerance()` of the polyline and every point of
-/// the polyline within it of the chain — with rigorous upper bounds from chord samples (below);
-/// where a bound fails, knots are added in that span and the run is fitted again. A run that still
-/// fails after `max_refinements` rounds is cut at its sharpest interior vertex and both parts are
-/// tried again; a part shorter than `min_blocks` that fails is left as programmed. Vertices turning more than
-/// `max_turn` are corners: they end a run and stay (the planner's blend rule blends them within the
-/// rest of the tolerance). Arcs, rapids and long lines pass through unchanged.
+/// tangent-continuous circular arcs that follows a smoothing spline of the run: a cubic B-spline that
+/// minimises the weighted squared distance to samples of the polyline plus ℓ⁴·∫|s''|²
+/// (`smoothing_length` ℓ), then is pulled back into the tube by raising the weights of the samples it
+/// leaves (knots are added next to samples that stay out for several rounds). A long line adjoining a
+/// run lends it up to `lead_length`, so the curve joins the line tangentially. The chain is checked
+/// against the run's polyline both ways — every point of the chain within `fit_tolerance()` of the
+/// polyline and every point of the polyline within it of the chain — with rigorous upper bounds from
+/// chord samples (below). A run that still fails after `max_refinements` rounds is cut at its sharpest
+/// interior vertex and both parts are tried again; a part shorter than `min_blocks` that fails is left
+/// as programmed. Vertices turning more than `max_turn` are corners: they end a run. A vertex between
+/// two program lines (a corner between lines, a vertex of a run left as programmed) becomes a tangent
+/// arc inside it whose distance from the vertex is at most `fit_tolerance()` (`round_corners`); the
+/// planner's blend rule blends the rest within the remaining tolerance. Arcs, rapids and other long
+/// lines pass through unchanged.
 ///
 /// Error bounds: for two chord points c0, c1 of an arc (sagitta σ = κ·h²/8) and a polyline segment
 /// S, dist(c, S) is convex along the chord, so every arc point between them is within
@@ -30,12 +35,16 @@ namespace netshape::motion {
 /// Options of the smoothing stage.
 struct SmoothOptions {
   double tolerance = 0.01;    ///< total contour tolerance ε [mm] (fit plus the planner's corner blends)
-  double fit_share = 0.75;    ///< share of ε given to the fitted arcs; the rest is the blend tolerance
+  double fit_share = 0.9;     ///< share of ε given to the fitted arcs; the rest is the blend tolerance
   double max_segment = 4.0;   ///< a line longer than this is not a micro-segment [mm]
   double max_turn = 0.5236;   ///< a vertex turning more than this (30°) is a corner that is kept [rad]
   int min_blocks = 3;         ///< shortest run that is smoothed [blocks]
   int window = 4096;          ///< longest run fitted at once [blocks] (longer runs are cut at a vertex)
-  int max_refinements = 3;    ///< knot-insertion rounds before a run is left as programmed
+  int max_refinements = 60;   ///< pull-back rounds (refit with raised weights) before a run is cut / kept
+  double smoothing_length = 10.0;  ///< ℓ: the fit minimises Σ w·dist² + ℓ⁴·∫|s''|² (ℓ in mm)
+  double knot_spacing = 1.5;  ///< knot spacing of the spline in mean segment lengths of the run
+  double lead_length = 2.0;   ///< longest part of an adjoining line a run's curve may use [mm]
+  bool round_corners = true;  ///< replace the vertex between two program lines by an arc within fit_tolerance()
   double plane_tolerance = 1e-9;  ///< a run is planar when its normal coordinate varies less [mm]
 
   /// Tolerance of the fitted arcs against the polyline [mm].
@@ -53,6 +62,7 @@ struct SmoothResult {
   long runs_smoothed = 0;   ///< runs replaced by arcs
   long runs_kept = 0;       ///< runs that failed the check and were left as programmed
   long corners_kept = 0;    ///< vertices between feed moves turning more than max_turn
+  long corners_rounded = 0; ///< vertices between two program lines replaced by an arc
   double max_fit_deviation = 0;  ///< largest checked bound over the smoothed runs, both ways [mm]
 };
 
