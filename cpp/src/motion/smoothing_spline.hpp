@@ -1,0 +1,301 @@
+#pragma once
+// The tolerance-band smoothing stage's fit (private, included by smoothing.cpp only, so everything here
+// has internal linkage): 2-D helpers, the cubic B-spline with its banded least-squares fit and exact
+// curvature penalty, the samples of a run and the map from spline parameter to program arc length.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "netshape/core/types.hpp"
+
+namespace netshape::motion {
+namespace {
+
+using V2 = Eigen::Vector2d;
+
+double cross2(const V2& a, const V2& b) { return a.x() * b.y() - a.y() * b.x(); }
+V2 perp(const V2& t) { return V2(-t.y(), t.x()); }
+
+double seg_dist(const V2& p, const V2& a, const V2& b) {
+  const V2 d = b - a;
+  const double l2 = d.squaredNorm();
+  const double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * d)).norm();
+}
+
+// Cubic B-spline (clamped) in the plane, parameter u ∈ [0, L].
+struct Spline {
+  std::vector<double> t;  // knots, 4 equal at each end
+  std::vector<V2> P;      // control points
+  int span(double u) const {
+    const int m = static_cast<int>(P.size());
+    if (u >= t[static_cast<std::size_t>(m)]) return m - 1;
+    const auto it = std::upper_bound(t.begin() + 3, t.begin() + m + 1, u);
+    return static_cast<int>(it - t.begin()) - 1;
+  }
+  // the four non-zero basis values at u in span k (functions k−3..k)
+  void basis(int k, double u, double N[4]) const {
+    double left[4], right[4];
+    N[0] = 1.0;
+    for (int j = 1; j <= 3; ++j) {
+      left[j] = u - t[static_cast<std::size_t>(k + 1 - j)];
+      right[j] = t[static_cast<std::size_t>(k + j)] - u;
+      double saved = 0.0;
+      for (int r = 0; r < j; ++r) {
+        const double den = right[r + 1] + left[j - r];
+        const double tmp = den > 0 ? N[r] / den : 0.0;
+        N[r] = saved + right[r + 1] * tmp;
+        saved = left[j - r] * tmp;
+      }
+      N[j] = saved;
+    }
+  }
+  V2 point(double u) const {
+    const int k = span(u);
+    double N[4];
+    basis(k, u, N);
+    V2 p = V2::Zero();
+    for (int r = 0; r < 4; ++r) p += N[r] * P[static_cast<std::size_t>(k - 3 + r)];
+    return p;
+  }
+  // derivative by a central difference of the exact point (h relative to L) is not exact; use the
+  // hodograph: a quadratic B-spline on t[1..] with control points 3(P_{i+1} − P_i)/(t_{i+4} − t_{i+1})
+  V2 deriv(double u) const {
+    const int k = span(u);
+    // quadratic basis on the same knot span
+    double N[3], left[3], right[3];
+    N[0] = 1.0;
+    for (int j = 1; j <= 2; ++j) {
+      left[j] = u - t[static_cast<std::size_t>(k + 1 - j)];
+      right[j] = t[static_cast<std::size_t>(k + j)] - u;
+      double saved = 0.0;
+      for (int r = 0; r < j; ++r) {
+        const double den = right[r + 1] + left[j - r];
+        const double tmp = den > 0 ? N[r] / den : 0.0;
+        N[r] = saved + right[r + 1] * tmp;
+        saved = left[j - r] * tmp;
+      }
+      N[j] = saved;
+    }
+    V2 d = V2::Zero();
+    for (int r = 0; r < 3; ++r) {
+      const int i = k - 3 + r;  // Q_i uses P_i, P_{i+1}
+      const double den = t[static_cast<std::size_t>(i + 4)] - t[static_cast<std::size_t>(i + 1)];
+      if (den > 0) d += N[r] * 3.0 * (P[static_cast<std::size_t>(i + 1)] - P[static_cast<std::size_t>(i)]) / den;
+    }
+    return d;
+  }
+  // values and first two derivatives of the four non-zero basis functions at u in span k
+  // (The NURBS Book, algorithm A2.3, degree 3)
+  void ders(int k, double u, double D[3][4]) const {
+    double ndu[4][4], left[4], right[4], a[2][4];
+    ndu[0][0] = 1.0;
+    for (int j = 1; j <= 3; ++j) {
+      left[j] = u - t[static_cast<std::size_t>(k + 1 - j)];
+      right[j] = t[static_cast<std::size_t>(k + j)] - u;
+      double saved = 0.0;
+      for (int r = 0; r < j; ++r) {
+        ndu[j][r] = right[r + 1] + left[j - r];
+        const double tmp = ndu[j][r] > 0 ? ndu[r][j - 1] / ndu[j][r] : 0.0;
+        ndu[r][j] = saved + right[r + 1] * tmp;
+        saved = left[j - r] * tmp;
+      }
+      ndu[j][j] = saved;
+    }
+    for (int j = 0; j <= 3; ++j) D[0][j] = ndu[j][3];
+    for (int r = 0; r <= 3; ++r) {
+      int s1 = 0, s2 = 1;
+      a[0][0] = 1.0;
+      for (int q = 1; q <= 2; ++q) {
+        double d = 0.0;
+        const int rk = r - q, pk = 3 - q;
+        if (r >= q) {
+          a[s2][0] = a[s1][0] / ndu[pk + 1][rk];
+          d = a[s2][0] * ndu[rk][pk];
+        }
+        const int j1 = rk >= -1 ? 1 : -rk;
+        const int j2 = r - 1 <= pk ? q - 1 : 3 - r;
+        for (int j = j1; j <= j2; ++j) {
+          a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][rk + j];
+          d += a[s2][j] * ndu[rk + j][pk];
+        }
+        if (r <= pk) {
+          a[s2][q] = -a[s1][q - 1] / ndu[pk + 1][r];
+          d += a[s2][q] * ndu[r][pk];
+        }
+        D[q][r] = d;
+        std::swap(s1, s2);
+      }
+    }
+    for (int r = 0; r <= 3; ++r) {
+      D[1][r] *= 3.0;
+      D[2][r] *= 6.0;
+    }
+  }
+  // point, first and second derivative at u
+  void eval(double u, V2& s0, V2& s1, V2& s2) const {
+    const int k = span(u);
+    double D[3][4];
+    ders(k, u, D);
+    s0 = s1 = s2 = V2::Zero();
+    for (int r = 0; r < 4; ++r) {
+      const V2& P = this->P[static_cast<std::size_t>(k - 3 + r)];
+      s0 += D[0][r] * P;
+      s1 += D[1][r] * P;
+      s2 += D[2][r] * P;
+    }
+  }
+};
+
+// Symmetric banded solve (half bandwidth 3) by Cholesky; band[i][k] = A(i, i + k). In place on rhs.
+bool band_solve(std::vector<std::array<double, 4>>& band, std::vector<V2>& rhs) {
+  const int n = static_cast<int>(band.size());
+  // L stored as lo[i][k] = L(i, i − k)
+  std::vector<std::array<double, 4>> lo(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    for (int k = 3; k >= 0; --k) {
+      const int j = i - k;
+      if (j < 0) {
+        lo[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] = 0;
+        continue;
+      }
+      double s = band[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)];  // A(j, i) = A(i, j)
+      for (int q = std::max(0, i - 3); q < j; ++q)
+        s -= lo[static_cast<std::size_t>(i)][static_cast<std::size_t>(i - q)] *
+             lo[static_cast<std::size_t>(j)][static_cast<std::size_t>(j - q)];
+      if (k == 0) {
+        if (!(s > 0)) return false;
+        lo[static_cast<std::size_t>(i)][0] = std::sqrt(s);
+      } else {
+        lo[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] = s / lo[static_cast<std::size_t>(j)][0];
+      }
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    V2 s = rhs[static_cast<std::size_t>(i)];
+    for (int q = std::max(0, i - 3); q < i; ++q) s -= lo[static_cast<std::size_t>(i)][static_cast<std::size_t>(i - q)] * rhs[static_cast<std::size_t>(q)];
+    rhs[static_cast<std::size_t>(i)] = s / lo[static_cast<std::size_t>(i)][0];
+  }
+  for (int i = n - 1; i >= 0; --i) {
+    V2 s = rhs[static_cast<std::size_t>(i)];
+    for (int q = i + 1; q <= std::min(n - 1, i + 3); ++q)
+      s -= lo[static_cast<std::size_t>(q)][static_cast<std::size_t>(q - i)] * rhs[static_cast<std::size_t>(q)];
+    rhs[static_cast<std::size_t>(i)] = s / lo[static_cast<std::size_t>(i)][0];
+  }
+  return true;
+}
+
+// One data sample of a run: the point p of the polyline, its spline parameter u (first its arc length
+// along the polyline, then its foot point on the fitted curve) and its weight.
+struct Sample {
+  double u;
+  V2 p;
+  double w;
+  double a;  // arc length of p along the polyline
+};
+
+// Monotone map from the spline parameter to arc length along the polyline, piecewise linear through the
+// samples' (foot point parameter, arc length) pairs. The smoothed curve is shorter than the polyline
+// where it cuts across wiggles, so its parameter drifts from the polyline's arc length along a run;
+// program blocks and nearby polyline segments are found through this map.
+struct ParamMap {
+  std::vector<double> u, a;
+  void build(const std::vector<Sample>& samples, double L) {
+    std::vector<std::pair<double, double>> ua;
+    ua.reserve(samples.size() + 2);
+    ua.emplace_back(0.0, 0.0);
+    for (const Sample& s : samples) ua.emplace_back(s.u, s.a);
+    ua.emplace_back(L, L);
+    std::sort(ua.begin(), ua.end());
+    u.clear();
+    a.clear();
+    for (const auto& [x, y] : ua) {
+      u.push_back(x);
+      a.push_back(a.empty() ? y : std::max(a.back(), y));
+    }
+  }
+  double operator()(double x) const {
+    const auto it = std::upper_bound(u.begin(), u.end(), x);
+    if (it == u.begin()) return a.front();
+    if (it == u.end()) return a.back();
+    const auto k = static_cast<std::size_t>(it - u.begin());
+    const double du = u[k] - u[k - 1];
+    return du > 0 ? a[k - 1] + (a[k] - a[k - 1]) * (x - u[k - 1]) / du : a[k];
+  }
+};
+
+// Penalised least squares: the control points minimise
+//   Σ_k w_k |s(u_k) − p_k|² + pen · ∫ |s''(u)|² du
+// with the first front.size() and the last back.size() control points fixed to the given values
+// (end points, and end tangents when the second control point is fixed too). Banded Cholesky, O(n).
+// pen_band caches the penalty's band for these knots: it is filled when empty and must be cleared
+// when the knots change.
+bool fit(const std::vector<Sample>& samples, double L, const std::vector<double>& interior, double pen,
+         const std::vector<V2>& front, const std::vector<V2>& back, Spline& sp,
+         std::vector<std::array<double, 4>>& pen_band) {
+  const int m = static_cast<int>(interior.size()) + 4;
+  const int nf = static_cast<int>(front.size()), nk = static_cast<int>(back.size());
+  if (nf + nk > m) return false;
+  sp.t.assign(4, 0.0);
+  sp.t.insert(sp.t.end(), interior.begin(), interior.end());
+  sp.t.insert(sp.t.end(), 4, L);
+  sp.P.assign(static_cast<std::size_t>(m), V2::Zero());
+  if (pen_band.empty()) {
+    // pen·∫|s''|² over [0, L]: s'' is linear on each knot span, so two Gauss points per span are exact
+    pen_band.assign(static_cast<std::size_t>(m), std::array<double, 4>{0, 0, 0, 0});
+    const double g = 0.5 / std::sqrt(3.0);
+    for (int k = 3; k < m; ++k) {
+      const double t0 = sp.t[static_cast<std::size_t>(k)], t1 = sp.t[static_cast<std::size_t>(k + 1)];
+      const double h = t1 - t0;
+      if (!(h > 0)) continue;
+      for (const double x : {0.5 - g, 0.5 + g}) {
+        double D[3][4];
+        sp.ders(k, t0 + x * h, D);
+        for (int r = 0; r < 4; ++r)
+          for (int q = r; q < 4; ++q)
+            pen_band[static_cast<std::size_t>(k - 3 + r)][static_cast<std::size_t>(q - r)] +=
+                pen * 0.5 * h * D[2][r] * D[2][q];
+      }
+    }
+  }
+  std::vector<std::array<double, 4>> band = pen_band;
+  std::vector<V2> rhs(static_cast<std::size_t>(m), V2::Zero());
+  for (const Sample& s : samples) {
+    const int k = sp.span(s.u);
+    double N[4];
+    sp.basis(k, s.u, N);
+    for (int r = 0; r < 4; ++r) {
+      const auto i = static_cast<std::size_t>(k - 3 + r);
+      rhs[i] += s.w * N[r] * s.p;
+      for (int q = r; q < 4; ++q) band[i][static_cast<std::size_t>(q - r)] += s.w * N[r] * N[q];
+    }
+  }
+  for (int q = 0; q < nf; ++q) sp.P[static_cast<std::size_t>(q)] = front[static_cast<std::size_t>(q)];
+  for (int q = 0; q < nk; ++q) sp.P[static_cast<std::size_t>(m - nk + q)] = back[static_cast<std::size_t>(q)];
+  // move the fixed control points to the right-hand side: A(i, f) = band[min(i, f)][|i − f|]
+  auto A = [&](int i, int f) {
+    return band[static_cast<std::size_t>(std::min(i, f))][static_cast<std::size_t>(std::abs(i - f))];
+  };
+  for (int i = nf; i < m - nk; ++i) {
+    for (int f = std::max(0, i - 3); f < nf; ++f) rhs[static_cast<std::size_t>(i)] -= A(i, f) * sp.P[static_cast<std::size_t>(f)];
+    for (int f = std::max(m - nk, i + 1); f <= std::min(m - 1, i + 3); ++f)
+      rhs[static_cast<std::size_t>(i)] -= A(i, f) * sp.P[static_cast<std::size_t>(f)];
+  }
+  std::vector<std::array<double, 4>> inner(band.begin() + nf, band.end() - nk);
+  for (std::size_t i = 0; i < inner.size(); ++i)
+    for (std::size_t k = 0; k < 4; ++k)
+      if (i + k >= inner.size()) inner[i][k] = 0;
+  std::vector<V2> x(rhs.begin() + nf, rhs.end() - nk);
+  if (!inner.empty() && !band_solve(inner, x)) return false;
+  for (std::size_t i = 0; i < x.size(); ++i) sp.P[i + static_cast<std::size_t>(nf)] = x[i];
+  return true;
+}
+
+
+// One planar piece of the chain: a line (k = 0) or an arc of signed curvature k [1/mm].
+
+}  // namespace
+}  // namespace netshape::motion
