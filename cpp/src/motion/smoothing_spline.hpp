@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "netshape/core/types.hpp"
+#include "netshape/geometry/basis.hpp"
 
 namespace netshape::motion {
 namespace {
@@ -38,20 +39,8 @@ struct Spline {
   }
   // the four non-zero basis values at u in span k (functions k−3..k)
   void basis(int k, double u, double N[4]) const {
-    double left[4], right[4];
-    N[0] = 1.0;
-    for (int j = 1; j <= 3; ++j) {
-      left[j] = u - t[static_cast<std::size_t>(k + 1 - j)];
-      right[j] = t[static_cast<std::size_t>(k + j)] - u;
-      double saved = 0.0;
-      for (int r = 0; r < j; ++r) {
-        const double den = right[r + 1] + left[j - r];
-        const double tmp = den > 0 ? N[r] / den : 0.0;
-        N[r] = saved + right[r + 1] * tmp;
-        saved = left[j - r] * tmp;
-      }
-      N[j] = saved;
-    }
+    double scratch[8];
+    geometry::basis_functions(k, u, 3, t.data(), N, scratch);
   }
   V2 point(double u) const {
     const int k = span(u);
@@ -66,20 +55,8 @@ struct Spline {
   V2 deriv(double u) const {
     const int k = span(u);
     // quadratic basis on the same knot span
-    double N[3], left[3], right[3];
-    N[0] = 1.0;
-    for (int j = 1; j <= 2; ++j) {
-      left[j] = u - t[static_cast<std::size_t>(k + 1 - j)];
-      right[j] = t[static_cast<std::size_t>(k + j)] - u;
-      double saved = 0.0;
-      for (int r = 0; r < j; ++r) {
-        const double den = right[r + 1] + left[j - r];
-        const double tmp = den > 0 ? N[r] / den : 0.0;
-        N[r] = saved + right[r + 1] * tmp;
-        saved = left[j - r] * tmp;
-      }
-      N[j] = saved;
-    }
+    double N[3], scratch[6];
+    geometry::basis_functions(k, u, 2, t.data(), N, scratch);
     V2 d = V2::Zero();
     for (int r = 0; r < 3; ++r) {
       const int i = k - 3 + r;  // Q_i uses P_i, P_{i+1}
@@ -91,49 +68,8 @@ struct Spline {
   // values and first two derivatives of the four non-zero basis functions at u in span k
   // (The NURBS Book, algorithm A2.3, degree 3)
   void ders(int k, double u, double D[3][4]) const {
-    double ndu[4][4], left[4], right[4], a[2][4];
-    ndu[0][0] = 1.0;
-    for (int j = 1; j <= 3; ++j) {
-      left[j] = u - t[static_cast<std::size_t>(k + 1 - j)];
-      right[j] = t[static_cast<std::size_t>(k + j)] - u;
-      double saved = 0.0;
-      for (int r = 0; r < j; ++r) {
-        ndu[j][r] = right[r + 1] + left[j - r];
-        const double tmp = ndu[j][r] > 0 ? ndu[r][j - 1] / ndu[j][r] : 0.0;
-        ndu[r][j] = saved + right[r + 1] * tmp;
-        saved = left[j - r] * tmp;
-      }
-      ndu[j][j] = saved;
-    }
-    for (int j = 0; j <= 3; ++j) D[0][j] = ndu[j][3];
-    for (int r = 0; r <= 3; ++r) {
-      int s1 = 0, s2 = 1;
-      a[0][0] = 1.0;
-      for (int q = 1; q <= 2; ++q) {
-        double d = 0.0;
-        const int rk = r - q, pk = 3 - q;
-        if (r >= q) {
-          a[s2][0] = a[s1][0] / ndu[pk + 1][rk];
-          d = a[s2][0] * ndu[rk][pk];
-        }
-        const int j1 = rk >= -1 ? 1 : -rk;
-        const int j2 = r - 1 <= pk ? q - 1 : 3 - r;
-        for (int j = j1; j <= j2; ++j) {
-          a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][rk + j];
-          d += a[s2][j] * ndu[rk + j][pk];
-        }
-        if (r <= pk) {
-          a[s2][q] = -a[s1][q - 1] / ndu[pk + 1][r];
-          d += a[s2][q] * ndu[r][pk];
-        }
-        D[q][r] = d;
-        std::swap(s1, s2);
-      }
-    }
-    for (int r = 0; r <= 3; ++r) {
-      D[1][r] *= 3.0;
-      D[2][r] *= 6.0;
-    }
+    double scratch[32];  // geometry::ders_scratch_size(3) = 32
+    geometry::basis_function_derivatives(k, u, 3, 2, t.data(), &D[0][0], scratch);
   }
   // point, first and second derivative at u
   void eval(double u, V2& s0, V2& s1, V2& s2) const {
