@@ -81,7 +81,7 @@ NETSHAPE_SIMD_INLINE double lift_bound(double dmin, double a0, double half_inv_r
 }
 
 // level line (m = 0): the point of the segment nearest to the node, d² = s² + u² (bull-nose only; flat
-// and ball level lines go to level_move in ramp_kernel.inc)
+// and ball level lines go to level_move in kernels/ramp.cpp)
 void row_bull_level(const LineSetup& s, const TipProfile& p, double r2, const Row& row,
                                          double bottom, double* __restrict h, RowOut& out) {
   const LineRow L(s, row);
