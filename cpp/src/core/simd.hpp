@@ -261,6 +261,12 @@ NETSHAPE_SIMD_INLINE void prefetch_for_write(const double* p) noexcept {
 #endif
 }
 
+/// Hint that the n doubles from p on will be written soon: one prefetch per 64-byte line, and the last.
+NETSHAPE_SIMD_INLINE void prefetch_span_for_write(const double* p, int n) noexcept {
+  for (int k = 0; k < n; k += 8) prefetch_for_write(p + k);
+  prefetch_for_write(p + n - 1);
+}
+
 }  // namespace netshape::simd
 
 // The namespace of the kernel copy being compiled (baseline, avx2 or avx512), set by the CMake helper.

@@ -12,7 +12,6 @@ namespace netshape::force {
 
 namespace {
 constexpr double two_pi = 2.0 * pi;
-inline double wrap(double a) { return a - two_pi * std::floor(a / two_pi); }
 
 // The element loop of the instruction set chosen for this process (core/dispatch.hpp).
 const kernels::FlatEndKernels& flat_end_kernels() {
@@ -69,7 +68,7 @@ void FlatEndWorkspace::reset(const FlatEndModel& model) {
     for (int j = 0; j < flutes_; ++j) {
       const int e = i * flutes_ + j;
       const double o = j * two_pi / flutes_ - kb * z_[i];
-      off_[e] = wrap(o);
+      off_[e] = kernels::wrap_angle(o);
       cos_off_[e] = std::cos(o);
       sin_off_[e] = std::sin(o);
       disk_of_[e] = i;
@@ -162,7 +161,7 @@ void flat_end_moments(const FlatEndModel& model, FlatEndWorkspace& ws, const Eig
   const double span = model.engagement.phi_ex - model.engagement.phi_st;
   for (Eigen::Index a = 0; a < angles.size(); ++a) {
     const double th = angles[a];
-    const double thw = wrap(th);
+    const double thw = kernels::wrap_angle(th);
     const double s0 = std::sin(th), c0 = std::cos(th);
     double m0 = 0, m1 = 0, m2 = 0, m3 = 0, m4 = 0, m5 = 0;
     for (int e = 0; e < n; ++e) {

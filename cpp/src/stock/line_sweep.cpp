@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/simd.hpp"
 #include "stock/sweep_internal.hpp"
 
 namespace netshape::stock::detail {
@@ -196,18 +197,6 @@ inline bool row_nodes(const ZMap& zm, const LineSetup& s, double r, int i, int& 
   return node_range(xlo, xhi, zm.x0(), zm.dx(), zm.nx(), j0, j1);
 }
 
-// The rows of a move lie nx·8 bytes apart, so every row segment starts with cache misses; the
-// heights of the next row are prefetched while the current one is computed.
-inline void prefetch_row(const double* h, int n) noexcept {
-#if defined(__GNUC__)
-  for (int k = 0; k < n; k += 8) __builtin_prefetch(h + k, 1, 3);
-  __builtin_prefetch(h + n - 1, 1, 3);
-#else
-  (void)h;
-  (void)n;
-#endif
-}
-
 // Sweep a flat or ball ramp or level line over rows i0 … i1.
 template <int Kind>
 void ramp_rows(ZMap& zm, const LineSetup& s, double R, int i0, int i1, SweepStats& st) {
@@ -270,10 +259,11 @@ void sweep_line_k(ZMap& zm, const TipProfile& p, const LineSetup& s, double ylo,
   int j0 = 0, j1 = -1;
   bool has = row_nodes(zm, s, r, i0, j0, j1);
   for (int i = i0; i <= i1; ++i) {
-    // the next row's range, prefetched before this row is computed
+    // the next row's range, prefetched before this row is computed (rows lie nx·8 bytes apart, so
+    // every row segment starts with cache misses)
     int n0 = 0, n1 = -1;
     const bool next = i < i1 && row_nodes(zm, s, r, i + 1, n0, n1);
-    if (next) prefetch_row(H.data() + (i + 1) * nx + n0, n1 - n0 + 1);
+    if (next) simd::prefetch_span_for_write(H.data() + (i + 1) * nx + n0, n1 - n0 + 1);
     if (has) {
       double* h = H.data() + static_cast<Eigen::Index>(i) * nx + j0;
       st.nodes_visited += j1 - j0 + 1;

@@ -17,8 +17,6 @@ constexpr double two_pi = 2.0 * pi;
 /// Lanes: at most the 4 partial sums of a step.
 constexpr int kWidth = simd::native_width < 4 ? simd::native_width : 4;
 
-NETSHAPE_SIMD_INLINE double wrap(double a) { return a - two_pi * std::floor(a / two_pi); }
-
 constexpr int step_elements = 4;  // elements per step of the element loop (= number of partial sums)
 
 /// Forces of W consecutive elements (pointers at the first), added to the partial sums (sx, sy, sz).
@@ -102,7 +100,7 @@ NETSHAPE_SIMD_INLINE void angle_loop_impl(const LoopConstants& L, const ElementA
   const V all = P::set(1.0);
   for (Eigen::Index a = 0; a < count; ++a) {
     const double th = angles[a];
-    const V thw = P::set(wrap(th)), s0 = P::set(std::sin(th)), c0 = P::set(std::cos(th));
+    const V thw = P::set(wrap_angle(th)), s0 = P::set(std::sin(th)), c0 = P::set(std::cos(th));
     V sx[parts], sy[parts], sz[parts];
     for (int p = 0; p < parts; ++p) sx[p] = sy[p] = sz[p] = P::set(0.0);
     for (int e = 0; e < full; e += S)

@@ -7,14 +7,20 @@
 // as (s0 + s1) + (s2 + s3), and none contracts to FMA, so every instruction set gives bit-identical
 // forces (only the order of the sum over elements differs from a one-element-at-a-time loop: ~1e-16
 // relative).
+#include <cmath>
 #include <cstdint>
 
 #include <Eigen/Core>
 
 #include "core/dispatch.hpp"
+#include "netshape/core/types.hpp"
 #include "netshape/force/coefficients.hpp"
 
 namespace netshape::force::kernels {
+
+/// a wrapped into [0, 2π) [rad]. Internal linkage (static): the model's baseline code and each
+/// instruction-set copy of the kernel keep their own, so no copy is shared between them.
+static inline double wrap_angle(double a) noexcept { return a - 2.0 * pi * std::floor(a / (2.0 * pi)); }
 
 /// Per-element data of the workspace: angular offset [rad] (wrapped to [0, 2π)), its cosine and
 /// sine, and the element's disk.

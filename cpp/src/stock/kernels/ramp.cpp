@@ -15,12 +15,6 @@ using simd::prefetch_for_write;
 constexpr int kWidth = simd::native_width >= 4 ? simd::native_width : 1;
 constexpr int kFlat = 0, kBall = 1;
 
-/// Prefetch a row segment of n heights for writing, one cache line at a time.
-NETSHAPE_SIMD_INLINE void prefetch_row(const double* h, int n) noexcept {
-  for (int k = 0; k < n; k += 8) prefetch_for_write(h + k);
-  prefetch_for_write(h + n - 1);
-}
-
 // Node spans of the rows i0 … i0 + n − 1 of a move (W rows at a time): per row the X interval of the
 // stadium (union of the two end discs and the strip along the segment), with a slack of kSpanSlack
 // index units outward, as node columns clamped to [jlo, jhi]; j0s[k] > j1s[k] when the row has none.
@@ -103,7 +97,8 @@ NETSHAPE_SIMD_INLINE void move_rows(const MoveArgs& a, MoveOut& out, const Chunk
   D vol = vzero;
   std::int64_t cnt = 0, visited = 0;
   for (int d = 0; d < kAhead && i0 + d <= i1; ++d)
-    if (j0s[d] <= j1s[d]) prefetch_row(H + static_cast<std::int64_t>(i0 + d) * nx + j0s[d], j1s[d] - j0s[d] + 1);
+    if (j0s[d] <= j1s[d])
+      simd::prefetch_span_for_write(H + static_cast<std::int64_t>(i0 + d) * nx + j0s[d], j1s[d] - j0s[d] + 1);
   for (int i = i0; i <= i1; ++i) {
     const int r = i - i0;
     const int j0 = j0s[r], j1 = j1s[r];
