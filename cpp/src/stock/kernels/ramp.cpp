@@ -218,7 +218,6 @@ const RampKernels ramp_kernels{&spans,
                                {{&level_move<kWidth, kFlat>, &ramp_move<kWidth, kFlat, true>,
                                  &ramp_move<kWidth, kFlat, false>},
                                 {&level_move<kWidth, kBall>, &ramp_move<kWidth, kBall, true>,
-                                 &ramp_move<kWidth, kBall, false>}},
-                               NETSHAPE_KERNEL_ISA_NAME};
+                                 &ramp_move<kWidth, kBall, false>}}};
 
 }  // namespace netshape::stock::kernels::NETSHAPE_KERNEL_ISA

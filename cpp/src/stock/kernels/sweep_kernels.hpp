@@ -102,7 +102,6 @@ struct RampKernels {
   void (*row_spans)(const SpanSetup& q, int i0, int n, int jlo, int jhi, int* j0s, int* j1s);
   /// [0 flat, 1 ball][0 level (m = 0), 1 up (m > 0), 2 down (m < 0)]
   MoveFn move[2][3];
-  const char* isa;
 };
 
 using RowFn = void (*)(const LineSetup& s, const TipProfile& p, double r2, const Row& row, double bottom,
