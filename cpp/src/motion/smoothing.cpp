@@ -111,7 +111,22 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       i = j;
       continue;
     }
-    // plane: normal axis = a constant coordinate (prefer Z, then Y, then X)
+    // plane: normal axis = a constant coordinate (prefer one that also holds the lines joined to the
+    // run, so that they can lend it leads; then Z, then Y, then X)
+    {
+      auto joined_line_bits = [&](long q) {
+        if (q < 0 || q >= static_cast<long>(nb)) return 7;
+        const auto& b = program[static_cast<std::size_t>(q)];
+        if (b.kind != MotionKind::line || b.feed != program[i].feed) return 7;
+        return plane_bits(origin, b.start) & plane_bits(origin, b.end);
+      };
+      const int before = joined_line_bits(static_cast<long>(i) - 1), after = joined_line_bits(static_cast<long>(j));
+      for (int m : {planes & before & after, planes & before, planes & after})
+        if (m != 0) {
+          planes = m;
+          break;
+        }
+    }
     toolpath::Plane plane = (planes & 4) ? toolpath::Plane::xy : (planes & 2) ? toolpath::Plane::zx : toolpath::Plane::yz;
     const auto ax = toolpath::plane_axes(plane);
     const double nval = program[i].start[ax.n];

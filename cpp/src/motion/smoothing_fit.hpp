@@ -277,6 +277,21 @@ struct RunEnds {
   V2 d0 = V2::Zero(), d1 = V2::Zero();
 };
 
+constexpr double sharp_turn = 0.3;  // [rad] a vertex turning more gets dense knots and samples
+constexpr int sharp_reach = 8;      // they reach ±2·sharp_reach fit tolerances from the vertex
+
+// Interior vertices of the polyline turning more than sharp_turn.
+std::vector<std::size_t> sharp_vertices(const std::vector<V2>& pts, const std::vector<double>& cum) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 1; i + 1 < pts.size(); ++i) {
+    const double l0 = cum[i] - cum[i - 1], l1 = cum[i + 1] - cum[i];
+    if (!(l0 > 0) || !(l1 > 0)) continue;
+    const V2 a = (pts[i] - pts[i - 1]) / l0, b = (pts[i + 1] - pts[i]) / l1;
+    if (std::atan2(std::abs(cross2(a, b)), a.dot(b)) > sharp_turn) out.push_back(i);
+  }
+  return out;
+}
+
 // Fit a planar run (polyline pts, mean segment length `mean` without the leads) with a smoothing spline
 // pulled back into the tolerance tube.
 //
@@ -303,6 +318,22 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   const double dk = L / spans;
   std::vector<double> knots;
   for (int i = 1; i < spans; ++i) knots.push_back(dk * i);
+  // Next to a sharp vertex (turning more than sharp_turn) the curve has to turn within a few fit
+  // tolerances: knots every 2·eps and samples every eps within ±16·eps of it give the spline the
+  // freedom to do so and the fit the data to see it.
+  const auto sharp = sharp_vertices(pts, cum);
+  for (const std::size_t i : sharp)
+    for (int q = -sharp_reach; q <= sharp_reach; ++q) {
+      const double u = cum[i] + 2.0 * q * eps;
+      if (u > 2.0 * eps && u < L - 2.0 * eps) knots.push_back(u);
+    }
+  if (!sharp.empty()) {
+    std::sort(knots.begin(), knots.end());
+    std::vector<double> kept;  // no two knots closer than eps
+    for (const double u : knots)
+      if (kept.empty() || u - kept.back() > eps) kept.push_back(u);
+    knots.swap(kept);
+  }
   // samples every ≤ mean/2 along each segment, weighted by the arc length each stands for
   std::vector<Sample> samples;
   for (std::size_t i = 0; i + 1 < n; ++i) {
@@ -313,6 +344,16 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
       samples.push_back(Sample{cum[i] + f * li, pts[i] + f * (pts[i + 1] - pts[i]), li / q, cum[i] + f * li});
     }
   }
+  for (const std::size_t i : sharp) {
+    const V2 a = (pts[i] - pts[i - 1]) / (cum[i] - cum[i - 1]), b = (pts[i + 1] - pts[i]) / (cum[i + 1] - cum[i]);
+    for (int q = -2 * sharp_reach; q <= 2 * sharp_reach; ++q) {
+      const double u = cum[i] + q * eps;
+      if (q == 0 || u <= cum[i - 1] || u >= cum[i + 1]) continue;
+      samples.push_back(Sample{u, q < 0 ? V2(pts[i] + (u - cum[i]) * a) : V2(pts[i] + (u - cum[i]) * b), eps, u});
+    }
+  }
+  if (!sharp.empty())
+    std::sort(samples.begin(), samples.end(), [](const Sample& x, const Sample& y) { return x.u < y.u; });
   const double ell = opt.smoothing_length;
   const double pen = ell * ell * ell * ell;
   const double target = 0.9 * eps;
@@ -379,7 +420,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
         const auto k = static_cast<std::size_t>(
             std::clamp<long>(std::upper_bound(breaks.begin(), breaks.end(), u) - breaks.begin(), 1,
                              static_cast<long>(breaks.size()) - 1));
-        if (breaks[k] - breaks[k - 1] > mean / 16.0) knots.push_back(0.5 * (breaks[k - 1] + breaks[k]));
+        if (breaks[k] - breaks[k - 1] > std::min(mean / 16.0, 0.5 * eps)) knots.push_back(0.5 * (breaks[k - 1] + breaks[k]));
       }
       std::sort(knots.begin(), knots.end());
       knots.erase(std::unique(knots.begin(), knots.end()), knots.end());

@@ -269,3 +269,65 @@ def test_corners_between_long_lines_rounded_within_fit_tolerance():
     assert _dist_to_polyline(curve, pts).max() <= fit * (1 + 1e-9)
     lim = nm.AxisLimits.uniform(250.0, 3000.0)
     _feasible_and_within(arr, pts, eps, lim, 3000.0)
+
+
+def _tangents(arr):
+    """Unit start / end tangents of every block (lines, and arcs in any coordinate plane)."""
+    t0, t1 = [], []
+    for i in range(len(arr["kind"])):
+        s, e, c = (np.asarray(arr[k][i], float) for k in ("start", "end", "center"))
+        if arr["kind"][i] != 2:
+            d = (e - s) / np.linalg.norm(e - s)
+            t0.append(d)
+            t1.append(d)
+            continue
+        a, b, nrm = _AXES[int(arr["plane"][i])]
+        sign = -1.0 if arr["clockwise"][i] else 1.0
+        for p, out in ((s, t0), (e, t1)):
+            t = np.zeros(3)
+            t[a], t[b] = -sign * (p[b] - c[b]), sign * (p[a] - c[a])
+            out.append(t / np.linalg.norm(t))
+    return np.array(t0), np.array(t1)
+
+
+def test_straight_run_in_a_side_plane_borrows_leads_from_its_lines():
+    """A slot: down a 20 mm line along −Z, 12 moves of 0.5 mm along +Y (X and Z both constant, so the
+    run alone lies in the XY and the YZ plane), up a 20 mm line along +Z; max_turn 150°, so the 90°
+    vertices are no corners. The run is fitted in the YZ plane, which holds the lines, so it borrows
+    leads from them and both 90° vertices are passed by the curve: the smoothed path is
+    tangent-continuous throughout and within the fit tolerance both ways."""
+    eps = 0.03
+    fit = 0.9 * eps
+    bottom = np.column_stack([np.full(13, 5.0), np.linspace(0.0, 6.0, 13), np.full(13, -20.0)])
+    pts = np.vstack([[5.0, 0.0, 0.0], bottom, [5.0, 6.0, 0.0]])
+    arr = nm.polyline_arrays(pts, 100.0)
+    new, first, last, st = nm.smooth_path(arr, eps, max_turn=np.radians(150.0))
+    assert st["runs_smoothed"] == 1 and st["corners_kept"] == 0
+    assert set(np.asarray(new["plane"])[np.asarray(new["kind"]) == 2]) == {2}  # G19, the lines' plane
+    t0, t1 = _tangents(new)
+    assert np.all(np.einsum("ij,ij->i", t1[:-1], t0[1:]) > 1 - 1e-9)  # no corner left
+    curve = _sample_blocks(new, 0.0005)
+    assert _dist_to_polyline(curve, pts).max() <= fit * (1 + 1e-9)
+    assert _dist_to_polyline(_sample_blocks(arr, 0.0005), curve).max() <= fit + 1e-5
+
+
+@pytest.mark.parametrize("turn_deg", [40.0, 60.0, 90.0, 120.0])
+def test_sharp_vertex_inside_a_run_is_fitted_within_tolerance(turn_deg):
+    """With max_turn above the turn, a vertex of 40°–120° between two rows of 0.5 mm moves stays inside
+    one run: the fitted curve turns there within the fit tolerance both ways (at ε = 0.01 mm the curve
+    must turn within a few hundredths of a millimetre) and is tangent-continuous."""
+    eps = 0.01
+    fit = 0.9 * eps
+    th = np.radians(turn_deg)
+    leg = np.linspace(0.0, 10.0, 21)[:, None]
+    pts = np.vstack([np.column_stack([leg[:, 0] - 10.0, np.zeros(21), np.zeros(21)]),
+                     (leg[1:] * np.array([np.cos(th), np.sin(th), 0.0]))])
+    arr = nm.polyline_arrays(pts, 100.0)
+    new, first, last, st = nm.smooth_path(arr, eps, max_turn=np.radians(150.0))
+    assert st["runs_smoothed"] == 1 and st["corners_kept"] == 0 and st["runs_kept"] == 0
+    t0, t1 = _tangents(new)
+    assert np.all(np.einsum("ij,ij->i", t1[:-1], t0[1:]) > 1 - 1e-9)
+    curve = _sample_blocks(new, 0.0002)
+    assert _dist_to_polyline(curve, pts).max() <= fit * (1 + 1e-9)
+    assert _dist_to_polyline(_sample_blocks(arr, 0.0002), curve).max() <= fit + 1e-5
+    assert np.linalg.norm(curve - pts[20], axis=1).min() <= fit + 1e-5  # the vertex itself
