@@ -22,8 +22,10 @@ import re
 import numpy as np
 import pytest
 
+import netshape.motion as nm
 from netshape import toolpath
-from netshape.motion.smooth_gcode import smoothed_gcode_lines, write_smoothed_gcode
+from netshape.cli import main
+from netshape.motion.smooth_gcode import FORMATS, smoothed_gcode_lines, write_smoothed_gcode
 
 _AXES = ((0, 1, 2), (2, 0, 1), (1, 2, 0))  # plane -> (a, b, normal): G17 XY, G18 ZX, G19 YZ
 PRINTED = 1e-6  # coordinates are printed to 6 decimals: each is off by <= 5e-7 mm
@@ -350,3 +352,94 @@ def test_write_is_atomic(tmp_path):
     with pytest.raises(ValueError):
         write_smoothed_gcode(_program().arrays(), out, "g1", chord_tolerance=1e-300)
     assert out.read_text() == "old\n" and sorted(p.name for p in tmp_path.iterdir()) == ["s.ngc"]
+
+
+# ---------------------------------------------------------------- the CLI
+
+def _micro_segment_program() -> str:
+    """An XY curve and a YZ half circle in 2° micro-segments: `--rule smooth` makes arcs of both planes."""
+    lines = ["G21 G90 G17", "G0 X20 Y0 Z1", "G1 Z0 F600"]
+    for a in np.radians(np.arange(2, 272, 2)):
+        lines.append(f"G1 X{20 * np.cos(a):.4f} Y{20 * np.sin(a) + 0.3 * np.sin(5 * a):.4f}")
+    lines += ["G1 X0 Y-40", "G0 Z5", "G0 X30 Y0 Z0"]
+    for a in np.radians(np.arange(2, 182, 2)):
+        lines.append(f"G1 Y{15 * np.sin(a):.4f} Z{-15 + 15 * np.cos(a):.4f}")
+    return "\n".join(lines + ["M2"]) + "\n"
+
+
+PLAN = ["plan", "p.ngc", "--vmax", "250", "--amax", "3000", "--rule", "smooth", "--tolerance", "0.01",
+        "--json", "o.json"]
+
+
+@pytest.fixture
+def program(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "p.ngc").write_text(_micro_segment_program())
+    return tmp_path
+
+
+@pytest.mark.parametrize("fmt, extra", [(None, []), ("arcs", []), ("g1", []),
+                                        ("g1", ["--chord-tolerance", "0.0002"]), ("nurbs", [])])
+def test_cli_writes_each_format(program, fmt, extra):
+    argv = PLAN + ["--smoothed-gcode", "s.ngc"] + (["--smoothed-format", fmt] if fmt else []) + extra
+    assert main(argv) == 0
+    arrays = toolpath.read_gcode_arrays("p.ngc")
+    new = nm.smooth_path(arrays, 0.01)[0]
+    kw = {"chord_tolerance": float(extra[1])} if extra else {}
+    want = smoothed_gcode_lines(new, fmt or "arcs", **kw)
+    assert (program / "s.ngc").read_text() == "\n".join(want) + "\n"
+    moves = _parse(want)
+    kinds = {m[0] for m in moves}
+    if fmt == "g1":
+        assert kinds <= {"G0", "G1"}
+    if fmt == "nurbs":
+        assert "G5.2" in kinds and "G2" in kinds | {"G3"}  # XY arcs as NURBS, the YZ ones stay arcs
+        assert all(m[4] == 0 for m in moves if m[0] == "G5.2")
+        assert all(m[4] == 2 for m in moves if m[0] in ("G2", "G3"))
+
+
+def test_cli_accepts_every_library_format(program):
+    for fmt in FORMATS:
+        assert main(PLAN + ["--smoothed-gcode", f"{fmt}.ngc", "--smoothed-format", fmt]) == 0
+
+
+def _one_line(capsys, argv) -> str:
+    assert main(argv) == 2
+    cap = capsys.readouterr()
+    lines = cap.err.splitlines()
+    assert cap.out == "" and len(lines) == 1, cap.err
+    assert lines[0].startswith("netshape plan: error: "), lines[0]
+    return lines[0]
+
+
+@pytest.mark.parametrize("value, rule", [("0", "must be positive [mm]"), ("-0.001", "must be positive [mm]"),
+                                         ("nan", "must be finite [mm]"), ("inf", "must be finite [mm]"),
+                                         ("abc", "must be a number [mm]")])
+def test_cli_bad_chord_tolerance(program, capsys, value, rule):
+    line = _one_line(capsys, PLAN + ["--smoothed-gcode", "s.ngc", "--smoothed-format", "g1",
+                                     "--chord-tolerance", value])
+    assert line.endswith(f"--chord-tolerance = {value}: {rule}")
+    assert sorted(p.name for p in program.iterdir()) == ["p.ngc"]
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--smoothed-format", "g1"], "--smoothed-format = g1: needs --smoothed-gcode OUT.ngc"),
+    (["--smoothed-gcode", "s.ngc", "--chord-tolerance", "0.01"],
+     "--chord-tolerance = 0.01: only used with --smoothed-format g1"),
+    (["--smoothed-gcode", "s.ngc", "--smoothed-format", "nurbs", "--chord-tolerance", "0.01"],
+     "--chord-tolerance = 0.01: only used with --smoothed-format g1"),
+    (["--smoothed-gcode", "s.ngc", "--smoothed-format", "svg"],
+     "--smoothed-format = svg: must be one of arcs, g1, nurbs"),
+])
+def test_cli_option_errors(program, capsys, argv, message):
+    assert _one_line(capsys, PLAN + argv).endswith(message)
+    assert sorted(p.name for p in program.iterdir()) == ["p.ngc"]
+
+
+def test_cli_no_half_written_file(program, capsys):
+    """A chord tolerance too small for an arc fails while the chords are made: no smoothed file, no
+    temporary file, no JSON summary."""
+    line = _one_line(capsys, PLAN + ["--smoothed-gcode", "s.ngc", "--smoothed-format", "g1",
+                                     "--chord-tolerance", "1e-300"])
+    assert "--chord-tolerance = 1e-300: too small for this arc" in line
+    assert sorted(p.name for p in program.iterdir()) == ["p.ngc"]
