@@ -36,6 +36,8 @@ _EPILOG = """\
 examples:
   netshape plan part.ngc --vmax 250 --amax 3000 --rule blend --tolerance 0.01 --json plan.json
   netshape plan part.ngc --limits machine.toml --rule per-axis --json plan.json --plot feed.png
+  netshape plan part.ngc --vmax 250 --amax 3000 --rule smooth --tolerance 0.01 --json plan.json \\
+      --smoothed-gcode smooth.ngc --smoothed-format g1 --chord-tolerance 0.001
 limits TOML: [axes.x] vmax_mm_s = 250  amax_mm_s2 = 3000  jmax_mm_s3 = 1e6 (per axis, optional
 jerk), or [limits] vmax_mm_s = ..., amax_mm_s2 = ... for all axes. Units: mm, s.
 """
@@ -61,6 +63,14 @@ def register(sub) -> None:
                    help="smooth rule: a vertex turning more is a corner that is kept [deg] in (0, 180) (30)")
     p.add_argument("--smoothed-gcode", metavar="OUT.ngc",
                    help="smooth rule: write the smoothed program (G1/G2/G3, G17-G19) atomically")
+    # the choices are netshape.motion.smooth_gcode.FORMATS, not imported here so that parsing needs no NumPy
+    p.add_argument("--smoothed-format", choices=("arcs", "g1", "nurbs"), default=None,
+                   help="form of --smoothed-gcode: arcs (G1/G2/G3, the default), g1 (every arc as G1 chords "
+                        "within --chord-tolerance) or nurbs (XY arcs as LinuxCNC G5.2/G5.3 NURBS blocks; "
+                        "G5.2 moves X and Y only, so arcs in G18/G19 and helical arcs stay G2/G3)")
+    p.add_argument("--chord-tolerance", type=a.positive("--chord-tolerance", "mm"), default=None,
+                   metavar="MM",
+                   help="--smoothed-format g1: largest distance between a chord and its arc [mm] (0.001)")
     p.add_argument("--ts1", type=a.real("--ts1", "s", gt=0, le=1), default=1e-3, metavar="S",
                    help="rough loop period [s], a whole multiple of --ts2 (0.001)")
     p.add_argument("--ts2", type=a.real("--ts2", "s", gt=0, le=1), default=1e-4, metavar="S",
@@ -111,6 +121,10 @@ def _check(args) -> None:
         raise CliError(f"--scv = {args.scv:g}: give either --junction-deviation or --scv, not both")
     if args.smoothed_gcode and args.rule != "smooth":
         raise CliError(f"--smoothed-gcode = {args.smoothed_gcode}: needs --rule smooth, not --rule {args.rule}")
+    if args.smoothed_format is not None and not args.smoothed_gcode:
+        raise CliError(f"--smoothed-format = {args.smoothed_format}: needs --smoothed-gcode OUT.ngc")
+    if args.chord_tolerance is not None and args.smoothed_format != "g1":
+        raise CliError(f"--chord-tolerance = {args.chord_tolerance:g}: only used with --smoothed-format g1")
 
 
 def _limits(args):
@@ -127,6 +141,7 @@ def run(args) -> int:
 
     from netshape import toolpath
     from netshape._atomic import atomic_write
+    from netshape.cli import CliError
     from netshape.motion import make_options, plan
 
     _check(args)
@@ -154,7 +169,14 @@ def run(args) -> int:
             from netshape.motion.smooth_gcode import write_smoothed_gcode
 
             new = smooth_path(arrays, args.tolerance, **skw)[0]
-            write_smoothed_gcode(new, args.smoothed_gcode)
+            kw = {} if args.chord_tolerance is None else {"chord_tolerance": args.chord_tolerance}
+            try:
+                write_smoothed_gcode(new, args.smoothed_gcode, args.smoothed_format or "arcs", **kw)
+            except ValueError as exc:  # the core's chord count names its argument; name the option
+                msg = str(exc)
+                if msg.startswith("chord_tolerance "):
+                    raise CliError("--chord-tolerance" + msg[len("chord_tolerance"):]) from None
+                raise
     else:
         traj = plan(arrays, limits, options)
     out = {
