@@ -42,28 +42,38 @@ struct Spline {
     double scratch[8];
     geometry::basis_functions(k, u, 3, t.data(), N, scratch);
   }
+  // Power form of each knot span k (t[k] < t[k + 1]): s(u) = c0 + c1·x + c2·x² + c3·x³ with x = u − t[k],
+  // the Taylor coefficients at t[k] from the basis derivatives (The NURBS Book A2.3). prepare() builds
+  // them after the control points change; point(), deriv() and eval() read only them.
+  std::vector<std::array<V2, 4>> pw;
+  void prepare() {
+    const int m = static_cast<int>(P.size());
+    pw.assign(static_cast<std::size_t>(m), std::array<V2, 4>{V2::Zero(), V2::Zero(), V2::Zero(), V2::Zero()});
+    for (int k = 3; k < m; ++k) {
+      if (!(t[static_cast<std::size_t>(k + 1)] > t[static_cast<std::size_t>(k)])) continue;
+      double D[4][4], scratch[48];
+      geometry::basis_function_derivatives(k, t[static_cast<std::size_t>(k)], 3, 3, t.data(), &D[0][0], scratch);
+      auto& c = pw[static_cast<std::size_t>(k)];
+      for (int r = 0; r < 4; ++r) {
+        const V2& Pr = P[static_cast<std::size_t>(k - 3 + r)];
+        c[0] += D[0][r] * Pr;
+        c[1] += D[1][r] * Pr;
+        c[2] += (0.5 * D[2][r]) * Pr;
+        c[3] += (D[3][r] / 6.0) * Pr;
+      }
+    }
+  }
   V2 point(double u) const {
     const int k = span(u);
-    double N[4];
-    basis(k, u, N);
-    V2 p = V2::Zero();
-    for (int r = 0; r < 4; ++r) p += N[r] * P[static_cast<std::size_t>(k - 3 + r)];
-    return p;
+    const auto& c = pw[static_cast<std::size_t>(k)];
+    const double x = u - t[static_cast<std::size_t>(k)];
+    return c[0] + x * (c[1] + x * (c[2] + x * c[3]));
   }
-  // derivative by a central difference of the exact point (h relative to L) is not exact; use the
-  // hodograph: a quadratic B-spline on t[1..] with control points 3(P_{i+1} − P_i)/(t_{i+4} − t_{i+1})
   V2 deriv(double u) const {
     const int k = span(u);
-    // quadratic basis on the same knot span
-    double N[3], scratch[6];
-    geometry::basis_functions(k, u, 2, t.data(), N, scratch);
-    V2 d = V2::Zero();
-    for (int r = 0; r < 3; ++r) {
-      const int i = k - 3 + r;  // Q_i uses P_i, P_{i+1}
-      const double den = t[static_cast<std::size_t>(i + 4)] - t[static_cast<std::size_t>(i + 1)];
-      if (den > 0) d += N[r] * 3.0 * (P[static_cast<std::size_t>(i + 1)] - P[static_cast<std::size_t>(i)]) / den;
-    }
-    return d;
+    const auto& c = pw[static_cast<std::size_t>(k)];
+    const double x = u - t[static_cast<std::size_t>(k)];
+    return c[1] + x * (2.0 * c[2] + x * (3.0 * c[3]));
   }
   // values and first two derivatives of the four non-zero basis functions at u in span k
   // (The NURBS Book, algorithm A2.3, degree 3)
@@ -74,15 +84,11 @@ struct Spline {
   // point, first and second derivative at u
   void eval(double u, V2& s0, V2& s1, V2& s2) const {
     const int k = span(u);
-    double D[3][4];
-    ders(k, u, D);
-    s0 = s1 = s2 = V2::Zero();
-    for (int r = 0; r < 4; ++r) {
-      const V2& P = this->P[static_cast<std::size_t>(k - 3 + r)];
-      s0 += D[0][r] * P;
-      s1 += D[1][r] * P;
-      s2 += D[2][r] * P;
-    }
+    const auto& c = pw[static_cast<std::size_t>(k)];
+    const double x = u - t[static_cast<std::size_t>(k)];
+    s0 = c[0] + x * (c[1] + x * (c[2] + x * c[3]));
+    s1 = c[1] + x * (2.0 * c[2] + x * (3.0 * c[3]));
+    s2 = 2.0 * c[2] + (6.0 * x) * c[3];
   }
 };
 
@@ -227,6 +233,7 @@ bool fit(const std::vector<Sample>& samples, double L, const std::vector<double>
   std::vector<V2> x(rhs.begin() + nf, rhs.end() - nk);
   if (!inner.empty() && !band_solve(inner, x)) return false;
   for (std::size_t i = 0; i < x.size(); ++i) sp.P[i + static_cast<std::size_t>(nf)] = x[i];
+  sp.prepare();
   return true;
 }
 
