@@ -132,6 +132,11 @@ bool Smoother::try_cut(std::size_t c) {
     if (prog.kind != toolpath::MotionKind::line || !micro_line(buf_[c - 1], options_)) return false;
     const double moved = (own.start - prog.start).norm(), lent = std::min(L, 0.5 * len);
     if (std::abs(moved - lent) > 1e-12 * (1.0 + len)) return false;
+    // a corner arc starts as far before the vertex on the line before as it ends after it on c
+    const toolpath::Block& before = r.blocks[m - 2];
+    const toolpath::Block& b0 = buf_[c - 1];
+    const Vec3 d0 = (b0.end - b0.start) / b0.length();
+    if ((prog.start - moved * d0 - before.start).norm() <= 1e-9) return false;
     const double rest = own.length();
     if (!(rest > options_.max_segment && rest >= 2.0 * L)) return false;
   } else if (r.source_last[m - 2] >= cl) {
