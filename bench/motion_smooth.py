@@ -7,7 +7,9 @@
 2. the ratio to TOPP-RA (toppra, per-axis box on a dense grid) on the smoothed path, first 200 blocks of
    3D_Chips at ε = 0.01 mm;
 3. throughput of smoothing + planning (blocks of the original program per second; planning without
-   sampling, best of three CPU times).
+   sampling, best of three CPU times);
+4. the same through the streaming Smoother -> Planner against smooth() + Planner (C++ loops, one block
+   at a time, best of three CPU times), with the buffer of the default window and of window 200.
 
     PYTHONPATH=python python bench/motion_smooth.py [--quick]
 """
@@ -84,10 +86,28 @@ def section_throughput(repeat):
           f"planning the smoothed blocks {n / best_p:.0f} blocks/s, together {n / (best_s + best_p):.0f} blocks/s")
 
 
+
+def section_stream(repeat):
+    arr = load("3D_Chips.ngc", 1.0)
+    n = len(arr["kind"])
+    opts = nm.make_options("blend", tolerance=(1.0 - FIT_SHARE) * 0.01, lookahead=64)
+    args = nm._call_args(arr)
+    print(f"\n## 4. streaming on 3D_Chips ({n} blocks, eps 0.01): Smoother -> Planner vs smooth() + Planner")
+    for window in (4096, 200):
+        best = {}
+        for streamed in (False, True):
+            best[streamed] = float("inf")
+            for _ in range(3):
+                t0 = time.process_time()
+                _, t_cycle = nm._m._smooth_plan(*args, 0.01, window, LIM, opts, streamed, repeat)
+                best[streamed] = min(best[streamed], (time.process_time() - t0) / repeat)
+            print(f"  window {window:5d} {'streamed' if streamed else 'batch   '}: {n / best[streamed]:8.0f} blocks/s"
+                  f"  (cycle {t_cycle:.6f} s)")
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="3D_Chips only, smaller sizes")
-    ap.add_argument("--only", choices=("cycle", "toppra", "throughput"))
+    ap.add_argument("--only", choices=("cycle", "toppra", "throughput", "stream"))
     args = ap.parse_args(argv)
     if args.only in (None, "cycle"):
         section_cycle(args.quick)
@@ -95,6 +115,8 @@ def main(argv=None) -> int:
         section_toppra(args.quick)
     if args.only in (None, "throughput"):
         section_throughput(2 if args.quick else 5)
+    if args.only in (None, "stream"):
+        section_stream(2 if args.quick else 5)
     return 0
 
 

@@ -40,6 +40,96 @@ std::vector<toolpath::Block> blocks_from_arrays(const Eigen::Ref<const Eigen::Ve
   }
   return out;
 }
+
+// Blocks as parallel arrays (the dict smooth_path returns): kind, start, end, center, clockwise, plane,
+// turns, feed.
+py::dict block_arrays(const std::vector<toolpath::Block>& blocks) {
+  const auto n = static_cast<Eigen::Index>(blocks.size());
+  Eigen::VectorXi k(n), cw(n), pl(n), tu(n);
+  Points3 s(n, 3), e(n, 3), c(n, 3);
+  VectorXd f(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto& b = blocks[static_cast<std::size_t>(i)];
+    k[i] = static_cast<int>(b.kind);
+    cw[i] = b.clockwise ? 1 : 0;
+    pl[i] = static_cast<int>(b.plane);
+    tu[i] = b.turns;
+    s.row(i) = b.start.transpose();
+    e.row(i) = b.end.transpose();
+    c.row(i) = b.center.transpose();
+    f[i] = b.feed;
+  }
+  py::dict arrays;
+  arrays["kind"] = k;
+  arrays["start"] = s;
+  arrays["end"] = e;
+  arrays["center"] = c;
+  arrays["clockwise"] = cw;
+  arrays["plane"] = pl;
+  arrays["turns"] = tu;
+  arrays["feed"] = f;
+  return arrays;
+}
+
+SmoothOptions smooth_options(double tolerance, double fit_share, double max_segment, double max_turn, int min_blocks,
+                             int window, double smoothing_length, double lead_length) {
+  SmoothOptions o;
+  o.tolerance = tolerance;
+  o.fit_share = fit_share;
+  o.max_segment = max_segment;
+  o.max_turn = max_turn;
+  o.min_blocks = min_blocks;
+  o.window = window;
+  o.smoothing_length = smoothing_length;
+  o.lead_length = lead_length;
+  return o;
+}
+
+// The program through a Smoother, pushed in bursts of `chunk` blocks (each burst stops early when the
+// buffer is full) with the output drained after each burst.
+SmoothResult smooth_streamed(const std::vector<toolpath::Block>& blocks, const SmoothOptions& o, int chunk,
+                             SmoothCounts& counts) {
+  Smoother sm(o);
+  SmoothResult r;
+  SmoothedBlock sb;
+  std::size_t i = 0;
+  auto drain = [&] {
+    Status st;
+    while ((st = sm.next(sb)) == Status::ok) {
+      r.blocks.push_back(sb.block);
+      r.source_first.push_back(sb.source_first);
+      r.source_last.push_back(sb.source_last);
+    }
+    if (st == Status::invalid_input) throw std::invalid_argument(sm.last_error());
+  };
+  while (i < blocks.size()) {
+    for (int q = 0; q < chunk && i < blocks.size(); ++q, ++i) {
+      const Status st = sm.push(blocks[i]);
+      if (st == Status::buffer_full) break;
+      if (st == Status::invalid_input) throw std::invalid_argument(sm.last_error());
+    }
+    drain();
+  }
+  sm.finish();
+  drain();
+  counts = sm.counts();
+  r.runs_smoothed = counts.runs_smoothed;
+  r.runs_kept = counts.runs_kept;
+  r.corners_kept = counts.corners_kept;
+  r.corners_rounded = counts.corners_rounded;
+  r.max_fit_deviation = counts.max_fit_deviation;
+  return r;
+}
+
+py::dict smooth_stats(const SmoothResult& r) {
+  py::dict stats;
+  stats["runs_smoothed"] = r.runs_smoothed;
+  stats["runs_kept"] = r.runs_kept;
+  stats["corners_kept"] = r.corners_kept;
+  stats["corners_rounded"] = r.corners_rounded;
+  stats["max_fit_deviation_mm"] = r.max_fit_deviation;
+  return stats;
+}
 }  // namespace
 
 void bind_motion(py::module_& m) {
@@ -193,57 +283,106 @@ void bind_motion(py::module_& m) {
          int min_blocks, int window, double smoothing_length, double lead_length) {
         // Tolerance-band smoothing (smoothing.hpp): the new blocks as arrays, per new block the first and
         // last program block it replaces, and the counts.
-        SmoothOptions o;
-        o.tolerance = tolerance;
-        o.fit_share = fit_share;
-        o.max_segment = max_segment;
-        o.max_turn = max_turn;
-        o.min_blocks = min_blocks;
-        o.window = window;
-        o.smoothing_length = smoothing_length;
-        o.lead_length = lead_length;
+        const SmoothOptions o = smooth_options(tolerance, fit_share, max_segment, max_turn, min_blocks, window,
+                                               smoothing_length, lead_length);
         const auto blocks = blocks_from_arrays(kind, start, end, center, clockwise, plane, turns, feed);
         SmoothResult r;
         {
           py::gil_scoped_release release;
           r = smooth(blocks, o);
         }
-        const auto n = static_cast<Eigen::Index>(r.blocks.size());
-        Eigen::VectorXi k(n), cw(n), pl(n), tu(n);
-        Points3 s(n, 3), e(n, 3), c(n, 3);
-        VectorXd f(n);
-        for (Eigen::Index i = 0; i < n; ++i) {
-          const auto& b = r.blocks[static_cast<std::size_t>(i)];
-          k[i] = static_cast<int>(b.kind);
-          cw[i] = b.clockwise ? 1 : 0;
-          pl[i] = static_cast<int>(b.plane);
-          tu[i] = b.turns;
-          s.row(i) = b.start.transpose();
-          e.row(i) = b.end.transpose();
-          c.row(i) = b.center.transpose();
-          f[i] = b.feed;
-        }
-        py::dict arrays;
-        arrays["kind"] = k;
-        arrays["start"] = s;
-        arrays["end"] = e;
-        arrays["center"] = c;
-        arrays["clockwise"] = cw;
-        arrays["plane"] = pl;
-        arrays["turns"] = tu;
-        arrays["feed"] = f;
-        py::dict stats;
-        stats["runs_smoothed"] = r.runs_smoothed;
-        stats["runs_kept"] = r.runs_kept;
-        stats["corners_kept"] = r.corners_kept;
-        stats["corners_rounded"] = r.corners_rounded;
-        stats["max_fit_deviation_mm"] = r.max_fit_deviation;
+        py::dict arrays = block_arrays(r.blocks);
+        py::dict stats = smooth_stats(r);
         return py::make_tuple(arrays, r.source_first, r.source_last, stats);
       },
       py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
       py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("fit_share") = 0.9, py::arg("max_segment") = 4.0,
       py::arg("max_turn") = 0.5236, py::arg("min_blocks") = 3, py::arg("window") = 4096,
       py::arg("smoothing_length") = 10.0, py::arg("lead_length") = 2.0);
+  m.def(
+      "_smooth_stream_arrays",
+      [](const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,
+         py_types::RefPoints3 center, const Eigen::Ref<const Eigen::VectorXi>& clockwise,
+         const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
+         py_types::RefVector feed, double tolerance, double fit_share, double max_segment, double max_turn,
+         int min_blocks, int window, double smoothing_length, double lead_length, int chunk) {
+        // _smooth_arrays through the streaming Smoother (smoother.hpp), blocks pushed `chunk` at a time;
+        // stats add the number of chunks smoothed and of forced cuts.
+        NETSHAPE_CHECK(chunk >= 1, "chunk", chunk, "must be >= 1 [blocks]");
+        const SmoothOptions o = smooth_options(tolerance, fit_share, max_segment, max_turn, min_blocks, window,
+                                               smoothing_length, lead_length);
+        const auto blocks = blocks_from_arrays(kind, start, end, center, clockwise, plane, turns, feed);
+        SmoothResult r;
+        SmoothCounts counts;
+        {
+          py::gil_scoped_release release;
+          r = smooth_streamed(blocks, o, chunk, counts);
+        }
+        py::dict arrays = block_arrays(r.blocks);
+        py::dict stats = smooth_stats(r);
+        stats["chunks"] = counts.chunks;
+        stats["forced_cuts"] = counts.forced_cuts;
+        return py::make_tuple(arrays, r.source_first, r.source_last, stats);
+      },
+      py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
+      py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("fit_share") = 0.9, py::arg("max_segment") = 4.0,
+      py::arg("max_turn") = 0.5236, py::arg("min_blocks") = 3, py::arg("window") = 4096,
+      py::arg("smoothing_length") = 10.0, py::arg("lead_length") = 2.0, py::arg("chunk") = 1);
+  m.def(
+      "_smooth_plan",
+      [](const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,
+         py_types::RefPoints3 center, const Eigen::Ref<const Eigen::VectorXi>& clockwise,
+         const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
+         py_types::RefVector feed, double tolerance, int window, const AxisLimits& limits, const PlanOptions& options,
+         bool streamed, int repeat) {
+        // Smoothing and planning without sampling (planned segments): streamed, program -> Smoother ->
+        // Planner one block at a time; else smooth() on the whole program, then the Planner. Returns
+        // (segments, cycle time [s]) of the last repeat.
+        SmoothOptions o;
+        o.tolerance = tolerance;
+        o.window = window;
+        const auto blocks = blocks_from_arrays(kind, start, end, center, clockwise, plane, turns, feed);
+        Planner p(limits, options);
+        Smoother sm(o);
+        PlannedSegment seg;
+        SmoothedBlock sb;
+        long segments = 0;
+        double t_end = 0;
+        py::gil_scoped_release release;
+        for (int r = 0; r < repeat; ++r) {
+          p.reset();
+          sm.reset();
+          segments = 0;
+          std::vector<toolpath::Block> smoothed;
+          if (!streamed) smoothed = smooth(blocks, o).blocks;
+          std::size_t i = 0, j = 0;
+          for (;;) {
+            const Status st = p.next_segment(seg);
+            if (st == Status::ok) {
+              ++segments;
+              t_end = seg.t0 + seg.profile.duration;
+              continue;
+            }
+            if (st == Status::finished) break;
+            if (!streamed) {
+              if (j < smoothed.size()) p.push(smoothed[j++]);
+              else p.finish();
+              continue;
+            }
+            const Status ss = sm.next(sb);
+            if (ss == Status::ok) p.push(sb.block);
+            else if (ss == Status::finished) p.finish();
+            else if (ss == Status::invalid_input) throw std::invalid_argument(sm.last_error());
+            else if (i < blocks.size()) sm.push(blocks[i++]);
+            else sm.finish();
+          }
+        }
+        py::gil_scoped_acquire acquire;
+        return py::make_tuple(segments, t_end);
+      },
+      py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
+      py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("window"), py::arg("limits"),
+      py::arg("options"), py::arg("streamed"), py::arg("repeat") = 1);
   m.def(
       "_deviation_to_program",
       [](const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,

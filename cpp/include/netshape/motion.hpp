@@ -6,5 +6,6 @@
 #include "netshape/motion/planner.hpp"
 #include "netshape/motion/profile.hpp"
 #include "netshape/motion/segment.hpp"
+#include "netshape/motion/smoother.hpp"
 #include "netshape/motion/smoothing.hpp"
 #include "netshape/motion/trajectory.hpp"

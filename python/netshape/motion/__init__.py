@@ -46,7 +46,7 @@ JUNCTION_ACCELS = ("min-moving-axis", "along-change")
 
 __all__ = [
     "AxisLimits", "PlanOptions", "CornerRule", "JunctionAccel", "Planner", "Sample", "Status", "Trajectory",
-    "plan", "smooth_path", "PLAN_RULES",
+    "plan", "smooth_path", "smooth_path_streamed", "PLAN_RULES",
     "make_options", "path_points", "blocks_to_arrays", "polyline_arrays", "rule_name", "parse_rule", "turn_angle",
     "paper_corner_speed", "vector_corner_speed", "per_axis_corner_speed", "junction_deviation_speed",
     "klipper_junction_deviation", "junction_acceleration", "junction_deviation_corner_speed",
@@ -210,6 +210,23 @@ def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float
                                                 float(lead_length))
     return {k: np.asarray(v) for k, v in arr.items()}, np.asarray(first), np.asarray(last), dict(stats)
 
+
+
+def smooth_path_streamed(program, tolerance: float = 0.01, *, chunk: int = 1, feed=None, fit_share: float = 0.9,
+                         max_segment: float = 4.0, max_turn: float = 0.5236, min_blocks: int = 3,
+                         window: int = 4096, smoothing_length: float = 10.0, lead_length: float = 2.0):
+    """:func:`smooth_path` through the streaming C++ ``netshape::motion::Smoother``.
+
+    The program is pushed `chunk` blocks at a time into a smoother that holds at most ``2·window + 2``
+    blocks, and its output is drained after every push. Returns what :func:`smooth_path` returns, with
+    ``chunks`` (smooth() calls) and ``forced_cuts`` (cuts inside a stretch of micro-segments longer
+    than the buffer) added to the stats; with no forced cut the blocks equal :func:`smooth_path`'s.
+    """
+    arr, first, last, stats = _m._smooth_stream_arrays(*_call_args(_arrays(program, feed)), float(tolerance),
+                                                       float(fit_share), float(max_segment), float(max_turn),
+                                                       int(min_blocks), int(window), float(smoothing_length),
+                                                       float(lead_length), int(chunk))
+    return {k: np.asarray(v) for k, v in arr.items()}, np.asarray(first), np.asarray(last), dict(stats)
 
 def _plan_smooth(program, limits, feed, with_deviation, kw):
     """rule="smooth": smooth_path, then the blend rule with the rest of the tolerance on the new blocks;

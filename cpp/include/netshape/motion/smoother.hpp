@@ -1,0 +1,127 @@
+#pragma once
+/// \file smoother.hpp
+/// Streaming tolerance-band smoothing: smooth() (smoothing.hpp) over a bounded window of the program,
+/// with the Planner's push / next protocol, so a controller can put it between its interpreter and
+/// the Planner.
+///
+///     netshape::motion::Smoother smoother(smooth_options);
+///     netshape::motion::Planner planner(limits, plan_options);   // blend rule at blend_tolerance()
+///     netshape::motion::SmoothedBlock sb;
+///     netshape::motion::Sample sample;
+///     for (;;) {
+///       auto st = planner.next(sample);
+///       if (st == Status::finished) break;
+///       if (st == Status::ok) { drive(sample.position, sample.velocity); continue; }
+///       // the planner needs a block: take one from the smoother, refill the smoother if it has none
+///       auto ss = smoother.next(sb);
+///       if (ss == Status::ok) planner.push(sb.block);
+///       else if (ss == Status::finished) planner.finish();
+///       else if (have_block) smoother.push(block); else smoother.finish();
+///     }
+///
+/// How it cuts. The smoother holds at most `capacity()` = 2·window + 2 program blocks. When the buffer
+/// is full (or after finish()), it calls smooth() on a chunk that ends at a *cut block* c: a block of
+/// non-zero length that is no micro-segment (a rapid, an arc, or a line longer than max_segment).
+/// Nothing smooth() does reaches across such a block, except on a line c: the run before c may
+/// borrow c's first part (a lead), and the vertex before c may be rounded. So the chunk's output is
+/// handed out up to, not including, c's own block; c stays in the buffer, with its start moved to
+/// where that output ended, and heads the next chunk. A cut is accepted when c's start did not move,
+/// or when it moved by a lead (the block before c is a micro-segment, c moved by exactly
+/// min(lead_length, length/2)) and c stays longer than both max_segment and 2·lead_length, so the next
+/// chunk lends from it exactly as the whole program would. The last such block in the buffer is
+/// tried first, at most four of them.
+///
+/// Equal to batch: the blocks handed out equal smooth(program) (same kinds, end points to rounding,
+/// same source indices) and so do the counters, as long as every cut is clean — i.e. every stretch of
+/// micro-segments between two cut blocks fits in the buffer (at most 2·window blocks, which includes
+/// every run smooth() fits in one piece). Otherwise (`forced_cuts()` > 0) the buffer is cut at its
+/// sharpest vertex in the second half: the curve ends at that vertex there and a new one starts, like
+/// the cut of a run longer than `window` in smooth(); the output still follows the program within
+/// fit_tolerance() (checked by the fit), but it is no longer the batch output, and the corner at the
+/// cut is left to the planner's blend.
+///
+/// Memory and errors: the buffer and a chunk copy (each `capacity()` blocks) are allocated in the
+/// constructor; push() never allocates; next() calls smooth(), which allocates its result and work
+/// arrays once per chunk. push(), finish(), next() never throw: a bad block is answered with
+/// invalid_input (last_error() names the field and value), and an error inside smooth() (out of
+/// memory) makes next() answer invalid_input too.
+///
+/// Units: mm, rad.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "netshape/motion/planner.hpp"
+#include "netshape/motion/smoothing.hpp"
+#include "netshape/toolpath/block.hpp"
+
+namespace netshape::motion {
+
+/// One block of the smoothed program with the range of program blocks it replaces.
+struct SmoothedBlock {
+  toolpath::Block block;
+  long source_first = -1;  ///< first program block (0-based index in push order)
+  long source_last = -1;   ///< last program block (0-based index in push order)
+};
+
+/// Running counters of a Smoother (the SmoothResult counters summed over the chunks handed out).
+struct SmoothCounts {
+  long runs_smoothed = 0;         ///< runs replaced by arcs
+  long runs_kept = 0;             ///< runs that failed the check and were left as programmed
+  long corners_kept = 0;          ///< vertices between feed moves turning more than max_turn
+  long corners_rounded = 0;       ///< vertices between two program lines replaced by an arc
+  double max_fit_deviation = 0;   ///< largest checked bound over the smoothed runs [mm]
+  long chunks = 0;                ///< smooth() calls whose output was handed out
+  long forced_cuts = 0;           ///< chunks cut at a vertex (no clean cut block in a full buffer)
+};
+
+class Smoother {
+ public:
+  /// Validates the options (throws std::invalid_argument naming the field) and allocates the buffer.
+  explicit Smoother(const SmoothOptions& options);
+
+  /// Append a program block: ok, buffer_full (call next() first), or invalid_input (see
+  /// last_error(); nothing was added).
+  Status push(const toolpath::Block& block) noexcept;
+  /// No more blocks will come; next() hands out the rest.
+  void finish() noexcept;
+  /// Next smoothed block: ok, need_blocks (push more or finish), finished, or invalid_input (an
+  /// error inside smooth(), see last_error()).
+  Status next(SmoothedBlock& out) noexcept;
+
+  /// Back to the empty state (options and memory kept).
+  void reset() noexcept;
+  /// Blocks that can be pushed now.
+  int free_blocks() const noexcept;
+  /// Largest number of program blocks held: 2·window + 2.
+  int capacity() const noexcept { return capacity_; }
+  /// Number of program blocks accepted so far.
+  long blocks_pushed() const noexcept { return pushed_; }
+  /// Counters of the chunks smoothed so far.
+  const SmoothCounts& counts() const noexcept { return counts_; }
+  /// Message of the last invalid_input.
+  const char* last_error() const noexcept { return error_.c_str(); }
+  const SmoothOptions& options() const noexcept { return options_; }
+
+ private:
+  void smooth_chunk(bool finishing);              // smooths the next chunk into result_; may throw
+  bool try_cut(std::size_t c);                    // smooth buf_[0..c]; true if c is a clean cut
+  void forced_cut();                              // smooth up to the sharpest vertex of the buffer
+  void take(std::size_t blocks, std::size_t out_blocks);  // hand out result_[0, out_blocks)
+
+  SmoothOptions options_;
+  int capacity_ = 0;
+  std::vector<toolpath::Block> buf_;    // program blocks [base_, base_ + size); buf_[0] may have a moved start
+  std::vector<toolpath::Block> chunk_;  // the chunk passed to smooth()
+  SmoothResult result_;                 // output of the chunk being handed out
+  std::size_t out_pos_ = 0, out_end_ = 0;  // result_ blocks [out_pos_, out_end_) are still to hand out
+  long base_ = 0;                       // program index of buf_[0]; of result_'s block 0 while handing out
+  long out_base_ = 0;
+  long pushed_ = 0;
+  bool finished_ = false, done_ = false;
+  SmoothCounts counts_;
+  std::string error_;
+};
+
+}  // namespace netshape::motion

@@ -1,0 +1,63 @@
+"""Streaming smoothing (C++ netshape::motion::Smoother through netshape.motion.smooth_path_streamed):
+the streamed blocks equal smooth_path's, and Smoother -> Planner plans the same cycle time as
+smooth() + Planner (issue 22)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import netshape.motion as nm
+from netshape import toolpath
+
+LIM = nm.AxisLimits.uniform(250.0, 3000.0)
+
+
+@pytest.fixture(scope="module")
+def chips(shared_data):
+    arr = {k: np.asarray(v) for k, v in toolpath.read_gcode_arrays(shared_data / "gcode" / "3D_Chips.ngc").items()}
+    return arr
+
+
+def _same(a, b):
+    (na, fa, la, sa), (nb, fb, lb, sb) = a, b
+    assert np.array_equal(na["kind"], nb["kind"])
+    assert np.array_equal(fa, fb) and np.array_equal(la, lb)
+    for k in ("start", "end", "center"):
+        assert np.max(np.abs(na[k] - nb[k])) <= 1e-12
+    for k in ("runs_smoothed", "runs_kept", "corners_kept", "corners_rounded", "max_fit_deviation_mm"):
+        assert sa[k] == sb[k], k
+
+
+@pytest.mark.parametrize("chunk", [1, 7, 500])
+def test_streamed_equals_batch_on_3d_chips(chips, chunk):
+    batch = nm.smooth_path(chips, 0.01, window=200)
+    streamed = nm.smooth_path_streamed(chips, 0.01, window=200, chunk=chunk)
+    assert streamed[3]["chunks"] > 5 and streamed[3]["forced_cuts"] == 0
+    _same(streamed, batch)
+
+
+def test_tiny_window_is_cut_and_stays_in_tolerance(chips):
+    new, first, last, stats = nm.smooth_path_streamed(chips, 0.01, window=8, chunk=3)
+    assert stats["forced_cuts"] > 0
+    pts = np.vstack([new["start"], new["end"]])
+    dev = nm._m._deviation_to_program(*nm._call_args(nm._arrays(chips, None)), pts,
+                                      np.concatenate([first, first]).tolist(), np.concatenate([last, last]).tolist())
+    assert dev <= 0.9 * 0.01 + 1e-9
+
+
+def test_smoother_to_planner_cycle_time(chips):
+    opts = nm.make_options("blend", tolerance=0.1 * 0.01, lookahead=64)
+    args = nm._call_args(nm._arrays(chips, None))
+    seg_b, t_b = nm._m._smooth_plan(*args, 0.01, 200, LIM, opts, False)
+    seg_s, t_s = nm._m._smooth_plan(*args, 0.01, 200, LIM, opts, True)
+    assert t_b > 30.0
+    assert abs(t_s - t_b) <= 1e-9 and seg_s == seg_b
+
+
+def test_bad_block_names_the_field():
+    pts = np.array([[0, 0, 0], [1, 0, 0], [np.nan, 1, 0], [3, 1, 0]], float)
+    with pytest.raises(ValueError, match="block 1: block.end"):
+        nm.smooth_path_streamed(nm.polyline_arrays(pts, 100.0), 0.01)
+    with pytest.raises(ValueError, match="chunk"):
+        nm.smooth_path_streamed(nm.polyline_arrays(pts[:2], 100.0), 0.01, chunk=0)
