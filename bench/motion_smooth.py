@@ -1,7 +1,8 @@
 """Tolerance-band smoothing benchmark (issue 22), in one run:
 
 1. cycle time of rule "smooth" against "blend" on 3D_Chips.ngc (vmax 250 mm/s, amax 3000 mm/s²) at
-   ε = 0.01, 0.03, 0.1 mm and on tort / cds / arcspiral with feeds ×100 (as bench/motion_plan.py), with
+   ε = 0.01, 0.03, 0.1 mm, with the default max_turn 30° and with 92° (90° vertices inside runs are
+   then fitted by the spline instead of kept as corners), and on tort / cds / arcspiral with feeds ×100 (as bench/motion_plan.py), with
    the largest axis acceleration by finite differences, the deviation from the original program, the
    runs smoothed and corners kept;
 2. the ratio to TOPP-RA (toppra, per-axis box on a dense grid) on the smoothed path, first 200 blocks of
@@ -9,7 +10,9 @@
 3. throughput of smoothing + planning (blocks of the original program per second; planning without
    sampling, best of three CPU times);
 4. the same through the streaming Smoother -> Planner against smooth() + Planner (C++ loops, one block
-   at a time, best of three CPU times), with the buffer of the default window and of window 200.
+   at a time, best of three CPU times), with the buffer of the default window and of window 200;
+5. with a jerk limit (10^5 mm/s³ per axis) on 3D_Chips at ε = 0.01 mm: "blend" against "smooth", with the
+   largest third finite difference of the samples.
 
     PYTHONPATH=python python bench/motion_smooth.py [--quick]
 """
@@ -27,24 +30,24 @@ from motion_plan import LIM, load, toppra_time  # bench/ is on sys.path when run
 FIT_SHARE = 0.9  # netshape.motion.smooth_path default: the planner blends within (1 - FIT_SHARE)·ε
 
 
-def cycle(arr, rule, eps):
-    tr = nm.plan(arr, LIM, rule=rule, tolerance=eps)
+def cycle(arr, rule, eps, **kw):
+    tr = nm.plan(arr, LIM, rule=rule, tolerance=eps, **kw)
     return tr.stats
 
 
 def section_cycle(quick):
     print("## 1. cycle time [s] (vmax 250 mm/s, amax 3000 mm/s^2, ts1 1 ms, ts2 0.1 ms, look-ahead 64)")
-    print("  program (feed scale)        eps    blend (accel)        smooth (accel)   dev_mm  runs  corners  blocks->new")
-    progs = [("3D_Chips.ngc", 1.0, (0.01, 0.03, 0.1))]
+    print("  program (feed scale) max_turn  eps    blend (accel)        smooth (accel)   dev_mm  runs  corners  blocks->new")
+    progs = [("3D_Chips.ngc", 1.0, (0.01, 0.03, 0.1), 30.0), ("3D_Chips.ngc", 1.0, (0.01, 0.03, 0.1), 92.0)]
     if not quick:
-        progs += [("tort.ngc", 100.0, (0.01, 0.03)), ("cds.ngc", 100.0, (0.01, 0.03)),
-                  ("arcspiral.ngc", 100.0, (0.01, 0.03))]
-    for name, scale, epss in progs:
+        progs += [("tort.ngc", 100.0, (0.01, 0.03), 30.0), ("cds.ngc", 100.0, (0.01, 0.03), 30.0),
+                  ("arcspiral.ngc", 100.0, (0.01, 0.03), 30.0)]
+    for name, scale, epss, turn in progs:
         arr = load(name, scale)
         for eps in epss:
             b = cycle(arr, "blend", eps)
-            s = cycle(arr, "smooth", eps)
-            print(f"  {name:14s} (x{scale:<5g}) {eps:5.2f} {b['cycle_time_s']:8.3f} ({b['max_axis_accel_mm_s2']:6.0f})"
+            s = cycle(arr, "smooth", eps, max_turn=np.radians(turn))
+            print(f"  {name:14s} (x{scale:<5g}) turn {turn:3.0f} {eps:5.2f} {b['cycle_time_s']:8.3f} ({b['max_axis_accel_mm_s2']:6.0f})"
                   f"   {s['cycle_time_s']:8.3f} ({s['max_axis_accel_mm_s2']:6.0f})  {s['max_path_deviation_mm']:.4f}"
                   f"  {s['runs_smoothed']:4d}  {s['corners_kept']:6d}   {s['blocks']}->{s['smoothed_blocks']}")
 
@@ -104,10 +107,20 @@ def section_stream(repeat):
             print(f"  window {window:5d} {'streamed' if streamed else 'batch   '}: {n / best[streamed]:8.0f} blocks/s"
                   f"  (cycle {t_cycle:.6f} s)")
 
+def section_jerk():
+    arr = load("3D_Chips.ngc", 1.0)
+    lim = nm.AxisLimits(velocity=[250.0] * 3, acceleration=[3000.0] * 3, jerk=[1e5] * 3)
+    print("\n## 5. jerk 1e5 mm/s^3 per axis, 3D_Chips, eps 0.01: cycle time [s] (largest axis jerk by third differences)")
+    for rule in ("blend", "smooth"):
+        tr = nm.plan(arr, lim, rule=rule, tolerance=0.01)
+        jerk = np.abs(np.diff(tr.position, 3, axis=0)).max() / tr.stats["ts2_s"] ** 3
+        print(f"  {rule:6s} {tr.stats['cycle_time_s']:8.3f} ({jerk:.0f})")
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="3D_Chips only, smaller sizes")
-    ap.add_argument("--only", choices=("cycle", "toppra", "throughput", "stream"))
+    ap.add_argument("--only", choices=("cycle", "toppra", "throughput", "stream", "jerk"))
     args = ap.parse_args(argv)
     if args.only in (None, "cycle"):
         section_cycle(args.quick)
@@ -117,6 +130,8 @@ def main(argv=None) -> int:
         section_throughput(2 if args.quick else 5)
     if args.only in (None, "stream"):
         section_stream(2 if args.quick else 5)
+    if args.only in (None, "jerk") and not args.quick:
+        section_jerk()
     return 0
 
 
