@@ -42,8 +42,9 @@ std::vector<toolpath::Block> blocks_from_arrays(const Eigen::Ref<const Eigen::Ve
 }
 
 // Blocks as parallel arrays (the dict smooth_path returns): kind, start, end, center, clockwise, plane,
-// turns, feed.
-py::dict block_arrays(const std::vector<toolpath::Block>& blocks) {
+// turns, feed, and ctrl (n, 2, 3): the inner control points P1, P2 of cubic blocks, whose kind is 3
+// (zeros on the other rows).
+py::dict block_arrays(const std::vector<toolpath::Block>& blocks, const std::vector<CubicControls>& controls) {
   const auto n = static_cast<Eigen::Index>(blocks.size());
   Eigen::VectorXi k(n), cw(n), pl(n), tu(n);
   Points3 s(n, 3), e(n, 3), c(n, 3);
@@ -59,6 +60,17 @@ py::dict block_arrays(const std::vector<toolpath::Block>& blocks) {
     c.row(i) = b.center.transpose();
     f[i] = b.feed;
   }
+  py::array_t<double> ctrl({static_cast<py::ssize_t>(n), py::ssize_t{2}, py::ssize_t{3}});
+  auto cv = ctrl.mutable_unchecked<3>();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto idx = static_cast<std::size_t>(i);
+    const bool cubic = idx < controls.size() && controls[idx].cubic;
+    if (cubic) k[i] = 3;
+    for (int a = 0; a < 3; ++a) {
+      cv(i, 0, a) = cubic ? controls[idx].c1[a] : 0.0;
+      cv(i, 1, a) = cubic ? controls[idx].c2[a] : 0.0;
+    }
+  }
   py::dict arrays;
   arrays["kind"] = k;
   arrays["start"] = s;
@@ -68,6 +80,7 @@ py::dict block_arrays(const std::vector<toolpath::Block>& blocks) {
   arrays["plane"] = pl;
   arrays["turns"] = tu;
   arrays["feed"] = f;
+  arrays["ctrl"] = ctrl;
   return arrays;
 }
 
@@ -97,6 +110,7 @@ SmoothResult smooth_streamed(const std::vector<toolpath::Block>& blocks, const S
     Status st;
     while ((st = sm.next(sb)) == Status::ok) {
       r.blocks.push_back(sb.block);
+      r.controls.push_back(sb.controls);
       r.source_first.push_back(sb.source_first);
       r.source_last.push_back(sb.source_last);
     }
@@ -291,7 +305,7 @@ void bind_motion(py::module_& m) {
           py::gil_scoped_release release;
           r = smooth(blocks, o);
         }
-        py::dict arrays = block_arrays(r.blocks);
+        py::dict arrays = block_arrays(r.blocks, r.controls);
         py::dict stats = smooth_stats(r);
         return py::make_tuple(arrays, r.source_first, r.source_last, stats);
       },
@@ -318,7 +332,7 @@ void bind_motion(py::module_& m) {
           py::gil_scoped_release release;
           r = smooth_streamed(blocks, o, chunk, counts);
         }
-        py::dict arrays = block_arrays(r.blocks);
+        py::dict arrays = block_arrays(r.blocks, r.controls);
         py::dict stats = smooth_stats(r);
         stats["chunks"] = counts.chunks;
         stats["forced_cuts"] = counts.forced_cuts;

@@ -64,6 +64,7 @@ Status Smoother::next(SmoothedBlock& out) noexcept {
     }
     const std::size_t k = out_pos_++;
     out.block = result_.blocks[k];
+    out.controls = result_.controls[k];
     out.source_first = result_.source_first[k] + out_base_;
     out.source_last = result_.source_last[k] + out_base_;
     return Status::ok;
@@ -123,7 +124,7 @@ bool Smoother::try_cut(std::size_t c) {
   // c's own block is the last one, kept whole at its end
   if (m < 2 || r.source_first[m - 1] != cl || r.source_last[m - 1] != cl) return false;
   const toolpath::Block& own = r.blocks[m - 1];
-  if (own.kind != prog.kind || own.end != prog.end) return false;
+  if (r.controls[m - 1].cubic || own.kind != prog.kind || own.end != prog.end) return false;
   if (own.start != prog.start) {
     // moved: only a lead of the run before c (the block before c is a micro-segment, the start moved
     // by min(lead_length, length/2)); a rounded vertex before c (moved by the arc's tangent length)

@@ -69,6 +69,7 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
   Vec3 start_override = Vec3::Zero();
   auto keep = [&](std::size_t i) {
     res.blocks.push_back(program[i]);
+    res.controls.emplace_back();
     if (static_cast<long>(i) == start_override_block) res.blocks.back().start = start_override;
     res.source_first.push_back(static_cast<long>(i));
     res.source_last.push_back(static_cast<long>(i));
@@ -239,6 +240,7 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
         res.blocks.back().end = first3;
         if ((res.blocks.back().end - res.blocks.back().start).norm() <= 1e-12) {
           res.blocks.pop_back();
+          res.controls.pop_back();
           res.source_first.pop_back();
           res.source_last.pop_back();
           program_line.pop_back();
@@ -262,21 +264,17 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       Vec3 cur = first3;
       for (std::size_t q = 0; q < rf.pieces.size(); ++q) {
         const Piece& p = rf.pieces[q];
-        toolpath::Block b = program[i];
+        toolpath::Block b = program[i];  // the chord of the cubic piece
+        b.kind = MotionKind::line;
         b.start = cur;
-        b.end = q + 1 == rf.pieces.size() ? last3 : to3(p.b);
-        if (p.k == 0) {
-          b.kind = MotionKind::line;
-        } else {
-          b.kind = MotionKind::arc;
-          b.plane = plane;
-          b.center = to3(p.c);
-          b.center[ax.n] = b.start[ax.n];
-          b.clockwise = p.k < 0;
-          b.turns = 1;
-        }
+        b.end = q + 1 == rf.pieces.size() ? last3 : to3(p.b3);
         if ((b.end - b.start).norm() <= 1e-12) continue;
         res.blocks.push_back(b);
+        CubicControls cc;
+        cc.cubic = true;
+        cc.c1 = to3(p.b1);
+        cc.c2 = to3(p.b2);
+        res.controls.push_back(cc);
         res.source_first.push_back(block_at(p.ua));
         res.source_last.push_back(block_at(p.ub));
         program_line.push_back(false);
@@ -329,6 +327,7 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
     out.blocks.reserve(res.blocks.size());
     for (std::size_t k = 0; k < res.blocks.size(); ++k) {
       out.blocks.push_back(res.blocks[k]);
+      out.controls.push_back(res.controls[k]);
       out.source_first.push_back(res.source_first[k]);
       out.source_last.push_back(res.source_last[k]);
       if (k + 1 == res.blocks.size() || !program_line[k] || !program_line[k + 1]) continue;
@@ -376,11 +375,13 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       b1.end = p1;
       res.blocks[k + 1].start = p2;
       out.blocks.push_back(arc);
+      out.controls.emplace_back();
       out.source_first.push_back(res.source_first[k]);
       out.source_last.push_back(res.source_last[k + 1]);
       ++out.corners_rounded;
     }
     res.blocks = std::move(out.blocks);
+    res.controls = std::move(out.controls);
     res.source_first = std::move(out.source_first);
     res.source_last = std::move(out.source_last);
     res.corners_rounded = out.corners_rounded;

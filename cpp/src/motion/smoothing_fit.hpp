@@ -1,7 +1,7 @@
 #pragma once
-// The tolerance-band smoothing stage's arcs and runs (private, included by smoothing.cpp only, so
-// everything here has internal linkage): circular pieces and biarcs, one run's fit pulled back into the
-// tube and checked both ways on its arcs, and the leads a run borrows from its neighbours.
+// The tolerance-band smoothing stage's runs (private, included by smoothing.cpp only, so everything
+// here has internal linkage): one run's spline fit pulled back into the tube, its knot spans as cubic
+// Bézier pieces, and the two-way check of the spline against the polyline.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -17,167 +17,73 @@
 namespace netshape::motion {
 namespace {
 
+// One knot span of the fitted spline as a cubic Bézier (control points b0..b3); consecutive pieces
+// join with equal tangents and curvatures (the spline is C²).
 struct Piece {
-  V2 a, b, c;     // start, end, centre (arcs)
-  double k = 0;   // signed curvature (CCW > 0)
-  double len = 0;
-  double ua = 0, ub = 0;  // spline parameter range it stands for
-  V2 at(double f) const {  // point at fraction f of the length
-    if (k == 0) return a + f * (b - a);
-    const double ang = f * len * k;
-    const V2 r = a - c;
-    const double cs = std::cos(ang), sn = std::sin(ang);
-    return c + V2(cs * r.x() - sn * r.y(), sn * r.x() + cs * r.y());
-  }
+  V2 b0, b1, b2, b3;
+  double ua = 0, ub = 0;  // spline parameter range; after chain_check: arc lengths along the polyline
 };
-
-// Arc from a with unit tangent t through (ending at) b; a line when nearly straight.
-Piece make_arc(const V2& a, const V2& t, const V2& b) {
-  Piece p;
-  p.a = a;
-  p.b = b;
-  const V2 d = b - a;
-  const double l2 = d.squaredNorm();
-  const double l = std::sqrt(l2);
-  const double k = l2 > 0 ? 2.0 * cross2(t, d) / l2 : 0.0;
-  if (std::abs(k) * l < 1e-7) {
-    p.k = 0;
-    p.len = l;
-    return p;
-  }
-  p.k = k;
-  p.c = a + perp(t) / k;
-  // swept angle: the tangent turns by 2·asin(k·l/2) (minor arc; a biarc piece turns < π)
-  const double half = std::asin(std::clamp(std::abs(k) * l / 2.0, 0.0, 1.0));
-  const double ang = (t.dot(d) >= 0 ? 2.0 * half : 2.0 * (pi - half));
-  p.len = ang / std::abs(k);
-  return p;
-}
-
-double circle_dist(const Piece& p, const V2& q) {
-  if (p.k == 0) return seg_dist(q, p.a, p.b);
-  return std::abs((q - p.c).norm() - 1.0 / std::abs(p.k));
-}
-
-// Biarc between (p0, t0) and (p1, t1); false when it does not exist in a usable form.
-bool biarc(const V2& p0, const V2& t0, const V2& p1, const V2& t1, Piece& A, Piece& B) {
-  const V2 v = p1 - p0;
-  const V2 ts = t0 + t1;
-  const double vt = v.dot(ts);
-  const double den = 2.0 * (1.0 - t0.dot(t1));
-  double alpha;
-  if (den < 1e-12) {
-    if (vt <= 0) return false;
-    alpha = v.squaredNorm() / (2.0 * vt);
-  } else {
-    const double disc = vt * vt + den * v.squaredNorm();
-    alpha = (-vt + std::sqrt(disc)) / den;
-  }
-  if (!(alpha > 0) || !std::isfinite(alpha)) return false;
-  const V2 m = 0.5 * (p0 + alpha * t0 + p1 - alpha * t1);
-  A = make_arc(p0, t0, m);
-  // second arc: from m to p1 ending with tangent t1 = the reverse arc from p1 with −t1 through m
-  Piece R = make_arc(p1, -t1, m);
-  B.a = m;
-  B.b = p1;
-  B.k = -R.k;
-  B.c = R.c;
-  B.len = R.len;
-  return std::isfinite(A.len) && std::isfinite(B.len) && A.len > 0 && B.len > 0;
-}
 
 struct RunFit {
   std::vector<Piece> pieces;
   double bound = 0;
 };
 
-// Biarc chain of the spline (each piece halved until the spline's eighth points lie within fit_arc of
-// its biarc and the biarc turns less than 90°), then the two-way check of the chain
-// against the polyline. Fills out.pieces (their ua, ub as arc lengths along the polyline) and out.bound;
-// the polyline arc lengths of the places where the bound exceeds eps go to bad. False when no usable
-// biarc exists.
+// The pieces of the spline (its non-empty knot spans, from the power form: with a_j = c_j·h^j,
+// b0 = a0, b1 = a0 + a1/3, b2 = a0 + 2a1/3 + a2/3, b3 = a0 + a1 + a2 + a3), then the two-way check of the
+// spline against the polyline. Chords of the spline within one knot span, at parameters u0 < u1,
+// deviate from it by at most σ = (u1 − u0)²/8 · max|s''| (linear interpolation error; s'' is linear
+// on a span, so its largest norm is at u0 or u1); chords are placed so that σ ≤ 0.05·eps and no chord
+// is longer than half a mean segment. Fills out.pieces (their ua, ub as arc lengths along the polyline)
+// and out.bound; the polyline arc lengths of the places where the bound exceeds eps go to bad.
 bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector<double>& cum,
                  const ParamMap& amap, double eps, double mean,
                  RunFit& out, std::vector<double>& bad) {
   const std::size_t n = pts.size();
-  const double L = cum.back();
   const double sag_share = 0.05 * eps;
-  const double fit_arc = 0.1 * eps;
   bad.clear();
   out.pieces.clear();
-  // biarcs start over stretches of about four mean segments and are halved where they do not fit
-  std::vector<double> breaks;
-  const int nbr = std::max(1, static_cast<int>(std::round(L / (4.0 * mean))));
-  for (int k = 0; k <= nbr; ++k) breaks.push_back(L * k / nbr);
-  V2 pa = pts.front();
-  for (std::size_t s = 0; s + 1 < breaks.size(); ++s) {
-    // stack of parameter intervals (depth-first, in order)
-    std::vector<std::pair<double, double>> todo{{breaks[s], breaks[s + 1]}};
-    while (!todo.empty()) {
-      const auto [ua, ub] = todo.back();
-      todo.pop_back();
-      const bool last = (s + 2 == breaks.size()) && todo.empty() && ub >= L;
-      const V2 pb = last ? pts.back() : sp.point(ub);
-      const V2 ta = sp.deriv(ua).normalized(), tb = sp.deriv(ub).normalized();
-      Piece A, B;
-      bool ok = biarc(pa, ta, pb, tb, A, B);
-      if (ok) {
-        const double turn = std::abs(A.k) * A.len + std::abs(B.k) * B.len;
-        ok = turn < 0.5 * pi;
-        for (double f : {0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875}) {
-          if (!ok) break;
-          const V2 q = sp.point(ua + f * (ub - ua));
-          ok = std::min(circle_dist(A, q), circle_dist(B, q)) <= fit_arc;
-        }
-      }
-      if (!ok && ub - ua > 1e-6 * std::max(1.0, L)) {
-        const double um = 0.5 * (ua + ub);
-        todo.push_back({um, ub});
-        todo.push_back({ua, um});
-        continue;
-      }
-      if (!ok) {
-        return false;
-      }
-      const double um = 0.5 * (ua + ub);
-      A.ua = ua;
-      A.ub = um;
-      B.ua = um;
-      B.ub = ub;
-      out.pieces.push_back(A);
-      out.pieces.push_back(B);
-      pa = pb;
-    }
-  }
-  // chord samples of the chain with their parameters, sagitta, piece and fractions
+  const int m = static_cast<int>(sp.P.size());
+  // chord samples of the spline with their parameters, sagitta bound and span
   std::vector<V2> cp;
-  std::vector<double> cu, csag, cf0, cf1;  // per chord j (cp[j], cp[j+1]): sagitta, fractions of its piece
-  std::vector<int> cpi;
-  cp.push_back(out.pieces.front().a);
+  std::vector<double> cu, cpar, csag;  // cu: polyline arc length of each chord point; cpar: its parameter
+  std::vector<int> cspan;              // per chord j (cp[j], cp[j+1]): its knot span
+  cp.push_back(sp.P.front());
   cu.push_back(0.0);
-  for (std::size_t pi_ = 0; pi_ < out.pieces.size(); ++pi_) {
-    const Piece& p = out.pieces[pi_];
-    int nc = 1;
-    if (p.k != 0) {
-      const double h = std::sqrt(8.0 * sag_share / std::abs(p.k));
-      nc = std::max(1, static_cast<int>(std::ceil(p.len / h)));
-    }
-    nc = std::max(nc, static_cast<int>(std::ceil(p.len / (0.5 * mean))));
-    const double hc = p.len / nc;
-    const double sag = std::abs(p.k) * hc * hc / 8.0;
+  cpar.push_back(0.0);
+  for (int k = 3; k < m; ++k) {
+    const double t0 = sp.t[static_cast<std::size_t>(k)], t1 = sp.t[static_cast<std::size_t>(k + 1)];
+    const double h = t1 - t0;
+    if (!(h > 0)) continue;
+    const auto& c = sp.pw[static_cast<std::size_t>(k)];
+    Piece pc;
+    const V2 a1 = c[1] * h, a2 = c[2] * (h * h), a3 = c[3] * (h * h * h);
+    pc.b0 = c[0];
+    pc.b1 = c[0] + a1 / 3.0;
+    pc.b2 = c[0] + (2.0 / 3.0) * a1 + a2 / 3.0;
+    pc.b3 = c[0] + a1 + a2 + a3;
+    pc.ua = t0;
+    pc.ub = t1;
+    out.pieces.push_back(pc);
+    const double k2 = std::max((2.0 * c[2]).norm(), (2.0 * c[2] + 6.0 * h * c[3]).norm());  // max |s''|
+    int nc = std::max(1, static_cast<int>(std::ceil(h / (0.5 * mean))));
+    if (k2 > 0) nc = std::max(nc, static_cast<int>(std::ceil(h * std::sqrt(k2 / (8.0 * sag_share)))));
+    const double hc = h / nc;
+    const double sag = k2 * hc * hc / 8.0;
     for (int j = 1; j <= nc; ++j) {
-      cp.push_back(j == nc ? p.b : p.at(static_cast<double>(j) / nc));
-      cu.push_back(amap(p.ua + (p.ub - p.ua) * j / nc));
+      const double u = j == nc ? t1 : t0 + hc * j;
+      cp.push_back(j == nc && k == m - 1 ? sp.P.back() : sp.point(u));
+      cu.push_back(amap(u));
+      cpar.push_back(u);
       csag.push_back(sag);
-      cf0.push_back(static_cast<double>(j - 1) / nc);
-      cf1.push_back(static_cast<double>(j) / nc);
-      cpi.push_back(static_cast<int>(pi_));
+      cspan.push_back(k);
     }
   }
+  if (out.pieces.empty()) return false;
   double bound = 0;
-  const double fine = 0.1 * eps;  // bisect a failing piece down to this length [mm]
-  // chain -> polyline: every arc point between chord points c0, c1 is within
-  // max(d(c0, S), d(c1, S)) + sagitta of segment S (distance to a segment is convex)
+  const double fine = 0.1 * eps;  // bisect a failing chord down to this length [mm]
+  // spline -> polyline: every spline point between chord points c0, c1 is within
+  // max(d(c0, S), d(c1, S)) + σ of segment S (distance to a segment is convex)
   const long ns = static_cast<long>(n) - 1;
   auto chain_bound = [&](const V2& c0, const V2& c1, long s) {
     double best = 1e300;
@@ -188,26 +94,25 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     return best;
   };
   struct Job {
-    double f0, f1, sag;
+    double u0, u1, sag;
   };
   std::vector<Job> jobs;
   for (std::size_t j = 0; j + 1 < cp.size(); ++j) {
     const double um = 0.5 * (cu[j] + cu[j + 1]);
     const long s = std::clamp(static_cast<long>(std::upper_bound(cum.begin(), cum.end(), um) - cum.begin()) - 1, 0L, ns - 1);
     double best = chain_bound(cp[j], cp[j + 1], s) + csag[j];
-    if (best > eps) {  // bisect the chord's arc piece where it straddles a polyline vertex
-      const Piece& P = out.pieces[static_cast<std::size_t>(cpi[j])];
-      jobs.assign(1, Job{cf0[j], cf1[j], csag[j]});
+    if (best > eps) {  // bisect the chord where it straddles a polyline vertex
+      jobs.assign(1, Job{cpar[j], cpar[j + 1], csag[j]});
       best = 0;
       while (!jobs.empty()) {
         const Job jb = jobs.back();
         jobs.pop_back();
-        const V2 c0 = P.at(jb.f0), c1 = P.at(jb.f1);
+        const V2 c0 = sp.point(jb.u0), c1 = sp.point(jb.u1);
         const double b = chain_bound(c0, c1, s) + jb.sag;
         if (b > eps && (c1 - c0).norm() > fine) {
-          const double fm = 0.5 * (jb.f0 + jb.f1);
-          jobs.push_back(Job{jb.f0, fm, 0.25 * jb.sag});
-          jobs.push_back(Job{fm, jb.f1, 0.25 * jb.sag});
+          const double um2 = 0.5 * (jb.u0 + jb.u1);
+          jobs.push_back(Job{jb.u0, um2, 0.25 * jb.sag});
+          jobs.push_back(Job{um2, jb.u1, 0.25 * jb.sag});
           continue;
         }
         best = std::max(best, b);
@@ -216,8 +121,8 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     bound = std::max(bound, best);
     if (best > eps) bad.push_back(um);
   }
-  // polyline -> chain: every point of a polyline piece [q0, q1] is within
-  // max(d(q0, C), d(q1, C)) + sagitta of the arc over chord C
+  // polyline -> spline: every point of a polyline piece [q0, q1] is within
+  // max(d(q0, C), d(q1, C)) + σ of the spline over chord C
   const long nch = static_cast<long>(cp.size()) - 1;
   // chords whose arc length along the polyline (through the parameter map) lies within ±w of the
   // piece's; a chord outside the window can only make the bound larger, never smaller

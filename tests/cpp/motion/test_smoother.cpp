@@ -136,7 +136,9 @@ void check_equal(const SmoothResult& batch, const Streamed& st) {
   int kinds = 0, sources = 0;
   for (std::size_t k = 0; k < batch.blocks.size(); ++k) {
     const Block &a = batch.blocks[k], &b = st.out[k].block;
-    kinds += a.kind != b.kind || a.clockwise != b.clockwise || a.plane != b.plane;
+    const CubicControls &ca = batch.controls[k], &cb = st.out[k].controls;
+    kinds += a.kind != b.kind || a.clockwise != b.clockwise || a.plane != b.plane || ca.cubic != cb.cubic;
+    if (ca.cubic) worst = std::max({worst, (ca.c1 - cb.c1).norm(), (ca.c2 - cb.c2).norm()});
     sources += batch.source_first[k] != st.out[k].source_first || batch.source_last[k] != st.out[k].source_last;
     worst = std::max({worst, (a.start - b.start).norm(), (a.end - b.end).norm()});
     if (a.kind == MotionKind::arc) worst = std::max(worst, (a.center - b.center).norm());
@@ -160,7 +162,11 @@ double deviation(const std::vector<Block>& prog, const std::vector<SmoothedBlock
   Eigen::Index row = 0;
   for (const auto& sb : out)
     for (int q = 0; q <= per; ++q) {
-      pts.row(row++) = sb.block.point_at(static_cast<double>(q) / per).transpose();
+      pts.row(row++) = (sb.controls.cubic
+                            ? bezier_point({sb.block.start, sb.controls.c1, sb.controls.c2, sb.block.end},
+                                           static_cast<double>(q) / per)
+                            : sb.block.point_at(static_cast<double>(q) / per))
+                           .transpose();
       first.push_back(sb.source_first);
       last.push_back(sb.source_last);
     }

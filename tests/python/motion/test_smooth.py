@@ -18,11 +18,25 @@ from netshape import toolpath
 _AXES = ((0, 1, 2), (2, 0, 1), (1, 2, 0))  # plane -> (a, b, normal), as toolpath::plane_axes
 
 
+def _bezier(arr, i, u):
+    """Points of cubic block i (kind 3: start, ctrl[i, 0], ctrl[i, 1], end) at parameters u."""
+    p0, p3 = np.asarray(arr["start"][i], float), np.asarray(arr["end"][i], float)
+    p1, p2 = np.asarray(arr["ctrl"][i][0], float), np.asarray(arr["ctrl"][i][1], float)
+    u = np.asarray(u, float)[:, None]
+    return (1 - u) ** 3 * p0 + 3 * (1 - u) ** 2 * u * p1 + 3 * (1 - u) * u ** 2 * p2 + u ** 3 * p3
+
+
 def _sample_blocks(arr, ds):
-    """Points along the blocks every <= ds [mm] (lines and single-turn arcs)."""
+    """Points along the blocks every <= ds [mm] (lines, single-turn arcs and cubic Béziers; a cubic's
+    points are at most ds apart since |B'| <= 3·max|P_{k+1} − P_k|)."""
     out = []
     for i in range(len(arr["kind"])):
         s, e, c = (np.asarray(arr[k][i], float) for k in ("start", "end", "center"))
+        if arr["kind"][i] == 3:
+            poly = np.vstack([s, arr["ctrl"][i][0], arr["ctrl"][i][1], e])
+            speed = 3.0 * np.linalg.norm(np.diff(poly, axis=0), axis=1).max()
+            out.append(_bezier(arr, i, np.linspace(0.0, 1.0, max(1, int(np.ceil(speed / ds))) + 1)))
+            continue
         if arr["kind"][i] != 2:
             n = max(1, int(np.ceil(np.linalg.norm(e - s) / ds)))
             f = np.linspace(0.0, 1.0, n + 1)[:, None]
@@ -207,15 +221,6 @@ def test_random_curves_planned_feasible_and_within_tolerance(seed):
     assert tr.stats["runs_smoothed"] == 1 and tr.stats["runs_kept"] == 0
 
 
-def _arc_tangent(arr, i, at_start):
-    """Unit tangent of arc block i at its start or end, from its centre and sense (plane XY)."""
-    c = np.asarray(arr["center"][i], float)
-    p = np.asarray(arr["start"][i] if at_start else arr["end"][i], float)
-    r = p - c
-    t = np.array([-r[1], r[0], 0.0]) if not arr["clockwise"][i] else np.array([r[1], -r[0], 0.0])
-    return t / np.linalg.norm(t)
-
-
 def test_run_joins_adjoining_long_lines_tangentially():
     """A long line, a gently curved run of 0.5 mm moves turning 12° at the first joint, a long line: the
     curve starts on the first line and ends on the last one, tangent to both (no corner left for the
@@ -236,10 +241,11 @@ def test_run_joins_adjoining_long_lines_tangentially():
     # the first line is shortened (its end is before the program vertex) and the curve leaves it tangentially
     l_in = (pts[1] - pts[0]) / np.linalg.norm(pts[1] - pts[0])
     assert 0.0 < np.linalg.norm(pts[1] - new["end"][0]) <= 2.0 + 1e-9
-    assert kind[1] == 2
-    assert np.dot(_arc_tangent(new, 1, True), l_in) > 1 - 1e-9
+    assert kind[1] == 3
+    t0, t1 = _tangents(new)
+    assert np.dot(t0[1], l_in) > 1 - 1e-9
     l_out = (pts[-1] - pts[-2]) / np.linalg.norm(pts[-1] - pts[-2])
-    assert np.dot(_arc_tangent(new, len(kind) - 2, False), l_out) > 1 - 1e-9
+    assert np.dot(t1[len(kind) - 2], l_out) > 1 - 1e-9
     lim = nm.AxisLimits.uniform(250.0, 3000.0)
     _feasible_and_within(arr, pts, eps, lim, 3000.0)
 
@@ -276,6 +282,11 @@ def _tangents(arr):
     t0, t1 = [], []
     for i in range(len(arr["kind"])):
         s, e, c = (np.asarray(arr[k][i], float) for k in ("start", "end", "center"))
+        if arr["kind"][i] == 3:
+            p1, p2 = np.asarray(arr["ctrl"][i][0], float), np.asarray(arr["ctrl"][i][1], float)
+            t0.append((p1 - s) / np.linalg.norm(p1 - s))
+            t1.append((e - p2) / np.linalg.norm(e - p2))
+            continue
         if arr["kind"][i] != 2:
             d = (e - s) / np.linalg.norm(e - s)
             t0.append(d)
@@ -303,7 +314,9 @@ def test_straight_run_in_a_side_plane_borrows_leads_from_its_lines():
     arr = nm.polyline_arrays(pts, 100.0)
     new, first, last, st = nm.smooth_path(arr, eps, max_turn=np.radians(150.0))
     assert st["runs_smoothed"] == 1 and st["corners_kept"] == 0
-    assert set(np.asarray(new["plane"])[np.asarray(new["kind"]) == 2]) == {2}  # G19, the lines' plane
+    cubic = np.asarray(new["kind"]) == 3
+    assert cubic.any()
+    assert np.all(np.asarray(new["ctrl"])[cubic][:, :, 0] == 5.0)  # G19, the lines' plane: X stays 5
     t0, t1 = _tangents(new)
     assert np.all(np.einsum("ij,ij->i", t1[:-1], t0[1:]) > 1 - 1e-9)  # no corner left
     curve = _sample_blocks(new, 0.0005)

@@ -60,7 +60,8 @@ namespace netshape::motion {
 
 /// One block of the smoothed program with the range of program blocks it replaces.
 struct SmoothedBlock {
-  toolpath::Block block;
+  toolpath::Block block;    ///< a cubic piece: its chord (kind line)
+  CubicControls controls;   ///< the inner control points when the block is a cubic piece
   long source_first = -1;  ///< first program block (0-based index in push order)
   long source_last = -1;   ///< last program block (0-based index in push order)
 };

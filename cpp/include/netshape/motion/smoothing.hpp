@@ -3,14 +3,15 @@
 /// Tolerance-band smoothing of micro-segment programs, a stage before the planner.
 ///
 /// A run of short line blocks (each at most `max_segment` long, every interior turn at most
-/// `max_turn`, one feed, all points in one coordinate plane G17/G18/G19) is replaced by a chain of
-/// tangent-continuous circular arcs that follows a smoothing spline of the run: a cubic B-spline that
-/// minimises the weighted squared distance to samples of the polyline plus ℓ⁴·∫|s''|²
+/// `max_turn`, one feed, all points in one coordinate plane G17/G18/G19) is replaced by a smoothing
+/// spline of the run, handed out as one cubic Bézier block per knot span (cubic.hpp: a line block, the
+/// chord, plus its inner control points), so the new path is curvature-continuous along a run: a cubic
+/// B-spline that minimises the weighted squared distance to samples of the polyline plus ℓ⁴·∫|s''|²
 /// (`smoothing_length` ℓ), then is pulled back into the tube by raising the weights of the samples it
 /// leaves (knots are added next to samples that stay out for several rounds). A long line adjoining a
-/// run lends it up to `lead_length`, so the curve joins the line tangentially. The chain is checked
-/// against the run's polyline both ways — every point of the chain within `fit_tolerance()` of the
-/// polyline and every point of the polyline within it of the chain — with rigorous upper bounds from
+/// run lends it up to `lead_length`, so the curve joins the line tangentially. The spline is checked
+/// against the run's polyline both ways — every point of the spline within `fit_tolerance()` of the
+/// polyline and every point of the polyline within it of the spline — with rigorous upper bounds from
 /// chord samples (below). A run that still fails after `max_refinements` rounds is cut at its sharpest
 /// interior vertex and both parts are tried again; a part shorter than `min_blocks` that fails is left
 /// as programmed. Vertices turning more than `max_turn` are corners: they end a run. A vertex between
@@ -19,15 +20,17 @@
 /// planner's blend rule blends the rest within the remaining tolerance. Arcs, rapids and other long
 /// lines pass through unchanged.
 ///
-/// Error bounds: for two chord points c0, c1 of an arc (sagitta σ = κ·h²/8) and a polyline segment
-/// S, dist(c, S) is convex along the chord, so every arc point between them is within
+/// Error bounds: between two chord points c0 = s(u0), c1 = s(u1) in one knot span the spline deviates
+/// from the chord by at most σ = (u1 − u0)²/8 · max|s''| (s'' is linear on a span); dist(c, S) to a
+/// polyline segment S is convex along the chord, so every spline point between them is within
 /// max(dist(c0, S), dist(c1, S)) + σ of S; likewise a polyline piece [q0, q1] is within
-/// max(dist(q0, C), dist(q1, C)) + σ of the arc when C is the chord [c0, c1].
+/// max(dist(q0, C), dist(q1, C)) + σ of the spline when C is the chord [c0, c1].
 ///
 /// Units: mm, rad.
 
 #include <vector>
 
+#include "netshape/motion/cubic.hpp"
 #include "netshape/toolpath/block.hpp"
 
 namespace netshape::motion {
@@ -35,7 +38,7 @@ namespace netshape::motion {
 /// Options of the smoothing stage.
 struct SmoothOptions {
   double tolerance = 0.01;    ///< total contour tolerance ε [mm] (fit plus the planner's corner blends)
-  double fit_share = 0.9;     ///< share of ε given to the fitted arcs; the rest is the blend tolerance
+  double fit_share = 0.9;     ///< share of ε given to the fitted curves; the rest is the blend tolerance
   double max_segment = 4.0;   ///< a line longer than this is not a micro-segment [mm]
   double max_turn = 0.5236;   ///< a vertex turning more than this (30°) is a corner that is kept [rad]
   int min_blocks = 3;         ///< shortest run that is smoothed [blocks]
@@ -47,7 +50,7 @@ struct SmoothOptions {
   bool round_corners = true;  ///< replace the vertex between two program lines by an arc within fit_tolerance()
   double plane_tolerance = 1e-9;  ///< a run is planar when its normal coordinate varies less [mm]
 
-  /// Tolerance of the fitted arcs against the polyline [mm].
+  /// Tolerance of the fitted curves (and corner arcs) against the polyline [mm].
   double fit_tolerance() const noexcept { return tolerance * fit_share; }
   /// Tolerance left for the planner's corner blends [mm].
   double blend_tolerance() const noexcept { return tolerance * (1.0 - fit_share); }
@@ -57,9 +60,10 @@ struct SmoothOptions {
 
 /// Output of smooth(): the new blocks and, per new block, the range of program blocks it replaces.
 struct SmoothResult {
-  std::vector<toolpath::Block> blocks;
+  std::vector<toolpath::Block> blocks;  ///< a cubic piece: its chord (kind line), see `controls`
+  std::vector<CubicControls> controls;  ///< per new block: the inner control points of a cubic piece
   std::vector<long> source_first, source_last;  ///< per new block: first / last program block index
-  long runs_smoothed = 0;   ///< runs replaced by arcs
+  long runs_smoothed = 0;   ///< runs replaced by a spline
   long runs_kept = 0;       ///< runs that failed the check and were left as programmed
   long corners_kept = 0;    ///< vertices between feed moves turning more than max_turn
   long corners_rounded = 0; ///< vertices between two program lines replaced by an arc
