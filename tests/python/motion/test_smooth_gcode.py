@@ -443,3 +443,345 @@ def test_cli_no_half_written_file(program, capsys):
                                      "--chord-tolerance", "1e-300"])
     assert "--chord-tolerance = 1e-300: too small for this arc" in line
     assert sorted(p.name for p in program.iterdir()) == ["p.ngc"]
+
+
+# ---------------------------------------------------------------- cubic Bézier blocks (kind 3)
+#
+# Programs of lines, arcs and cubic Bézier rows (start = P0, ctrl[k] = (P1, P2), end = P3) in the
+# three coordinate planes; the written files are parsed back by the reader above (extended by G5) and
+# compared with the Bézier evaluated here in Bernstein form.
+
+def _bezier(pts, ts):
+    """Points (m, 3) of the cubic Bézier with control points `pts` (4, 3) at parameters `ts`."""
+    t = np.asarray(ts, dtype=float)[:, None]
+    s = 1.0 - t
+    return s ** 3 * pts[0] + 3 * s * s * t * pts[1] + 3 * s * t * t * pts[2] + t ** 3 * pts[3]
+
+
+def _in_plane(plane, normal, ab):
+    """Points (m, 3) with in-plane coordinates `ab` (m, 2) of `plane` and its normal coordinate fixed."""
+    a, b, n = _AXES[plane]
+    ab = np.asarray(ab, dtype=float)
+    p = np.empty((len(ab), 3))
+    p[:, a], p[:, b], p[:, n] = ab[:, 0], ab[:, 1], normal
+    return p
+
+
+class _CubicProgram(_Program):
+    """_Program with cubic rows; ``cubics`` keeps (row, control points (4, 3), plane or None)."""
+
+    def __init__(self, start):
+        super().__init__(start)
+        self.ctrl, self.cubics = {}, []
+
+    def cubic(self, p1, p2, p3, plane, feed=20.0, plane_column=None):
+        pts = np.array([self.pos, p1, p2, p3], dtype=float)
+        self.ctrl[len(self.rows)] = pts[1:3]
+        self.cubics.append((len(self.rows), pts, plane))
+        self._add(3, p3, plane=plane if plane_column is None else plane_column, feed=feed)
+
+    def arrays(self):
+        out = super().arrays()
+        ctrl = np.zeros((len(self.rows), 2, 3))
+        for row, c in self.ctrl.items():
+            ctrl[row] = c
+        out["ctrl"] = ctrl
+        return out
+
+
+def _cubic_program():
+    """Cubic chains in G17, G18 and G19 (random control points in the plane, S-shaped ones, tight ones
+    with a loop or a cusp, tangent-continuous chains end to start), mixed with lines and arcs, a G19 arc
+    right before an XY cubic (the G5 needs G17 back), a straight cubic along X (Y and Z constant: XY),
+    one whose normal coordinate wobbles by 4e-10 mm (still planar), one whose plane column is wrong
+    (the writer reads the plane from the points) and a non-planar one."""
+    g = _CubicProgram([0.0, 0.0, 1.0])
+    rng = np.random.default_rng(11)
+    for plane in (0, 1, 2):
+        a, b, n = _AXES[plane]
+        normal = float(rng.uniform(-5, 5))
+        here = g.pos.copy()
+        here[n] = normal
+        g.line(here)
+        for _ in range(4):  # random control points
+            ab = g.pos[[a, b]] + rng.uniform(-20, 20, (3, 2))
+            p = _in_plane(plane, normal, ab)
+            g.cubic(p[0], p[1], p[2], plane)
+        o = g.pos[[a, b]]
+        # S-shaped: the inner points on both sides of the chord
+        p = _in_plane(plane, normal, o + np.array([[6.0, 8.0], [12.0, -8.0], [18.0, 0.0]]))
+        g.cubic(p[0], p[1], p[2], plane)
+        o = g.pos[[a, b]]
+        # tight: a loop (inner points crossed over), then a cusp (B' = 0 inside)
+        p = _in_plane(plane, normal, o + np.array([[10.0, 6.0], [-7.0, 6.0], [3.0, 0.0]]))
+        g.cubic(p[0], p[1], p[2], plane)
+        o = g.pos[[a, b]]
+        p = _in_plane(plane, normal, o + np.array([[4.0, 3.0], [0.0, 3.0], [4.0, 0.0]]))
+        g.cubic(p[0], p[1], p[2], plane)
+        for _ in range(3):  # a tangent-continuous chain: P1 mirrors the last P2 about the joint
+            last = g.cubics[-1][1]
+            p1 = last[3] + 0.7 * (last[3] - last[2])
+            ab = g.pos[[a, b]] + rng.uniform(-10, 10, (2, 2))
+            p = _in_plane(plane, normal, ab)
+            g.cubic(p1, p[0], p[1], plane)
+        tiny = _in_plane(plane, normal, g.pos[[a, b]] + np.array([[1e-3, 2e-3], [3e-3, -1e-3], [4e-3, 0.0]]))
+        g.cubic(tiny[0], tiny[1], tiny[2], plane)
+        g.arc(plane, _point(plane, g.pos, -5.0, 0.0, normal), 5.0, 0.0, 1.2)
+    g.arc(2, (g.pos[0], g.pos[1] + 4.0, g.pos[2]), 4.0, math.pi, -1.0)  # a G19 arc, then XY cubics
+    z = g.pos[2]
+    x0, y0 = g.pos[0], g.pos[1]
+    g.cubic((x0 + 3, y0 + 5, z), (x0 + 9, y0 - 5, z + 4e-10), (x0 + 12, y0, z), 0)  # planar within 1e-9
+    g.cubic((x0 + 13, y0, z), (x0 + 20, y0, z), (x0 + 26, y0, z), 0)  # straight along X
+    x0, y0 = g.pos[0], g.pos[1]
+    g.cubic((x0 + 2, y0 + 4, z), (x0 + 5, y0 + 4, z), (x0 + 7, y0, z), 0, plane_column=2)  # wrong column
+    g.rapid(g.pos + np.array([0.0, 0.0, 3.0]))
+    x0, y0, z0 = g.pos
+    g.cubic((x0 + 3, y0, z0 + 2), (x0 + 5, y0 + 4, z0 - 1), (x0 + 2, y0 + 6, z0 + 1), None, plane_column=0)
+    g.line(g.pos + np.array([1.0, 1.0, 0.0]), feed=5.0)
+    return g
+
+
+def _parse_cubic(lines):
+    """_parse, plus G5 moves ('G5', p0, p1, p2, p3, plane) rebuilt from I J (offset of P1 from the
+    start) and P Q (offset of P2 from the end); a G5 names X and Y only."""
+    pos, plane, out, rest = np.zeros(3), 0, [], []
+    for raw in lines:
+        text = re.sub(r"\(.*?\)", "", raw).strip()
+        words = _WORD.findall(text)
+        gs = [float(v) for k, v in words if k == "G"]
+        if 5.0 not in gs:
+            rest.append(raw)
+            continue
+        # flush what came before (a fresh _parse from the G0 that puts the tool at `pos`)
+        for m in _parse([f"G0 X{pos[0]:.6f} Y{pos[1]:.6f} Z{pos[2]:.6f}", *rest])[1:]:
+            out.append(m)
+            pos = np.array(m[2] if m[0] != "G5.2" else m[1][-1])
+        for gv in gs:
+            if gv in (17, 18, 19):
+                plane = int(gv) - 17
+        # keep the plane in force for the lines after the G5 as well
+        rest = [("G17", "G18", "G19")[plane]]
+        vals = {k: float(v) for k, v in words if k != "G"}
+        assert set(vals) <= {"X", "Y", "I", "J", "P", "Q", "F"}, raw
+        assert {"X", "Y", "I", "J", "P", "Q"} <= set(vals), raw
+        end = np.array([vals["X"], vals["Y"], pos[2]])
+        p1 = pos + np.array([vals["I"], vals["J"], 0.0])
+        p2 = end + np.array([vals["P"], vals["Q"], 0.0])
+        out.append(("G5", pos.copy(), p1, p2, end, plane))
+        pos = end
+    out += _parse([f"G0 X{pos[0]:.6f} Y{pos[1]:.6f} Z{pos[2]:.6f}", *rest])[1:]
+    return out
+
+
+def _end_of(m):
+    return m[1][-1] if m[0] == "G5.2" else (m[4] if m[0] == "G5" else m[2])
+
+
+def _walk_cubic(moves, arrays):
+    """Moves of each row: one for a rapid or line; an arc or a cubic takes the moves up to and including
+    the first that ends at its end point (chords), where the row after starts."""
+    out, k = [], 1  # moves[0] is the G0 to the first block's start
+    for i, kind in enumerate(arrays["kind"]):
+        j = k
+        if kind in (2, 3):
+            while np.abs(_end_of(moves[j]) - arrays["end"][i]).max() > PRINTED:
+                j += 1
+        out.append(moves[k:j + 1])
+        k = j + 1
+    assert k == len(moves)
+    return out
+
+
+def _dist_to_curve(pts, q):
+    """Distance of points `q` (m, 3) to the cubic with control points `pts`. The curve is sampled at
+    4001 parameters in 100 windows of 40 steps; the nearest sample of each window is refined by a
+    ternary search on the parameter within one step either side, and the least distance over the
+    windows is taken (so a branch of a loop passing close by does not hide the nearest one)."""
+    ts = np.linspace(0.0, 1.0, 4001)
+    c = _bezier(pts, ts)
+    out = []
+    for qc in np.array_split(q, max(1, len(q) // 64)):
+        d = ((qc[:, None, :] - c[None, :4000, :]) ** 2).sum(-1).reshape(len(qc), 100, 40)
+        k = d.argmin(-1) + 40 * np.arange(100)[None, :]  # (mc, 100) sample index per window
+        lo, hi = np.clip(ts[k] - 1 / 4000, 0, 1).ravel(), np.clip(ts[k] + 1 / 4000, 0, 1).ravel()
+        qq = np.repeat(qc, 100, axis=0)
+
+        def d2(t):
+            return ((_bezier(pts, t) - qq) ** 2).sum(1)
+
+        for _ in range(36):  # the bracket shrinks to (2/3)^36 of 2/4000: < 1e-9 in the parameter
+            m1, m2 = lo + (hi - lo) / 3, hi - (hi - lo) / 3
+            left = d2(m1) < d2(m2)
+            hi = np.where(left, m2, hi)
+            lo = np.where(left, lo, m1)
+        best = np.minimum(d2(0.5 * (lo + hi)), d2(np.ones_like(lo)))  # the end P3 is its own candidate
+        out.append(np.sqrt(best.reshape(len(qc), 100).min(1)))
+    return np.concatenate(out)
+
+
+def _dist_to_polyline(q, verts):
+    """Distance of points `q` (m, 3) to the polyline through `verts` (k, 3)."""
+    p0, u = verts[:-1], np.diff(verts, axis=0)
+    uu = np.maximum((u * u).sum(1), 1e-300)
+    s = np.clip(((q[:, None, :] - p0[None]) * u[None]).sum(-1) / uu, 0.0, 1.0)
+    return np.linalg.norm(q[:, None, :] - (p0[None] + s[..., None] * u[None]), axis=-1).min(axis=1)
+
+
+def _check_chords(pts, verts, tol):
+    """Largest of: distance of 2000 curve points to the polyline `verts`, and of points along every chord
+    (ends and 7 inside) to the curve; asserts the polyline starts and ends where the curve does."""
+    assert np.abs(verts[0] - pts[0]).max() <= PRINTED
+    assert np.abs(verts[-1] - pts[3]).max() <= PRINTED
+    curve_to_poly = _dist_to_polyline(_bezier(pts, np.linspace(0, 1, 2000)), verts).max()
+    s = np.linspace(0.0, 1.0, 9)[:, None, None]
+    along = (verts[:-1][None] + s * np.diff(verts, axis=0)[None]).reshape(-1, 3)
+    poly_to_curve = _dist_to_curve(pts, along).max()
+    return max(curve_to_poly, poly_to_curve)
+
+
+def _chords_of(ms, start):
+    assert all(m[0] == "G1" for m in ms), [m[0] for m in ms]
+    assert np.abs(ms[0][1] - start).max() <= PRINTED
+    for m0, m1 in zip(ms[:-1], ms[1:]):
+        assert np.array_equal(m0[2], m1[1])
+    return np.array([ms[0][1]] + [m[2] for m in ms])
+
+
+def _printed(v):
+    return np.array([float(f"{x:.6f}") for x in v])
+
+
+@pytest.mark.parametrize("tol", [1e-3, 1e-2, 1e-4])
+def test_g1_cubics_as_chords_within_tolerance(tol):
+    prog = _cubic_program()
+    arrays = prog.arrays()
+    lines = smoothed_gcode_lines(arrays, "g1", chord_tolerance=tol)
+    assert lines[1] == f"(cubic Bezier blocks as G1 chords within {tol:g} mm too)"
+    moves = _parse(lines)
+    assert {m[0] for m in moves} <= {"G0", "G1"}
+    per_row = _walk_cubic(moves, arrays)
+    worst = 0.0
+    for row, pts, plane in prog.cubics:
+        verts = _chords_of(per_row[row], arrays["start"][row])
+        assert np.array_equal(verts[-1], _printed(pts[3]))  # the end point exactly, as printed
+        err = _check_chords(pts, verts, tol)
+        assert err <= tol + PRINTED, (row, err, tol)
+        worst = max(worst, err)
+    assert worst > 0.25 * tol  # the chords use the tolerance (no needless chords everywhere)
+    for row, *_ in prog.arcs:  # arcs as before: chords ending at the arc's end
+        assert np.abs(per_row[row][-1][2] - arrays["end"][row]).max() <= PRINTED
+    back = toolpath.parse_gcode_arrays("\n".join(lines))
+    assert set(np.unique(back["kind"])) <= {0, 1}
+    assert np.allclose(back["end"][-1], arrays["end"][-1], atol=PRINTED)
+
+
+def test_chord_check_can_fail():
+    """The check above catches a polyline that leaves the curve: the written chords of a tight cubic
+    with every other inner vertex dropped are farther from the curve than the tolerance."""
+    prog = _cubic_program()
+    arrays = prog.arrays()
+    tol = 1e-3
+    per_row = _walk_cubic(_parse(smoothed_gcode_lines(arrays, "g1", chord_tolerance=tol)), arrays)
+    row, pts, _ = prog.cubics[5]  # the loop of G17
+    verts = _chords_of(per_row[row], arrays["start"][row])
+    assert len(verts) > 10
+    coarse = np.vstack([verts[:-1:2], verts[-1:]])
+    assert _check_chords(pts, coarse, tol) > 1.5 * tol
+
+
+def test_arcs_form_writes_xy_cubics_as_g5():
+    prog = _cubic_program()
+    arrays = prog.arrays()
+    tol = 1e-3
+    lines = smoothed_gcode_lines(arrays)  # the default form and chord tolerance (0.001 mm)
+    assert lines[1].startswith("(cubic Bezier blocks: in the XY plane as LinuxCNC G5 cubic splines")
+    assert "G18 or G19 are written as G1 chords within 0.001 mm" in lines[1]
+    moves = _parse_cubic(lines)
+    per_row = _walk_cubic(moves, arrays)
+    n_g5 = n_chorded = 0
+    for row, pts, plane in prog.cubics:
+        ms = per_row[row]
+        if plane == 0:  # G5: P1 and P2 rebuilt from I J and P Q, to the printed precision
+            (m,) = ms
+            assert m[0] == "G5" and m[5] == 0
+            got = np.array(m[1:5])
+            assert np.abs(got[:, :2] - pts[:, :2]).max() <= 2 * PRINTED, (row, got - pts)
+            assert abs(m[1][2] - pts[0][2]) <= PRINTED  # Z stays where it is (G5 carries no Z)
+            n_g5 += 1
+        else:  # G18 / G19 (and the non-planar one): G1 chords within the default tolerance
+            verts = _chords_of(ms, arrays["start"][row])
+            assert _check_chords(pts, verts, tol) <= tol + PRINTED
+            n_chorded += 1
+    assert n_g5 == 14 and n_chorded == 23
+    for row, plane, c, *_ in prog.arcs:  # arcs still G2 / G3 in their plane
+        (m,) = per_row[row]
+        assert m[0] in ("G2", "G3") and m[4] == plane and np.abs(m[3] - c).max() <= PRINTED
+
+
+def test_arcs_form_cubic_chord_tolerance_is_the_argument():
+    """Out-of-XY cubics follow `chord_tolerance` in the arcs form too (the CLI passes none: 0.001 mm)."""
+    prog = _cubic_program()
+    arrays = prog.arrays()
+    tol = 0.02
+    per_row = _walk_cubic(_parse_cubic(smoothed_gcode_lines(arrays, chord_tolerance=tol)), arrays)
+    worst = 0.0
+    for row, pts, plane in prog.cubics:
+        if plane != 0:
+            worst = max(worst, _check_chords(pts, _chords_of(per_row[row], arrays["start"][row]), tol))
+    assert 0.25 * tol < worst <= tol + PRINTED
+
+
+def test_nurbs_form_writes_xy_cubics_as_order_4_blocks():
+    prog = _cubic_program()
+    arrays = prog.arrays()
+    tol = 1e-3
+    lines = smoothed_gcode_lines(arrays, "nurbs")
+    assert lines[2].startswith("(cubic Bezier blocks: in the XY plane as G5.2 blocks of order 4")
+    moves = _parse(lines)
+    per_row = _walk_cubic(moves, arrays)
+    n_nurbs = 0
+    for row, pts, plane in prog.cubics:
+        ms = per_row[row]
+        if plane != 0:
+            verts = _chords_of(ms, arrays["start"][row])
+            assert _check_chords(pts, verts, tol) <= tol + PRINTED
+            continue
+        (m,) = ms
+        kind, cp, w, order, pl = m
+        assert kind == "G5.2" and order == 4 and pl == 0 and len(cp) == 4 and np.all(w == 1.0)
+        knots = _clamped_uniform_knots(4, 4)
+        assert np.array_equal(knots, [0, 0, 0, 0, 1, 1, 1, 1])
+        us = np.linspace(0.0, 1.0, 2001)
+        q = _nurbs_eval(cp, w, order, knots, us)
+        ref = _bezier(pts, us)
+        assert np.abs(q[:, :2] - ref[:, :2]).max() <= 1e-6, row
+        assert np.abs(q[:, 2] - pts[0][2]).max() <= PRINTED
+        n_nurbs += 1
+    assert n_nurbs == 14
+    # the XY arcs are still G5.2 of order 3, the others G2 / G3
+    assert {m[3] for m in moves if m[0] == "G5.2"} == {3, 4}
+
+
+def test_cubic_rows_need_ctrl_and_no_ctrl_key_is_fine():
+    prog = _program()
+    arrays = prog.arrays()
+    assert "ctrl" not in arrays
+    with_ctrl = dict(arrays, ctrl=np.zeros((len(arrays["kind"]), 2, 3)))
+    for fmt in FORMATS:  # a zero "ctrl" without cubic rows changes nothing
+        assert smoothed_gcode_lines(with_ctrl, fmt) == smoothed_gcode_lines(arrays, fmt)
+    bad = dict(prog.arrays())
+    bad["kind"] = bad["kind"].copy()
+    bad["kind"][-1] = 3
+    with pytest.raises(ValueError, match="kind 3.*no 'ctrl'"):
+        smoothed_gcode_lines(bad)
+
+
+def test_cubic_chord_tolerance_errors():
+    prog = _CubicProgram([0.0, 0.0, 0.0])
+    prog.cubic((0.0, 10.0, 0.0), (10.0, 10.0, 0.0), (10.0, 0.0, 0.0), 0)
+    arrays = prog.arrays()
+    with pytest.raises(ValueError, match="chord_tolerance = 0: must be a positive number"):
+        smoothed_gcode_lines(arrays, "g1", chord_tolerance=0.0)
+    with pytest.raises(ValueError, match="chord_tolerance = 1e-300: too small for this cubic"):
+        smoothed_gcode_lines(arrays, "g1", chord_tolerance=1e-300)
+    assert smoothed_gcode_lines(arrays, "arcs", chord_tolerance=1e-300)[-2].startswith("G17 G5 X")  # no chords
