@@ -197,6 +197,36 @@ TEST_CASE("cubic block between two lines at corners: the blend rule blends both 
   }
 }
 
+TEST_CASE("two cubic blocks at a corner: the blend trims both curves and stays within the tolerance") {
+  // the first ends along (3, -2), the second starts along (2, 3); then a line tangent to the second
+  const Ctrl c1 = {Vec3(0, 0, 0), Vec3(3, 2, 0), Vec3(6, 2, 0), Vec3(9, 0, 0)};
+  const Ctrl c2 = {Vec3(9, 0, 0), Vec3(11, 3, 0), Vec3(14, 4, 0.5), Vec3(18, 4, 0.5)};
+  std::vector<toolpath::Block> blocks;
+  std::vector<CubicControls> controls;
+  add_cubic(blocks, controls, c1, 200);
+  add_cubic(blocks, controls, c2, 200);
+  add_line(blocks, controls, c2[3], c2[3] + Vec3(10, 0, 0), 200);
+  for (const bool jerk : {false, true}) {
+    CAPTURE(jerk);
+    const AxisLimits lim = jerk ? AxisLimits::uniform(250, 3000, 1e5) : AxisLimits::uniform(250, 3000);
+    PlanOptions o;
+    o.rule = CornerRule::blend;
+    const Trajectory tr = plan(blocks, controls, lim, o, false);
+    double dmax = 0, at_corner = 0;
+    for (Eigen::Index i = 0; i < tr.position.rows(); ++i) {
+      const Vec3 p = tr.position.row(i).transpose();
+      const double d = std::min({distance_to_bezier(c1, p), distance_to_bezier(c2, p),
+                                 distance_to_segment(p, blocks[2].start, blocks[2].end)});
+      dmax = std::max(dmax, d);
+      if ((p - c1[3]).norm() < 0.5) at_corner = std::max(at_corner, d);
+    }
+    CHECK(dmax <= o.tolerance * (1 + 1e-3));
+    CHECK(at_corner > 0.2 * o.tolerance);  // the corner was rounded, not run through
+    for (int i = 0; i < 3; ++i) CHECK(tr.stats.axis_acceleration[i] <= 3000 * 1.005);
+    CHECK(tr.stats.end_error < 1e-12);
+  }
+}
+
 TEST_CASE("cubic block: invalid input is refused naming the field") {
   PlanOptions o;
   Planner p(AxisLimits::uniform(100, 1000), o);
