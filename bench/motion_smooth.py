@@ -94,7 +94,7 @@ def section_stream(repeat):
     arr = load("3D_Chips.ngc", 1.0)
     n = len(arr["kind"])
     opts = nm.make_options("blend", tolerance=(1.0 - FIT_SHARE) * 0.01, lookahead=64)
-    args = nm._call_args(arr)
+    args = nm._program_args(arr)
     print(f"\n## 4. streaming on 3D_Chips ({n} blocks, eps 0.01): Smoother -> Planner vs smooth() + Planner")
     for window in (4096, 200):
         best = {}

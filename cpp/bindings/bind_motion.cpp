@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "default_types.hpp"
+#include "motion_arrays.hpp"
 #include "netshape/core/error.hpp"
 #include "netshape/motion.hpp"
 
@@ -26,7 +27,11 @@ std::vector<toolpath::Block> blocks_from_arrays(const Eigen::Ref<const Eigen::Ve
   std::vector<toolpath::Block> out(static_cast<std::size_t>(n));
   for (Eigen::Index i = 0; i < n; ++i) {
     auto& b = out[static_cast<std::size_t>(i)];
-    NETSHAPE_CHECK(kind[i] >= 0 && kind[i] <= 2, "kind", kind[i], "must be 0 (rapid), 1 (line) or 2 (arc)");
+    // (kind 3, a cubic block, only where the planner runs the arrays: motion_arrays.hpp)
+    if (kind[i] < 0 || kind[i] > 2)
+      netshape::detail::throw_invalid(("kind[" + std::to_string(i) + "]").c_str(), kind[i],
+                                      "must be 0 (rapid), 1 (line) or 2 (arc) in a program (cubic blocks, kind 3, "
+                                      "only where the arrays are planned)");
     NETSHAPE_CHECK(plane[i] >= 0 && plane[i] <= 2, "plane", plane[i], "must be 0 (xy), 1 (zx) or 2 (yz)");
     b.kind = static_cast<toolpath::MotionKind>(kind[i]);
     b.start = start.row(i).transpose();
@@ -261,12 +266,15 @@ void bind_motion(py::module_& m) {
       [](const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,
          py_types::RefPoints3 center, const Eigen::Ref<const Eigen::VectorXi>& clockwise,
          const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
-         py_types::RefVector feed, const AxisLimits& limits, const PlanOptions& options, bool with_deviation) {
-        const auto blocks = blocks_from_arrays(kind, start, end, center, clockwise, plane, turns, feed);
+         py_types::RefVector feed, py_types::RefMatrix ctrl, const AxisLimits& limits, const PlanOptions& options,
+         bool with_deviation) {
+        std::vector<CubicControls> controls;
+        const auto blocks = motion_arrays::planned_blocks_from_arrays(kind, start, end, center, clockwise, plane, turns,
+                                                                      feed, ctrl, controls);
         Trajectory tr;
         {
           py::gil_scoped_release release;
-          tr = plan(blocks, limits, options, with_deviation);
+          tr = plan(blocks, controls, limits, options, with_deviation);
         }
         const auto& s = tr.stats;
         py::dict stats;
@@ -286,7 +294,8 @@ void bind_motion(py::module_& m) {
                               std::move(tr.block), stats);
       },
       py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
-      py::arg("turns"), py::arg("feed"), py::arg("limits"), py::arg("options"), py::arg("with_deviation") = true);
+      py::arg("turns"), py::arg("feed"), py::arg("ctrl"), py::arg("limits"), py::arg("options"),
+      py::arg("with_deviation") = true);
 
   m.def(
       "_smooth_arrays",
@@ -453,11 +462,15 @@ void bind_motion(py::module_& m) {
       [](const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,
          py_types::RefPoints3 center, const Eigen::Ref<const Eigen::VectorXi>& clockwise,
          const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
-         py_types::RefVector feed, const AxisLimits& limits, const PlanOptions& options, double ds) {
+         py_types::RefVector feed, py_types::RefMatrix ctrl, const AxisLimits& limits, const PlanOptions& options,
+         double ds) {
         // The planned (for the blend rule: blended) path, sampled every ds [mm] of arc length and at every
         // segment end: (m, 3) points and their (m,) arc lengths; plus the planned cycle time [s].
         NETSHAPE_CHECK(ds > 0, "ds", ds, "must be positive [mm]");
-        const auto blocks = blocks_from_arrays(kind, start, end, center, clockwise, plane, turns, feed);
+        std::vector<CubicControls> controls;
+        const auto blocks = motion_arrays::planned_blocks_from_arrays(kind, start, end, center, clockwise, plane, turns,
+                                                                      feed, ctrl, controls);
+        static const CubicControls none;
         Planner p(limits, options);
         PlannedSegment seg;
         std::vector<Vec3> pts;
@@ -480,7 +493,7 @@ void bind_motion(py::module_& m) {
           }
           if (st == Status::finished) break;
           while (i < blocks.size()) {
-            const Status ps = p.push(blocks[i]);
+            const Status ps = p.push(blocks[i], controls.empty() ? none : controls[i]);
             if (ps == Status::buffer_full) break;
             if (ps == Status::invalid_input) throw std::invalid_argument(p.last_error());
             ++i;
@@ -493,5 +506,5 @@ void bind_motion(py::module_& m) {
         return py::make_tuple(out, s, t_end);
       },
       py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
-      py::arg("turns"), py::arg("feed"), py::arg("limits"), py::arg("options"), py::arg("ds"));
+      py::arg("turns"), py::arg("feed"), py::arg("ctrl"), py::arg("limits"), py::arg("options"), py::arg("ds"));
 }

@@ -25,6 +25,9 @@ Planner& Planner::operator=(Planner&& other) noexcept = default;
 Planner::~Planner() = default;
 
 Status Planner::push(const toolpath::Block& block) noexcept { return state_->push(block); }
+Status Planner::push(const toolpath::Block& block, const CubicControls& controls) noexcept {
+  return state_->push(block, controls.cubic ? &controls : nullptr);
+}
 void Planner::finish() noexcept { state_->finish(); }
 Status Planner::next(Sample& out) noexcept { return state_->next(out); }
 Status Planner::next_segment(PlannedSegment& out) noexcept { return state_->next_segment(out); }

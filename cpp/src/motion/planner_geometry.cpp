@@ -53,7 +53,8 @@ void arc_bounds(const Segment& s, double s0, double s1, Vec3& U, Vec3& K) {
 Vec3 curvature_vector(const Segment& s, bool at_end) {
   if (s.kind == SegmentKind::line) return Vec3::Zero();
   if (s.kind == SegmentKind::blend) {
-    const double u = at_end ? 1.0 : 0.0;
+    // the trimmed end (bezier_u gives exactly 0 and 1 at the untrimmed ends)
+    const double u = s.bezier_u(at_end ? s.full_length - s.trim_end : s.trim_start);
     const Vec3 d1 = bezier_d1(s.ctrl, u), d2 = bezier_d2(s.ctrl, u);
     const double n2 = d1.squaredNorm();
     return n2 > 0 ? Vec3((d2 - d1 * (d1.dot(d2) / n2)) / n2) : Vec3::Zero();

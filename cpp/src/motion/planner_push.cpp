@@ -25,7 +25,7 @@ double jump_speed(double acc, double d, double ts, double kappa) {
 }
 }  // namespace
 
-Status PlannerState::push(const toolpath::Block& b) noexcept {
+Status PlannerState::push(const toolpath::Block& b, const CubicControls* cubic) noexcept {
   if (finished_) return fail("push() after finish()");
   // a full buffer first: a streaming caller pushes until buffer_full, so every block meets this
   // test once more than the others (a bad block is reported when there is room for it)
@@ -33,10 +33,15 @@ Status PlannerState::push(const toolpath::Block& b) noexcept {
     return Status::buffer_full;
   if (!finite3(b.start) || !finite3(b.end) || !finite3(b.center) || !std::isfinite(b.feed) || b.feed < 0)
     return fail("block has a non-finite coordinate or a negative feed");
+  if (cubic) {
+    if (const char* why = cubic_error(b, *cubic)) return fail(why);
+  }
   const bool arc = b.kind == toolpath::MotionKind::arc;
   if (arc && !(b.radius() > 0)) return fail("arc radius must be positive");
   if (arc && b.turns < 1) return fail("arc turns must be at least 1");
-  const double len = b.length();
+  // a cubic block is built in scratch_ here (its length is the curve's); source: pushed_ below
+  if (cubic) init_cubic_node(scratch_, b, *cubic, pushed_);
+  const double len = cubic ? scratch_.segment.full_length : b.length();
   if (!(len > 1e-9)) return Status::ok;  // nothing to move
   if (have_last_ && (b.start - last_point_).norm() > 1e-6 * (1.0 + last_point_.norm()))
     return fail("block does not start where the previous one ended");
@@ -54,7 +59,7 @@ Status PlannerState::push(const toolpath::Block& b) noexcept {
 
   // a line's unit direction (Block::tangent_at's arithmetic), found once: set_limits, the corner
   // here and the next block's corner read it
-  const Vec3 dir = arc ? Vec3::Zero() : Vec3((b.end - b.start) / len);
+  const Vec3 dir = arc || cubic ? Vec3::Zero() : Vec3((b.end - b.start) / len);
   const Vec3 prev_dir = last_dir_;
   last_dir_ = dir;
   // the junction with the previous block (its node is final up to its end trim)
@@ -64,7 +69,7 @@ Status PlannerState::push(const toolpath::Block& b) noexcept {
   const bool prev_line = has_prev && node(first).segment.kind == SegmentKind::line;
   if (has_prev) {
     u1 = prev_line ? prev_dir : end_tangent(node(first).segment);
-    u2 = arc ? b.tangent_at(0.0) : dir;
+    u2 = arc ? b.tangent_at(0.0) : cubic ? bezier_start_direction(scratch_.segment.ctrl) : dir;
     // sin(θ/2) = |u2 − u1|/2 for unit tangents: the blend rule needs no angle
     sin_half = 0.5 * (u2 - u1).norm();
     blend_here = options_.rule == CornerRule::blend && sin_half > sin_half_tangent && sin_half < sin_half_reversal;
@@ -73,9 +78,11 @@ Status PlannerState::push(const toolpath::Block& b) noexcept {
   // the ring slot where it will stay when what goes in before it is known now: nothing, or the one
   // node of a blend between two lines (append_line_blend). Else (arcs, an arc before, blends in jerk
   // mode) it is built in scratch_ and copied in by append().
-  const bool in_place = !arc && (!has_prev || (prev_line && (!blend_here || !jerk_mode)));
+  const bool in_place = !arc && !cubic && (!has_prev || (prev_line && (!blend_here || !jerk_mode)));
   Node& nn = in_place ? nodes_[ring_slot(tail_ + (blend_here ? 1 : 0))] : scratch_;
-  if (arc) {
+  if (cubic) {
+    // built above (nn is scratch_)
+  } else if (arc) {
     nn = Node{};
     nn.segment = Segment::arc(b, source);
     arc_bounds(nn.segment, 0.0, nn.segment.full_length, nn.tangent_bound, nn.curvature_bound);
@@ -97,9 +104,10 @@ Status PlannerState::push(const toolpath::Block& b) noexcept {
   nn.block = source;
   nn.feed_cap = (rapid || b.feed <= 0) ? inf : b.feed;
   nn.v_max = nn.feed_cap;
-  set_limits(nn, arc ? nullptr : &dir);
-  const double first_piece =
-      arc ? nn.segment.full_length / arc_piece_count(nn.segment) : nn.segment.full_length;
+  set_limits(nn, arc || cubic ? nullptr : &dir);
+  const double first_piece = arc     ? nn.segment.full_length / arc_piece_count(nn.segment)
+                             : cubic ? nn.segment.full_length / cubic_piece_count()
+                                     : nn.segment.full_length;
   if (jump_rule) nn.end.window = wf * ts2 * std::min(nn.v_max, first_piece / (4.0 * wf * ts2));
   nn.extent = options_.rule == CornerRule::blend ? Extent::whole_block_blend_pending : Extent::whole_block;
 
@@ -127,8 +135,13 @@ Status PlannerState::push(const toolpath::Block& b) noexcept {
                             : Vec3::Zero();
   if (theta > tangent_angle) {
     // next to arcs the vertex straddling second differences also see the centripetal part
-    const double kappa = std::max(p.segment.kind == SegmentKind::arc ? p.segment.block.curvature() : 0.0,
-                                  arc ? nn.segment.block.curvature() : 0.0);
+    // (a cubic block's curvature at the joint)
+    const double kappa = std::max(p.segment.kind == SegmentKind::arc     ? p.segment.block.curvature()
+                                  : p.segment.kind == SegmentKind::blend ? curvature_vector(p.segment, true).norm()
+                                                                         : 0.0,
+                                  arc     ? nn.segment.block.curvature()
+                                  : cubic ? curvature_vector(nn.segment, false).norm()
+                                          : 0.0);
     switch (options_.rule) {
       case CornerRule::paper:
         v = std::max(paper_corner_speed(amin, options_.ts1, theta), options_.allowable_speed_difference);
@@ -165,10 +178,13 @@ Status PlannerState::push(const toolpath::Block& b) noexcept {
       case CornerRule::blend: v = 0.0; break;  // reversal: stop
     }
     v = std::min(v, vcap);
-  } else if (jerk_mode && options_.rule != CornerRule::paper && options_.rule != CornerRule::junction_deviation) {
+  } else if (jerk_mode && options_.rule != CornerRule::paper && options_.rule != CornerRule::junction_deviation &&
+             !((cubic || p.segment.kind == SegmentKind::blend) &&
+               curvature_continuous(curvature_vector(p.segment, true), curvature_vector(nn.segment, false)))) {
     // tangent junction where the curvature jumps (line ↔ arc, arcs of other radii): the acceleration
     // steps by v²·Δ(κn); its third difference |Δa_i|/ts2 gets half of J_i, the S-curve ramps on both
-    // sides the other half
+    // sides the other half. (Next to a cubic block the branch is skipped where the curvature vectors
+    // agree up to rounding, curvature_continuous(): the joints of one C² spline.)
     v = std::min(v, curvature_step_speed(dk));
     if (dk.norm() > 1e-12) {
       mark_curvature_step(p, false);
@@ -301,11 +317,16 @@ void PlannerState::set_reach(PassRecord& x, SpeedBound bound, const Vec3& U, con
 }
 
 // Arcs are cut into pieces of at most arc_piece_angle, each with its own bounds (the axis box is much
-// tighter on a short piece); the pieces after the first are appended.
+// tighter on a short piece); the pieces after the first are appended. Cubic blocks:
+// split_cubic_block() (planner_cubic.cpp).
 void PlannerState::split_last_block() noexcept {
   Node& p = node(tail_ - 1);
   if (p.extent == Extent::settled) return;
   p.extent = Extent::settled;
+  if (p.segment.kind == SegmentKind::blend) {  // a cubic block (blend pieces are settled)
+    split_cubic_block();
+    return;
+  }
   if (p.segment.kind != SegmentKind::arc) {
     update_pass(tail_ - 1);
     return;

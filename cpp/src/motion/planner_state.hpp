@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "line_blend.hpp"
+#include "netshape/motion/cubic.hpp"
 #include "netshape/motion/planner.hpp"
 
 namespace netshape::motion::detail {
@@ -135,7 +136,8 @@ class PlannerState {
   void reset() noexcept;
 
   // planner_push.cpp
-  Status push(const toolpath::Block& block) noexcept;
+  /// Append a block; `cubic` non-null: a cubic block (the Bézier b.start, c1, c2, b.end).
+  Status push(const toolpath::Block& block, const CubicControls* cubic = nullptr) noexcept;
   void finish() noexcept;
   // planner_output.cpp
   Status next(Sample& out) noexcept;
@@ -179,6 +181,20 @@ class PlannerState {
   /// Fine periods of constant speed on each side of a velocity jump: 2 (second differences see the
   /// jump alone), 3 with jerk limits (third differences too).
   double window_periods() const noexcept { return jerk_limited_ ? 3.0 : 2.0; }
+
+  // --- cubic blocks (planner_cubic.cpp) ---
+  /// Why a cubic block is not valid (a static message naming the field), or nullptr.
+  static const char* cubic_error(const toolpath::Block& b, const CubicControls& c) noexcept;
+  /// n becomes the whole cubic block as one node (Geometry::in_node, kind blend, its table filled)
+  /// with bounds over all of it; feed cap, limits, junction and extent: the caller.
+  static void init_cubic_node(Node& n, const toolpath::Block& b, const CubicControls& c, long source) noexcept;
+  /// Pieces split_last_block() cuts a cubic block into (runs of table intervals).
+  int cubic_piece_count() const noexcept { return jerk_limited_ ? 4 : 16; }
+  /// split_last_block() for a cubic block: its trimmed window cut at table nodes, bounds per piece.
+  void split_cubic_block() noexcept;
+  /// Jerk mode: whether the curvature vectors k1, k2 [1/mm] at a tangent joint next to a cubic block
+  /// agree up to the rounding of the curves that meet there (no curvature step).
+  static bool curvature_continuous(const Vec3& k1, const Vec3& k2) noexcept;
 
   // --- corner blends (planner_blend.cpp) ---
   /// The blend rule's corner between the previous block's node `prev` (ring index) and the new

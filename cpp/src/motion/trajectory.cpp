@@ -6,6 +6,7 @@
 
 #include "netshape/core/error.hpp"
 #include "netshape/motion/planner.hpp"
+#include "netshape/motion/segment.hpp"
 
 namespace netshape::motion {
 
@@ -74,7 +75,18 @@ void measure_samples(const Points3& x, double ts, TrajectoryStats& st) {
 
 Trajectory plan(const std::vector<toolpath::Block>& blocks, const AxisLimits& limits, const PlanOptions& options,
                 bool with_deviation) {
+  return plan(blocks, {}, limits, options, with_deviation);
+}
+
+Trajectory plan(const std::vector<toolpath::Block>& blocks, const std::vector<CubicControls>& controls,
+                const AxisLimits& limits, const PlanOptions& options, bool with_deviation) {
+  NETSHAPE_CHECK(controls.empty() || controls.size() == blocks.size(), "controls", controls.size(),
+                 "must be empty or hold one entry per block");
   Planner planner(limits, options);
+  static const CubicControls none;
+  const auto controls_of = [&](std::size_t i) -> const CubicControls& { return controls.empty() ? none : controls[i]; };
+  // cubic blocks as curves (the deviation is measured against them), by block index
+  std::vector<Segment> curves(controls.empty() ? 0 : blocks.size());
   // validate first so that the error names the block
   std::vector<long> index;  // input index of every block the planner accepts (zero-length skipped)
   index.reserve(blocks.size());
@@ -84,8 +96,27 @@ Trajectory plan(const std::vector<toolpath::Block>& blocks, const AxisLimits& li
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("blocks[" + std::to_string(i) + "]: " + e.what());
     }
-    if (blocks[i].length() > 1e-9) index.push_back(static_cast<long>(i));
+    const CubicControls& c = controls_of(i);
+    if (c.cubic) {
+      const toolpath::Block& b = blocks[i];
+      if (b.kind != toolpath::MotionKind::line)
+        throw std::invalid_argument("blocks[" + std::to_string(i) + "]: kind = " +
+                                    std::to_string(static_cast<int>(b.kind)) +
+                                    ": a cubic block must be of kind line (its chord)");
+      for (const Vec3* q : {&c.c1, &c.c2})
+        if (!q->allFinite())
+          throw std::invalid_argument("controls[" + std::to_string(i) + "]: " + (q == &c.c1 ? "c1" : "c2") +
+                                      " must have finite coordinates");
+      curves[i] = Segment::blend(b.start, c.c1, c.c2, b.end, static_cast<long>(i));
+    }
+    const double len = c.cubic ? curves[i].full_length : blocks[i].length();
+    if (len > 1e-9) index.push_back(static_cast<long>(i));
   }
+  // distance from p to program block b [mm]
+  const auto distance_to = [&](const Vec3& p, std::size_t b) {
+    return controls_of(b).cubic ? curves[b].distance_to_piece(p, 0.0, curves[b].full_length)
+                                : distance_to_block(p, blocks[b]);
+  };
   NETSHAPE_CHECK(!index.empty(), "blocks", blocks.size(), "must contain at least one block that moves");
 
   std::vector<double> t, feed;
@@ -111,7 +142,8 @@ Trajectory plan(const std::vector<toolpath::Block>& blocks, const AxisLimits& li
     }
     bool pushed = false;
     while (next_block < index.size()) {
-      const Status ps = planner.push(blocks[static_cast<std::size_t>(index[next_block])]);
+      const auto bi = static_cast<std::size_t>(index[next_block]);
+      const Status ps = planner.push(blocks[bi], controls_of(bi));
       if (ps == Status::buffer_full) break;
       if (ps == Status::invalid_input)
         throw std::invalid_argument("blocks[" + std::to_string(index[next_block]) + "]: " + planner.last_error());
@@ -149,11 +181,11 @@ Trajectory plan(const std::vector<toolpath::Block>& blocks, const AxisLimits& li
       const int b = tr.block[k];
       if (b < 0) continue;
       const Vec3 p = tr.position.row(k).transpose();
-      double d = distance_to_block(p, blocks[static_cast<std::size_t>(b)]);
+      double d = distance_to(p, static_cast<std::size_t>(b));
       // a blend sample belongs to the corner between this block and the next moving one
       if (d > 1e-9) {
         const auto it = std::upper_bound(index.begin(), index.end(), static_cast<long>(b));
-        if (it != index.end()) d = std::min(d, distance_to_block(p, blocks[static_cast<std::size_t>(*it)]));
+        if (it != index.end()) d = std::min(d, distance_to(p, static_cast<std::size_t>(*it)));
       }
       dev = std::max(dev, d);
     }

@@ -149,11 +149,29 @@ def _arrays(program, feed):
     return blocks_to_arrays(program)
 
 
-def _call_args(arr):
+def _program_args(arr):
+    """The eight block arrays as the bindings that read a program take them (kinds 0, 1, 2)."""
     return (np.ascontiguousarray(arr["kind"], np.int32), np.ascontiguousarray(arr["start"], np.float64),
             np.ascontiguousarray(arr["end"], np.float64), np.ascontiguousarray(arr["center"], np.float64),
             np.ascontiguousarray(arr["clockwise"], np.int32), np.ascontiguousarray(arr["plane"], np.int32),
             np.ascontiguousarray(arr["turns"], np.int32), np.ascontiguousarray(arr["feed"], np.float64))
+
+
+def _call_args(arr):
+    """The block arrays as the planning bindings take them: :func:`_program_args` and ``ctrl``, the
+    inner control points P1, P2 of the cubic blocks (kind 3) as (n, 6) (zeros when the key is absent;
+    read only on kind 3 rows)."""
+    args = _program_args(arr)
+    n = len(args[0])
+    ctrl = arr.get("ctrl") if isinstance(arr, dict) else None
+    if ctrl is None:
+        c = np.zeros((n, 6))
+    else:
+        c = np.asarray(ctrl, dtype=np.float64)
+        if c.shape != (n, 2, 3):
+            raise ValueError(f"ctrl.shape = {c.shape}: must be ({n}, 2, 3), P1 and P2 of each block [mm]")
+        c = np.ascontiguousarray(c.reshape(n, 6))
+    return (*args, c)
 
 
 def path_points(program, limits: AxisLimits, options: PlanOptions, ds: float, *, feed=None):
@@ -204,7 +222,7 @@ def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float
     per new block the first and last program block it replaces, and ``runs_smoothed``, ``runs_kept``,
     ``corners_kept``, ``corners_rounded``, ``max_fit_deviation_mm``.
     """
-    arr, first, last, stats = _m._smooth_arrays(*_call_args(_arrays(program, feed)), float(tolerance),
+    arr, first, last, stats = _m._smooth_arrays(*_program_args(_arrays(program, feed)), float(tolerance),
                                                 float(fit_share), float(max_segment), float(max_turn),
                                                 int(min_blocks), int(window), float(smoothing_length),
                                                 float(lead_length))
@@ -222,7 +240,7 @@ def smooth_path_streamed(program, tolerance: float = 0.01, *, chunk: int = 1, fe
     ``chunks`` (smooth() calls) and ``forced_cuts`` (cuts inside a stretch of micro-segments longer
     than the buffer) added to the stats; with no forced cut the blocks equal :func:`smooth_path`'s.
     """
-    arr, first, last, stats = _m._smooth_stream_arrays(*_call_args(_arrays(program, feed)), float(tolerance),
+    arr, first, last, stats = _m._smooth_stream_arrays(*_program_args(_arrays(program, feed)), float(tolerance),
                                                        float(fit_share), float(max_segment), float(max_turn),
                                                        int(min_blocks), int(window), float(smoothing_length),
                                                        float(lead_length), int(chunk))
@@ -250,7 +268,7 @@ def _plan_smooth(program, limits, feed, with_deviation, kw):
     if with_deviation:
         lo = np.asarray(first)[np.clip(blk, 0, None)]
         hi = np.asarray(last)[np.clip(np.minimum(blk + 1, len(last) - 1), 0, None)]
-        stats["max_path_deviation_mm"] = float(_m._deviation_to_program(*_call_args(arr), pos, lo.tolist(),
+        stats["max_path_deviation_mm"] = float(_m._deviation_to_program(*_program_args(arr), pos, lo.tolist(),
                                                                            hi.tolist()))
     else:
         stats["max_path_deviation_mm"] = 0.0
@@ -270,7 +288,8 @@ def plan(program, limits: AxisLimits, options: PlanOptions | None = None, *, fee
     """Plan and interpolate a program.
 
     program : a toolpath / sequence of blocks, a dict of block arrays, or (n, 3) points of a polyline
-        (then `feed` [mm/s] is required).
+        (then `feed` [mm/s] is required). In block arrays, kind 3 rows are cubic Bézier blocks: start
+        = P0, end = P3, and P1, P2 in row k of the optional key ``ctrl`` (n, 2, 3) [mm].
     limits : AxisLimits. options : PlanOptions, or keywords of :func:`make_options`.
     Returns a :class:`Trajectory` whose samples are at options.ts2 and end at the program end point.
 

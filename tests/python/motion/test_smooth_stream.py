@@ -41,14 +41,14 @@ def test_tiny_window_is_cut_and_stays_in_tolerance(chips):
     new, first, last, stats = nm.smooth_path_streamed(chips, 0.01, window=8, chunk=3)
     assert stats["forced_cuts"] > 0
     pts = np.vstack([new["start"], new["end"]])
-    dev = nm._m._deviation_to_program(*nm._call_args(nm._arrays(chips, None)), pts,
+    dev = nm._m._deviation_to_program(*nm._program_args(nm._arrays(chips, None)), pts,
                                       np.concatenate([first, first]).tolist(), np.concatenate([last, last]).tolist())
     assert dev <= 0.9 * 0.01 + 1e-9
 
 
 def test_smoother_to_planner_cycle_time(chips):
     opts = nm.make_options("blend", tolerance=0.1 * 0.01, lookahead=64)
-    args = nm._call_args(nm._arrays(chips, None))
+    args = nm._program_args(nm._arrays(chips, None))
     seg_b, t_b = nm._m._smooth_plan(*args, 0.01, 200, LIM, opts, False)
     seg_s, t_s = nm._m._smooth_plan(*args, 0.01, 200, LIM, opts, True)
     assert t_b > 30.0

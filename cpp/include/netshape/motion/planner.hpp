@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <memory>
 
+#include "netshape/motion/cubic.hpp"
 #include "netshape/motion/limits.hpp"
 #include "netshape/motion/options.hpp"
 #include "netshape/motion/profile.hpp"
@@ -79,6 +80,13 @@ class Planner {
 
   /// Append a block (rapids run at the axis limits; zero-length blocks are skipped).
   Status push(const toolpath::Block& block) noexcept;
+  /// Append a block with its cubic controls (cubic.hpp). controls.cubic false: push(block). Else a
+  /// cubic Bézier block: `block` is its chord (kind line, start = P0, end = P3, its feed), P1 and P2
+  /// are controls.c1 and c2. It is planned on the curve (pieces at its arc-length table nodes, per-axis
+  /// bounds on each); samples follow it and Sample::block is its index. Junctions are as for any
+  /// block: at a tangent joint no corner (jerk mode: no speed cap where the curvature vectors agree,
+  /// as between the pieces of one C² spline), else the rule's corner (the blend rule blends it).
+  Status push(const toolpath::Block& block, const CubicControls& controls) noexcept;
   /// No more blocks will come: the last block stops at its end.
   void finish() noexcept;
   /// Next fine sample (period ts2).

@@ -45,8 +45,7 @@ struct Segment {
   Vec3 moving_axes() const noexcept;
   /// Distance from p to the untrimmed programmed piece between arc lengths [s0, s1] [mm].
   double distance_to_piece(const Vec3& p, double s0, double s1) const noexcept;
-
- private:
+  /// Blend: the Bézier parameter u ∈ [0, 1] at arc length s from the untrimmed start [mm].
   double bezier_u(double s) const noexcept;
 };
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "netshape/core/types.hpp"
+#include "netshape/motion/cubic.hpp"
 #include "netshape/motion/limits.hpp"
 #include "netshape/motion/options.hpp"
 #include "netshape/toolpath/block.hpp"
@@ -42,6 +43,11 @@ struct Trajectory {
 /// distance to the programmed blocks (costs a little).
 Trajectory plan(const std::vector<toolpath::Block>& blocks, const AxisLimits& limits,
                 const PlanOptions& options, bool with_deviation = true);
+/// The same with cubic blocks: `controls` empty (no cubic block) or one per block; a block with
+/// controls[i].cubic is the cubic Bézier (start, c1, c2, end) and must be of kind line (Planner::push).
+/// `with_deviation` measures against the curve for those blocks.
+Trajectory plan(const std::vector<toolpath::Block>& blocks, const std::vector<CubicControls>& controls,
+                const AxisLimits& limits, const PlanOptions& options, bool with_deviation = true);
 
 /// Figures of (n, 3) samples at period ts [s] (finite differences).
 void measure_samples(const Points3& position, double ts, TrajectoryStats& stats);

@@ -1,0 +1,52 @@
+// Block arrays with cubic rows into blocks and CubicControls for the planner (motion_arrays.hpp).
+#include "motion_arrays.hpp"
+
+#include <string>
+
+#include "netshape/core/error.hpp"
+
+namespace netshape::motion_arrays {
+
+std::vector<toolpath::Block> planned_blocks_from_arrays(
+    const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,
+    py_types::RefPoints3 center, const Eigen::Ref<const Eigen::VectorXi>& clockwise,
+    const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
+    py_types::RefVector feed, py_types::RefMatrix ctrl, std::vector<motion::CubicControls>& controls) {
+  const Eigen::Index n = kind.size();
+  NETSHAPE_CHECK(start.rows() == n && end.rows() == n && center.rows() == n && clockwise.size() == n &&
+                     plane.size() == n && turns.size() == n && feed.size() == n,
+                 "blocks", n, "all block arrays must have the same length");
+  NETSHAPE_CHECK(ctrl.rows() == n && ctrl.cols() == 6, "ctrl rows", ctrl.rows(),
+                 "ctrl must be (n, 2, 3) (P1, P2 of each block), n = the number of blocks");
+  std::vector<toolpath::Block> out(static_cast<std::size_t>(n));
+  controls.clear();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    auto& b = out[static_cast<std::size_t>(i)];
+    const auto field = [i](const char* name) { return std::string(name) + "[" + std::to_string(i) + "]"; };
+    if (kind[i] < 0 || kind[i] > 3)
+      detail::throw_invalid(field("kind").c_str(), kind[i], "must be 0 (rapid), 1 (line), 2 (arc) or 3 (cubic)");
+    if (plane[i] < 0 || plane[i] > 2)
+      detail::throw_invalid(field("plane").c_str(), plane[i], "must be 0 (xy), 1 (zx) or 2 (yz)");
+    const bool cubic = kind[i] == 3;
+    b.kind = cubic ? toolpath::MotionKind::line : static_cast<toolpath::MotionKind>(kind[i]);
+    b.start = start.row(i).transpose();
+    b.end = end.row(i).transpose();
+    b.center = center.row(i).transpose();
+    b.clockwise = clockwise[i] != 0;
+    b.plane = static_cast<toolpath::Plane>(plane[i]);
+    b.turns = turns[i];
+    b.feed = feed[i];
+    b.line = static_cast<long>(i) + 1;
+    if (!cubic) continue;
+    if (controls.empty()) controls.resize(static_cast<std::size_t>(n));
+    motion::CubicControls& c = controls[static_cast<std::size_t>(i)];
+    c.cubic = true;
+    c.c1 = ctrl.row(i).head<3>().transpose();
+    c.c2 = ctrl.row(i).tail<3>().transpose();
+    if (!c.c1.allFinite() || !c.c2.allFinite())
+      detail::throw_invalid(field("ctrl").c_str(), "non-finite", "the control points P1, P2 must be finite [mm]");
+  }
+  return out;
+}
+
+}  // namespace netshape::motion_arrays

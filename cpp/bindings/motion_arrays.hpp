@@ -1,0 +1,22 @@
+#pragma once
+// Block arrays (the parallel arrays of netshape.motion) into blocks for the planner, with cubic blocks:
+// kind 3 rows are cubic Béziers whose inner control points are the row of `ctrl`.
+#include <vector>
+
+#include "default_types.hpp"
+#include "netshape/motion/cubic.hpp"
+#include "netshape/toolpath/block.hpp"
+
+namespace netshape::motion_arrays {
+
+/// Blocks and their cubic controls from block arrays: kind 0 (rapid), 1 (line), 2 (arc) as they are;
+/// kind 3 (cubic) becomes a line block (its chord start -> end) with controls {true, ctrl[i, 0:3],
+/// ctrl[i, 3:6]} (P1, P2); ctrl is (n, 6) and read only on kind 3 rows. `controls` is left empty when
+/// no row is cubic. Throws std::invalid_argument naming the field and row.
+std::vector<toolpath::Block> planned_blocks_from_arrays(
+    const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,
+    py_types::RefPoints3 center, const Eigen::Ref<const Eigen::VectorXi>& clockwise,
+    const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
+    py_types::RefVector feed, py_types::RefMatrix ctrl, std::vector<motion::CubicControls>& controls);
+
+}  // namespace netshape::motion_arrays

@@ -1,0 +1,119 @@
+// Cubic blocks (cubic.hpp) in the planner: their validation, the whole-block node (the Bézier with its
+// arc-length table, bounds over all of it), the cut into pieces at table nodes once the block's end is
+// known (per-axis bounds per piece, as the corner blends' pieces), and the test for a curvature-
+// continuous joint. push() (planner_push.cpp) sets their junctions like any block's.
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "blend_bounds.hpp"
+#include "planner_geometry.hpp"
+#include "planner_state.hpp"
+
+namespace netshape::motion::detail {
+
+namespace {
+bool finite3(const Vec3& v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
+
+// index of the table interval holding arc length s (from the untrimmed start), 0..15
+int interval_at(const std::array<double, 17>& table, double s) {
+  const auto it = std::upper_bound(table.begin(), table.end(), s);
+  return std::clamp(static_cast<int>(it - table.begin()) - 1, 0, 15);
+}
+}  // namespace
+
+const char* PlannerState::cubic_error(const toolpath::Block& b, const CubicControls& c) noexcept {
+  if (b.kind == toolpath::MotionKind::arc) return "cubic block: kind must be line (the chord P0 -> P3), got arc";
+  if (b.kind == toolpath::MotionKind::rapid) return "cubic block: kind must be line (the chord P0 -> P3), got rapid";
+  if (b.kind != toolpath::MotionKind::line) return "cubic block: kind must be line (the chord P0 -> P3)";
+  if (!finite3(c.c1)) return "cubic block: control point c1 (P1) has a non-finite coordinate";
+  if (!finite3(c.c2)) return "cubic block: control point c2 (P2) has a non-finite coordinate";
+  return nullptr;
+}
+
+void PlannerState::init_cubic_node(Node& n, const toolpath::Block& b, const CubicControls& c, long source) noexcept {
+  n = Node{};
+  std::array<Vec3, 17> T, Kv;
+  n.segment = Segment::blend(b.start, c.c1, c.c2, b.end, source, &T, &Kv);
+  n.segment.block = b;  // the chord (kind line) with the block's feed and line number
+  BlendBounds tab;
+  tab.fill(T, Kv);
+  tab.bounds(0, 16, n.tangent_bound, n.curvature_bound);
+  n.geometry = Geometry::in_node;
+}
+
+// The trimmed window [a, b] of the cubic (blends at either end trim it) is cut at the table nodes
+// every 16/cubic_piece_count() intervals that lie inside it; a piece's bounds are those of the table
+// intervals it touches (valid on any part of them, so on the trimmed end pieces too). In jerk mode
+// each piece gets the largest curvature and |dκ/ds| at its table nodes, as the corner blends' pieces.
+void PlannerState::split_cubic_block() noexcept {
+  const Node base = node(tail_ - 1);
+  const Segment& g = base.segment;
+  std::array<Vec3, 17> T, Kv;
+  Segment::blend(g.ctrl[0], g.ctrl[1], g.ctrl[2], g.ctrl[3], g.source, &T, &Kv);  // the same table as g's
+  BlendBounds tab;
+  tab.fill(T, Kv);
+  const double L = g.full_length, a = g.trim_start, b = L - g.trim_end;
+  const double sliver = 1e-6 * L;  // cuts closer than this to a window end are dropped
+  const int step = 16 / cubic_piece_count();
+  double cuts[18];  // the window's ends and at most 15 table nodes between them
+  int nc = 0;
+  cuts[nc++] = a;
+  for (int i = step; i < 16; i += step) {
+    const double s = g.table[static_cast<std::size_t>(i)];
+    if (s > a + sliver && s < b - sliver) cuts[nc++] = s;
+  }
+  cuts[nc++] = b;
+  const int m = nc - 1;
+  double v_prev = 0;
+  for (int k = 0; k < m; ++k) {
+    Node x = base;
+    const double s0 = cuts[k], s1 = cuts[k + 1];
+    x.segment.trim_start = s0;
+    x.segment.trim_end = L - s1;
+    const int i0 = interval_at(g.table, s0);
+    // the intervals [i0, i1) that hold [s0, s1]: i1 is the first table node at or past s1
+    const int i1 = std::clamp(static_cast<int>(std::lower_bound(g.table.begin(), g.table.end(), s1) - g.table.begin()),
+                              i0 + 1, 16);
+    tab.bounds(i0, i1, x.tangent_bound, x.curvature_bound);
+    double kmax = 0, rate = 0;
+    for (int i = i0; i <= i1; ++i) {
+      const auto ii = static_cast<std::size_t>(i);
+      kmax = std::max(kmax, Kv[ii].norm());
+      if (i > i0 && g.table[ii] > g.table[ii - 1])
+        rate = std::max(rate, std::abs(Kv[ii].norm() - Kv[ii - 1].norm()) / (g.table[ii] - g.table[ii - 1]));
+    }
+    x.segment.curvature = kmax;
+    x.segment.curvature_rate = rate;
+    x.v_max = base.feed_cap;
+    set_limits(x);
+    x.start.curvature_step = x.end.curvature_step = false;  // set_limits gave the piece its full jerk again
+    if (k == 0 && base.start.curvature_step) mark_curvature_step(x, true);
+    if (k + 1 == m && base.end.curvature_step) mark_curvature_step(x, false);
+    x.start.window = k == 0 ? base.start.window : 0.0;
+    x.start.velocity_jump = k == 0 && base.start.velocity_jump;
+    x.end.window = k + 1 == m ? base.end.window : 0.0;
+    x.end.velocity_jump = k + 1 == m && base.end.velocity_jump;
+    x.v_junction = k == 0 ? std::min(base.v_corner, x.v_max) : std::min(v_prev, x.v_max);
+    x.extent = Extent::settled;
+    v_prev = x.v_max;
+    if (k == 0) {
+      node(tail_ - 1) = x;
+      update_pass(tail_ - 1);
+    } else {
+      append(x);
+    }
+  }
+}
+
+// Two curves that meet with equal curvature vectors up to rounding (the pieces of one C² spline, whose
+// joint curvatures agree to ~1e-9 relative) must not be capped as a curvature step: a step v²·|Δκ| in
+// the acceleration with |Δκ| ≤ 1e-6·max(|κ|, 1e-3) is at most 1e-6 of the centripetal acceleration
+// v²·|κ| (≤ A) on a curved joint, and on a nearly straight one (|κ| < 1e-3 /mm) at most
+// 1e-9·v² ≤ 1e-3 mm/s² for v ≤ 1 m/s; its third difference over ts2 is then far below any jerk limit.
+bool PlannerState::curvature_continuous(const Vec3& k1, const Vec3& k2) noexcept {
+  const double scale = std::max({k1.norm(), k2.norm(), 1e-3});
+  return (k2 - k1).norm() <= 1e-6 * scale;
+}
+
+}  // namespace netshape::motion::detail
