@@ -12,6 +12,8 @@ namespace py = pybind11;
 using namespace netshape;
 using namespace netshape::motion;
 
+using motion_arrays::block_arrays;
+
 namespace {
 // Blocks from parallel arrays, so the planner does not depend on how toolpath binds its Block.
 std::vector<toolpath::Block> blocks_from_arrays(const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start,
@@ -44,49 +46,6 @@ std::vector<toolpath::Block> blocks_from_arrays(const Eigen::Ref<const Eigen::Ve
     b.line = static_cast<long>(i) + 1;
   }
   return out;
-}
-
-// Blocks as parallel arrays (the dict smooth_path returns): kind, start, end, center, clockwise, plane,
-// turns, feed, and ctrl (n, 2, 3): the inner control points P1, P2 of cubic blocks, whose kind is 3
-// (zeros on the other rows).
-py::dict block_arrays(const std::vector<toolpath::Block>& blocks, const std::vector<CubicControls>& controls) {
-  const auto n = static_cast<Eigen::Index>(blocks.size());
-  Eigen::VectorXi k(n), cw(n), pl(n), tu(n);
-  Points3 s(n, 3), e(n, 3), c(n, 3);
-  VectorXd f(n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const auto& b = blocks[static_cast<std::size_t>(i)];
-    k[i] = static_cast<int>(b.kind);
-    cw[i] = b.clockwise ? 1 : 0;
-    pl[i] = static_cast<int>(b.plane);
-    tu[i] = b.turns;
-    s.row(i) = b.start.transpose();
-    e.row(i) = b.end.transpose();
-    c.row(i) = b.center.transpose();
-    f[i] = b.feed;
-  }
-  py::array_t<double> ctrl({static_cast<py::ssize_t>(n), py::ssize_t{2}, py::ssize_t{3}});
-  auto cv = ctrl.mutable_unchecked<3>();
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const auto idx = static_cast<std::size_t>(i);
-    const bool cubic = idx < controls.size() && controls[idx].cubic;
-    if (cubic) k[i] = 3;
-    for (int a = 0; a < 3; ++a) {
-      cv(i, 0, a) = cubic ? controls[idx].c1[a] : 0.0;
-      cv(i, 1, a) = cubic ? controls[idx].c2[a] : 0.0;
-    }
-  }
-  py::dict arrays;
-  arrays["kind"] = k;
-  arrays["start"] = s;
-  arrays["end"] = e;
-  arrays["center"] = c;
-  arrays["clockwise"] = cw;
-  arrays["plane"] = pl;
-  arrays["turns"] = tu;
-  arrays["feed"] = f;
-  arrays["ctrl"] = ctrl;
-  return arrays;
 }
 
 SmoothOptions smooth_options(double tolerance, double fit_share, double max_segment, double max_turn, int min_blocks,

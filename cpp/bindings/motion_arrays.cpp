@@ -49,4 +49,45 @@ std::vector<toolpath::Block> planned_blocks_from_arrays(
   return out;
 }
 
+pybind11::dict block_arrays(const std::vector<toolpath::Block>& blocks,
+                            const std::vector<motion::CubicControls>& controls) {
+  const auto n = static_cast<Eigen::Index>(blocks.size());
+  Eigen::VectorXi k(n), cw(n), pl(n), tu(n);
+  Points3 s(n, 3), e(n, 3), c(n, 3);
+  VectorXd f(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto& b = blocks[static_cast<std::size_t>(i)];
+    k[i] = static_cast<int>(b.kind);
+    cw[i] = b.clockwise ? 1 : 0;
+    pl[i] = static_cast<int>(b.plane);
+    tu[i] = b.turns;
+    s.row(i) = b.start.transpose();
+    e.row(i) = b.end.transpose();
+    c.row(i) = b.center.transpose();
+    f[i] = b.feed;
+  }
+  pybind11::array_t<double> ctrl({static_cast<pybind11::ssize_t>(n), pybind11::ssize_t{2}, pybind11::ssize_t{3}});
+  auto cv = ctrl.mutable_unchecked<3>();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto idx = static_cast<std::size_t>(i);
+    const bool cubic = idx < controls.size() && controls[idx].cubic;
+    if (cubic) k[i] = 3;
+    for (int a = 0; a < 3; ++a) {
+      cv(i, 0, a) = cubic ? controls[idx].c1[a] : 0.0;
+      cv(i, 1, a) = cubic ? controls[idx].c2[a] : 0.0;
+    }
+  }
+  pybind11::dict arrays;
+  arrays["kind"] = k;
+  arrays["start"] = s;
+  arrays["end"] = e;
+  arrays["center"] = c;
+  arrays["clockwise"] = cw;
+  arrays["plane"] = pl;
+  arrays["turns"] = tu;
+  arrays["feed"] = f;
+  arrays["ctrl"] = ctrl;
+  return arrays;
+}
+
 }  // namespace netshape::motion_arrays

@@ -19,4 +19,9 @@ std::vector<toolpath::Block> planned_blocks_from_arrays(
     const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
     py_types::RefVector feed, py_types::RefMatrix ctrl, std::vector<motion::CubicControls>& controls);
 
+/// Blocks as parallel arrays (the dict smooth_path returns): kind, start, end, center, clockwise,
+/// plane, turns, feed, and ctrl (n, 2, 3): P1, P2 of cubic blocks, whose kind is 3 (zeros elsewhere).
+pybind11::dict block_arrays(const std::vector<toolpath::Block>& blocks,
+                            const std::vector<motion::CubicControls>& controls);
+
 }  // namespace netshape::motion_arrays

@@ -304,7 +304,8 @@ TEST_CASE("smoother -> planner on 3D_Chips: the cycle time of smooth() + planner
       tb = s.t;
       ++nb;
     } else if (i < batch.blocks.size()) {
-      pb.push(batch.blocks[i++]);
+      pb.push(batch.blocks[i], batch.controls[i]);
+      ++i;
     } else {
       pb.finish();
     }
@@ -323,7 +324,7 @@ TEST_CASE("smoother -> planner on 3D_Chips: the cycle time of smooth() + planner
       continue;
     }
     const Status ss = sm.next(sb);
-    if (ss == Status::ok) REQUIRE(ps.push(sb.block) == Status::ok);
+    if (ss == Status::ok) REQUIRE(ps.push(sb.block, sb.controls) == Status::ok);
     else if (ss == Status::finished) ps.finish();
     else if (i < prog.size()) REQUIRE(sm.push(prog[i++]) == Status::ok);
     else sm.finish();
