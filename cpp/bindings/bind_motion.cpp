@@ -335,8 +335,8 @@ void bind_motion(py::module_& m) {
           p.reset();
           sm.reset();
           segments = 0;
-          std::vector<toolpath::Block> smoothed;
-          if (!streamed) smoothed = smooth(blocks, o).blocks;
+          SmoothResult smoothed;
+          if (!streamed) smoothed = smooth(blocks, o);
           std::size_t i = 0, j = 0;
           for (;;) {
             const Status st = p.next_segment(seg);
@@ -347,12 +347,16 @@ void bind_motion(py::module_& m) {
             }
             if (st == Status::finished) break;
             if (!streamed) {
-              if (j < smoothed.size()) p.push(smoothed[j++]);
-              else p.finish();
+              if (j < smoothed.blocks.size()) {
+                p.push(smoothed.blocks[j], smoothed.controls[j]);
+                ++j;
+              } else {
+                p.finish();
+              }
               continue;
             }
             const Status ss = sm.next(sb);
-            if (ss == Status::ok) p.push(sb.block);
+            if (ss == Status::ok) p.push(sb.block, sb.controls);
             else if (ss == Status::finished) p.finish();
             else if (ss == Status::invalid_input) throw std::invalid_argument(sm.last_error());
             else if (i < blocks.size()) sm.push(blocks[i++]);

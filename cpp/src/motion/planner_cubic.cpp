@@ -43,7 +43,8 @@ void PlannerState::init_cubic_node(Node& n, const toolpath::Block& b, const Cubi
 }
 
 // The trimmed window [a, b] of the cubic (blends at either end trim it) is cut at the table nodes
-// every 16/cubic_piece_count() intervals that lie inside it; a piece's bounds are those of the table
+// every 16/cubic_piece_count() intervals that lie inside it (without jerk limits fewer for gentle
+// cubics, below); a piece's bounds are those of the table
 // intervals it touches (valid on any part of them, so on the trimmed end pieces too). In jerk mode
 // each piece gets the largest curvature and |dκ/ds| at its table nodes, as the corner blends' pieces.
 void PlannerState::split_cubic_block() noexcept {
@@ -55,7 +56,21 @@ void PlannerState::split_cubic_block() noexcept {
   tab.fill(T, Kv);
   const double L = g.full_length, a = g.trim_start, b = L - g.trim_end;
   const double sliver = 1e-6 * L;  // cuts closer than this to a window end are dropped
-  const int step = 16 / cubic_piece_count();
+  int step = 16 / cubic_piece_count();
+  if (!jerk_limited_) {
+    // a gentle cubic (the centripetal part takes at most 2 % of any axis' budget at the fastest speed
+    // the tangent bounds allow) is one piece, a moderate one (at most 25 %) four: finer pieces would
+    // only relax a bound that hardly binds, and each piece costs a node and its passes
+    Vec3 U, K;
+    tab.bounds(0, 16, U, K);
+    double vcap = base.feed_cap;
+    for (int i = 0; i < 3; ++i)
+      if (U[i] > 0) vcap = std::min(vcap, limits_.velocity[i] / U[i]);
+    double share = 0;
+    for (int i = 0; i < 3; ++i) share = std::max(share, K[i] * vcap * vcap / limits_.acceleration[i]);
+    if (share <= 0.02) step = 16;
+    else if (share <= 0.25) step = 4;
+  }
   double cuts[18];  // the window's ends and at most 15 table nodes between them
   int nc = 0;
   cuts[nc++] = a;
