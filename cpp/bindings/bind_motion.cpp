@@ -15,7 +15,9 @@ using namespace netshape::motion;
 using motion_arrays::block_arrays;
 
 namespace {
-// Blocks from parallel arrays, so the planner does not depend on how toolpath binds its Block.
+// Blocks of a program from parallel arrays (so the planner does not depend on how toolpath binds its
+// Block): the reader of planned arrays with no control points, refusing cubic rows (kind 3), which only
+// the arrays that are planned may hold.
 std::vector<toolpath::Block> blocks_from_arrays(const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start,
                                                 py_types::RefPoints3 end, py_types::RefPoints3 center,
                                                 const Eigen::Ref<const Eigen::VectorXi>& clockwise,
@@ -23,29 +25,15 @@ std::vector<toolpath::Block> blocks_from_arrays(const Eigen::Ref<const Eigen::Ve
                                                 const Eigen::Ref<const Eigen::VectorXi>& turns,
                                                 py_types::RefVector feed) {
   const Eigen::Index n = kind.size();
-  NETSHAPE_CHECK(start.rows() == n && end.rows() == n && center.rows() == n && clockwise.size() == n &&
-                     plane.size() == n && turns.size() == n && feed.size() == n,
-                 "blocks", n, "all block arrays must have the same length");
-  std::vector<toolpath::Block> out(static_cast<std::size_t>(n));
-  for (Eigen::Index i = 0; i < n; ++i) {
-    auto& b = out[static_cast<std::size_t>(i)];
-    // (kind 3, a cubic block, only where the planner runs the arrays: motion_arrays.hpp)
+  for (Eigen::Index i = 0; i < n; ++i)
     if (kind[i] < 0 || kind[i] > 2)
       netshape::detail::throw_invalid(("kind[" + std::to_string(i) + "]").c_str(), kind[i],
                                       "must be 0 (rapid), 1 (line) or 2 (arc) in a program (cubic blocks, kind 3, "
                                       "only where the arrays are planned)");
-    NETSHAPE_CHECK(plane[i] >= 0 && plane[i] <= 2, "plane", plane[i], "must be 0 (xy), 1 (zx) or 2 (yz)");
-    b.kind = static_cast<toolpath::MotionKind>(kind[i]);
-    b.start = start.row(i).transpose();
-    b.end = end.row(i).transpose();
-    b.center = center.row(i).transpose();
-    b.clockwise = clockwise[i] != 0;
-    b.plane = static_cast<toolpath::Plane>(plane[i]);
-    b.turns = turns[i];
-    b.feed = feed[i];
-    b.line = static_cast<long>(i) + 1;
-  }
-  return out;
+  const MatrixXdR no_ctrl = MatrixXdR::Zero(n, 6);
+  std::vector<CubicControls> controls;
+  return motion_arrays::planned_blocks_from_arrays(kind, start, end, center, clockwise, plane, turns, feed, no_ctrl,
+                                                   controls);
 }
 
 SmoothOptions smooth_options(double tolerance, double fit_share, double max_segment, double max_turn, int min_blocks,

@@ -100,18 +100,8 @@ void PlannerState::split_cubic_block() noexcept {
     }
     x.segment.curvature = kmax;
     x.segment.curvature_rate = rate;
-    x.v_max = base.feed_cap;
-    set_limits(x);
-    x.start.curvature_step = x.end.curvature_step = false;  // set_limits gave the piece its full jerk again
-    if (k == 0 && base.start.curvature_step) mark_curvature_step(x, true);
-    if (k + 1 == m && base.end.curvature_step) mark_curvature_step(x, false);
-    x.start.window = k == 0 ? base.start.window : 0.0;
-    x.start.velocity_jump = k == 0 && base.start.velocity_jump;
-    x.end.window = k + 1 == m ? base.end.window : 0.0;
-    x.end.velocity_jump = k + 1 == m && base.end.velocity_jump;
-    x.v_junction = k == 0 ? std::min(base.v_corner, x.v_max) : std::min(v_prev, x.v_max);
     x.extent = Extent::settled;
-    v_prev = x.v_max;
+    finish_piece(x, base, k, m, v_prev);
     if (k == 0) {
       node(tail_ - 1) = x;
       update_pass(tail_ - 1);

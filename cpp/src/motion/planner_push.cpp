@@ -341,17 +341,7 @@ void PlannerState::split_last_block() noexcept {
     x.segment.trim_start = a;
     x.segment.trim_end = base.segment.full_length - b;
     arc_bounds(x.segment, a, b, x.tangent_bound, x.curvature_bound);
-    x.v_max = base.feed_cap;
-    set_limits(x);
-    x.start.curvature_step = x.end.curvature_step = false;  // set_limits gave the piece its full jerk again
-    if (k == 0 && base.start.curvature_step) mark_curvature_step(x, true);
-    if (k + 1 == m && base.end.curvature_step) mark_curvature_step(x, false);
-    x.start.window = k == 0 ? base.start.window : 0.0;
-    x.start.velocity_jump = k == 0 && base.start.velocity_jump;
-    x.end.window = k + 1 == m ? base.end.window : 0.0;
-    x.end.velocity_jump = k + 1 == m && base.end.velocity_jump;
-    x.v_junction = k == 0 ? std::min(base.v_corner, x.v_max) : std::min(v_prev, x.v_max);
-    v_prev = x.v_max;
+    finish_piece(x, base, k, m, v_prev);
     if (k == 0) {
       p = x;
       update_pass(tail_ - 1);
@@ -359,6 +349,20 @@ void PlannerState::split_last_block() noexcept {
       append(x);
     }
   }
+}
+
+void PlannerState::finish_piece(Node& x, const Node& base, int k, int m, double& v_prev) noexcept {
+  x.v_max = base.feed_cap;
+  set_limits(x);
+  x.start.curvature_step = x.end.curvature_step = false;  // set_limits gave the piece its full jerk again
+  if (k == 0 && base.start.curvature_step) mark_curvature_step(x, true);
+  if (k + 1 == m && base.end.curvature_step) mark_curvature_step(x, false);
+  x.start.window = k == 0 ? base.start.window : 0.0;
+  x.start.velocity_jump = k == 0 && base.start.velocity_jump;
+  x.end.window = k + 1 == m ? base.end.window : 0.0;
+  x.end.velocity_jump = k + 1 == m && base.end.velocity_jump;
+  x.v_junction = k == 0 ? std::min(base.v_corner, x.v_max) : std::min(v_prev, x.v_max);
+  v_prev = x.v_max;
 }
 
 void PlannerState::mark_curvature_step(Node& n, bool at_start) noexcept {

@@ -173,6 +173,10 @@ class PlannerState {
   void append(const Node& n) noexcept;
   /// The last node holds a whole block whose end is now known: cut arcs into pieces.
   void split_last_block() noexcept;
+  /// Piece k of m of a block cut into pieces (its geometry and bounds already set): speed cap and
+  /// limits, the block's junction, window and curvature-step marks on its first / last piece, and the
+  /// junction speed from the piece before (v_prev, updated to this piece's cap).
+  void finish_piece(Node& x, const Node& base, int k, int m, double& v_prev) noexcept;
   /// Jerk mode: a curvature step at the start (or end) of n; its S-curve jerk is halved once.
   static void mark_curvature_step(Node& n, bool at_start) noexcept;
   /// Jerk mode: largest speed at a tangent junction where the curvature vector steps by dk [1/mm]:
