@@ -13,8 +13,6 @@
 namespace netshape::motion::detail {
 
 namespace {
-bool finite3(const Vec3& v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
-
 // index of the table interval holding arc length s (from the untrimmed start), 0..15
 int interval_at(const std::array<double, 17>& table, double s) {
   const auto it = std::upper_bound(table.begin(), table.end(), s);
@@ -26,8 +24,8 @@ const char* PlannerState::cubic_error(const toolpath::Block& b, const CubicContr
   if (b.kind == toolpath::MotionKind::arc) return "cubic block: kind must be line (the chord P0 -> P3), got arc";
   if (b.kind == toolpath::MotionKind::rapid) return "cubic block: kind must be line (the chord P0 -> P3), got rapid";
   if (b.kind != toolpath::MotionKind::line) return "cubic block: kind must be line (the chord P0 -> P3)";
-  if (!finite3(c.c1)) return "cubic block: control point c1 (P1) has a non-finite coordinate";
-  if (!finite3(c.c2)) return "cubic block: control point c2 (P2) has a non-finite coordinate";
+  if (!c.c1.allFinite()) return "cubic block: control point c1 (P1) has a non-finite coordinate";
+  if (!c.c2.allFinite()) return "cubic block: control point c2 (P2) has a non-finite coordinate";
   return nullptr;
 }
 
@@ -61,8 +59,8 @@ void PlannerState::split_cubic_block() noexcept {
     // a gentle cubic (the centripetal part takes at most 2 % of any axis' budget at the fastest speed
     // the tangent bounds allow) is one piece, a moderate one (at most 25 %) four: finer pieces would
     // only relax a bound that hardly binds, and each piece costs a node and its passes
-    Vec3 U, K;
-    tab.bounds(0, 16, U, K);
+    const Vec3& U = base.tangent_bound;  // the whole cubic's bounds (init_cubic_node)
+    const Vec3& K = base.curvature_bound;
     double vcap = base.feed_cap;
     for (int i = 0; i < 3; ++i)
       if (U[i] > 0) vcap = std::min(vcap, limits_.velocity[i] / U[i]);

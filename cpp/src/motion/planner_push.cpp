@@ -15,8 +15,6 @@ constexpr double tangent_angle = 1e-6;  // [rad] below this a junction counts as
 // the blend rule blends turns with tangent_angle < θ < π − 1e-3, told apart by sin(θ/2)
 const double sin_half_tangent = std::sin(0.5 * tangent_angle), sin_half_reversal = std::cos(0.5e-3);
 
-bool finite3(const Vec3& v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
-
 // quadratic corner bound next to curves: v·d/ts + κ·v² ≤ A
 double jump_speed(double acc, double d, double ts, double kappa) {
   const double b = d / ts;
@@ -31,7 +29,7 @@ Status PlannerState::push(const toolpath::Block& b, const CubicControls* cubic) 
   // test once more than the others (a bad block is reported when there is room for it)
   if (capacity_ - (tail_ - head_) < nodes_per_push || blocks_in_buffer() > options_.lookahead)
     return Status::buffer_full;
-  if (!finite3(b.start) || !finite3(b.end) || !finite3(b.center) || !std::isfinite(b.feed) || b.feed < 0)
+  if (!b.start.allFinite() || !b.end.allFinite() || !b.center.allFinite() || !std::isfinite(b.feed) || b.feed < 0)
     return fail("block has a non-finite coordinate or a negative feed");
   if (cubic) {
     if (const char* why = cubic_error(b, *cubic)) return fail(why);

@@ -222,12 +222,8 @@ def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float
     per new block the first and last program block it replaces, and ``runs_smoothed``, ``runs_kept``,
     ``corners_kept``, ``corners_rounded``, ``max_fit_deviation_mm``.
     """
-    arr, first, last, stats = _m._smooth_arrays(*_program_args(_arrays(program, feed)), float(tolerance),
-                                                float(fit_share), float(max_segment), float(max_turn),
-                                                int(min_blocks), int(window), float(smoothing_length),
-                                                float(lead_length))
-    return {k: np.asarray(v) for k, v in arr.items()}, np.asarray(first), np.asarray(last), dict(stats)
-
+    return _run_smoother(_m._smooth_arrays, program, feed, tolerance, fit_share, max_segment, max_turn, min_blocks,
+                         window, smoothing_length, lead_length)
 
 
 def smooth_path_streamed(program, tolerance: float = 0.01, *, chunk: int = 1, feed=None, fit_share: float = 0.9,
@@ -240,11 +236,18 @@ def smooth_path_streamed(program, tolerance: float = 0.01, *, chunk: int = 1, fe
     ``chunks`` (smooth() calls) and ``forced_cuts`` (cuts inside a stretch of micro-segments longer
     than the buffer) added to the stats; with no forced cut the blocks equal :func:`smooth_path`'s.
     """
-    arr, first, last, stats = _m._smooth_stream_arrays(*_program_args(_arrays(program, feed)), float(tolerance),
-                                                       float(fit_share), float(max_segment), float(max_turn),
-                                                       int(min_blocks), int(window), float(smoothing_length),
-                                                       float(lead_length), int(chunk))
+    return _run_smoother(_m._smooth_stream_arrays, program, feed, tolerance, fit_share, max_segment, max_turn,
+                         min_blocks, window, smoothing_length, lead_length, int(chunk))
+
+
+def _run_smoother(binding, program, feed, tolerance, fit_share, max_segment, max_turn, min_blocks, window,
+                  smoothing_length, lead_length, *extra):
+    """One smoothing binding on a program: (new block arrays, first, last, stats) as NumPy / dict."""
+    arr, first, last, stats = binding(*_program_args(_arrays(program, feed)), float(tolerance), float(fit_share),
+                                      float(max_segment), float(max_turn), int(min_blocks), int(window),
+                                      float(smoothing_length), float(lead_length), *extra)
     return {k: np.asarray(v) for k, v in arr.items()}, np.asarray(first), np.asarray(last), dict(stats)
+
 
 def _plan_smooth(program, limits, feed, with_deviation, kw):
     """rule="smooth": smooth_path, then the blend rule with the rest of the tolerance on the new blocks;
