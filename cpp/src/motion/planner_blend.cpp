@@ -107,6 +107,7 @@ void PlannerState::append_corner_blend(long first, Node& nn, const Vec3& u1, con
     // jerk mode: the node keeps the whole geometry; else it stays in the blend store
     init_blend_piece(bn, whole, i0, i1, source, vfeed, jerk_mode ? Geometry::in_node : Geometry::in_blend_store);
     tab.bounds(i0, i1, bn.tangent_bound, bn.curvature_bound);
+    tab.ramps(i0, i1, bn.tangent_bound, bn.curvature_bound, bn.ramp_tangent, bn.ramp_curvature);
     bn.v_max = vfeed;
     if (jerk_mode) {
       double kmax = 0, rate = 0;
@@ -141,7 +142,7 @@ void PlannerState::append_corner_blend(long first, Node& nn, const Vec3& u1, con
     x.length = planned_length(bn);
     x.path_accel = bn.path_accel;
     x.path_jerk = bn.path_jerk;
-    set_reach(x, bn.bound, bn.tangent_bound, bn.curvature_bound);
+    set_reach(x, bn);
     x.w_backward = 0.0;
     x.line_blend = -1;
     ++tail_;

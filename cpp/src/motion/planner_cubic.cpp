@@ -37,6 +37,7 @@ void PlannerState::init_cubic_node(Node& n, const toolpath::Block& b, const Cubi
   BlendBounds tab;
   tab.fill(T, Kv);
   tab.bounds(0, 16, n.tangent_bound, n.curvature_bound);
+  tab.ramps(0, 16, n.tangent_bound, n.curvature_bound, n.ramp_tangent, n.ramp_curvature);
   n.geometry = Geometry::in_node;
 }
 
@@ -89,6 +90,7 @@ void PlannerState::split_cubic_block() noexcept {
     const int i1 = std::clamp(static_cast<int>(std::lower_bound(g.table.begin(), g.table.end(), s1) - g.table.begin()),
                               i0 + 1, 16);
     tab.bounds(i0, i1, x.tangent_bound, x.curvature_bound);
+    tab.ramps(i0, i1, x.tangent_bound, x.curvature_bound, x.ramp_tangent, x.ramp_curvature);
     double kmax = 0, rate = 0;
     for (int i = i0; i <= i1; ++i) {
       const auto ii = static_cast<std::size_t>(i);

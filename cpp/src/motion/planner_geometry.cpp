@@ -5,6 +5,7 @@
 #include <cmath>
 #include <utility>
 
+#include "blend_bounds.hpp"
 #include "planner_state.hpp"
 
 namespace netshape::motion::detail {
@@ -21,6 +22,21 @@ void trig_max(double p0, double p1, double& mc, double& ms) {
   ms = std::max(std::abs(std::sin(p0)), std::abs(std::sin(p1)));
   if (std::floor(p1 / pi) >= std::ceil(p0 / pi)) mc = 1.0;                          // k·π inside
   if (std::floor((p1 - 0.5 * pi) / pi) >= std::ceil((p0 - 0.5 * pi) / pi)) ms = 1.0;  // π/2 + k·π inside
+}
+
+// smallest and largest cos and sin over the angles between p0 and p1 [rad]
+void trig_range(double p0, double p1, double& cmin, double& cmax, double& smin, double& smax) {
+  if (p0 > p1) std::swap(p0, p1);
+  cmin = std::min(std::cos(p0), std::cos(p1));
+  cmax = std::max(std::cos(p0), std::cos(p1));
+  smin = std::min(std::sin(p0), std::sin(p1));
+  smax = std::max(std::sin(p0), std::sin(p1));
+  const double tau = 2.0 * pi;
+  auto inside = [&](double at) { return std::floor((p1 - at) / tau) >= std::ceil((p0 - at) / tau); };  // at + k·2π
+  if (inside(0.0)) cmax = 1.0;
+  if (inside(pi)) cmin = -1.0;
+  if (inside(0.5 * pi)) smax = 1.0;
+  if (inside(1.5 * pi)) smin = -1.0;
 }
 }  // namespace
 
@@ -48,6 +64,49 @@ void arc_bounds(const Segment& s, double s0, double s1, Vec3& U, Vec3& K) {
   K[ax.a] = kappa * mc;
   K[ax.b] = kappa * ms;
   K[ax.n] = 0.0;
+}
+
+void arc_ramps(const Segment& s, double s0, double s1, const Vec3& U, const Vec3& K, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) {
+  const toolpath::Block& b = s.block;
+  const auto ax = toolpath::plane_axes(b.plane);
+  const double r0 = std::hypot(b.start[ax.a] - b.center[ax.a], b.start[ax.b] - b.center[ax.b]);
+  const double r1 = std::hypot(b.end[ax.a] - b.center[ax.a], b.end[ax.b] - b.center[ax.b]);
+  const double sw = b.sweep(), dn = b.end[ax.n] - b.start[ax.n];
+  if (std::abs(r1 - r0) > 1e-9 * std::max(r0, r1) || sw == 0.0) {  // a spiral: the unsigned bounds
+    for (int d = 0; d < 2; ++d) {
+      Ua[d] = U;
+      Ka[d] = K;
+    }
+    return;
+  }
+  // u = (r·sw·(−sin φ, cos φ) + dn·e_n) / ρ and κn = −κ·(cos φ, sin φ), φ = ang0 + sw·s / full_length
+  const double ang0 = std::atan2(b.start[ax.b] - b.center[ax.b], b.start[ax.a] - b.center[ax.a]);
+  double cmin, cmax, smin, smax;
+  trig_range(ang0 + sw * s0 / s.full_length, ang0 + sw * s1 / s.full_length, cmin, cmax, smin, smax);
+  const double R = r0 * sw / std::hypot(r0 * sw, dn), c = dn / sw;
+  const double kappa = r0 / (r0 * r0 + c * c) * (1.0 + 1e-9);
+  const double e = 1e-12;  // rounding of the ranges
+  // per axis: tx, tn, kx, kn
+  double rg[3][4];
+  rg[ax.a][0] = std::max(-R * smin, -R * smax) + e;
+  rg[ax.a][1] = std::min(-R * smin, -R * smax) - e;
+  rg[ax.b][0] = std::max(R * cmin, R * cmax) + e;
+  rg[ax.b][1] = std::min(R * cmin, R * cmax) - e;
+  rg[ax.n][0] = dn / std::hypot(r0 * sw, dn) + e;
+  rg[ax.n][1] = rg[ax.n][0] - 2 * e;
+  rg[ax.a][2] = -kappa * cmin;
+  rg[ax.a][3] = -kappa * cmax;
+  rg[ax.b][2] = -kappa * smin;
+  rg[ax.b][3] = -kappa * smax;
+  rg[ax.n][2] = rg[ax.n][3] = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    double u[2], k[2];
+    ramp_terms(rg[i][0], rg[i][1], rg[i][2], rg[i][3], U[i], K[i], u, k);
+    for (int d = 0; d < 2; ++d) {
+      Ua[d][i] = u[d];
+      Ka[d][i] = k[d];
+    }
+  }
 }
 
 Vec3 curvature_vector(const Segment& s, bool at_end) {

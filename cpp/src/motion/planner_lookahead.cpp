@@ -43,9 +43,9 @@ void PlannerState::back_pass(long dirty_from) noexcept {
       // first is finite: the same value with a shorter dependency chain)
       w = jerk_limited_                   ? std::min(n.w_junction, reach_squared(n, w_next))
           : n.bound == SpeedBound::path   ? std::min(n.w_junction, w_next + n.beta[0])
-                                          : std::min(std::min(n.w_junction, n.alpha[0] * w_next + n.beta[0]),
-                                                     std::min(n.alpha[1] * w_next + n.beta[1],
-                                                              n.alpha[2] * w_next + n.beta[2]));
+                                          : std::min(std::min(n.w_junction, n.alpha_down[0] * w_next + n.beta_down[0]),
+                                                     std::min(n.alpha_down[1] * w_next + n.beta_down[1],
+                                                              n.alpha_down[2] * w_next + n.beta_down[2]));
     }
     if (k < dirty_from && w == n.w_backward) break;  // nothing changes further back
     n.w_backward = w;
@@ -81,21 +81,28 @@ bool PlannerState::freeze_next() noexcept {
   const double we = n.end.velocity_jump ? wf * options_.ts2 * ve : 0.0;
   const double len = n.segment.length();
   if (n.bound == SpeedBound::axis_box && !std::isfinite(qn.path_jerk)) {
-    // peak speed and tangential acceleration from the axis box at that speed:
-    // 2·w − vs² − ve² = 2·L·(A_i − K_i·w)/U_i for the binding axis
-    const Vec3& U = n.tangent_bound;
-    const Vec3& K = n.curvature_bound;
+    // peak speed and tangential acceleration from the axis box at that speed, one acceleration for
+    // both ramps (the smaller of the speeding-up and slowing-down terms' — a ramp the passes planned
+    // with the larger one is monotone, and Profile::make raises a to fit it):
+    // 2·w − vs² − ve² = 2·L·(A_i − K_i·w)/U_i for the binding term; a term with K_i < 0 is worst at
+    // the lowest speed of the profile, min(vs, ve): A_i − K_i·min(vs², ve²) and K_i = 0 there
     const double lr = std::max(0.0, len - std::min(ws, len) - std::min(we, len));
-    const double S = vs * vs + ve * ve;
-    double num[3], den[3];
-    for (int i = 0; i < 3; ++i) {
-      num[i] = U[i] * S + 2.0 * lr * limits_.acceleration[i];
-      den[i] = 2.0 * U[i] + 2.0 * lr * K[i];
-    }
-    double wp = std::min(n.v_max * n.v_max, min_ratio(num, den));
+    const double S = vs * vs + ve * ve, wlow = std::min(vs * vs, ve * ve);
+    double num[6], den[6], U[6], Ae[6], Ke[6];
+    for (int d = 0; d < 2; ++d)
+      for (int i = 0; i < 3; ++i) {
+        const int q = 3 * d + i;
+        const double k = n.ramp_curvature[d][i];
+        U[q] = n.ramp_tangent[d][i];
+        Ke[q] = std::max(k, 0.0);
+        Ae[q] = limits_.acceleration[i] - std::min(k, 0.0) * wlow;
+        num[q] = U[q] * S + 2.0 * lr * Ae[q];
+        den[q] = 2.0 * U[q] + 2.0 * lr * Ke[q];
+      }
+    double wp = std::min({n.v_max * n.v_max, min_ratio(num, den), min_ratio(num + 3, den + 3)});
     wp = std::max(wp, std::max(vs * vs, ve * ve));
-    for (int i = 0; i < 3; ++i) num[i] = limits_.acceleration[i] - K[i] * wp;
-    double a = min_ratio(num, U.data());
+    for (int q = 0; q < 6; ++q) num[q] = Ae[q] - Ke[q] * wp;
+    double a = std::min(min_ratio(num, U), min_ratio(num + 3, U + 3));
     // at the curvature cap the tangential budget is 0: a floor of 1e-6·A keeps the rounding-size speed
     // differences of neighbouring pieces from turning into long ramps
     const double amin = limits_.acceleration.minCoeff();

@@ -3,6 +3,7 @@
 // and pass record of a node; the last block's node cut into arc pieces once its end is known.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "netshape/motion/corner.hpp"
 #include "planner_geometry.hpp"
@@ -84,6 +85,8 @@ Status PlannerState::push(const toolpath::Block& b, const CubicControls* cubic) 
     nn = Node{};
     nn.segment = Segment::arc(b, source);
     arc_bounds(nn.segment, 0.0, nn.segment.full_length, nn.tangent_bound, nn.curvature_bound);
+    arc_ramps(nn.segment, 0.0, nn.segment.full_length, nn.tangent_bound, nn.curvature_bound, nn.ramp_tangent,
+              nn.ramp_curvature);
   } else {
     // Segment::line field by field (a line's ctrl and table are never read: copy_segment hands
     // them out as zeros); then every field of the Node the planner reads before the freeze
@@ -96,6 +99,7 @@ Status PlannerState::push(const toolpath::Block& b, const CubicControls* cubic) 
     nn.segment.source = source;
     nn.tangent_bound.setZero();
     nn.curvature_bound.setZero();
+    symmetric_ramps(nn);
     nn.start = nn.end = NodeEnd{};
     nn.geometry = Geometry::in_node;
   }
@@ -273,9 +277,47 @@ void PlannerState::set_limits(Node& n, const Vec3* line_dir) const noexcept {
   if (s.curvature_rate > 0) n.v_max = std::min(n.v_max, std::cbrt(0.3 * jmin / s.curvature_rate));
 }
 
-void PlannerState::set_reach(PassRecord& x, SpeedBound bound, const Vec3& U, const Vec3& K) const noexcept {
-  x.bound = bound;
-  if (bound == SpeedBound::path) {
+namespace {
+// Reach coefficients of the axis box with per-axis terms U, K over a length L, from w0 to w (the
+// larger squared speed, a = (w − w0)/(2L)): U_i·a + K_i·v² ≤ A_i at the worst speed of the ramp, w
+// when K_i ≥ 0: w·(U_i + 2·L·K_i) ≤ U_i·w0 + 2·L·A_i; w0 when K_i < 0: w·U_i ≤ (U_i − 2·L·K_i)·w0 + 2·L·A_i.
+void box_reach(double L, const Vec3& U, const Vec3& K, const Vec3& A, double (&alpha)[3], double (&beta)[3]) noexcept {
+  double den[3], an[3];
+  for (int i = 0; i < 3; ++i) {
+    den[i] = K[i] >= 0 ? U[i] + 2.0 * L * K[i] : U[i];
+    an[i] = K[i] >= 0 ? U[i] : U[i] - 2.0 * L * K[i];
+  }
+  const bool any = den[0] > 0 || den[1] > 0 || den[2] > 0;
+  if (den[0] > 0 && den[1] > 0 && den[2] > 0) {
+    // the three reciprocals from one division: 1/d0 = d1·d2/(d0·d1·d2), ...
+    const double d01 = den[0] * den[1], r = 1.0 / (d01 * den[2]);
+    const double rd[3] = {den[1] * den[2] * r, den[0] * den[2] * r, d01 * r};
+    for (int i = 0; i < 3; ++i) {
+      alpha[i] = an[i] * rd[i];
+      beta[i] = 2.0 * L * A[i] * rd[i];
+    }
+  } else {
+    for (int i = 0; i < 3; ++i) {
+      if (den[i] > 0) {
+        const double r = 1.0 / den[i];
+        alpha[i] = an[i] * r;
+        beta[i] = 2.0 * L * A[i] * r;
+      } else {
+        alpha[i] = 0.0;
+        beta[i] = std::numeric_limits<double>::infinity();
+      }
+    }
+  }
+  if (!any) {  // no bound at all: the speed carries over
+    alpha[0] = 1.0;
+    beta[0] = 0.0;
+  }
+}
+}  // namespace
+
+void PlannerState::set_reach(PassRecord& x, const Node& n) const noexcept {
+  x.bound = n.bound;
+  if (n.bound == SpeedBound::path) {
     x.alpha[0] = 1.0;
     x.beta[0] = 2.0 * x.path_accel * x.length;
     for (int i = 1; i < 3; ++i) {
@@ -284,34 +326,9 @@ void PlannerState::set_reach(PassRecord& x, SpeedBound bound, const Vec3& U, con
     }
     return;
   }
-  // per axis: w·(U_i + 2·L·K_i) ≤ U_i·w0 + 2·L·A_i (exact for constant bounds)
-  double den[3];
-  for (int i = 0; i < 3; ++i) den[i] = U[i] + 2.0 * x.length * K[i];
-  const bool any = den[0] > 0 || den[1] > 0 || den[2] > 0;
-  if (den[0] > 0 && den[1] > 0 && den[2] > 0) {
-    // the three reciprocals from one division: 1/d0 = d1·d2/(d0·d1·d2), ...
-    const double d01 = den[0] * den[1], r = 1.0 / (d01 * den[2]);
-    const double rd[3] = {den[1] * den[2] * r, den[0] * den[2] * r, d01 * r};
-    for (int i = 0; i < 3; ++i) {
-      x.alpha[i] = U[i] * rd[i];
-      x.beta[i] = 2.0 * x.length * limits_.acceleration[i] * rd[i];
-    }
-  } else {
-    for (int i = 0; i < 3; ++i) {
-      if (den[i] > 0) {
-        const double r = 1.0 / den[i];
-        x.alpha[i] = U[i] * r;
-        x.beta[i] = 2.0 * x.length * limits_.acceleration[i] * r;
-      } else {
-        x.alpha[i] = 0.0;
-        x.beta[i] = inf;
-      }
-    }
-  }
-  if (!any) {  // no bound at all: the speed carries over
-    x.alpha[0] = 1.0;
-    x.beta[0] = 0.0;
-  }
+  // speeding up: the forward reach; slowing down: the backward pass
+  box_reach(x.length, n.ramp_tangent[0], n.ramp_curvature[0], limits_.acceleration, x.alpha, x.beta);
+  box_reach(x.length, n.ramp_tangent[1], n.ramp_curvature[1], limits_.acceleration, x.alpha_down, x.beta_down);
 }
 
 // Arcs are cut into pieces of at most arc_piece_angle, each with its own bounds (the axis box is much
@@ -339,6 +356,7 @@ void PlannerState::split_last_block() noexcept {
     x.segment.trim_start = a;
     x.segment.trim_end = base.segment.full_length - b;
     arc_bounds(x.segment, a, b, x.tangent_bound, x.curvature_bound);
+    arc_ramps(x.segment, a, b, x.tangent_bound, x.curvature_bound, x.ramp_tangent, x.ramp_curvature);
     finish_piece(x, base, k, m, v_prev);
     if (k == 0) {
       p = x;

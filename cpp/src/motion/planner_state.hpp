@@ -54,8 +54,11 @@ inline double min_ratio(const double* num, const double* den) noexcept {
 enum class SpeedBound : std::uint8_t {
   /// Along the path: cruise cap, path acceleration and path jerk (lines; in jerk mode also curves).
   path,
-  /// A curved piece without jerk limits, per axis: |u_i|·v ≤ V_i and |u_i·s̈ + κ n_i·v²| ≤ A_i with the
-  /// piece's bounds U_i of |u_i| and K_i of |κ n_i|, which holds for |s̈| ≤ min_i (A_i − K_i·v²)/U_i.
+  /// A curved piece without jerk limits, per axis: |u_i|·v ≤ V_i and |u_i·s̈ + κ n_i·v²| ≤ A_i, which
+  /// holds for K_i·v² ≤ A_i (K_i bounds |κ n_i| on the piece) and |s̈| ≤ min_i (A_i − K'_i·v²)/U'_i with
+  /// the terms U', K' of the direction of the speed change (Node::ramp_tangent, ramp_curvature: from
+  /// signed bounds of u_i and κ n_i, so a centripetal part that eases an axis while it slows down or
+  /// speeds up is not charged to it).
   axis_box,
 };
 
@@ -100,6 +103,11 @@ struct Node {
   /// SpeedBound::axis_box: per-axis bounds over the piece of |u_i| (U) and of the curvature vector
   /// |κ n_i| [1/mm] (K)
   Vec3 tangent_bound = Vec3::Zero(), curvature_bound = Vec3::Zero();
+  /// SpeedBound::axis_box, per direction of a speed change ([0] speeding up, [1] slowing down along
+  /// the path): per-axis terms U_i, K_i such that U_i·|a| + K_i·v² ≤ A_i, with the speed cap
+  /// (curvature_bound), keeps every axis within A_i on the piece (BlendBounds::ramps); each at most
+  /// tangent_bound, curvature_bound, which they equal on pieces with no signed bounds (symmetric_ramps())
+  Vec3 ramp_tangent[2] = {Vec3::Zero(), Vec3::Zero()}, ramp_curvature[2] = {Vec3::Zero(), Vec3::Zero()};
   SpeedBound bound = SpeedBound::path;
   double v_junction = 0;  ///< junction limit at the start [mm/s]
   double v_corner = 0;    ///< corner speed before this node's own cap [mm/s]
@@ -112,16 +120,27 @@ struct Node {
   double t0 = 0;  ///< start time once frozen [s]
 };
 
+/// The ramp terms of a piece with no signed bounds: both directions take the unsigned ones.
+inline void symmetric_ramps(Node& n) noexcept {
+  for (int d = 0; d < 2; ++d) {
+    n.ramp_tangent[d] = n.tangent_bound;
+    n.ramp_curvature[d] = n.curvature_bound;
+  }
+}
+
 /// Compact copy of what the backward pass reads and writes, so it walks small records, not Nodes.
 /// The reach of a trapezoidal node is w = min_i alpha_i·w0 + beta_i in squared speeds w = v²: lines
 /// alpha = (1, 0, 0), beta = (2·a·L, inf, inf); curved pieces the axis box, alpha_i = U_i/(U_i + 2·L·K_i),
-/// beta_i = 2·L·A_i/(U_i + 2·L·K_i); set by update_pass() so the passes need no division.
+/// beta_i = 2·L·A_i/(U_i + 2·L·K_i) with the speeding-up terms of the node (Node::ramp_tangent[0], ...);
+/// alpha_down, beta_down the same with its slowing-down terms, for the backward pass; set by
+/// update_pass() so the passes need no division.
 struct PassRecord {
   double w_junction = 0;  ///< squared junction limit [mm²/s²]
   double w_backward = 0;  ///< squared speed the backward pass allows at the start [mm²/s²]
   double length = 0;      ///< planned length (see planned_length) [mm]
   double path_accel = 1, path_jerk = 0;
   double alpha[3] = {1, 0, 0}, beta[3] = {0, 0, 0};
+  double alpha_down[3] = {1, 0, 0}, beta_down[3] = {0, 0, 0};
   int line_blend = -1;                  ///< Geometry::line_blend_record: its slot in line_blends_, else −1
   SpeedBound bound = SpeedBound::path;  ///< SpeedBound::path: w = w0 + beta[0]
 };
@@ -163,8 +182,8 @@ class PlannerState {
   /// Cruise cap, path acceleration and jerk, speed bound of n from its segment and bounds.
   /// n.v_max holds the programmed feed cap on entry; line_dir: a line's unit direction if known.
   void set_limits(Node& n, const Vec3* line_dir = nullptr) const noexcept;
-  /// The reach coefficients of x (see PassRecord) from its length and acceleration.
-  void set_reach(PassRecord& x, SpeedBound bound, const Vec3& U, const Vec3& K) const noexcept;
+  /// The reach coefficients of x (see PassRecord) from its length and n's speed bound and terms.
+  void set_reach(PassRecord& x, const Node& n) const noexcept;
   /// Pass record of node k from the node (w_backward and line_blend: the caller).
   void update_pass(long k) noexcept;
   /// Largest squared speed at one end of a node when the other end runs at sqrt(w0) [mm²/s²].
@@ -275,7 +294,7 @@ inline void PlannerState::update_pass(long k) noexcept {
   x.path_accel = n.path_accel;
   x.path_jerk = n.path_jerk;
   x.line_blend = -1;
-  set_reach(x, n.bound, n.tangent_bound, n.curvature_bound);
+  set_reach(x, n);
 }
 
 inline void PlannerState::append(const Node& n) noexcept {

@@ -1,0 +1,131 @@
+// The per-direction terms of the axis box (Node::ramp_tangent, ramp_curvature): for a speed change
+// along the path at v² with the largest tangential acceleration the terms allow, every axis stays
+// within its limit at every point of the piece, checked against the exact tangent and curvature
+// vector of densely sampled cubic Béziers and arcs (not the 17-node table the terms come from).
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+
+#include "motion/blend_bounds.hpp"
+#include "motion/planner_geometry.hpp"
+#include "netshape/motion.hpp"
+
+using namespace netshape;
+using namespace netshape::motion;
+using namespace netshape::motion::detail;
+
+namespace {
+
+// Largest |u_i·a + κn_i·v²| / A over samples (u, κn) for a = ±(largest tangential acceleration the
+// terms allow at v²), both directions, over a range of speeds up to the cap; also checks that each
+// term is at most the unsigned one.
+double worst_ratio(const std::vector<Vec3>& tangents, const std::vector<Vec3>& curvatures, const Vec3& U, const Vec3& K,
+                   const Vec3 (&Ua)[2], const Vec3 (&Ka)[2], const Vec3& A) {
+  double wcap = 1e300;
+  for (int i = 0; i < 3; ++i)
+    if (K[i] > 0) wcap = std::min(wcap, A[i] / K[i]);
+  if (!(wcap < 1e300)) wcap = 1e6;
+  double worst = 0;
+  for (int d = 0; d < 2; ++d) {
+    for (int i = 0; i < 3; ++i) {
+      CHECK(Ua[d][i] <= U[i]);
+      CHECK(Ka[d][i] <= K[i]);
+    }
+    for (const double f : {0.0, 0.1, 0.3, 0.5, 0.7, 0.9, 0.99}) {
+      const double w = f * wcap;
+      double a = 1e300;
+      for (int i = 0; i < 3; ++i)
+        if (Ua[d][i] > 0) a = std::min(a, (A[i] - Ka[d][i] * w) / Ua[d][i]);
+      if (!(a > 0) || !(a < 1e300)) continue;
+      const double sa = d == 0 ? a : -a;
+      for (std::size_t k = 0; k < tangents.size(); ++k)
+        for (int i = 0; i < 3; ++i)
+          worst = std::max(worst, std::abs(tangents[k][i] * sa + curvatures[k][i] * w) / A[i]);
+    }
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("ramp terms of cubic pieces keep every axis within its limit (random cubics, every run of intervals)") {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> U01(-1.0, 1.0);
+  const Vec3 A(3000.0, 2000.0, 1500.0);
+  double worst = 0;
+  int tighter = 0, pieces = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const Vec3 p0(0, 0, 0);
+    const Vec3 p1 = p0 + Vec3(1.0 + 0.5 * U01(rng), 0.6 * U01(rng), 0.3 * U01(rng));
+    const Vec3 p2 = p1 + Vec3(0.8 * U01(rng), 1.0 + 0.5 * U01(rng), 0.3 * U01(rng));
+    const Vec3 p3 = p2 + Vec3(0.6 * U01(rng) - 0.5, 0.5 * U01(rng) + 0.5, 0.3 * U01(rng));
+    std::array<Vec3, 17> T, Kv;
+    const Segment g = Segment::blend(p0, p1, p2, p3, 0, &T, &Kv);
+    BlendBounds tab;
+    tab.fill(T, Kv);
+    for (const auto& [r0, r1] : {std::pair{0, 16}, std::pair{0, 1}, std::pair{3, 7}, std::pair{8, 12}, std::pair{15, 16},
+                                 std::pair{5, 6}}) {
+      Vec3 U, K, Ua[2], Ka[2];
+      tab.bounds(r0, r1, U, K);
+      tab.ramps(r0, r1, U, K, Ua, Ka);
+      std::vector<Vec3> ts, ks;
+      const double s0 = g.table[static_cast<std::size_t>(r0)], s1 = g.table[static_cast<std::size_t>(r1)];
+      for (int q = 0; q <= 400; ++q) {
+        const double u = g.bezier_u(s0 + (s1 - s0) * q / 400.0);
+        const Vec3 d1 = bezier_d1(g.ctrl, u), d2 = bezier_d2(g.ctrl, u);
+        const double n2 = d1.squaredNorm();
+        ts.push_back(d1 / std::sqrt(n2));
+        ks.push_back((d2 - d1 * (d1.dot(d2) / n2)) / n2);
+      }
+      worst = std::max(worst, worst_ratio(ts, ks, U, K, Ua, Ka, A));
+      ++pieces;
+      if ((Ua[0] - U).norm() + (Ka[0] - K).norm() + (Ua[1] - U).norm() + (Ka[1] - K).norm() > 1e-9) ++tighter;
+    }
+  }
+  CHECK(worst <= 1.0 + 1e-9);
+  // the signed terms are tighter than the unsigned box on most pieces (that is what they are for)
+  CHECK(tighter > pieces / 2);
+}
+
+TEST_CASE("ramp terms of arc pieces keep every axis within its limit (both senses, helices, every quadrant)") {
+  const Vec3 A(3000.0, 3000.0, 1000.0);
+  double worst = 0;
+  for (const bool cw : {false, true})
+    for (const double dz : {0.0, 0.7})
+      for (const double start_angle : {0.0, 0.4, 1.9, 3.5, 5.0}) {
+        toolpath::Block b;
+        b.kind = toolpath::MotionKind::arc;
+        b.plane = toolpath::Plane::xy;
+        b.clockwise = cw;
+        b.turns = 1;
+        b.feed = 100.0;
+        const double r = 2.0, sweep = cw ? -2.5 : 2.5;
+        b.center = Vec3(1.0, -1.0, 0.0);
+        b.start = b.center + Vec3(r * std::cos(start_angle), r * std::sin(start_angle), 0.0);
+        b.end = b.center + Vec3(r * std::cos(start_angle + sweep), r * std::sin(start_angle + sweep), dz);
+        const Segment s = Segment::arc(b, 0);
+        const int m = 5;
+        for (int k = 0; k < m; ++k) {
+          const double s0 = s.full_length * k / m, s1 = s.full_length * (k + 1) / m;
+          Vec3 U, K, Ua[2], Ka[2];
+          arc_bounds(s, s0, s1, U, K);
+          arc_ramps(s, s0, s1, U, K, Ua, Ka);
+          std::vector<Vec3> ts, ks;
+          for (int q = 0; q <= 400; ++q) {
+            const double f = (s0 + (s1 - s0) * q / 400.0) / s.full_length;
+            const double phi = start_angle + sweep * f;
+            // helix: p = c + r(cos φ, sin φ) + dz·f; dp/df = (−r·sw·sin φ, r·sw·cos φ, dz)
+            const Vec3 d1(-r * sweep * std::sin(phi), r * sweep * std::cos(phi), dz);
+            const Vec3 d2(-r * sweep * sweep * std::cos(phi), -r * sweep * sweep * std::sin(phi), 0.0);
+            const double n2 = d1.squaredNorm();
+            ts.push_back(d1 / std::sqrt(n2));
+            ks.push_back((d2 - d1 * (d1.dot(d2) / n2)) / n2);
+          }
+          worst = std::max(worst, worst_ratio(ts, ks, U, K, Ua, Ka, A));
+        }
+      }
+  CHECK(worst <= 1.0 + 1e-9);
+}
