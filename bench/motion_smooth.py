@@ -27,7 +27,7 @@ import numpy as np
 import netshape.motion as nm
 from motion_plan import LIM, load, toppra_time  # bench/ is on sys.path when run as a script
 
-FIT_SHARE = 0.9  # netshape.motion.smooth_path default: the planner blends within (1 - FIT_SHARE)·ε
+FIT_SHARE = 0.98  # netshape.motion.smooth_path default: the planner blends within (1 - FIT_SHARE)·ε
 
 
 def cycle(arr, rule, eps, **kw):

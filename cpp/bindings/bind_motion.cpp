@@ -266,7 +266,7 @@ void bind_motion(py::module_& m) {
         return py::make_tuple(arrays, r.source_first, r.source_last, stats);
       },
       py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
-      py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("fit_share") = 0.9, py::arg("max_segment") = 4.0,
+      py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("fit_share") = 0.98, py::arg("max_segment") = 4.0,
       py::arg("max_turn") = 0.5236, py::arg("min_blocks") = 3, py::arg("window") = 4096,
       py::arg("smoothing_length") = 10.0, py::arg("lead_length") = 2.0);
   m.def(
@@ -295,7 +295,7 @@ void bind_motion(py::module_& m) {
         return py::make_tuple(arrays, r.source_first, r.source_last, stats);
       },
       py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
-      py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("fit_share") = 0.9, py::arg("max_segment") = 4.0,
+      py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("fit_share") = 0.98, py::arg("max_segment") = 4.0,
       py::arg("max_turn") = 0.5236, py::arg("min_blocks") = 3, py::arg("window") = 4096,
       py::arg("smoothing_length") = 10.0, py::arg("lead_length") = 2.0, py::arg("chunk") = 1);
   m.def(

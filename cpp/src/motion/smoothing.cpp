@@ -155,21 +155,41 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       const Vec3 u2 = before ? dir(e) : dir(static_cast<std::size_t>(q));
       return turn_between(u1, u2) <= opt.max_turn;
     };
-    // A run's end block q next to a corner (the vertex at its other end turns more than max_turn) may
-    // lend the run its inner half, so the corner stays between two lines and is rounded below: when it
-    // is long enough for its direction to be sure (≥ 20·ε and ≥ 0.05 mm) and turns at most
-    // max_turn / 2 against its neighbour r in the run.
-    auto corner_lead = [&](std::size_t q, std::size_t r) {
-      const bool at_start = r > q;
+    // A run that ends at a vertex with no lead (a corner turning more than max_turn, a change of plane
+    // or feed, a cut of a run that failed its check) would meet the next block at an angle, left to
+    // the planner's blend tolerance. Instead the run's end block q lends the run its inner half and its
+    // corner-side half stays a line, so the corner lies between two lines and is rounded within the fit
+    // tolerance below: when q is long enough for its direction to be sure (≥ 2·ε and ≥ 0.02 mm) and
+    // turns at most max_turn / 2 against its neighbour r in the run. A shorter q (tiny blocks next
+    // to corners are common in CAM output) may be bridged: then r lends its inner half and one line
+    // runs from the corner over q to the middle of r, when the vertex between q and r is within
+    // 0.05·ε of that line (corner_bridge).
+    const double lead_min = std::max(0.02, 2.0 * opt.tolerance);
+    auto corner_at = [&](std::size_t q, bool at_start) {  // the vertex at q's outer end is a corner
       const std::size_t c = at_start ? q : q + 1;  // the corner is at the start of block c
       if (c == 0 || c >= nb) return false;
       const auto &b0 = program[c - 1], &b1 = program[c];
       if (b0.kind == MotionKind::rapid || b1.kind == MotionKind::rapid || b0.length() <= 1e-9 ||
           b1.length() <= 1e-9 || (b1.start - b0.end).norm() > 1e-9)
         return false;
-      if (turn_between(b0.tangent_at(1.0), b1.tangent_at(0.0)) <= opt.max_turn) return false;
-      if (program[q].length() < std::max(0.05, 20.0 * opt.tolerance)) return false;
-      return turn_between(dir(std::min(q, r)), dir(std::max(q, r))) <= 0.5 * opt.max_turn;
+      return turn_between(b0.tangent_at(1.0), b1.tangent_at(0.0)) >= 1e-3;
+    };
+    auto lends = [&](std::size_t q, std::size_t r) {
+      return program[q].length() >= lead_min && turn_between(dir(std::min(q, r)), dir(std::max(q, r))) <= 0.5 * opt.max_turn;
+    };
+    auto corner_lead = [&](std::size_t q, std::size_t r) { return corner_at(q, r > q) && lends(q, r); };
+    // q tiny, r lends, r2 its neighbour: the line from the corner to the point r lends from
+    auto corner_bridge = [&](std::size_t q, std::size_t r, std::size_t r2) {
+      const bool at_start = r > q;
+      if (program[q].length() >= lead_min || !corner_at(q, at_start) || !lends(r, r2)) return false;
+      const auto& b = program[r];
+      const double a = std::min(opt.lead_length, 0.5 * b.length());
+      const Vec3 corner = at_start ? program[q].start : program[q].end;
+      const Vec3 inner = at_start ? Vec3(b.end - a * dir(r)) : Vec3(b.start + a * dir(r));
+      const Vec3 joint = at_start ? program[q].end : program[q].start;
+      const Vec3 d = inner - corner;
+      const double t = std::clamp((joint - corner).dot(d) / d.squaredNorm(), 0.0, 1.0);
+      return (corner + t * d - joint).norm() <= 0.05 * opt.tolerance;
     };
     auto fit_emit = [&](std::size_t i, std::size_t j) -> bool {
       // Leads: the kept long line i − 1 (the block just emitted, shortened) and the long line j lend the
@@ -178,20 +198,33 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       // corner-side half is emitted as a line.
       long lin = -1, lout = -1;
       bool lin_inner = false, lout_inner = false;
+      std::size_t lin_skip = 0, lout_skip = 0;  // tiny blocks a corner line bridges (corner_bridge)
       if (lead_block(static_cast<long>(i) - 1, i) && !res.blocks.empty() &&
           res.source_first.back() == static_cast<long>(i) - 1 && res.blocks.back().kind == MotionKind::line) {
         lin = static_cast<long>(i) - 1;
       } else if (j - i > static_cast<std::size_t>(opt.min_blocks) && corner_lead(i, i + 1)) {
         lin = static_cast<long>(i);
         lin_inner = true;
+      } else if (j - i > static_cast<std::size_t>(opt.min_blocks) + 1 && corner_bridge(i, i + 1, i + 2)) {
+        lin = static_cast<long>(i) + 1;
+        lin_inner = true;
+        lin_skip = 1;
       }
       if (lead_block(static_cast<long>(j), j - 1)) {
         lout = static_cast<long>(j);
-      } else if (j - i - (lin_inner ? 1 : 0) > static_cast<std::size_t>(opt.min_blocks) && corner_lead(j - 1, j - 2)) {
-        lout = static_cast<long>(j) - 1;
-        lout_inner = true;
+      } else {
+        const std::size_t left = j - i - (lin_inner ? 1 + lin_skip : 0);  // blocks before lout's
+        if (left > static_cast<std::size_t>(opt.min_blocks) && corner_lead(j - 1, j - 2)) {
+          lout = static_cast<long>(j) - 1;
+          lout_inner = true;
+        } else if (left > static_cast<std::size_t>(opt.min_blocks) + 1 && corner_bridge(j - 1, j - 2, j - 3)) {
+          lout = static_cast<long>(j) - 2;
+          lout_inner = true;
+          lout_skip = 1;
+        }
       }
-      const std::size_t r0 = i + (lin_inner ? 1 : 0), r1 = j - (lout_inner ? 1 : 0);  // blocks wholly in the run
+      // blocks wholly in the run
+      const std::size_t r0 = i + (lin_inner ? 1 + lin_skip : 0), r1 = j - (lout_inner ? 1 + lout_skip : 0);
       std::vector<long> src;  // per polyline segment: its program block
       double run_len = 0;
       for (std::size_t q = r0; q < r1; ++q) run_len += program[q].length();
@@ -231,6 +264,28 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
         ends.fix1 = true;
         ends.d1 = to2(d).normalized();
       }
+      // Without a lead, at a straight joint (turning less than 1e-3 rad: a change of feed, a block that
+      // is no micro-segment and lends nothing) the curve takes the tangent of the block across the joint
+      // when it lies in the run's plane, so the path stays tangent-continuous there.
+      auto across = [&](long q, bool before, Vec3& t) {
+        if (q < 0 || q >= static_cast<long>(nb)) return false;
+        const auto& b = program[static_cast<std::size_t>(q)];
+        if (b.kind == MotionKind::rapid || b.length() <= 1e-9) return false;
+        const Vec3 joint = before ? program[r0].start : program[r1 - 1].end;
+        if ((joint - (before ? b.end : b.start)).norm() > 1e-9) return false;
+        t = b.tangent_at(before ? 1.0 : 0.0);
+        if (std::abs(t[ax.n]) > 1e-9) return false;
+        return turn_between(t, before ? dir(r0) : dir(r1 - 1)) < 1e-3;
+      };
+      Vec3 tj;
+      if (lin < 0 && across(static_cast<long>(r0) - 1, true, tj)) {
+        ends.fix0 = true;
+        ends.d0 = to2(tj).normalized();
+      }
+      if (lout < 0 && across(static_cast<long>(r1), false, tj)) {
+        ends.fix1 = true;
+        ends.d1 = to2(tj).normalized();
+      }
       const bool lead_in = lin >= 0 && !lin_inner, lead_out = lout >= 0 && !lout_inner;
       RunFit rf;
       if (!fit_run(pts, ends, mean, opt, rf)) return false;
@@ -257,9 +312,10 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
         const long s = static_cast<long>(std::upper_bound(cum.begin(), cum.end(), u) - cum.begin()) - 1;
         return src[static_cast<std::size_t>(std::clamp(s, 0L, static_cast<long>(src.size()) - 1))];
       };
-      if (lin_inner) {  // the first part of block i, from the corner to where the curve starts
+      if (lin_inner) {  // the first part of block lin (over block i if bridged), from the corner to the curve
         keep(i);
         res.blocks.back().end = first3;
+        res.source_last.back() = lin;
       }
       Vec3 cur = first3;
       for (std::size_t q = 0; q < rf.pieces.size(); ++q) {
@@ -280,9 +336,10 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
         program_line.push_back(false);
         cur = b.end;
       }
-      if (lout_inner) {  // the last part of block j − 1, from where the curve ends to the corner
+      if (lout_inner) {  // the last part of block lout (over block j − 1 if bridged), from the curve to the corner
         keep(j - 1);
         res.blocks.back().start = last3;
+        res.source_first.back() = lout;
       }
       return true;
     };

@@ -36,6 +36,10 @@ struct RunFit {
 // on a span, so its largest norm is at u0 or u1); chords are placed so that σ ≤ 0.05·eps and no chord
 // is longer than half a mean segment. Fills out.pieces (their ua, ub as arc lengths along the polyline)
 // and out.bound; the polyline arc lengths of the places where the bound exceeds eps go to bad.
+// Bisections of one failing chord or polyline piece before it counts as out of the tube (a curve that
+// really leaves the tube would otherwise be bisected down to `fine` all along the stretch it is out).
+constexpr int max_bisections = 64;
+
 bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector<double>& cum,
                  const ParamMap& amap, double eps, double mean,
                  RunFit& out, std::vector<double>& bad) {
@@ -104,12 +108,13 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     if (best > eps) {  // bisect the chord where it straddles a polyline vertex
       jobs.assign(1, Job{cpar[j], cpar[j + 1], csag[j]});
       best = 0;
+      int budget = max_bisections;
       while (!jobs.empty()) {
         const Job jb = jobs.back();
         jobs.pop_back();
         const V2 c0 = sp.point(jb.u0), c1 = sp.point(jb.u1);
         const double b = chain_bound(c0, c1, s) + jb.sag;
-        if (b > eps && (c1 - c0).norm() > fine) {
+        if (b > eps && (c1 - c0).norm() > fine && --budget > 0) {
           const double um2 = 0.5 * (jb.u0 + jb.u1);
           jobs.push_back(Job{jb.u0, um2, 0.25 * jb.sag});
           jobs.push_back(Job{um2, jb.u1, 0.25 * jb.sag});
@@ -151,11 +156,12 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
       if (best > eps) {
         pj.assign(1, {q0, q1});
         best = 0;
+        int budget = max_bisections;
         while (!pj.empty()) {
           const auto [a0, a1] = pj.back();
           pj.pop_back();
           const double b = poly_bound(a0, a1, uq);
-          if (b > eps && (a1 - a0).norm() > fine) {
+          if (b > eps && (a1 - a0).norm() > fine && --budget > 0) {
             const V2 am = 0.5 * (a0 + a1);
             pj.push_back({a0, am});
             pj.push_back({am, a1});

@@ -24,7 +24,7 @@ Corner rules:
                       a per --junction-accel
   blend               a G2 Bézier blend within --tolerance at each corner (feasible, no jump)
   smooth              runs of micro-segments (lines <= --max-segment mm turning <= --max-turn deg at
-                      each vertex) are replaced by a smoothing spline pulled back within 0.9 of
+                      each vertex) are replaced by a smoothing spline pulled back within 0.98 of
                       --tolerance of the program (checked both ways), planned as its curvature-
                       continuous cubic Bézier pieces;
                       sharper vertices are corners, rounded by an arc where they lie between lines and

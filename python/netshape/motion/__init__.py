@@ -207,7 +207,7 @@ def _dwells(program, n: int):
     return d
 
 
-def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float = 0.9,
+def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float = 0.98,
                 max_segment: float = 4.0, max_turn: float = 0.5236, min_blocks: int = 3, window: int = 4096,
                 smoothing_length: float = 10.0, lead_length: float = 2.0):
     """Tolerance-band smoothing of micro-segment runs (C++ ``netshape::motion::smooth``).
@@ -226,7 +226,7 @@ def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float
                          window, smoothing_length, lead_length)
 
 
-def smooth_path_streamed(program, tolerance: float = 0.01, *, chunk: int = 1, feed=None, fit_share: float = 0.9,
+def smooth_path_streamed(program, tolerance: float = 0.01, *, chunk: int = 1, feed=None, fit_share: float = 0.98,
                          max_segment: float = 4.0, max_turn: float = 0.5236, min_blocks: int = 3,
                          window: int = 4096, smoothing_length: float = 10.0, lead_length: float = 2.0):
     """:func:`smooth_path` through the streaming C++ ``netshape::motion::Smoother``.
@@ -261,7 +261,7 @@ def _plan_smooth(program, limits, feed, with_deviation, kw):
     if _dwells(program, len(arr["kind"])) is not None and np.any(_dwells(program, len(arr["kind"]))[1:-1] > 0):
         raise ValueError("rule = 'smooth': programs with dwells between moves are not supported yet")
     new, first, last, sstats = smooth_path(arr, tol, **skw)
-    fit_share = float(skw.get("fit_share", 0.9))
+    fit_share = float(skw.get("fit_share", 0.98))
     options = make_options("blend", tolerance=tol * (1.0 - fit_share), **kw)
     t, pos, vel, fd, blk, stats = _m._plan_arrays(*_call_args(new), limits, options, False)
     stats = dict(stats)

@@ -38,14 +38,14 @@ namespace netshape::motion {
 /// Options of the smoothing stage.
 struct SmoothOptions {
   double tolerance = 0.01;    ///< total contour tolerance ε [mm] (fit plus the planner's corner blends)
-  double fit_share = 0.9;     ///< share of ε given to the fitted curves; the rest is the blend tolerance
+  double fit_share = 0.98;    ///< share of ε given to the fitted curves; the rest is the blend tolerance
   double max_segment = 4.0;   ///< a line longer than this is not a micro-segment [mm]
   double max_turn = 0.5236;   ///< a vertex turning more than this (30°) is a corner that is kept [rad]
   int min_blocks = 3;         ///< shortest run that is smoothed [blocks]
   int window = 4096;          ///< longest run fitted at once [blocks] (longer runs are cut at a vertex)
   int max_refinements = 60;   ///< pull-back rounds (refit with raised weights) before a run is cut / kept
   double smoothing_length = 10.0;  ///< ℓ: the fit minimises Σ w·dist² + ℓ⁴·∫|s''|² (ℓ in mm)
-  double knot_spacing = 1.5;  ///< knot spacing of the spline in mean segment lengths of the run
+  double knot_spacing = 1.0;  ///< knot spacing of the spline in mean segment lengths of the run
   double lead_length = 2.0;   ///< longest part of an adjoining line a run's curve may use [mm]
   bool round_corners = true;  ///< replace the vertex between two program lines by an arc within fit_tolerance()
   double plane_tolerance = 1e-9;  ///< a run is planar when its normal coordinate varies less [mm]
