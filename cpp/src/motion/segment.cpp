@@ -125,13 +125,42 @@ double Segment::bezier_u(double s) const noexcept {
   if (s >= full_length) return 1.0;
   int i = static_cast<int>(std::upper_bound(table.begin(), table.end(), s) - table.begin()) - 1;
   i = std::clamp(i, 0, 15);
-  const double l0 = table[i], l1 = table[i + 1];
-  double u = (i + (l1 > l0 ? (s - l0) / (l1 - l0) : 0.0)) / 16.0;
-  for (int it = 0; it < 3; ++it) {
-    const double f = l0 + bezier_length(ctrl, i / 16.0, u) - s;
-    const double sp = bezier_d1(ctrl, u).norm();
-    if (sp <= 0) break;
-    u = std::clamp(u - f / sp, i / 16.0, (i + 1) / 16.0);
+  const double l0 = table[i], l1 = table[i + 1], ua = i / 16.0, ub = (i + 1) / 16.0;
+  // hodograph as a polynomial: B'(u) = c0 + c1·u + c2·u², B''(u) = c1 + 2·c2·u
+  const Vec3 d0 = ctrl[1] - ctrl[0], d1 = ctrl[2] - ctrl[1], d2 = ctrl[3] - ctrl[2];
+  const Vec3 c0 = 3.0 * d0, c1 = 6.0 * (d1 - d0), c2 = 3.0 * (d0 - 2.0 * d1 + d2);
+  auto hodograph = [&](double u) { return Vec3(c0 + u * (c1 + u * c2)); };
+  // first guess: the quintic Hermite interpolant of u(s) on [l0, l1] from u, du/ds = 1/|B'| and
+  // d²u/ds² = −(d|B'|/du)/|B'|³ at the two table nodes (error O(h⁶) in the interval width); the linear
+  // interpolant where a node speed vanishes
+  const double h = l1 - l0, t = h > 0 ? (s - l0) / h : 0.0;
+  double u = ua + t / 16.0;
+  const Vec3 va = hodograph(ua), vb = hodograph(ub);
+  const double qa = va.squaredNorm(), qb = vb.squaredNorm();
+  if (h > 0 && qa > 0 && qb > 0) {
+    const double ia = 1.0 / std::sqrt(qa), ib = 1.0 / std::sqrt(qb);
+    // derivatives in t = (s − l0)/h: u_t = h/|B'|, u_tt = −h²·(B'·B'')/|B'|⁴
+    const double ma = h * ia, mb = h * ib;
+    const double aa = -h * h * va.dot(c1 + 2.0 * ua * c2) * (ia * ia) * (ia * ia);
+    const double ab = -h * h * vb.dot(c1 + 2.0 * ub * c2) * (ib * ib) * (ib * ib);
+    const double t2 = t * t, t3 = t2 * t, t4 = t3 * t, t5 = t4 * t;
+    const double h5 = 10 * t3 - 15 * t4 + 6 * t5;  // the basis of the end value (the start's is 1 − h5)
+    u = ua + (ub - ua) * h5 + ma * (t - 6 * t3 + 8 * t4 - 3 * t5) + mb * (-4 * t3 + 7 * t4 - 3 * t5) +
+        aa * 0.5 * (t2 - 3 * t3 + 3 * t4 - t5) + ab * 0.5 * (t3 - 2 * t4 + t5);
+    u = std::clamp(u, ua, ub);
+  }
+  // Newton on l0 + ∫_{ua}^{u} |B'| − s (5-point Gauss); the error after a step δ is about
+  // |d|B'|/du| / (2|B'|)·δ², so the steps stop once that is below 1e-17 (under half an ulp of u ≤ 1)
+  for (int it = 0; it < 8; ++it) {
+    const double f = l0 + bezier_length(ctrl, ua, u) - s;
+    const Vec3 v1 = hodograph(u);
+    const double sp2 = v1.squaredNorm();
+    if (!(sp2 > 0)) break;
+    const double sp = std::sqrt(sp2);
+    const double rate = std::abs(v1.dot(c1 + 2.0 * u * c2)) / sp2;  // |d|B'|/du| / |B'|
+    const double next = std::clamp(u - f / sp, ua, ub), du = next - u;
+    u = next;
+    if (0.5 * rate * du * du <= 1e-17) break;
   }
   return u;
 }
