@@ -215,7 +215,20 @@ Vec3 Segment::moving_axes() const noexcept {
   return m;
 }
 
-double Segment::distance_to_piece(const Vec3& p, double s0, double s1) const noexcept {
+namespace {
+constexpr int polyline_chords = 64;  // distance_to_piece: chords per pass
+}  // namespace
+
+void Segment::piece_polyline(double s0, double s1, PiecePolyline& out) const noexcept {
+  s0 = std::clamp(s0, 0.0, full_length);
+  s1 = std::clamp(s1, s0, full_length);
+  for (int i = 0; i <= polyline_chords; ++i) {
+    const double s = i == 0 ? s0 : s0 + (s1 - s0) * i / polyline_chords;
+    out[static_cast<std::size_t>(i)] = kind == SegmentKind::arc ? block.point_at(s / full_length) : bezier_point(ctrl, bezier_u(s));
+  }
+}
+
+double Segment::distance_to_piece(const Vec3& p, double s0, double s1, const PiecePolyline* coarse) const noexcept {
   s0 = std::clamp(s0, 0.0, full_length);
   s1 = std::clamp(s1, s0, full_length);
   if (kind == SegmentKind::line) {
@@ -224,31 +237,33 @@ double Segment::distance_to_piece(const Vec3& p, double s0, double s1) const noe
     return point_segment_distance(p, a, b);
   }
   // arcs (and blends): a fine polyline; refine around the nearest vertex
-  constexpr int n = 64;
+  constexpr int n = polyline_chords;
   auto at = [&](double s) {
     return kind == SegmentKind::arc ? block.point_at(s / full_length) : bezier_point(ctrl, bezier_u(s));
   };
+  PiecePolyline own;
+  if (!coarse) {
+    piece_polyline(s0, s1, own);
+    coarse = &own;
+  }
+  const PiecePolyline& q = *coarse;
   double best = 1e300, sb = s0;
-  Vec3 prev = at(s0);
   for (int i = 1; i <= n; ++i) {
-    const double s = s0 + (s1 - s0) * i / n;
-    const Vec3 q = at(s);
-    const double d = point_segment_distance(p, prev, q);
+    const double d = point_segment_distance(p, q[static_cast<std::size_t>(i - 1)], q[static_cast<std::size_t>(i)]);
     if (d < best) {
       best = d;
-      sb = s;
+      sb = s0 + (s1 - s0) * i / n;
     }
-    prev = q;
   }
   // second, finer pass on the best chord pair
   const double h = (s1 - s0) / n;
   const double a = std::max(s0, sb - 2 * h), b = std::min(s1, sb + h);
-  prev = at(a);
+  Vec3 prev = at(a);
   for (int i = 1; i <= n; ++i) {
     const double s = a + (b - a) * i / n;
-    const Vec3 q = at(s);
-    best = std::min(best, point_segment_distance(p, prev, q));
-    prev = q;
+    const Vec3 next = at(s);
+    best = std::min(best, point_segment_distance(p, prev, next));
+    prev = next;
   }
   return best;
 }
