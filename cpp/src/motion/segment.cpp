@@ -30,6 +30,50 @@ double bezier_length(const std::array<Vec3, 4>& c, double a, double b) noexcept 
   return s * h;
 }
 
+// The hodograph as a polynomial, B'(u) = c0 + c1·u + c2·u² (B''(u) = c1 + 2·c2·u), and whether the
+// Bézier is a blend between two lines (P1 = P2, |P1 − P0| = |P3 − P2|), symmetric about u = 1/2.
+struct Hodograph {
+  Vec3 c0, c1, c2;
+  bool symmetric;
+  explicit Hodograph(const std::array<Vec3, 4>& c) noexcept {
+    const Vec3 d0 = c[1] - c[0], d1 = c[2] - c[1], d2 = c[3] - c[2];
+    c0 = 3.0 * d0;
+    c1 = 6.0 * (d1 - d0);
+    c2 = 3.0 * (d0 - 2.0 * d1 + d2);
+    const double n0 = d0.squaredNorm();
+    symmetric = d1.squaredNorm() <= 1e-20 * n0 && std::abs(n0 - d2.squaredNorm()) <= 1e-12 * n0;
+  }
+};
+
+// Unit tangent v1/|v1|, curvature vector (the normal part of B'' over |B'|²) and curvature k_at at the
+// table nodes u = i/16; on a symmetric blend |B'| and κ at node 16 − i equal those at node i.
+void node_frames(const Hodograph& g, double (&k_at)[17], std::array<Vec3, 17>* tangent,
+                 std::array<Vec3, 17>* curvature_vector) noexcept {
+  const Vec3 &c0 = g.c0, &c1 = g.c1, &c2 = g.c2;
+  const bool symmetric = g.symmetric;
+  double isp_at[17];
+  for (int i = 0; i <= 16; ++i) {
+    const double u = i / 16.0;
+    const Vec3 v1 = c0 + u * (c1 + u * c2), v2 = c1 + 2.0 * u * c2;
+    const double sp2 = v1.squaredNorm();
+    Vec3 tn = Vec3::Zero(), kv = Vec3::Zero();
+    double k = 0.0;
+    if (sp2 > 0) {
+      const double isp = symmetric && i > 8 ? isp_at[16 - i] : 1.0 / std::sqrt(sp2);
+      const double isp2 = isp * isp;
+      kv = (v2 - (v2.dot(v1) * isp2) * v1) * isp2;
+      tn = v1 * isp;
+      isp_at[i] = isp;
+      k = symmetric && i > 8 ? k_at[16 - i] : kv.norm();
+    } else {
+      isp_at[i] = 0.0;
+    }
+    k_at[i] = k;
+    if (tangent) (*tangent)[static_cast<std::size_t>(i)] = tn;
+    if (curvature_vector) (*curvature_vector)[static_cast<std::size_t>(i)] = kv;
+  }
+}
+
 }  // namespace
 
 Segment Segment::line(const toolpath::Block& b, long source) {
@@ -57,54 +101,36 @@ Segment Segment::blend(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec
   s.kind = SegmentKind::blend;
   s.ctrl = {p0, p1, p2, p3};
   s.source = source;
-  // hodograph as a polynomial: B'(u) = c0 + c1·u + c2·u², B''(u) = c1 + 2·c2·u; |B'(u)|² as a quartic
-  const Vec3 d0 = p1 - p0, d1 = p2 - p1, d2 = p3 - p2;
-  const Vec3 c0 = 3.0 * d0, c1 = 6.0 * (d1 - d0), c2 = 3.0 * (d0 - 2.0 * d1 + d2);
+  const Hodograph g(s.ctrl);
+  // |B'(u)|² as a quartic
+  const Vec3 &c0 = g.c0, &c1 = g.c1, &c2 = g.c2;
   const double q0 = c0.squaredNorm(), q1 = 2.0 * c0.dot(c1), q2 = c1.squaredNorm() + 2.0 * c0.dot(c2),
                q3 = 2.0 * c1.dot(c2), q4 = c2.squaredNorm();
   auto speed = [&](double u) { return std::sqrt(std::max(0.0, q0 + u * (q1 + u * (q2 + u * (q3 + u * q4))))); };
   // arc-length table at u = i/16 (3-point Gauss-Legendre per interval, exact to ~1e-9 relative for
   // these smooth speeds) and curvature at the same nodes; |dκ/ds| from neighbouring nodes.
-  // A blend between two lines (P1 = P2, |P1 − P0| = |P3 − P2|) is symmetric about u = 1/2: its
-  // second half of the intervals mirrors the first.
+  // A symmetric blend's second half of the intervals mirrors the first.
   static const double gx = 0.7745966692414834, w0 = 8.0 / 9.0, w1 = 5.0 / 9.0;
-  const double n0 = d0.squaredNorm();
-  const bool symmetric = d1.squaredNorm() <= 1e-20 * n0 && std::abs(n0 - d2.squaredNorm()) <= 1e-12 * n0;
   double piece[16];
-  const int n_eval = symmetric ? 8 : 16;
+  const int n_eval = g.symmetric ? 8 : 16;
   for (int i = 0; i < n_eval; ++i) {
     const double m = (i + 0.5) / 16.0, h = 0.5 / 16.0;
     piece[i] = h * (w0 * speed(m) + w1 * (speed(m - h * gx) + speed(m + h * gx)));
   }
-  if (symmetric)
+  if (g.symmetric)
     for (int i = 0; i < 8; ++i) piece[15 - i] = piece[i];
   s.table[0] = 0;
   for (int i = 1; i <= 16; ++i) s.table[i] = s.table[i - 1] + piece[i - 1];
-  // unit tangent v1/|v1| and curvature vector (the normal part of B'' over |B'|²) at the nodes; on a
-  // symmetric blend |B'| and κ at node 16 − i equal those at node i
-  double isp_at[17], k_at[17];
-  for (int i = 0; i <= 16; ++i) {
-    const double u = i / 16.0;
-    const Vec3 v1 = c0 + u * (c1 + u * c2), v2 = c1 + 2.0 * u * c2;
-    const double sp2 = v1.squaredNorm();
-    Vec3 tn = Vec3::Zero(), kv = Vec3::Zero();
-    double k = 0.0;
-    if (sp2 > 0) {
-      const double isp = symmetric && i > 8 ? isp_at[16 - i] : 1.0 / std::sqrt(sp2);
-      const double isp2 = isp * isp;
-      kv = (v2 - (v2.dot(v1) * isp2) * v1) * isp2;
-      tn = v1 * isp;
-      isp_at[i] = isp;
-      k = symmetric && i > 8 ? k_at[16 - i] : kv.norm();
-    } else {
-      isp_at[i] = 0.0;
-    }
-    k_at[i] = k;
-    if (tangent) (*tangent)[static_cast<std::size_t>(i)] = tn;
-    if (curvature_vector) (*curvature_vector)[static_cast<std::size_t>(i)] = kv;
-  }
-  finish_blend(s, k_at, symmetric);
+  double k_at[17];
+  node_frames(g, k_at, tangent, curvature_vector);
+  finish_blend(s, k_at, g.symmetric);
   return s;
+}
+
+void bezier_node_frames(const std::array<Vec3, 4>& c, std::array<Vec3, 17>& tangent,
+                        std::array<Vec3, 17>& curvature_vector) noexcept {
+  double k_at[17];
+  node_frames(Hodograph(c), k_at, &tangent, &curvature_vector);
 }
 
 void finish_blend(Segment& s, const double (&k_at)[17], bool symmetric) noexcept {

@@ -59,6 +59,11 @@ struct Segment {
 /// `symmetric`: the second half of the table and of k_at mirrors the first (only it is scanned).
 void finish_blend(Segment& s, const double (&k_at)[17], bool symmetric = false) noexcept;
 
+/// The unit tangents and curvature vectors [1/mm] at the table nodes u = i/16 that Segment::blend
+/// gives for the control points c (the same values), without the arc-length table.
+void bezier_node_frames(const std::array<Vec3, 4>& c, std::array<Vec3, 17>& tangent,
+                        std::array<Vec3, 17>& curvature_vector) noexcept;
+
 /// Bézier point and first two derivatives with respect to u.
 Vec3 bezier_point(const std::array<Vec3, 4>& c, double u) noexcept;
 Vec3 bezier_d1(const std::array<Vec3, 4>& c, double u) noexcept;
