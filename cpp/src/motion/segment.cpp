@@ -18,17 +18,11 @@ Vec3 bezier_d2(const std::array<Vec3, 4>& c, double u) noexcept {
 }
 
 namespace {
-// 5-point Gauss-Legendre on [a, b] of |B'(u)|
-double bezier_length(const std::array<Vec3, 4>& c, double a, double b) noexcept {
-  static const double x[5] = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640,
-                              0.9061798459386640};
-  static const double w[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
-                              0.2369268850561891, 0.2369268850561891};
-  const double h = 0.5 * (b - a), m = 0.5 * (a + b);
-  double s = 0;
-  for (int i = 0; i < 5; ++i) s += w[i] * bezier_d1(c, m + h * x[i]).norm();
-  return s * h;
-}
+// 5-point Gauss-Legendre nodes and weights on [−1, 1]
+constexpr double gauss5_x[5] = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640,
+                                0.9061798459386640};
+constexpr double gauss5_w[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
+                                0.2369268850561891, 0.2369268850561891};
 
 // The hodograph as a polynomial, B'(u) = c0 + c1·u + c2·u² (B''(u) = c1 + 2·c2·u), and whether the
 // Bézier is a blend between two lines (P1 = P2, |P1 − P0| = |P3 − P2|), symmetric about u = 1/2.
@@ -152,9 +146,8 @@ double Segment::bezier_u(double s) const noexcept {
   int i = static_cast<int>(std::upper_bound(table.begin(), table.end(), s) - table.begin()) - 1;
   i = std::clamp(i, 0, 15);
   const double l0 = table[i], l1 = table[i + 1], ua = i / 16.0, ub = (i + 1) / 16.0;
-  // hodograph as a polynomial: B'(u) = c0 + c1·u + c2·u², B''(u) = c1 + 2·c2·u
-  const Vec3 d0 = ctrl[1] - ctrl[0], d1 = ctrl[2] - ctrl[1], d2 = ctrl[3] - ctrl[2];
-  const Vec3 c0 = 3.0 * d0, c1 = 6.0 * (d1 - d0), c2 = 3.0 * (d0 - 2.0 * d1 + d2);
+  const Hodograph g(ctrl);
+  const Vec3 &c0 = g.c0, &c1 = g.c1, &c2 = g.c2;
   auto hodograph = [&](double u) { return Vec3(c0 + u * (c1 + u * c2)); };
   // first guess: the quintic Hermite interpolant of u(s) on [l0, l1] from u, du/ds = 1/|B'| and
   // d²u/ds² = −(d|B'|/du)/|B'|³ at the two table nodes (error O(h⁶) in the interval width); the linear
@@ -178,7 +171,11 @@ double Segment::bezier_u(double s) const noexcept {
   // Newton on l0 + ∫_{ua}^{u} |B'| − s (5-point Gauss); the error after a step δ is about
   // |d|B'|/du| / (2|B'|)·δ², so the steps stop once that is below 1e-17 (under half an ulp of u ≤ 1)
   for (int it = 0; it < 8; ++it) {
-    const double f = l0 + bezier_length(ctrl, ua, u) - s;
+    // 5-point Gauss-Legendre of |B'| on [ua, u]
+    const double hh = 0.5 * (u - ua), m = 0.5 * (ua + u);
+    double len = gauss5_w[0] * hodograph(m).norm();
+    for (int q = 1; q < 5; ++q) len += gauss5_w[q] * hodograph(m + hh * gauss5_x[q]).norm();
+    const double f = l0 + len * hh - s;
     const Vec3 v1 = hodograph(u);
     const double sp2 = v1.squaredNorm();
     if (!(sp2 > 0)) break;
