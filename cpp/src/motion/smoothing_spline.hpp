@@ -20,11 +20,12 @@ using V2 = Eigen::Vector2d;
 double cross2(const V2& a, const V2& b) { return a.x() * b.y() - a.y() * b.x(); }
 V2 perp(const V2& t) { return V2(-t.y(), t.x()); }
 
-double seg_dist(const V2& p, const V2& a, const V2& b) {
+// squared distance from p to the segment [a, b]
+double seg_dist2(const V2& p, const V2& a, const V2& b) {
   const V2 d = b - a;
   const double l2 = d.squaredNorm();
   const double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * d)).norm();
+  return (p - (a + t * d)).squaredNorm();
 }
 
 // Cubic B-spline (clamped) in the plane, parameter u ∈ [0, L].
