@@ -46,11 +46,16 @@ void PlannerState::append_corner_blend(long first, Node& nn, const Vec3& u1, con
     }
     const Vec3 t0 = piece_tangent(pseg, sp), t3 = piece_tangent(nn.segment, d);
     bl = {p0, p0 + d * t0, p3 - d * t3, p3};
+    // the first pass of distance_to_piece over each programmed piece is the same for all 15 points
+    Segment::PiecePolyline cp, cn;
+    const bool pcurve = pseg.kind != SegmentKind::line, ncurve = nn.segment.kind != SegmentKind::line;
+    if (pcurve) pseg.piece_polyline(sp, pseg.full_length, cp);
+    if (ncurve) nn.segment.piece_polyline(0.0, d, cn);
     double dev = 0;
     for (int i = 1; i < 16; ++i) {
       const Vec3 qp = bezier_point(bl, i / 16.0);
-      dev = std::max(dev, std::min(pseg.distance_to_piece(qp, sp, pseg.full_length),
-                                   nn.segment.distance_to_piece(qp, 0.0, d)));
+      dev = std::max(dev, std::min(pseg.distance_to_piece(qp, sp, pseg.full_length, pcurve ? &cp : nullptr),
+                                   nn.segment.distance_to_piece(qp, 0.0, d, ncurve ? &cn : nullptr)));
     }
     if (dev <= options_.tolerance) break;
     d *= 0.5;

@@ -50,7 +50,7 @@ void PlannerState::split_cubic_block() noexcept {
   const Node base = node(tail_ - 1);
   const Segment& g = base.segment;
   std::array<Vec3, 17> T, Kv;
-  Segment::blend(g.ctrl[0], g.ctrl[1], g.ctrl[2], g.ctrl[3], g.source, &T, &Kv);  // the same table as g's
+  bezier_node_frames(g.ctrl, T, Kv);  // as init_cubic_node's Segment::blend gave them
   BlendBounds tab;
   tab.fill(T, Kv);
   const double L = g.full_length, a = g.trim_start, b = L - g.trim_end;

@@ -89,13 +89,14 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   // spline -> polyline: every spline point between chord points c0, c1 is within
   // max(d(c0, S), d(c1, S)) + σ of segment S (distance to a segment is convex)
   const long ns = static_cast<long>(n) - 1;
+  // (in squared distances, one root at the end: the root is monotone, so min and max commute with it)
   auto chain_bound = [&](const V2& c0, const V2& c1, long s) {
-    double best = 1e300;
+    double best2 = 1e300;
     for (long q = std::max(0L, s - 3); q <= std::min(ns - 1, s + 3); ++q) {
       const auto qi = static_cast<std::size_t>(q);
-      best = std::min(best, std::max(seg_dist(c0, pts[qi], pts[qi + 1]), seg_dist(c1, pts[qi], pts[qi + 1])));
+      best2 = std::min(best2, std::max(seg_dist2(c0, pts[qi], pts[qi + 1]), seg_dist2(c1, pts[qi], pts[qi + 1])));
     }
-    return best;
+    return best2 < 1e300 ? std::sqrt(best2) : 1e300;
   };
   struct Job {
     double u0, u1, sag;
@@ -138,7 +139,7 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     double best = 1e300;
     for (long q = lo; q <= hi; ++q) {
       const auto qi = static_cast<std::size_t>(q);
-      best = std::min(best, std::max(seg_dist(q0, cp[qi], cp[qi + 1]), seg_dist(q1, cp[qi], cp[qi + 1])) + csag[qi]);
+      best = std::min(best, std::sqrt(std::max(seg_dist2(q0, cp[qi], cp[qi + 1]), seg_dist2(q1, cp[qi], cp[qi + 1]))) + csag[qi]);
     }
     return best;
   };

@@ -20,11 +20,12 @@ using V2 = Eigen::Vector2d;
 double cross2(const V2& a, const V2& b) { return a.x() * b.y() - a.y() * b.x(); }
 V2 perp(const V2& t) { return V2(-t.y(), t.x()); }
 
-double seg_dist(const V2& p, const V2& a, const V2& b) {
+// squared distance from p to the segment [a, b]
+double seg_dist2(const V2& p, const V2& a, const V2& b) {
   const V2 d = b - a;
   const double l2 = d.squaredNorm();
   const double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * d)).norm();
+  return (p - (a + t * d)).squaredNorm();
 }
 
 // Cubic B-spline (clamped) in the plane, parameter u ∈ [0, L].
@@ -46,20 +47,39 @@ struct Spline {
   // the Taylor coefficients at t[k] from the basis derivatives (The NURBS Book A2.3). prepare() builds
   // them after the control points change; point(), deriv() and eval() read only them.
   std::vector<std::array<V2, 4>> pw;
-  void prepare() {
+  // The same for the basis functions: pb[k][4·j + r] = D_j(N_{k−3+r})(t[k]) / j!, which depend on the
+  // knots only. power_basis() fills them after the knots change; prepare() combines them with P.
+  std::vector<std::array<double, 16>> pb;
+  void power_basis() {
     const int m = static_cast<int>(P.size());
-    pw.assign(static_cast<std::size_t>(m), std::array<V2, 4>{V2::Zero(), V2::Zero(), V2::Zero(), V2::Zero()});
+    pb.assign(static_cast<std::size_t>(m), std::array<double, 16>{});
     for (int k = 3; k < m; ++k) {
       if (!(t[static_cast<std::size_t>(k + 1)] > t[static_cast<std::size_t>(k)])) continue;
       double D[4][4], scratch[48];
       geometry::basis_function_derivatives(k, t[static_cast<std::size_t>(k)], 3, 3, t.data(), &D[0][0], scratch);
+      auto& b = pb[static_cast<std::size_t>(k)];
+      for (int r = 0; r < 4; ++r) {
+        b[static_cast<std::size_t>(r)] = D[0][r];
+        b[static_cast<std::size_t>(4 + r)] = D[1][r];
+        b[static_cast<std::size_t>(8 + r)] = 0.5 * D[2][r];
+        b[static_cast<std::size_t>(12 + r)] = D[3][r] / 6.0;
+      }
+    }
+  }
+  void prepare() {
+    const int m = static_cast<int>(P.size());
+    if (pb.size() != P.size()) power_basis();
+    pw.assign(static_cast<std::size_t>(m), std::array<V2, 4>{V2::Zero(), V2::Zero(), V2::Zero(), V2::Zero()});
+    for (int k = 3; k < m; ++k) {
+      if (!(t[static_cast<std::size_t>(k + 1)] > t[static_cast<std::size_t>(k)])) continue;
+      const auto& b = pb[static_cast<std::size_t>(k)];
       auto& c = pw[static_cast<std::size_t>(k)];
       for (int r = 0; r < 4; ++r) {
         const V2& Pr = P[static_cast<std::size_t>(k - 3 + r)];
-        c[0] += D[0][r] * Pr;
-        c[1] += D[1][r] * Pr;
-        c[2] += (0.5 * D[2][r]) * Pr;
-        c[3] += (D[3][r] / 6.0) * Pr;
+        c[0] += b[static_cast<std::size_t>(r)] * Pr;
+        c[1] += b[static_cast<std::size_t>(4 + r)] * Pr;
+        c[2] += b[static_cast<std::size_t>(8 + r)] * Pr;
+        c[3] += b[static_cast<std::size_t>(12 + r)] * Pr;
       }
     }
   }
@@ -174,7 +194,7 @@ struct ParamMap {
 // with the first front.size() and the last back.size() control points fixed to the given values
 // (end points, and end tangents when the second control point is fixed too). Banded Cholesky, O(n).
 // pen_band caches the penalty's band for these knots: it is filled when empty and must be cleared
-// when the knots change.
+// when the knots change; sp's power-form basis (Spline::pb) is rebuilt with it.
 bool fit(const std::vector<Sample>& samples, double L, const std::vector<double>& interior, double pen,
          const std::vector<V2>& front, const std::vector<V2>& back, Spline& sp,
          std::vector<std::array<double, 4>>& pen_band) {
@@ -186,6 +206,7 @@ bool fit(const std::vector<Sample>& samples, double L, const std::vector<double>
   sp.t.insert(sp.t.end(), 4, L);
   sp.P.assign(static_cast<std::size_t>(m), V2::Zero());
   if (pen_band.empty()) {
+    sp.power_basis();
     // pen·∫|s''|² over [0, L]: s'' is linear on each knot span, so two Gauss points per span are exact
     pen_band.assign(static_cast<std::size_t>(m), std::array<double, 4>{0, 0, 0, 0});
     const double g = 0.5 / std::sqrt(3.0);

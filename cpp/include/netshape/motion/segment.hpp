@@ -43,8 +43,13 @@ struct Segment {
   Vec3 tangent_at(double s) const noexcept;
   /// Axes that move on this segment (|component| > 1e-12 anywhere): used for "Acc" of Lee & Lee.
   Vec3 moving_axes() const noexcept;
-  /// Distance from p to the untrimmed programmed piece between arc lengths [s0, s1] [mm].
-  double distance_to_piece(const Vec3& p, double s0, double s1) const noexcept;
+  /// Points of distance_to_piece's first pass over [s0, s1]: the piece at 65 evenly spaced arc lengths.
+  using PiecePolyline = std::array<Vec3, 65>;
+  /// Fill `out` with those points (arcs and blends; lines need none).
+  void piece_polyline(double s0, double s1, PiecePolyline& out) const noexcept;
+  /// Distance from p to the untrimmed programmed piece between arc lengths [s0, s1] [mm]. `coarse`:
+  /// the piece_polyline of the same window, when the caller measures several points against it.
+  double distance_to_piece(const Vec3& p, double s0, double s1, const PiecePolyline* coarse = nullptr) const noexcept;
   /// Blend: the Bézier parameter u ∈ [0, 1] at arc length s from the untrimmed start [mm].
   double bezier_u(double s) const noexcept;
 };
@@ -53,6 +58,11 @@ struct Segment {
 /// neighbouring table nodes and its length, from the curvature at the 17 table nodes [1/mm].
 /// `symmetric`: the second half of the table and of k_at mirrors the first (only it is scanned).
 void finish_blend(Segment& s, const double (&k_at)[17], bool symmetric = false) noexcept;
+
+/// The unit tangents and curvature vectors [1/mm] at the table nodes u = i/16 that Segment::blend
+/// gives for the control points c (the same values), without the arc-length table.
+void bezier_node_frames(const std::array<Vec3, 4>& c, std::array<Vec3, 17>& tangent,
+                        std::array<Vec3, 17>& curvature_vector) noexcept;
 
 /// Bézier point and first two derivatives with respect to u.
 Vec3 bezier_point(const std::array<Vec3, 4>& c, double u) noexcept;
