@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "line_blend.hpp"
+#include "planner_geometry.hpp"
 #include "netshape/motion/cubic.hpp"
 #include "netshape/motion/planner.hpp"
 
@@ -283,7 +284,14 @@ inline long PlannerState::blocks_in_buffer() const noexcept {
 inline double PlannerState::planned_length(const Node& n) const noexcept {
   const Segment& s = n.segment;
   const double te = n.extent == Extent::whole_block_blend_pending ? 0.45 * s.full_length : s.trim_end;
-  return std::max(0.0, s.full_length - s.trim_start - te - n.start.window - n.end.window);
+  double len = s.full_length - s.trim_start - te;
+  if (jerk_limited_ && n.extent != Extent::settled && s.kind != SegmentKind::line) {
+    // a cubic or arc block not cut into its pieces yet: S-curve ramps do not add up over pieces (each
+    // starts and ends without acceleration), so the whole block may promise a slow-down its pieces
+    // cannot do; its first piece's length alone never does (the pieces after it only add reach)
+    len = std::min(len, s.full_length / (s.kind == SegmentKind::arc ? arc_piece_count(s) : cubic_piece_count()));
+  }
+  return std::max(0.0, len - n.start.window - n.end.window);
 }
 
 inline void PlannerState::update_pass(long k) noexcept {
