@@ -133,14 +133,22 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   // chords whose arc length along the polyline (through the parameter map) lies within ±w of the
   // piece's; a chord outside the window can only make the bound larger, never smaller
   const double w = 0.25 * mean + 4.0 * eps;
-  auto poly_bound = [&](const V2& q0, const V2& q1, double uq) {
+  // Also `ends`: at most the bound of the degenerate pieces [q0, q0] and [q1, q1] (the square root of the
+  // larger of the two smallest squared distances plus the smallest σ); above eps, every bisection of
+  // the piece keeps a part whose bound is above eps, so the piece fails whatever it is cut into.
+  auto poly_bound = [&](const V2& q0, const V2& q1, double uq, double& ends) {
     const long lo = std::max(0L, static_cast<long>(std::lower_bound(cu.begin(), cu.end(), uq - w) - cu.begin()) - 2);
     const long hi = std::min(nch - 1, static_cast<long>(std::upper_bound(cu.begin(), cu.end(), uq + w) - cu.begin()) + 1);
-    double best = 1e300;
+    double best = 1e300, m0 = 1e300, m1 = 1e300, smin = 1e300;
     for (long q = lo; q <= hi; ++q) {
       const auto qi = static_cast<std::size_t>(q);
-      best = std::min(best, std::sqrt(std::max(seg_dist2(q0, cp[qi], cp[qi + 1]), seg_dist2(q1, cp[qi], cp[qi + 1]))) + csag[qi]);
+      const double d0 = seg_dist2(q0, cp[qi], cp[qi + 1]), d1 = seg_dist2(q1, cp[qi], cp[qi + 1]);
+      best = std::min(best, std::sqrt(std::max(d0, d1)) + csag[qi]);
+      m0 = std::min(m0, d0);
+      m1 = std::min(m1, d1);
+      smin = std::min(smin, csag[qi]);
     }
+    ends = std::sqrt(std::max(m0, m1)) + smin;
     return best;
   };
   std::vector<std::pair<V2, V2>> pj;
@@ -153,16 +161,17 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
       const V2 q0 = pts[i] + (pts[i + 1] - pts[i]) * (static_cast<double>(k) / np);
       const V2 q1 = pts[i] + (pts[i + 1] - pts[i]) * (static_cast<double>(k + 1) / np);
       const double uq = cum[i] + li * (k + 0.5) / np;
-      double best = poly_bound(q0, q1, uq);
-      if (best > eps) {
+      double ends;
+      double best = poly_bound(q0, q1, uq, ends);
+      if (best > eps && ends <= eps) {
         pj.assign(1, {q0, q1});
         best = 0;
         int budget = max_bisections;
         while (!pj.empty()) {
           const auto [a0, a1] = pj.back();
           pj.pop_back();
-          const double b = poly_bound(a0, a1, uq);
-          if (b > eps && (a1 - a0).norm() > fine && --budget > 0) {
+          const double b = poly_bound(a0, a1, uq, ends);
+          if (b > eps && ends <= eps && (a1 - a0).norm() > fine && --budget > 0) {
             const V2 am = 0.5 * (a0 + a1);
             pj.push_back({a0, am});
             pj.push_back({am, a1});
