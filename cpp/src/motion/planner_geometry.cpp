@@ -11,19 +11,6 @@
 namespace netshape::motion::detail {
 
 namespace {
-// largest |cos| and |sin| over the angles between p0 and p1 [rad]
-void trig_max(double p0, double p1, double& mc, double& ms) {
-  if (p0 > p1) std::swap(p0, p1);
-  if (p1 - p0 >= pi) {
-    mc = ms = 1.0;
-    return;
-  }
-  mc = std::max(std::abs(std::cos(p0)), std::abs(std::cos(p1)));
-  ms = std::max(std::abs(std::sin(p0)), std::abs(std::sin(p1)));
-  if (std::floor(p1 / pi) >= std::ceil(p0 / pi)) mc = 1.0;                          // k·π inside
-  if (std::floor((p1 - 0.5 * pi) / pi) >= std::ceil((p0 - 0.5 * pi) / pi)) ms = 1.0;  // π/2 + k·π inside
-}
-
 // smallest and largest cos and sin over the angles between p0 and p1 [rad]
 void trig_range(double p0, double p1, double& cmin, double& cmax, double& smin, double& smax) {
   if (p0 > p1) std::swap(p0, p1);
@@ -45,15 +32,16 @@ int arc_piece_count(const Segment& s) {
   return std::clamp(static_cast<int>(std::ceil(sweep / arc_piece_angle - 1e-9)), 1, max_arc_pieces);
 }
 
-void arc_bounds(const Segment& s, double s0, double s1, Vec3& U, Vec3& K) {
+void arc_bounds(const Segment& s, double s0, double s1, Vec3& U, Vec3& K, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) {
   const toolpath::Block& b = s.block;
   const auto ax = toolpath::plane_axes(b.plane);
   const double r0 = std::hypot(b.start[ax.a] - b.center[ax.a], b.start[ax.b] - b.center[ax.b]);
   const double r1 = std::hypot(b.end[ax.a] - b.center[ax.a], b.end[ax.b] - b.center[ax.b]);
   const double sw = b.sweep(), dn = b.end[ax.n] - b.start[ax.n];
   const double ang0 = std::atan2(b.start[ax.b] - b.center[ax.b], b.start[ax.a] - b.center[ax.a]);
-  double mc, ms;
-  trig_max(ang0 + sw * s0 / s.full_length, ang0 + sw * s1 / s.full_length, mc, ms);
+  double cmin, cmax, smin, smax;
+  trig_range(ang0 + sw * s0 / s.full_length, ang0 + sw * s1 / s.full_length, cmin, cmax, smin, smax);
+  const double mc = std::max(std::abs(cmin), std::abs(cmax)), ms = std::max(std::abs(smin), std::abs(smax));
   const double rmin = std::min(r0, r1), rmax = std::max(r0, r1), dr = rmax - rmin;
   const double rho = std::hypot(rmin * sw, dn);  // |dp/df| (lower bound when the radius varies)
   U[ax.a] = std::min(1.0, (rmax * std::abs(sw) * ms + dr) / rho);
@@ -64,40 +52,29 @@ void arc_bounds(const Segment& s, double s0, double s1, Vec3& U, Vec3& K) {
   K[ax.a] = kappa * mc;
   K[ax.b] = kappa * ms;
   K[ax.n] = 0.0;
-}
-
-void arc_ramps(const Segment& s, double s0, double s1, const Vec3& U, const Vec3& K, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) {
-  const toolpath::Block& b = s.block;
-  const auto ax = toolpath::plane_axes(b.plane);
-  const double r0 = std::hypot(b.start[ax.a] - b.center[ax.a], b.start[ax.b] - b.center[ax.b]);
-  const double r1 = std::hypot(b.end[ax.a] - b.center[ax.a], b.end[ax.b] - b.center[ax.b]);
-  const double sw = b.sweep(), dn = b.end[ax.n] - b.start[ax.n];
-  if (std::abs(r1 - r0) > 1e-9 * std::max(r0, r1) || sw == 0.0) {  // a spiral: the unsigned bounds
+  if (dr > 1e-9 * rmax || sw == 0.0) {  // a spiral: the ramp terms are the unsigned bounds
     for (int d = 0; d < 2; ++d) {
       Ua[d] = U;
       Ka[d] = K;
     }
     return;
   }
-  // u = (r·sw·(−sin φ, cos φ) + dn·e_n) / ρ and κn = −κ·(cos φ, sin φ), φ = ang0 + sw·s / full_length
-  const double ang0 = std::atan2(b.start[ax.b] - b.center[ax.b], b.start[ax.a] - b.center[ax.a]);
-  double cmin, cmax, smin, smax;
-  trig_range(ang0 + sw * s0 / s.full_length, ang0 + sw * s1 / s.full_length, cmin, cmax, smin, smax);
-  const double R = r0 * sw / std::hypot(r0 * sw, dn), c = dn / sw;
-  const double kappa = r0 / (r0 * r0 + c * c) * (1.0 + 1e-9);
+  // constant radius r0 = r1: u = (r·sw·(−sin φ, cos φ) + dn·e_n) / ρ and κn = −κ·(cos φ, sin φ),
+  // φ = ang0 + sw·s / full_length
+  const double rho0 = std::hypot(r0 * sw, dn), R = r0 * sw / rho0;
+  const double kappa0 = r0 / (r0 * r0 + c * c) * (1.0 + 1e-9);
   const double e = 1e-12;  // rounding of the ranges
-  // per axis: tx, tn, kx, kn
-  double rg[3][4];
+  double rg[3][4];  // per axis: largest and smallest u_i, largest and smallest κn_i
   rg[ax.a][0] = std::max(-R * smin, -R * smax) + e;
   rg[ax.a][1] = std::min(-R * smin, -R * smax) - e;
   rg[ax.b][0] = std::max(R * cmin, R * cmax) + e;
   rg[ax.b][1] = std::min(R * cmin, R * cmax) - e;
-  rg[ax.n][0] = dn / std::hypot(r0 * sw, dn) + e;
+  rg[ax.n][0] = dn / rho0 + e;
   rg[ax.n][1] = rg[ax.n][0] - 2 * e;
-  rg[ax.a][2] = -kappa * cmin;
-  rg[ax.a][3] = -kappa * cmax;
-  rg[ax.b][2] = -kappa * smin;
-  rg[ax.b][3] = -kappa * smax;
+  rg[ax.a][2] = -kappa0 * cmin;
+  rg[ax.a][3] = -kappa0 * cmax;
+  rg[ax.b][2] = -kappa0 * smin;
+  rg[ax.b][3] = -kappa0 * smax;
   rg[ax.n][2] = rg[ax.n][3] = 0.0;
   for (int i = 0; i < 3; ++i) {
     double u[2], k[2];

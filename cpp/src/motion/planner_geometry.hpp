@@ -53,10 +53,9 @@ Vec3 curvature_vector(const Segment& s, bool at_end);
 /// arc_piece_angle sweep, at most max_arc_pieces (planner_state.hpp).
 int arc_piece_count(const Segment& s);
 /// Per-axis bounds over the arc window [s0, s1] (arc length from the block start [mm]) of |u_i| (U)
-/// and of the curvature vector |κ n_i| (K) [1/mm]; a helix's curvature vector points to its axis.
-void arc_bounds(const Segment& s, double s0, double s1, Vec3& U, Vec3& K);
-/// The per-direction terms (Node::ramp_tangent, ramp_curvature) over the same window from the signed
-/// ranges of u_i and κ n_i, each at most U, K (arc_bounds); a spiral (radius changing) takes U, K.
-void arc_ramps(const Segment& s, double s0, double s1, const Vec3& U, const Vec3& K, Vec3 (&Ua)[2], Vec3 (&Ka)[2]);
+/// and of the curvature vector |κ n_i| (K) [1/mm], a helix's curvature vector pointing to its axis; and
+/// the per-direction terms (Ua, Ka: Node::ramp_tangent, ramp_curvature) from the signed ranges of u_i
+/// and κ n_i over the window, each at most U, K (a spiral, whose radius changes, takes U, K).
+void arc_bounds(const Segment& s, double s0, double s1, Vec3& U, Vec3& K, Vec3 (&Ua)[2], Vec3 (&Ka)[2]);
 
 }  // namespace netshape::motion::detail

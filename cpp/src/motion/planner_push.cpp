@@ -84,9 +84,8 @@ Status PlannerState::push(const toolpath::Block& b, const CubicControls* cubic) 
   } else if (arc) {
     nn = Node{};
     nn.segment = Segment::arc(b, source);
-    arc_bounds(nn.segment, 0.0, nn.segment.full_length, nn.tangent_bound, nn.curvature_bound);
-    arc_ramps(nn.segment, 0.0, nn.segment.full_length, nn.tangent_bound, nn.curvature_bound, nn.ramp_tangent,
-              nn.ramp_curvature);
+    arc_bounds(nn.segment, 0.0, nn.segment.full_length, nn.tangent_bound, nn.curvature_bound, nn.ramp_tangent,
+               nn.ramp_curvature);
   } else {
     // Segment::line field by field (a line's ctrl and table are never read: copy_segment hands
     // them out as zeros); then every field of the Node the planner reads before the freeze
@@ -355,8 +354,7 @@ void PlannerState::split_last_block() noexcept {
     const double a = s0 + (s1 - s0) * k / m, b = k + 1 == m ? s1 : s0 + (s1 - s0) * (k + 1) / m;
     x.segment.trim_start = a;
     x.segment.trim_end = base.segment.full_length - b;
-    arc_bounds(x.segment, a, b, x.tangent_bound, x.curvature_bound);
-    arc_ramps(x.segment, a, b, x.tangent_bound, x.curvature_bound, x.ramp_tangent, x.ramp_curvature);
+    arc_bounds(x.segment, a, b, x.tangent_bound, x.curvature_bound, x.ramp_tangent, x.ramp_curvature);
     finish_piece(x, base, k, m, v_prev);
     if (k == 0) {
       p = x;

@@ -111,8 +111,7 @@ TEST_CASE("ramp terms of arc pieces keep every axis within its limit (both sense
         for (int k = 0; k < m; ++k) {
           const double s0 = s.full_length * k / m, s1 = s.full_length * (k + 1) / m;
           Vec3 U, K, Ua[2], Ka[2];
-          arc_bounds(s, s0, s1, U, K);
-          arc_ramps(s, s0, s1, U, K, Ua, Ka);
+          arc_bounds(s, s0, s1, U, K, Ua, Ka);
           std::vector<Vec3> ts, ks;
           for (int q = 0; q <= 400; ++q) {
             const double f = (s0 + (s1 - s0) * q / 400.0) / s.full_length;
