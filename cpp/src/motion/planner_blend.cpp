@@ -115,15 +115,7 @@ void PlannerState::append_corner_blend(long first, Node& nn, const Vec3& u1, con
     tab.ramps(i0, i1, bn.tangent_bound, bn.curvature_bound, bn.ramp_tangent, bn.ramp_curvature);
     bn.v_max = vfeed;
     if (jerk_mode) {
-      double kmax = 0, rate = 0;
-      for (int i = i0; i <= i1; ++i) {
-        const auto ii = static_cast<std::size_t>(i);
-        kmax = std::max(kmax, Kv[ii].norm());
-        if (i > i0 && whole.table[ii] > whole.table[ii - 1])
-          rate = std::max(rate, std::abs(Kv[ii].norm() - Kv[ii - 1].norm()) / (whole.table[ii] - whole.table[ii - 1]));
-      }
-      bn.segment.curvature = kmax;
-      bn.segment.curvature_rate = rate;
+      piece_curvature(Kv, whole.table, i0, i1, bn.segment.curvature, bn.segment.curvature_rate);
       set_limits(bn);
     } else {
       // set_limits() on a curved piece without jerk limits: the per-axis box

@@ -91,15 +91,7 @@ void PlannerState::split_cubic_block() noexcept {
                               i0 + 1, 16);
     tab.bounds(i0, i1, x.tangent_bound, x.curvature_bound);
     tab.ramps(i0, i1, x.tangent_bound, x.curvature_bound, x.ramp_tangent, x.ramp_curvature);
-    double kmax = 0, rate = 0;
-    for (int i = i0; i <= i1; ++i) {
-      const auto ii = static_cast<std::size_t>(i);
-      kmax = std::max(kmax, Kv[ii].norm());
-      if (i > i0 && g.table[ii] > g.table[ii - 1])
-        rate = std::max(rate, std::abs(Kv[ii].norm() - Kv[ii - 1].norm()) / (g.table[ii] - g.table[ii - 1]));
-    }
-    x.segment.curvature = kmax;
-    x.segment.curvature_rate = rate;
+    piece_curvature(Kv, g.table, i0, i1, x.segment.curvature, x.segment.curvature_rate);
     x.extent = Extent::settled;
     finish_piece(x, base, k, m, v_prev);
     if (k == 0) {
