@@ -98,7 +98,6 @@ Status PlannerState::push(const toolpath::Block& b, const CubicControls* cubic) 
     nn.segment.source = source;
     nn.tangent_bound.setZero();
     nn.curvature_bound.setZero();
-    symmetric_ramps(nn);
     nn.start = nn.end = NodeEnd{};
     nn.geometry = Geometry::in_node;
   }

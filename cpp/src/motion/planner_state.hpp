@@ -106,8 +106,8 @@ struct Node {
   Vec3 tangent_bound = Vec3::Zero(), curvature_bound = Vec3::Zero();
   /// SpeedBound::axis_box, per direction of a speed change ([0] speeding up, [1] slowing down along
   /// the path): per-axis terms U_i, K_i such that U_i·|a| + K_i·v² ≤ A_i, with the speed cap
-  /// (curvature_bound), keeps every axis within A_i on the piece (BlendBounds::ramps); each at most
-  /// tangent_bound, curvature_bound, which they equal on pieces with no signed bounds (symmetric_ramps())
+  /// (curvature_bound), keeps every axis within A_i on the piece (BlendBounds::ramps, arc_bounds); each
+  /// at most tangent_bound, curvature_bound. Read only for SpeedBound::axis_box nodes (never lines)
   Vec3 ramp_tangent[2] = {Vec3::Zero(), Vec3::Zero()}, ramp_curvature[2] = {Vec3::Zero(), Vec3::Zero()};
   SpeedBound bound = SpeedBound::path;
   double v_junction = 0;  ///< junction limit at the start [mm/s]
@@ -120,14 +120,6 @@ struct Node {
   Profile profile;
   double t0 = 0;  ///< start time once frozen [s]
 };
-
-/// The ramp terms of a piece with no signed bounds: both directions take the unsigned ones.
-inline void symmetric_ramps(Node& n) noexcept {
-  for (int d = 0; d < 2; ++d) {
-    n.ramp_tangent[d] = n.tangent_bound;
-    n.ramp_curvature[d] = n.curvature_bound;
-  }
-}
 
 /// Compact copy of what the backward pass reads and writes, so it walks small records, not Nodes.
 /// The reach of a trapezoidal node is w = min_i alpha_i·w0 + beta_i in squared speeds w = v²: lines
