@@ -37,8 +37,9 @@ std::vector<toolpath::Block> blocks_from_arrays(const Eigen::Ref<const Eigen::Ve
 }
 
 SmoothOptions smooth_options(double tolerance, double fit_share, double max_segment, double max_turn, int min_blocks,
-                             int window, double smoothing_length, double lead_length) {
+                             int window, double smoothing_length, double lead_length, double max_fit_turn) {
   SmoothOptions o;
+  o.max_fit_turn = max_fit_turn;
   o.tolerance = tolerance;
   o.fit_share = fit_share;
   o.max_segment = max_segment;
@@ -250,11 +251,11 @@ void bind_motion(py::module_& m) {
          py_types::RefPoints3 center, const Eigen::Ref<const Eigen::VectorXi>& clockwise,
          const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
          py_types::RefVector feed, double tolerance, double fit_share, double max_segment, double max_turn,
-         int min_blocks, int window, double smoothing_length, double lead_length) {
+         int min_blocks, int window, double smoothing_length, double lead_length, double max_fit_turn) {
         // Tolerance-band smoothing (smoothing.hpp): the new blocks as arrays, per new block the first and
         // last program block it replaces, and the counts.
         const SmoothOptions o = smooth_options(tolerance, fit_share, max_segment, max_turn, min_blocks, window,
-                                               smoothing_length, lead_length);
+                                               smoothing_length, lead_length, max_fit_turn);
         const auto blocks = blocks_from_arrays(kind, start, end, center, clockwise, plane, turns, feed);
         SmoothResult r;
         {
@@ -268,19 +269,19 @@ void bind_motion(py::module_& m) {
       py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
       py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("fit_share") = 0.98, py::arg("max_segment") = 4.0,
       py::arg("max_turn") = 0.5236, py::arg("min_blocks") = 3, py::arg("window") = 4096,
-      py::arg("smoothing_length") = 10.0, py::arg("lead_length") = 2.0);
+      py::arg("smoothing_length") = 10.0, py::arg("lead_length") = 2.0, py::arg("max_fit_turn") = 1.6057);
   m.def(
       "_smooth_stream_arrays",
       [](const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,
          py_types::RefPoints3 center, const Eigen::Ref<const Eigen::VectorXi>& clockwise,
          const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
          py_types::RefVector feed, double tolerance, double fit_share, double max_segment, double max_turn,
-         int min_blocks, int window, double smoothing_length, double lead_length, int chunk) {
+         int min_blocks, int window, double smoothing_length, double lead_length, int chunk, double max_fit_turn) {
         // _smooth_arrays through the streaming Smoother (smoother.hpp), blocks pushed `chunk` at a time;
         // stats add the number of chunks smoothed and of forced cuts.
         NETSHAPE_CHECK(chunk >= 1, "chunk", chunk, "must be >= 1 [blocks]");
         const SmoothOptions o = smooth_options(tolerance, fit_share, max_segment, max_turn, min_blocks, window,
-                                               smoothing_length, lead_length);
+                                               smoothing_length, lead_length, max_fit_turn);
         const auto blocks = blocks_from_arrays(kind, start, end, center, clockwise, plane, turns, feed);
         SmoothResult r;
         SmoothCounts counts;
@@ -297,7 +298,8 @@ void bind_motion(py::module_& m) {
       py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
       py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("fit_share") = 0.98, py::arg("max_segment") = 4.0,
       py::arg("max_turn") = 0.5236, py::arg("min_blocks") = 3, py::arg("window") = 4096,
-      py::arg("smoothing_length") = 10.0, py::arg("lead_length") = 2.0, py::arg("chunk") = 1);
+      py::arg("smoothing_length") = 10.0, py::arg("lead_length") = 2.0, py::arg("chunk") = 1,
+      py::arg("max_fit_turn") = 1.6057);
   m.def(
       "_smooth_plan",
       [](const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,

@@ -8,6 +8,7 @@
 
 #include "netshape/core/error.hpp"
 #include "netshape/motion/segment.hpp"
+#include "smoothing_corner.hpp"
 #include "smoothing_fit.hpp"
 #include "smoothing_spline.hpp"
 
@@ -18,6 +19,7 @@ void SmoothOptions::validate() const {
   NETSHAPE_CHECK(fit_share > 0 && fit_share < 1, "fit_share", fit_share, "must be in (0, 1)");
   NETSHAPE_CHECK(max_segment > 0 && std::isfinite(max_segment), "max_segment", max_segment, "must be positive [mm]");
   NETSHAPE_CHECK(max_turn > 0 && max_turn < pi, "max_turn", max_turn, "must be in (0, pi) [rad]");
+  NETSHAPE_CHECK(max_fit_turn >= 0 && max_fit_turn < pi, "max_fit_turn", max_fit_turn, "must be in [0, pi) [rad]");
   NETSHAPE_CHECK(min_blocks >= 2, "min_blocks", min_blocks, "must be >= 2");
   NETSHAPE_CHECK(window >= 8, "window", window, "must be >= 8 [blocks]");
   NETSHAPE_CHECK(max_refinements >= 1, "max_refinements", max_refinements, "must be >= 1");
@@ -48,6 +50,22 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
     return b.kind == MotionKind::line && l > 1e-9 && l <= opt.max_segment;
   };
   auto dir = [&](std::size_t i) { return ((program[i].end - program[i].start) / program[i].length()).eval(); };
+  // Is the vertex at the start of micro-segment q (after micro-segment q − 1) a corner that ends a run?
+  // It turns more than max_turn, and more than max_fit_turn or with a straight side (the block on
+  // either side continues the one beyond it within 1e-3 rad). A vertex turning between the two with
+  // curved micro-segments on both sides (a crease in a free-form surface) stays inside the run, whose
+  // curve passes it within the fit tolerance.
+  auto straight_pair = [&](long a) {  // micro-segments a and a + 1 continue each other
+    if (a < 0 || a + 1 >= static_cast<long>(nb)) return false;
+    const auto ua = static_cast<std::size_t>(a);
+    return micro(ua) && micro(ua + 1) && turn_between(dir(ua), dir(ua + 1)) < 1e-3;
+  };
+  auto kept_corner = [&](std::size_t q) {
+    const double th = turn_between(dir(q - 1), dir(q));
+    if (th <= opt.max_turn) return false;
+    if (th > opt.max_fit_turn) return true;
+    return straight_pair(static_cast<long>(q) - 2) || straight_pair(static_cast<long>(q));
+  };
   // corners between feed moves
   long prev = -1;
   for (std::size_t i = 0; i < nb; ++i) {
@@ -66,6 +84,9 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
   // a line whose first part became the lead-out of the run before it starts later
   long start_override_block = -1;
   std::vector<bool> program_line;  // per new block: a program line block or a part of one
+  // per new block: bit 0 its start, bit 1 its end joins a run's curve with the same tangent (set for
+  // the corner lines of runs only: a long line's length may differ between the chunks of a stream)
+  std::vector<unsigned char> tangent_join;
   Vec3 start_override = Vec3::Zero();
   auto keep = [&](std::size_t i) {
     res.blocks.push_back(program[i]);
@@ -74,7 +95,11 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
     res.source_first.push_back(static_cast<long>(i));
     res.source_last.push_back(static_cast<long>(i));
     program_line.push_back(program[i].kind == MotionKind::line);
+    tangent_join.push_back(0);
   };
+  // shortest block whose direction is sure enough to lend a corner its line (corner_lead below); shorter
+  // lines between two corners' lines are parts of one compound corner (round_corners)
+  const double lead_min = std::max(0.02, 2.0 * opt.tolerance);
   std::size_t i = 0;
   std::vector<V2> pts;
   while (i < nb) {
@@ -97,7 +122,7 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       if (j > i) {
         if (program[j].feed != program[i].feed) break;
         if ((program[j].start - program[j - 1].end).norm() > 1e-9) break;
-        if (turn_between(dir(j - 1), dir(j)) > opt.max_turn) break;
+        if (kept_corner(j)) break;
       }
       const int m = planes & plane_bits(origin, program[j].end);
       if (m == 0) break;
@@ -157,14 +182,30 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
     };
     // A run that ends at a vertex with no lead (a corner turning more than max_turn, a change of plane
     // or feed, a cut of a run that failed its check) would meet the next block at an angle, left to
-    // the planner's blend tolerance. Instead the run's end block q lends the run its inner half and its
-    // corner-side half stays a line, so the corner lies between two lines and is rounded within the fit
+    // the planner's blend tolerance. Instead the run's end block q lends the run its inner part and its
+    // corner-side part stays a line, so the corner lies between two lines and is rounded within the fit
     // tolerance below: when q is long enough for its direction to be sure (≥ 2·ε and ≥ 0.02 mm) and
-    // turns at most max_turn / 2 against its neighbour r in the run. A shorter q (tiny blocks next
-    // to corners are common in CAM output) may be bridged: then r lends its inner half and one line
-    // runs from the corner over q to the middle of r, when the vertex between q and r is within
-    // 0.05·ε of that line (corner_bridge).
-    const double lead_min = std::max(0.02, 2.0 * opt.tolerance);
+    // turns at most max_turn / 2 against its neighbour r in the run. When q and up to two more blocks
+    // next to the corner are shorter (tiny blocks around corners are common in CAM output), they are
+    // kept as programmed and the first longer block r behind them lends instead (corner_skip); the
+    // corner then spans the tiny blocks and is rounded as one (compound corners, below).
+    // The length the corner arc below needs on each line at the vertex at the start of block c: for a
+    // turn θ (half interior angle φ = (π − θ)/2) the arc within the fit tolerance e of the vertex has
+    // radius R = e·sin φ / (1 − sin φ) and touches the lines T = R·tan(θ/2) from it.
+    auto corner_need = [&](std::size_t c) {
+      const double th = turn_between(program[c - 1].tangent_at(1.0), program[c].tangent_at(0.0));
+      if (!(th > 1e-3) || th > pi - 1e-3) return 0.0;
+      const double sphi = std::cos(0.5 * th);
+      return opt.fit_tolerance() * sphi / (1.0 - sphi) * std::tan(0.5 * th);
+    };
+    // The part of block q a run uses as its lead: up to lead_length, at most half of q; when q is the
+    // run's end block next to a corner (beside: the length of the tiny blocks kept between them, need:
+    // corner_need), less, down to a tenth of q, so that the corner's line holds the length its arc needs.
+    auto lead_part = [&](std::size_t q, double beside, double need) {
+      const double len = program[q].length();
+      const double a = std::min(opt.lead_length, 0.5 * len);
+      return std::min(a, std::max(0.1 * len, len + beside - need));
+    };
     auto corner_at = [&](std::size_t q, bool at_start) {  // the vertex at q's outer end is a corner
       const std::size_t c = at_start ? q : q + 1;  // the corner is at the start of block c
       if (c == 0 || c >= nb) return false;
@@ -178,18 +219,17 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       return program[q].length() >= lead_min && turn_between(dir(std::min(q, r)), dir(std::max(q, r))) <= 0.5 * opt.max_turn;
     };
     auto corner_lead = [&](std::size_t q, std::size_t r) { return corner_at(q, r > q) && lends(q, r); };
-    // q tiny, r lends, r2 its neighbour: the line from the corner to the point r lends from
-    auto corner_bridge = [&](std::size_t q, std::size_t r, std::size_t r2) {
-      const bool at_start = r > q;
-      if (program[q].length() >= lead_min || !corner_at(q, at_start) || !lends(r, r2)) return false;
-      const auto& b = program[r];
-      const double a = std::min(opt.lead_length, 0.5 * b.length());
-      const Vec3 corner = at_start ? program[q].start : program[q].end;
-      const Vec3 inner = at_start ? Vec3(b.end - a * dir(r)) : Vec3(b.start + a * dir(r));
-      const Vec3 joint = at_start ? program[q].end : program[q].start;
-      const Vec3 d = inner - corner;
-      const double t = std::clamp((joint - corner).dot(d) / d.squaredNorm(), 0.0, 1.0);
-      return (corner + t * d - joint).norm() <= 0.05 * opt.tolerance;
+    // the number of tiny blocks (1 to 3) from q inward (step ±1) before a block that lends at the
+    // corner at q's outer end, or 0
+    auto corner_skip = [&](std::size_t q, int step, std::size_t room) {
+      if (!corner_at(q, step > 0)) return std::size_t{0};
+      for (std::size_t k = 1; k <= 3 && k + 1 <= room; ++k) {
+        const std::size_t t = q + (step > 0 ? k - 1 : 1 - k);  // the k-th block from the corner
+        if (program[t].length() >= lead_min) return std::size_t{0};
+        const std::size_t r = step > 0 ? t + 1 : t - 1, r2 = step > 0 ? r + 1 : r - 1;
+        if (lends(r, r2)) return k;
+      }
+      return std::size_t{0};
     };
     auto fit_emit = [&](std::size_t i, std::size_t j) -> bool {
       // Leads: the kept long line i − 1 (the block just emitted, shortened) and the long line j lend the
@@ -198,17 +238,17 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       // corner-side half is emitted as a line.
       long lin = -1, lout = -1;
       bool lin_inner = false, lout_inner = false;
-      std::size_t lin_skip = 0, lout_skip = 0;  // tiny blocks a corner line bridges (corner_bridge)
+      std::size_t lin_skip = 0, lout_skip = 0;  // tiny blocks kept between the corner and its line (corner_skip)
       if (lead_block(static_cast<long>(i) - 1, i) && !res.blocks.empty() &&
           res.source_first.back() == static_cast<long>(i) - 1 && res.blocks.back().kind == MotionKind::line) {
         lin = static_cast<long>(i) - 1;
       } else if (j - i > static_cast<std::size_t>(opt.min_blocks) && corner_lead(i, i + 1)) {
         lin = static_cast<long>(i);
         lin_inner = true;
-      } else if (j - i > static_cast<std::size_t>(opt.min_blocks) + 1 && corner_bridge(i, i + 1, i + 2)) {
-        lin = static_cast<long>(i) + 1;
+      } else if (const std::size_t k = corner_skip(i, 1, j - i - static_cast<std::size_t>(opt.min_blocks)); k > 0) {
+        lin = static_cast<long>(i + k);
         lin_inner = true;
-        lin_skip = 1;
+        lin_skip = k;
       }
       if (lead_block(static_cast<long>(j), j - 1)) {
         lout = static_cast<long>(j);
@@ -217,10 +257,13 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
         if (left > static_cast<std::size_t>(opt.min_blocks) && corner_lead(j - 1, j - 2)) {
           lout = static_cast<long>(j) - 1;
           lout_inner = true;
-        } else if (left > static_cast<std::size_t>(opt.min_blocks) + 1 && corner_bridge(j - 1, j - 2, j - 3)) {
-          lout = static_cast<long>(j) - 2;
+        } else if (const std::size_t k = left > static_cast<std::size_t>(opt.min_blocks)
+                                             ? corner_skip(j - 1, -1, left - static_cast<std::size_t>(opt.min_blocks))
+                                             : 0;
+                   k > 0) {
+          lout = static_cast<long>(j - 1 - k);
           lout_inner = true;
-          lout_skip = 1;
+          lout_skip = k;
         }
       }
       // blocks wholly in the run
@@ -234,8 +277,10 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       Vec3 first3 = program[r0].start, last3 = program[r1 - 1].end;
       if (lin >= 0) {
         const auto& b = program[static_cast<std::size_t>(lin)];
-        double a = std::min(opt.lead_length, 0.5 * b.length());
-        if (!lin_inner) a = std::min(a, (res.blocks.back().end - res.blocks.back().start).norm());
+        double beside = 0;  // the tiny blocks kept between the corner and this line
+        for (std::size_t q = i; q < i + lin_skip; ++q) beside += program[q].length();
+        double a = lin_inner ? lead_part(static_cast<std::size_t>(lin), beside, corner_need(i))
+                             : std::min({opt.lead_length, 0.5 * b.length(), (res.blocks.back().end - res.blocks.back().start).norm()});
         const Vec3 d = dir(static_cast<std::size_t>(lin));
         first3 = b.end - a * d;
         const int k = std::max(1, static_cast<int>(std::ceil(a / mean)));
@@ -253,7 +298,10 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       }
       if (lout >= 0) {
         const auto& b = program[static_cast<std::size_t>(lout)];
-        const double a = std::min(opt.lead_length, 0.5 * b.length());
+        double beside = 0;
+        for (std::size_t q = j - lout_skip; q < j; ++q) beside += program[q].length();
+        const double a = lout_inner ? lead_part(static_cast<std::size_t>(lout), beside, corner_need(j))
+                                    : std::min(opt.lead_length, 0.5 * b.length());
         const Vec3 d = dir(static_cast<std::size_t>(lout));
         last3 = b.start + a * d;
         const int k = std::max(1, static_cast<int>(std::ceil(a / mean)));
@@ -291,6 +339,9 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       if (!fit_run(pts, ends, mean, opt, rf)) return false;
       ++res.runs_smoothed;
       res.max_fit_deviation = std::max(res.max_fit_deviation, rf.bound);
+      // creases the curve passes are no kept corners (the count above took every corner)
+      for (std::size_t q = r0 + 1; q < r1; ++q)
+        if (turn_between(dir(q - 1), dir(q)) > opt.max_turn) --res.corners_kept;
       if (lead_in) {  // the line before now ends where the curve starts
         res.blocks.back().end = first3;
         if ((res.blocks.back().end - res.blocks.back().start).norm() <= 1e-12) {
@@ -299,6 +350,7 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
           res.source_first.pop_back();
           res.source_last.pop_back();
           program_line.pop_back();
+          tangent_join.pop_back();
         }
       }
       if (lead_out) {  // the line after starts where the curve ends
@@ -312,10 +364,10 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
         const long s = static_cast<long>(std::upper_bound(cum.begin(), cum.end(), u) - cum.begin()) - 1;
         return src[static_cast<std::size_t>(std::clamp(s, 0L, static_cast<long>(src.size()) - 1))];
       };
-      if (lin_inner) {  // the first part of block lin (over block i if bridged), from the corner to the curve
-        keep(i);
+      if (lin_inner) {  // the tiny blocks kept at the corner, then block lin's first part up to the curve
+        for (std::size_t q = i; q <= static_cast<std::size_t>(lin); ++q) keep(q);
         res.blocks.back().end = first3;
-        res.source_last.back() = lin;
+        tangent_join.back() |= 2;
       }
       Vec3 cur = first3;
       for (std::size_t q = 0; q < rf.pieces.size(); ++q) {
@@ -334,14 +386,21 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
         res.source_first.push_back(block_at(p.ua));
         res.source_last.push_back(block_at(p.ub));
         program_line.push_back(false);
+        tangent_join.push_back(3);
         cur = b.end;
       }
-      if (lout_inner) {  // the last part of block lout (over block j − 1 if bridged), from the curve to the corner
-        keep(j - 1);
+      if (lout_inner) {  // block lout's last part from the curve, then the tiny blocks kept at the corner
+        keep(static_cast<std::size_t>(lout));
         res.blocks.back().start = last3;
-        res.source_first.back() = lout;
+        tangent_join.back() |= 1;
+        for (std::size_t q = static_cast<std::size_t>(lout) + 1; q < j; ++q) keep(q);
       }
       return true;
+    };
+    // the vertex at q's start (at_start) or end joins another feed move turning more than max_turn
+    auto corner_end = [&](std::size_t q, bool at_start) {
+      const std::size_t c = at_start ? q : q + 1;
+      return corner_at(q, at_start) && turn_between(program[c - 1].tangent_at(1.0), program[c].tangent_at(0.0)) > opt.max_turn;
     };
     // a run that fails the check is cut at its sharpest interior vertex and both parts are tried
     std::vector<std::pair<std::size_t, std::size_t>> parts{{i, j}};
@@ -349,6 +408,14 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
     while (!parts.empty()) {
       const auto [i0, j0] = parts.back();
       parts.pop_back();
+      // a straight run (every vertex turning less than 1e-3 rad) next to a corner stays as programmed:
+      // its lines are the curve already, and the corner is rounded between them
+      bool straight = corner_end(i0, true) || corner_end(j0 - 1, false);
+      for (std::size_t q = i0 + 1; q < j0 && straight; ++q) straight = turn_between(dir(q - 1), dir(q)) < 1e-3;
+      if (straight) {
+        for (std::size_t q = i0; q < j0; ++q) keep(q);
+        continue;
+      }
       if (j0 - i0 >= mb && fit_emit(i0, j0)) continue;
       if (j0 - i0 >= 2 * mb) {
         std::size_t cut = i0 + mb;
@@ -373,42 +440,116 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
   // of long lines): a tangent arc inside the corner whose distance from the vertex is the fit tolerance
   // e, so the planner no longer has to turn there within the blend tolerance. For a turn θ (half
   // interior angle φ = (π − θ)/2) the arc has radius R = e·sin φ / (1 − sin φ) and touches the lines at
-  // T = R·tan(θ/2) from the vertex; T is capped at half of each line's length before rounding (R and
-  // the vertex distance shrink with it). Every point of the arc and of the two cut-off line pieces is
-  // then within e of the other.
+  // T = R·tan(θ/2) from the vertex; T is capped at half of each line's length before rounding, or at
+  // 0.95 of it when its other end joins a curve tangentially (no arc there); R and the vertex distance
+  // shrink with it. Every point of the arc and of the two cut-off line pieces is then within e of the
+  // other. A corner made of several vertices (up to four program lines shorter than lead_min between
+  // two longer lines: CAM output often turns a corner over a few micrometre-long blocks) gets one arc
+  // tangent to the two longer lines, the largest whose distance from the replaced polyline is at
+  // most e both ways (compound_corner_arc); where none is, its vertices are rounded one by one.
   if (opt.round_corners) {
     const double e = opt.fit_tolerance();
-    std::vector<double> len0(res.blocks.size());
-    for (std::size_t k = 0; k < res.blocks.size(); ++k) len0[k] = res.blocks[k].length();
+    const std::size_t nr = res.blocks.size();
+    std::vector<double> len0(nr);
+    for (std::size_t k = 0; k < nr; ++k) len0[k] = res.blocks[k].length();
+    // a line may give an arc half of itself, or nearly all when its other end joins a curve tangentially
+    auto cap_end = [&](std::size_t k) { return (tangent_join[k] & 1) ? 0.95 * len0[k] : 0.5 * len0[k]; };
+    auto cap_start = [&](std::size_t k) { return (tangent_join[k] & 2) ? 0.95 * len0[k] : 0.5 * len0[k]; };
+    auto joined = [&](std::size_t k) {  // blocks k and k + 1: program lines, one feed, end to start
+      return k + 1 < nr && program_line[k] && program_line[k + 1] && res.blocks[k].feed == res.blocks[k + 1].feed &&
+             (res.blocks[k + 1].start - res.blocks[k].end).norm() <= 1e-9;
+    };
+    // the normal axis of a coordinate plane holding points pts (Z, then Y, then X), or −1
+    auto plane_of = [&](const std::vector<Vec3>& p3) {
+      for (int a : {2, 1, 0}) {
+        bool in = true;
+        for (const Vec3& v : p3) in = in && std::abs(v[a] - p3.front()[a]) <= opt.plane_tolerance;
+        if (in) return a;
+      }
+      return -1;
+    };
+    auto arc_block = [&](const toolpath::Block& like, int n, const Vec3& p1, const Vec3& p2, const V2& c2,
+                         bool ccw) {
+      const toolpath::Plane plane = n == 2 ? toolpath::Plane::xy : n == 1 ? toolpath::Plane::zx : toolpath::Plane::yz;
+      const auto ax = toolpath::plane_axes(plane);
+      toolpath::Block arc = like;
+      arc.kind = MotionKind::arc;
+      arc.plane = plane;
+      arc.start = p1;
+      arc.end = p2;
+      arc.center = p1;
+      arc.center[ax.a] = c2.x();
+      arc.center[ax.b] = c2.y();
+      arc.clockwise = !ccw;
+      arc.turns = 1;
+      return arc;
+    };
     SmoothResult out;
-    out.blocks.reserve(res.blocks.size());
-    for (std::size_t k = 0; k < res.blocks.size(); ++k) {
+    out.blocks.reserve(nr);
+    auto emit = [&](std::size_t k) {
       out.blocks.push_back(res.blocks[k]);
       out.controls.push_back(res.controls[k]);
       out.source_first.push_back(res.source_first[k]);
       out.source_last.push_back(res.source_last[k]);
-      if (k + 1 == res.blocks.size() || !program_line[k] || !program_line[k + 1]) continue;
+    };
+    std::vector<Vec3> p3;
+    std::vector<V2> mid;
+    for (std::size_t k = 0; k < nr; ++k) {
+      emit(k);
+      if (!joined(k)) continue;
       toolpath::Block& b1 = out.blocks.back();
+      const double l1 = b1.length();
+      if (l1 <= 1e-9) continue;
+      const Vec3 d1 = (b1.end - b1.start) / l1;
+      // compound corner: lines k + 1 .. m − 1 shorter than lead_min, line m not
+      std::size_t m = k + 1;
+      // (a line joined to a curve at its far end is a corner's line, whatever its length)
+      auto closes = [&](std::size_t q) { return len0[q] >= lead_min || (tangent_join[q] & 2); };
+      while (m < k + 5 && !closes(m) && joined(m)) ++m;
+      if (m > k + 1 && closes(m)) {
+        p3.assign({b1.start, b1.end});
+        for (std::size_t q = k + 1; q <= m; ++q) p3.push_back(res.blocks[q].end);
+        const int n = plane_of(p3);
+        const double l2 = res.blocks[m].length();
+        if (n >= 0 && l2 > 1e-9) {
+          const auto ax = toolpath::plane_axes(n == 2 ? toolpath::Plane::xy : n == 1 ? toolpath::Plane::zx : toolpath::Plane::yz);
+          auto to2 = [&](const Vec3& v) { return V2(v[ax.a], v[ax.b]); };
+          const Vec3 d2 = (res.blocks[m].end - res.blocks[m].start) / l2;
+          mid.assign(1, to2(b1.end));
+          for (std::size_t q = k + 1; q < m; ++q) mid.push_back(to2(res.blocks[q].end));
+          const double cap1 = std::min(cap_end(k), l1 - 1e-9), cap2 = std::min(cap_start(m), l2 - 1e-9);
+          CornerArc ca;
+          if (compound_corner_arc(mid, to2(d1), to2(d2), cap1, cap2, e, ca)) {
+            // the tangent points on the lines themselves (their normal coordinate as on the lines)
+            const Vec3 q1 = b1.end + (ca.p1 - to2(b1.end)).dot(to2(d1)) * d1;
+            const Vec3 q2 = res.blocks[m].start + (ca.p2 - to2(res.blocks[m].start)).dot(to2(d2)) * d2;
+            b1.end = q1;
+            res.blocks[m].start = q2;
+            out.blocks.push_back(arc_block(res.blocks[m], n, q1, q2, ca.c, ca.ccw));
+            out.controls.emplace_back();
+            out.source_first.push_back(res.source_first[k]);
+            out.source_last.push_back(res.source_last[m]);
+            ++out.corners_rounded;
+            k = m - 1;  // block m is emitted next
+            continue;
+          }
+        }
+      }
       const toolpath::Block& b2 = res.blocks[k + 1];
-      if (b1.feed != b2.feed || (b2.start - b1.end).norm() > 1e-9) continue;
-      const double l1 = b1.length(), l2 = b2.length();
-      if (l1 <= 1e-9 || l2 <= 1e-9) continue;
-      const Vec3 d1 = (b1.end - b1.start) / l1, d2 = (b2.end - b2.start) / l2;
+      const double l2 = b2.length();
+      if (l2 <= 1e-9) continue;
+      const Vec3 d2 = (b2.end - b2.start) / l2;
       const double th = turn_between(d1, d2);
       if (th < 1e-3 || th > pi - 1e-3) continue;  // nearly straight: the planner blends it; reversals stay
-      int n = -1;  // the normal axis of a coordinate plane holding both lines (Z, then Y, then X)
-      for (int a : {2, 1, 0})
-        if (n < 0 && std::abs(b1.start[a] - b1.end[a]) <= opt.plane_tolerance &&
-            std::abs(b2.end[a] - b1.end[a]) <= opt.plane_tolerance)
-          n = a;
+      p3.assign({b1.start, b1.end, b2.end});
+      const int n = plane_of(p3);
       if (n < 0) continue;
-      const toolpath::Plane plane = n == 2 ? toolpath::Plane::xy : n == 1 ? toolpath::Plane::zx : toolpath::Plane::yz;
-      const auto ax = toolpath::plane_axes(plane);
+      const auto ax = toolpath::plane_axes(n == 2 ? toolpath::Plane::xy : n == 1 ? toolpath::Plane::zx : toolpath::Plane::yz);
       const double sphi = std::cos(0.5 * th);  // sin φ
       const double tan_half = std::tan(0.5 * th);
       double R = e * sphi / (1.0 - sphi);
       double T = R * tan_half;
-      const double cap = std::min({0.5 * len0[k], 0.5 * len0[k + 1], l1 - 1e-9, l2 - 1e-9});
+      const double cap = std::min({cap_end(k), cap_start(k + 1), l1 - 1e-9, l2 - 1e-9});
       if (T > cap) {
         T = cap;
         R = T / tan_half;
@@ -418,20 +559,10 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       const Vec3 p1 = V - T * d1, p2 = V + T * d2;
       const V2 t1(d1[ax.a], d1[ax.b]), t2(d2[ax.a], d2[ax.b]);
       const bool ccw = cross2(t1, t2) > 0;
-      const V2 nrm = ccw ? perp(t1) : V2(-perp(t1));
-      toolpath::Block arc = b2;
-      arc.kind = MotionKind::arc;
-      arc.plane = plane;
-      arc.start = p1;
-      arc.end = p2;
-      arc.center = p1;
-      arc.center[ax.a] += R * nrm.x();
-      arc.center[ax.b] += R * nrm.y();
-      arc.clockwise = !ccw;
-      arc.turns = 1;
+      const V2 c2 = V2(p1[ax.a], p1[ax.b]) + R * (ccw ? perp(t1) : V2(-perp(t1)));
       b1.end = p1;
       res.blocks[k + 1].start = p2;
-      out.blocks.push_back(arc);
+      out.blocks.push_back(arc_block(b2, n, p1, p2, c2, ccw));
       out.controls.emplace_back();
       out.source_first.push_back(res.source_first[k]);
       out.source_last.push_back(res.source_last[k + 1]);

@@ -28,7 +28,8 @@ Corner rules:
                       --tolerance of the program (checked both ways), planned as its curvature-
                       continuous cubic Bézier pieces;
                       sharper vertices are corners, rounded by an arc where they lie between lines and
-                      blended within the rest; then planned as blend. Adds runs_smoothed,
+                      blended within the rest, except creases (<= --max-fit-turn deg between curved
+                      micro-segments), which the curve passes; then planned as blend. Adds runs_smoothed,
                       corners_kept, corners_rounded; max_path_deviation_mm is measured against the
                       original program
 """
@@ -62,6 +63,10 @@ def register(sub) -> None:
                    help="smooth rule: longest line that is a micro-segment [mm] (4)")
     p.add_argument("--max-turn", type=a.real("--max-turn", "deg", gt=0, lt=180), default=30.0, metavar="DEG",
                    help="smooth rule: a vertex turning more is a corner that is kept [deg] in (0, 180) (30)")
+    p.add_argument("--max-fit-turn", type=a.real("--max-fit-turn", "deg", ge=0, lt=180), default=92.0, metavar="DEG",
+                   help="smooth rule: a corner turning at most this between curved micro-segments (no "
+                        "straight side) is passed by the run's curve within the tolerance; 0 keeps every "
+                        "corner [deg] in [0, 180) (92)")
     p.add_argument("--smoothed-gcode", metavar="OUT.ngc",
                    help="smooth rule: write the smoothed program (G1/G2/G3, G17-G19) atomically")
     # the choices are netshape.motion.smooth_gcode.FORMATS, not imported here so that parsing needs no NumPy
@@ -162,7 +167,8 @@ def run(args) -> int:
     arrays = {k: np.asarray(v) for k, v in arrays.items()}
     arrays["feed"] = arrays["feed"] * args.feed_scale
     if args.rule == "smooth":
-        skw = dict(max_segment=args.max_segment, max_turn=math.radians(args.max_turn))
+        skw = dict(max_segment=args.max_segment, max_turn=math.radians(args.max_turn),
+                   max_fit_turn=math.radians(args.max_fit_turn))
         traj = plan(arrays, limits, rule="smooth", tolerance=args.tolerance, ts1=args.ts1, ts2=args.ts2,
                     lookahead=args.lookahead, **skw)
         if args.smoothed_gcode:

@@ -209,7 +209,7 @@ def _dwells(program, n: int):
 
 def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float = 0.98,
                 max_segment: float = 4.0, max_turn: float = 0.5236, min_blocks: int = 3, window: int = 4096,
-                smoothing_length: float = 10.0, lead_length: float = 2.0):
+                smoothing_length: float = 10.0, lead_length: float = 2.0, max_fit_turn: float = 1.6057):
     """Tolerance-band smoothing of micro-segment runs (C++ ``netshape::motion::smooth``).
 
     Runs of line blocks each at most `max_segment` [mm] long, turning at most `max_turn` [rad] at every
@@ -217,18 +217,23 @@ def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float
     follow a smoothing spline (penalty ``smoothing_length⁴·∫|s''|²``, `smoothing_length` [mm]) pulled back
     into the tube, and stay within ``fit_share·tolerance`` [mm] of the polyline both ways (checked); a
     run borrows up to `lead_length` [mm] of an adjoining long line so that it joins it tangentially.
-    Vertices turning more are corners; a vertex between two program lines becomes an arc within
-    ``fit_share·tolerance``. Returns ``(arrays, first, last, stats)``: the new blocks as block arrays,
+    Vertices turning more are corners, kept: the run ends there, and a vertex between two program lines
+    becomes an arc within ``fit_share·tolerance`` (a corner made of several vertices around blocks
+    shorter than max(0.02 mm, 2·tolerance) gets one arc). A corner turning at most `max_fit_turn` [rad]
+    between curved micro-segments (neither side continues straight) is a crease of a free-form surface:
+    it stays inside the run and the curve passes it within the fit tolerance (``max_fit_turn=0`` keeps
+    every corner). A straight run next to a corner stays as programmed. Returns ``(arrays, first, last, stats)``: the new blocks as block arrays,
     per new block the first and last program block it replaces, and ``runs_smoothed``, ``runs_kept``,
     ``corners_kept``, ``corners_rounded``, ``max_fit_deviation_mm``.
     """
     return _run_smoother(_m._smooth_arrays, program, feed, tolerance, fit_share, max_segment, max_turn, min_blocks,
-                         window, smoothing_length, lead_length)
+                         window, smoothing_length, lead_length, max_fit_turn=float(max_fit_turn))
 
 
 def smooth_path_streamed(program, tolerance: float = 0.01, *, chunk: int = 1, feed=None, fit_share: float = 0.98,
                          max_segment: float = 4.0, max_turn: float = 0.5236, min_blocks: int = 3,
-                         window: int = 4096, smoothing_length: float = 10.0, lead_length: float = 2.0):
+                         window: int = 4096, smoothing_length: float = 10.0, lead_length: float = 2.0,
+                         max_fit_turn: float = 1.6057):
     """:func:`smooth_path` through the streaming C++ ``netshape::motion::Smoother``.
 
     The program is pushed `chunk` blocks at a time into a smoother that holds at most ``2·window + 2``
@@ -237,15 +242,16 @@ def smooth_path_streamed(program, tolerance: float = 0.01, *, chunk: int = 1, fe
     than the buffer) added to the stats; with no forced cut the blocks equal :func:`smooth_path`'s.
     """
     return _run_smoother(_m._smooth_stream_arrays, program, feed, tolerance, fit_share, max_segment, max_turn,
-                         min_blocks, window, smoothing_length, lead_length, int(chunk))
+                         min_blocks, window, smoothing_length, lead_length, int(chunk),
+                         max_fit_turn=float(max_fit_turn))
 
 
 def _run_smoother(binding, program, feed, tolerance, fit_share, max_segment, max_turn, min_blocks, window,
-                  smoothing_length, lead_length, *extra):
+                  smoothing_length, lead_length, *extra, **keywords):
     """One smoothing binding on a program: (new block arrays, first, last, stats) as NumPy / dict."""
     arr, first, last, stats = binding(*_program_args(_arrays(program, feed)), float(tolerance), float(fit_share),
                                       float(max_segment), float(max_turn), int(min_blocks), int(window),
-                                      float(smoothing_length), float(lead_length), *extra)
+                                      float(smoothing_length), float(lead_length), *extra, **keywords)
     return {k: np.asarray(v) for k, v in arr.items()}, np.asarray(first), np.asarray(last), dict(stats)
 
 
@@ -256,7 +262,7 @@ def _plan_smooth(program, limits, feed, with_deviation, kw):
     if not (tol > 0 and np.isfinite(tol)):
         raise ValueError(f"tolerance = {tol}: must be positive [mm]")
     skw = {k: kw.pop(k) for k in ("fit_share", "max_segment", "max_turn", "min_blocks", "window",
-                                          "smoothing_length", "lead_length") if k in kw}
+                                          "smoothing_length", "lead_length", "max_fit_turn") if k in kw}
     arr = _arrays(program, feed)
     if _dwells(program, len(arr["kind"])) is not None and np.any(_dwells(program, len(arr["kind"]))[1:-1] > 0):
         raise ValueError("rule = 'smooth': programs with dwells between moves are not supported yet")

@@ -135,7 +135,8 @@ def test_square_keeps_its_corners():
     pts = np.array(pts)
     arr = nm.polyline_arrays(pts, 100.0)
     new, first, last, st = nm.smooth_path(arr, eps)
-    assert st["corners_kept"] == 3 and st["runs_smoothed"] == 4
+    # the sides are straight runs next to corners: they stay lines, and each corner is rounded between them
+    assert st["corners_kept"] == 3 and st["runs_smoothed"] == 0 and st["corners_rounded"] == 3
     # each corner is kept: the smoothed path (sampled every 0.5 µm) comes within the fit tolerance of
     # the vertex, and turns there within a short stretch: the path 0.5 mm before / after the vertex
     # runs straight along the sides (within 1 µm), so no side is bent towards the next
@@ -351,3 +352,76 @@ def test_sharp_vertex_inside_a_run_is_fitted_within_tolerance(turn_deg):
     assert _dist_to_polyline(curve, pts).max() <= fit * (1 + 1e-9)
     assert _dist_to_polyline(_sample_blocks(arr, 0.0002), curve).max() <= fit + 1e-5
     assert np.linalg.norm(curve - pts[20], axis=1).min() <= fit + 1e-5  # the vertex itself
+
+
+def _arc_points(c, r, a0, a1, step):
+    """Points every ~`step` [mm] on the circle (center c (2,), radius r) from angle a0 to a1, at z = 0."""
+    n = max(2, int(np.ceil(abs(a1 - a0) * r / step)) + 1)
+    a = np.linspace(a0, a1, n)
+    return np.column_stack([c[0] + r * np.cos(a), c[1] + r * np.sin(a), np.zeros(n)])
+
+
+def _crease(turn_deg, straight_second=False):
+    """Two stretches of 0.5 mm moves meeting at a vertex turning `turn_deg`: the first an arc of radius
+    20 mm bending left, the second the same bending left again (or a straight line)."""
+    first = _arc_points(np.array([0.0, 20.0]), 20.0, -np.pi / 2 - 0.5, -np.pi / 2, 0.5)  # ends at (0, 0) heading +X
+    th = np.radians(turn_deg)
+    u = np.array([np.cos(th), np.sin(th)])
+    if straight_second:
+        second = np.column_stack([np.outer(np.linspace(0.0, 10.0, 21), u), np.zeros(21)])
+    else:
+        nrm = np.array([-u[1], u[0]])
+        c = 20.0 * nrm
+        a0 = np.arctan2(-nrm[1], -nrm[0])
+        second = _arc_points(c, 20.0, a0, a0 + 0.5, 0.5)
+    return np.vstack([first, second[1:]])
+
+
+@pytest.mark.parametrize("turn_deg", [45.0, 80.0])
+def test_crease_between_curved_stretches_is_passed_by_the_curve(turn_deg):
+    """A vertex turning more than max_turn (30°) but at most max_fit_turn (92°) with curved micro-segments
+    on both sides (a crease of a free-form surface) stays inside the run: one curve, tangent-continuous,
+    within the fit tolerance both ways; with max_fit_turn = 0 it is a kept corner (two runs); with a
+    straight side it is kept too."""
+    eps = 0.01
+    fit = FIT_SHARE * eps
+    pts = _crease(turn_deg)
+    arr = nm.polyline_arrays(pts, 100.0)
+    new, first, last, st = nm.smooth_path(arr, eps)
+    assert st["runs_smoothed"] == 1 and st["corners_kept"] == 0 and st["runs_kept"] == 0
+    t0, t1 = _tangents(new)
+    assert np.all(np.einsum("ij,ij->i", t1[:-1], t0[1:]) > 1 - 1e-9)
+    curve = _sample_blocks(new, 0.0002)
+    assert _dist_to_polyline(curve, pts).max() <= fit * (1 + 1e-9)
+    assert _dist_to_polyline(_sample_blocks(arr, 0.0002), curve).max() <= fit + 1e-5
+    st0 = nm.smooth_path(arr, eps, max_fit_turn=0.0)[3]
+    assert st0["corners_kept"] == 1 and st0["runs_smoothed"] == 2
+    st1 = nm.smooth_path(nm.polyline_arrays(_crease(turn_deg, straight_second=True), 100.0), eps)[3]
+    assert st1["corners_kept"] == 1
+
+
+@pytest.mark.parametrize("eps", [0.01, 0.03])
+def test_corner_over_tiny_blocks_gets_one_arc(eps):
+    """CAM output often turns a corner over blocks a few micrometres long: here a 90° corner between a
+    20 mm line and a row of 0.5 mm moves, cut by a 6 µm chamfer block plus a 4 µm block continuing the
+    row. One arc replaces the vertices (rounding each alone, capped by half of a 4 µm block, would give
+    radii of micrometres), tangent to both lines, as large as a sharp 90° corner's arc at least, and
+    the path stays within the fit tolerance both ways and tangent-continuous."""
+    fit = FIT_SHARE * eps
+    c = 0.006 / np.sqrt(2)
+    pts = np.array([[-20.0, 0, 0], [-c, 0, 0], [0, c, 0], [0, c + 0.004, 0]])
+    row = np.column_stack([np.zeros(12), c + 0.004 + 0.5 * np.arange(1, 13), np.zeros(12)])
+    pts = np.vstack([pts, row])
+    arr = nm.polyline_arrays(pts, 100.0)
+    new, first, last, st = nm.smooth_path(arr, eps)
+    kinds = np.asarray(new["kind"])
+    assert np.count_nonzero(kinds == 2) == 1 and st["corners_rounded"] == 1
+    i = int(np.flatnonzero(kinds == 2)[0])
+    r = np.linalg.norm(np.asarray(new["start"][i]) - np.asarray(new["center"][i]))
+    sphi = np.cos(np.pi / 4)
+    assert r >= fit * sphi / (1 - sphi)
+    t0, t1 = _tangents(new)
+    assert np.all(np.einsum("ij,ij->i", t1[:-1], t0[1:]) > 1 - 1e-9)
+    curve = _sample_blocks(new, 0.0002)
+    assert _dist_to_polyline(curve, pts).max() <= fit * (1 + 1e-9)
+    assert _dist_to_polyline(_sample_blocks(arr, 0.0002), curve).max() <= fit + 1e-5

@@ -41,6 +41,9 @@ struct SmoothOptions {
   double fit_share = 0.98;    ///< share of ε given to the fitted curves; the rest is the blend tolerance
   double max_segment = 4.0;   ///< a line longer than this is not a micro-segment [mm]
   double max_turn = 0.5236;   ///< a vertex turning more than this (30°) is a corner that is kept [rad]
+  /// a corner turning at most this (92°) between curved micro-segments (no straight side) stays inside
+  /// the run, passed by its curve within the fit tolerance [rad]
+  double max_fit_turn = 1.6057;
   int min_blocks = 3;         ///< shortest run that is smoothed [blocks]
   int window = 4096;          ///< longest run fitted at once [blocks] (longer runs are cut at a vertex)
   int max_refinements = 60;   ///< pull-back rounds (refit with raised weights) before a run is cut / kept
@@ -65,7 +68,7 @@ struct SmoothResult {
   std::vector<long> source_first, source_last;  ///< per new block: first / last program block index
   long runs_smoothed = 0;   ///< runs replaced by a spline
   long runs_kept = 0;       ///< runs that failed the check and were left as programmed
-  long corners_kept = 0;    ///< vertices between feed moves turning more than max_turn
+  long corners_kept = 0;    ///< vertices between feed moves turning more than max_turn, but for creases a curve passes
   long corners_rounded = 0; ///< vertices between two program lines replaced by an arc
   double max_fit_deviation = 0;  ///< largest checked bound over the smoothed runs, both ways [mm]
 };
