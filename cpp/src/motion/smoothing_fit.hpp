@@ -40,9 +40,9 @@ struct RunFit {
 // really leaves the tube would otherwise be bisected down to `fine` all along the stretch it is out).
 constexpr int max_bisections = 64;
 
-bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector<double>& cum,
-                 const ParamMap& amap, double eps, double mean,
-                 RunFit& out, std::vector<double>& bad) {
+bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector<Seg>& segs,
+                 const std::vector<V2>& wseg, const std::vector<double>& cum, const ParamMap& amap, double eps,
+                 double mean, RunFit& out, std::vector<double>& bad) {
   const std::size_t n = pts.size();
   const double sag_share = 0.05 * eps;
   bad.clear();
@@ -86,43 +86,78 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   if (out.pieces.empty()) return false;
   double bound = 0;
   const double fine = 0.1 * eps;  // bisect a failing chord down to this length [mm]
-  // spline -> polyline: every spline point between chord points c0, c1 is within
-  // max(d(c0, S), d(c1, S)) + σ of segment S (distance to a segment is convex)
+  // spline -> polyline: every spline point between chord points c0, c1 is within σ of the chord, and
+  // every chord point within run_bound of the polyline segments s − 3..s + 3 (s: the segment at the
+  // chord's middle through the parameter map); squared distances, one root at the end (the root is
+  // increasing, so min and max commute with it)
   const long ns = static_cast<long>(n) - 1;
-  // (in squared distances, one root at the end: the root is monotone, so min and max commute with it)
-  auto chain_bound = [&](const V2& c0, const V2& c1, long s) {
-    double best2 = 1e300;
-    for (long q = std::max(0L, s - 3); q <= std::min(ns - 1, s + 3); ++q) {
-      const auto qi = static_cast<std::size_t>(q);
-      best2 = std::min(best2, std::max(seg_dist2(c0, pts[qi], pts[qi + 1]), seg_dist2(c1, pts[qi], pts[qi + 1])));
+  auto sq = [](double d2, long) { return d2; };
+  double D0[7], D1[7];
+  auto window = [&](long s, long& lo, long& hi) {
+    lo = std::max(0L, s - 3);
+    hi = std::min(ns - 1, s + 3);
+  };
+  // The bound for chord [c0, c1] with sagitta bound sag, D0 and D1 filled for c0, c1 and the window
+  // lo..hi. `lost`: an end point alone is farther than eps from the window, so every part of the chord
+  // that holds it is bounded above eps however the chord is cut (the chord fails).
+  auto chord_bound = [&](const V2& c0, const V2& c1, long lo, long hi, double sag, bool& lost) {
+    double best2 = 1e300, m0 = 1e300, m1 = 1e300;
+    for (long q = lo; q <= hi; ++q) {
+      const auto i = static_cast<std::size_t>(q - lo);
+      best2 = std::min(best2, std::max(D0[i], D1[i]));
+      m0 = std::min(m0, D0[i]);
+      m1 = std::min(m1, D1[i]);
     }
-    return best2 < 1e300 ? std::sqrt(best2) : 1e300;
+    const double b = std::sqrt(best2) + sag;
+    lost = std::sqrt(std::max(m0, m1)) > eps;
+    if (b <= eps || lost) return b;  // one segment will do, or nothing will
+    return std::min(b, std::sqrt(run_bound(c0, c1, segs.data(), wseg.data(), lo, hi, D0, D1, sq)) + sag);
+  };
+  auto fill = [&](const V2& p, long lo, long hi, double* D) {
+    for (long q = lo; q <= hi; ++q) D[q - lo] = dist2(p, segs[static_cast<std::size_t>(q)]);
   };
   struct Job {
     double u0, u1, sag;
+    V2 c0, c1;
   };
   std::vector<Job> jobs;
+  long plo = 0, phi = -1;  // window of the previous chord, whose end point's distances are in D1
+  std::size_t sc = 0;      // segment search: cum[sc] <= um for the chords' nondecreasing middles um
   for (std::size_t j = 0; j + 1 < cp.size(); ++j) {
     const double um = 0.5 * (cu[j] + cu[j + 1]);
-    const long s = std::clamp(static_cast<long>(std::upper_bound(cum.begin(), cum.end(), um) - cum.begin()) - 1, 0L, ns - 1);
-    double best = chain_bound(cp[j], cp[j + 1], s) + csag[j];
-    if (best > eps) {  // bisect the chord where it straddles a polyline vertex
-      jobs.assign(1, Job{cpar[j], cpar[j + 1], csag[j]});
+    while (sc + 1 < cum.size() && cum[sc + 1] <= um) ++sc;
+    const long s = std::clamp(static_cast<long>(sc), 0L, ns - 1);
+    long lo, hi;
+    window(s, lo, hi);
+    // cp[j] is the previous chord's end point: keep its distances where the windows overlap
+    for (long q = lo; q <= hi; ++q)
+      D0[q - lo] = q >= plo && q <= phi ? D1[q - plo] : dist2(cp[j], segs[static_cast<std::size_t>(q)]);
+    fill(cp[j + 1], lo, hi, D1);
+    plo = lo;
+    phi = hi;
+    bool lost;
+    double best = chord_bound(cp[j], cp[j + 1], lo, hi, csag[j], lost);
+    if (best > eps && !lost) {  // bisect the chord; the first part that fails decides
+      jobs.assign(1, Job{cpar[j], cpar[j + 1], csag[j], cp[j], cp[j + 1]});
       best = 0;
       int budget = max_bisections;
       while (!jobs.empty()) {
         const Job jb = jobs.back();
         jobs.pop_back();
-        const V2 c0 = sp.point(jb.u0), c1 = sp.point(jb.u1);
-        const double b = chain_bound(c0, c1, s) + jb.sag;
-        if (b > eps && (c1 - c0).norm() > fine && --budget > 0) {
+        fill(jb.c0, lo, hi, D0);
+        fill(jb.c1, lo, hi, D1);
+        const double b = chord_bound(jb.c0, jb.c1, lo, hi, jb.sag, lost);
+        if (b > eps && !lost && (jb.c1 - jb.c0).norm() > fine && --budget > 0) {
           const double um2 = 0.5 * (jb.u0 + jb.u1);
-          jobs.push_back(Job{jb.u0, um2, 0.25 * jb.sag});
-          jobs.push_back(Job{um2, jb.u1, 0.25 * jb.sag});
+          const V2 cm = sp.point(um2);
+          jobs.push_back(Job{jb.u0, um2, 0.25 * jb.sag, jb.c0, cm});
+          jobs.push_back(Job{um2, jb.u1, 0.25 * jb.sag, cm, jb.c1});
           continue;
         }
         best = std::max(best, b);
+        if (best > eps) break;
       }
+      fill(cp[j + 1], lo, hi, D1);  // the next chord reads its start point's distances from D1
     }
     bound = std::max(bound, best);
     if (best > eps) bad.push_back(um);
@@ -142,7 +177,8 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     double best = 1e300, m0 = 1e300, m1 = 1e300, smin = 1e300;
     for (long q = lo; q <= hi; ++q) {
       const auto qi = static_cast<std::size_t>(q);
-      const double d0 = seg_dist2(q0, cp[qi], cp[qi + 1]), d1 = seg_dist2(q1, cp[qi], cp[qi + 1]);
+      const Seg cs = make_seg(cp[qi], cp[qi + 1]);
+      const double d0 = dist2(q0, cs), d1 = dist2(q1, cs);
       best = std::min(best, std::sqrt(std::max(d0, d1)) + csag[qi]);
       m0 = std::min(m0, d0);
       m1 = std::min(m1, d1);
@@ -163,7 +199,7 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
       const double uq = cum[i] + li * (k + 0.5) / np;
       double ends;
       double best = poly_bound(q0, q1, uq, ends);
-      if (best > eps && ends <= eps) {
+      if (best > eps && ends <= eps) {  // bisect the piece; the first part that fails decides
         pj.assign(1, {q0, q1});
         best = 0;
         int budget = max_bisections;
@@ -178,6 +214,7 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
             continue;
           }
           best = std::max(best, b);
+          if (best > eps) break;  // the piece fails
         }
       }
       bound = std::max(bound, best);
@@ -234,6 +271,10 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   std::vector<double> cum(n, 0.0);
   for (std::size_t i = 1; i < n; ++i) cum[i] = cum[i - 1] + (pts[i] - pts[i - 1]).norm();
   const double L = cum.back();
+  std::vector<Seg> segs;  // the polyline's segments and the bisectors at its interior vertices
+  std::vector<V2> wseg;
+  for (std::size_t i = 0; i + 1 < n; ++i) segs.push_back(make_seg(pts[i], pts[i + 1]));
+  for (std::size_t i = 0; i + 1 < segs.size(); ++i) wseg.push_back(bisector(segs[i], segs[i + 1]));
   const double eps = opt.fit_tolerance();
   const int spans = std::max(3, static_cast<int>(std::ceil(L / (opt.knot_spacing * mean))));
   const double dk = L / spans;
@@ -325,7 +366,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
     }
     if (!over) {
       amap.build(samples, L);
-      if (!chain_check(sp, pts, cum, amap, eps, mean, out, bad)) return false;
+      if (!chain_check(sp, pts, segs, wseg, cum, amap, eps, mean, out, bad)) return false;
       if (bad.empty()) return true;
       std::sort(bad.begin(), bad.end());
       for (Sample& s : samples) {

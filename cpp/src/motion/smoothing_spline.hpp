@@ -20,12 +20,71 @@ using V2 = Eigen::Vector2d;
 double cross2(const V2& a, const V2& b) { return a.x() * b.y() - a.y() * b.x(); }
 V2 perp(const V2& t) { return V2(-t.y(), t.x()); }
 
-// squared distance from p to the segment [a, b]
-double seg_dist2(const V2& p, const V2& a, const V2& b) {
+// A segment prepared for distance queries: start a, vector d = end − a, il2 = 1/|d|² (0 for a point).
+struct Seg {
+  V2 a, d;
+  double il2;
+};
+
+Seg make_seg(const V2& a, const V2& b) {
   const V2 d = b - a;
   const double l2 = d.squaredNorm();
-  const double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * d)).squaredNorm();
+  return Seg{a, d, l2 > 0 ? 1.0 / l2 : 0.0};
+}
+
+// squared distance from p to the segment
+double dist2(const V2& p, const Seg& s) {
+  const V2 r = p - s.a;
+  const double t = std::clamp(r.dot(s.d) * s.il2, 0.0, 1.0);
+  return (r - t * s.d).squaredNorm();
+}
+
+// Direction of the bisector at the vertex between consecutive segments s0 and s1: u1 − u0 for their unit
+// directions u0, u1 (points on the line through the vertex with this direction are equally far from
+// both segments), the normal of s0 where they run straight on, any direction for a point segment.
+V2 bisector(const Seg& s0, const Seg& s1) {
+  const V2 u0 = s0.d * std::sqrt(s0.il2), u1 = s1.d * std::sqrt(s1.il2);
+  const V2 w = u1 - u0;
+  if (w.squaredNorm() > 0) return w;
+  return u0.squaredNorm() > 0 ? perp(u0) : V2(1.0, 0.0);
+}
+
+// A bound on the distance of every point x of the segment [c0, c1] to the chain of segments seg[lo..hi]
+// (consecutive: seg[q + 1] starts where seg[q] ends; w[q] = bisector(seg[q], seg[q + 1])). A run of
+// consecutive segments qa..qb covers [c0, c1] in parts, cut where [c0, c1] crosses the bisectors of the
+// vertices between them; a part is within the larger distance of its two ends from its segment, as the
+// distance to a segment is convex along a line. Any cuts give a valid bound, since the parts join
+// from c0 to c1 whatever their order; at the bisector the distances to both segments are equal, which
+// makes the bound tight where [c0, c1] passes a vertex. val(d2, q) turns the squared distance d2 to
+// seg[q] into the bound's measure and must be increasing in d2; D0, D1: squared distances of c0, c1
+// to seg[lo..hi]. Returns the smallest largest part value over all runs (a single segment included).
+template <class Val>
+double run_bound(const V2& c0, const V2& c1, const Seg* seg, const V2* w, long lo, long hi, const double* D0,
+                 const double* D1, const Val& val) {
+  const V2 e = c1 - c0;
+  double best = 1e300;
+  double cover = 1e300;  // best bound on c0..x (x: the last cut), over runs ending at segment q − 1
+  V2 x = c0;
+  for (long q = lo; q <= hi; ++q) {
+    const auto i = static_cast<std::size_t>(q - lo);
+    const double v0 = val(D0[i], q);
+    best = std::min(best, std::max(v0, val(D1[i], q)));
+    double vx = 0;  // the previous cut's value for segment q
+    if (q > lo) {
+      vx = val(dist2(x, seg[q]), q);
+      best = std::min(best, std::max({cover, vx, val(D1[i], q)}));
+    }
+    if (q == hi) break;
+    const V2& wq = w[q];
+    double t = cross2(seg[q + 1].a - c0, wq) / cross2(e, wq);
+    if (!(t >= 0)) t = 0;  // NaN too
+    if (!(t <= 1)) t = 1;
+    const V2 xn = c0 + t * e;
+    const double vn = val(dist2(xn, seg[q]), q);
+    cover = std::min(std::max(v0, vn), q > lo ? std::max({cover, vx, vn}) : 1e300);
+    x = xn;
+  }
+  return best;
 }
 
 // Cubic B-spline (clamped) in the plane, parameter u ∈ [0, L].
