@@ -334,11 +334,14 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
     if (!fit(samples, L, knots, pen, front, back, sp, pen_band)) return false;
     bool over = false;
     add.clear();
+    int ks = 3;  // span of the previous sample's parameter (the samples are ordered along the curve)
     for (Sample& s : samples) {
       // foot point by Newton steps on (s(u) − p)·s'(u) = 0, kept only where it brings the curve closer
       double u = s.u;
       V2 c0, c1, c2;
-      sp.eval(u, c0, c1, c2);
+      int k = ks;
+      sp.eval(u, k, c0, c1, c2);
+      ks = k;
       const double r_old = (c0 - s.p).norm();
       for (int it = 0; it < 2; ++it) {
         const V2 r = c0 - s.p;
@@ -346,7 +349,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
         if (!(fp > 0)) break;
         const double du = std::clamp(-r.dot(c1) / fp, -0.25 * mean, 0.25 * mean);
         u = std::clamp(u + du, 0.0, L);
-        sp.eval(u, c0, c1, c2);
+        sp.eval(u, k, c0, c1, c2);
         if (std::abs(du) < 1e-9) break;
       }
       double res = (c0 - s.p).norm();

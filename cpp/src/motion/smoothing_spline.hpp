@@ -10,7 +10,6 @@
 #include <Eigen/Core>
 
 #include "netshape/core/types.hpp"
-#include "netshape/geometry/basis.hpp"
 
 namespace netshape::motion {
 namespace {
@@ -97,32 +96,76 @@ struct Spline {
     const auto it = std::upper_bound(t.begin() + 3, t.begin() + m + 1, u);
     return static_cast<int>(it - t.begin()) - 1;
   }
-  // the four non-zero basis values at u in span k (functions k−3..k)
+  // span(u) for u ≥ 0, searched from span k first (a few steps when u is in or next to it)
+  int span_near(double u, int k) const {
+    const int m = static_cast<int>(P.size());
+    if (u >= t[static_cast<std::size_t>(m)]) return m - 1;
+    k = std::clamp(k, 3, m - 1);
+    for (int step = 0; step < 4; ++step) {
+      if (u < t[static_cast<std::size_t>(k)]) {
+        if (k == 3) return 3;
+        --k;
+      } else if (u >= t[static_cast<std::size_t>(k + 1)]) {
+        ++k;  // stays ≤ m − 1, as u < t[m]
+      } else {
+        return k;
+      }
+    }
+    return span(u);
+  }
+  // the four non-zero basis values at u in span k (functions k−3..k), from their power form
   void basis(int k, double u, double N[4]) const {
-    double scratch[8];
-    geometry::basis_functions(k, u, 3, t.data(), N, scratch);
+    const auto& b = pb[static_cast<std::size_t>(k)];
+    const double x = u - t[static_cast<std::size_t>(k)];
+    for (std::size_t r = 0; r < 4; ++r) N[r] = b[r] + x * (b[4 + r] + x * (b[8 + r] + x * b[12 + r]));
   }
   // Power form of each knot span k (t[k] < t[k + 1]): s(u) = c0 + c1·x + c2·x² + c3·x³ with x = u − t[k],
-  // the Taylor coefficients at t[k] from the basis derivatives (The NURBS Book A2.3). prepare() builds
-  // them after the control points change; point(), deriv() and eval() read only them.
+  // the Taylor coefficients at t[k] of the spline. prepare() builds them after the control points
+  // change; point(), deriv() and eval() read only them.
   std::vector<std::array<V2, 4>> pw;
-  // The same for the basis functions: pb[k][4·j + r] = D_j(N_{k−3+r})(t[k]) / j!, which depend on the
-  // knots only. power_basis() fills them after the knots change; prepare() combines them with P.
+  // The same for the basis functions: pb[k][4·j + r] = D_j(N_{k−3+r})(t[k]) / j!, the coefficient of x^j
+  // of basis function k − 3 + r on span k, which depend on the knots only. power_basis() fills them
+  // after the knots change; prepare() combines them with P and basis() evaluates them.
   std::vector<std::array<double, 16>> pb;
+  // Built by the Cox–de Boor recursion on polynomials in x = u − t[k]:
+  //   N_{i,p} = (u − t_i)/(t_{i+p} − t_i) · N_{i,p−1} + (t_{i+p+1} − u)/(t_{i+p+1} − t_{i+1}) · N_{i+1,p−1}
+  // (a term with a zero denominator is zero), starting from N_{k,0} = 1 on span k.
   void power_basis() {
     const int m = static_cast<int>(P.size());
     pb.assign(static_cast<std::size_t>(m), std::array<double, 16>{});
     for (int k = 3; k < m; ++k) {
-      if (!(t[static_cast<std::size_t>(k + 1)] > t[static_cast<std::size_t>(k)])) continue;
-      double D[4][4], scratch[48];
-      geometry::basis_function_derivatives(k, t[static_cast<std::size_t>(k)], 3, 3, t.data(), &D[0][0], scratch);
-      auto& b = pb[static_cast<std::size_t>(k)];
-      for (int r = 0; r < 4; ++r) {
-        b[static_cast<std::size_t>(r)] = D[0][r];
-        b[static_cast<std::size_t>(4 + r)] = D[1][r];
-        b[static_cast<std::size_t>(8 + r)] = 0.5 * D[2][r];
-        b[static_cast<std::size_t>(12 + r)] = D[3][r] / 6.0;
+      const double tk = t[static_cast<std::size_t>(k)];
+      if (!(t[static_cast<std::size_t>(k + 1)] > tk)) continue;
+      double d[8];  // d[q] = t[k − 3 + q] − t[k]
+      for (int q = 0; q < 8; ++q) d[q] = t[static_cast<std::size_t>(k - 3 + q)] - tk;
+      double N[4][4] = {{1, 0, 0, 0}};  // N[r][j]: coefficient of x^j in N_{k−p+r, p}
+      for (int p = 1; p <= 3; ++p) {
+        double M[4][4] = {};
+        for (int r = 0; r <= p; ++r) {
+          // with i = k − p + r: t_i = d[3 − p + r], t_{i+1} = d[4 − p + r], t_{i+p} = d[3 + r], t_{i+p+1} = d[4 + r]
+          const double a0 = d[3 - p + r], a1 = d[3 + r], b0 = d[4 - p + r], b1 = d[4 + r];
+          if (r >= 1 && a1 > a0) {  // (x − a0)/(a1 − a0) · N_{i,p−1}, which is N[r − 1]
+            const double f = 1.0 / (a1 - a0);
+            const double* n = N[r - 1];
+            M[r][0] += f * (-a0 * n[0]);
+            M[r][1] += f * (n[0] - a0 * n[1]);
+            M[r][2] += f * (n[1] - a0 * n[2]);
+            M[r][3] += f * (n[2] - a0 * n[3]);
+          }
+          if (r < p && b1 > b0) {  // (b1 − x)/(b1 − b0) · N_{i+1,p−1}, which is N[r]
+            const double f = 1.0 / (b1 - b0);
+            const double* n = N[r];
+            M[r][0] += f * (b1 * n[0]);
+            M[r][1] += f * (b1 * n[1] - n[0]);
+            M[r][2] += f * (b1 * n[2] - n[1]);
+            M[r][3] += f * (b1 * n[3] - n[2]);
+          }
+        }
+        std::copy(&M[0][0], &M[0][0] + 16, &N[0][0]);
       }
+      auto& b = pb[static_cast<std::size_t>(k)];
+      for (std::size_t j = 0; j < 4; ++j)
+        for (std::size_t r = 0; r < 4; ++r) b[4 * j + r] = N[r][j];
     }
   }
   void prepare() {
@@ -154,15 +197,9 @@ struct Spline {
     const double x = u - t[static_cast<std::size_t>(k)];
     return c[1] + x * (2.0 * c[2] + x * (3.0 * c[3]));
   }
-  // values and first two derivatives of the four non-zero basis functions at u in span k
-  // (The NURBS Book, algorithm A2.3, degree 3)
-  void ders(int k, double u, double D[3][4]) const {
-    double scratch[32];  // geometry::ders_scratch_size(3) = 32
-    geometry::basis_function_derivatives(k, u, 3, 2, t.data(), &D[0][0], scratch);
-  }
-  // point, first and second derivative at u
-  void eval(double u, V2& s0, V2& s1, V2& s2) const {
-    const int k = span(u);
+  // point, first and second derivative at u; k: on entry a span to search from, on return u's span
+  void eval(double u, int& k, V2& s0, V2& s1, V2& s2) const {
+    k = span_near(u, k);
     const auto& c = pw[static_cast<std::size_t>(k)];
     const double x = u - t[static_cast<std::size_t>(k)];
     s0 = c[0] + x * (c[1] + x * (c[2] + x * c[3]));
@@ -266,27 +303,30 @@ bool fit(const std::vector<Sample>& samples, double L, const std::vector<double>
   sp.P.assign(static_cast<std::size_t>(m), V2::Zero());
   if (pen_band.empty()) {
     sp.power_basis();
-    // pen·∫|s''|² over [0, L]: s'' is linear on each knot span, so two Gauss points per span are exact
+    // pen·∫|s''|² over [0, L]: on span k the basis function r has N_r'' = α_r + β_r·x (x = u − t[k]),
+    // with α_r = 2·pb[8 + r] and β_r = 6·pb[12 + r], so ∫_0^h N_r''·N_q'' dx is exact in closed form
     pen_band.assign(static_cast<std::size_t>(m), std::array<double, 4>{0, 0, 0, 0});
-    const double g = 0.5 / std::sqrt(3.0);
     for (int k = 3; k < m; ++k) {
-      const double t0 = sp.t[static_cast<std::size_t>(k)], t1 = sp.t[static_cast<std::size_t>(k + 1)];
-      const double h = t1 - t0;
+      const double h = sp.t[static_cast<std::size_t>(k + 1)] - sp.t[static_cast<std::size_t>(k)];
       if (!(h > 0)) continue;
-      for (const double x : {0.5 - g, 0.5 + g}) {
-        double D[3][4];
-        sp.ders(k, t0 + x * h, D);
-        for (int r = 0; r < 4; ++r)
-          for (int q = r; q < 4; ++q)
-            pen_band[static_cast<std::size_t>(k - 3 + r)][static_cast<std::size_t>(q - r)] +=
-                pen * 0.5 * h * D[2][r] * D[2][q];
+      const auto& b = sp.pb[static_cast<std::size_t>(k)];
+      double al[4], be[4];
+      for (std::size_t r = 0; r < 4; ++r) {
+        al[r] = 2.0 * b[8 + r];
+        be[r] = 6.0 * b[12 + r];
       }
+      const double h2 = 0.5 * h * h, h3 = h * h * h / 3.0;
+      for (int r = 0; r < 4; ++r)
+        for (int q = r; q < 4; ++q)
+          pen_band[static_cast<std::size_t>(k - 3 + r)][static_cast<std::size_t>(q - r)] +=
+              pen * (al[r] * al[q] * h + (al[r] * be[q] + al[q] * be[r]) * h2 + be[r] * be[q] * h3);
     }
   }
   std::vector<std::array<double, 4>> band = pen_band;
   std::vector<V2> rhs(static_cast<std::size_t>(m), V2::Zero());
+  int k = 3;
   for (const Sample& s : samples) {
-    const int k = sp.span(s.u);
+    k = sp.span_near(s.u, k);
     double N[4];
     sp.basis(k, s.u, N);
     for (int r = 0; r < 4; ++r) {
