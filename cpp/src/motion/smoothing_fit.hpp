@@ -162,34 +162,71 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     bound = std::max(bound, best);
     if (best > eps) bad.push_back(um);
   }
-  // polyline -> spline: every point of a polyline piece [q0, q1] is within
-  // max(d(q0, C), d(q1, C)) + σ of the spline over chord C
+  // polyline -> spline: every point of a polyline piece [q0, q1] is within run_bound of the chords, each
+  // chord's part plus its σ, so within that of the spline
   const long nch = static_cast<long>(cp.size()) - 1;
-  // chords whose arc length along the polyline (through the parameter map) lies within ±w of the
-  // piece's; a chord outside the window can only make the bound larger, never smaller
+  std::vector<Seg> cseg;  // the chords and the bisectors at the chord points between them
+  std::vector<V2> cw;
+  cseg.reserve(static_cast<std::size_t>(nch));
+  for (long q = 0; q < nch; ++q) cseg.push_back(make_seg(cp[static_cast<std::size_t>(q)], cp[static_cast<std::size_t>(q) + 1]));
+  for (long q = 0; q + 1 < nch; ++q) cw.push_back(bisector(cseg[static_cast<std::size_t>(q)], cseg[static_cast<std::size_t>(q) + 1]));
+  auto chord_val = [&](double d2, long q) { return std::sqrt(d2) + csag[static_cast<std::size_t>(q)]; };
+  // the chords whose arc length along the polyline (through the parameter map) lies within ±w of the
+  // piece's arc lengths [ua, ub], and two more each side; a chord outside the window can only make the
+  // bound larger, never smaller
   const double w = 0.25 * mean + 4.0 * eps;
+  auto cwindow = [&](double ua, double ub, long& lo, long& hi) {
+    lo = std::max(0L, static_cast<long>(std::lower_bound(cu.begin(), cu.end(), ua - w) - cu.begin()) - 2);
+    hi = std::min(nch - 1, static_cast<long>(std::upper_bound(cu.begin(), cu.end(), ub + w) - cu.begin()) + 1);
+  };
   // Also `ends`: at most the bound of the degenerate pieces [q0, q0] and [q1, q1] (the square root of the
   // larger of the two smallest squared distances plus the smallest σ); above eps, every bisection of
   // the piece keeps a part whose bound is above eps, so the piece fails whatever it is cut into.
-  auto poly_bound = [&](const V2& q0, const V2& q1, double uq, double& ends) {
-    const long lo = std::max(0L, static_cast<long>(std::lower_bound(cu.begin(), cu.end(), uq - w) - cu.begin()) - 2);
-    const long hi = std::min(nch - 1, static_cast<long>(std::upper_bound(cu.begin(), cu.end(), uq + w) - cu.begin()) + 1);
+  // Q0, Q1: squared distances of q0, q1 to the chords lo..hi.
+  std::vector<double> Q0, Q1, K1;
+  auto poly_bound = [&](const V2& q0, const V2& q1, long lo, long hi, double& ends) {
     double best = 1e300, m0 = 1e300, m1 = 1e300, smin = 1e300;
     for (long q = lo; q <= hi; ++q) {
       const auto qi = static_cast<std::size_t>(q);
-      const Seg cs = make_seg(cp[qi], cp[qi + 1]);
-      const double d0 = dist2(q0, cs), d1 = dist2(q1, cs);
+      const double d0 = Q0[static_cast<std::size_t>(q - lo)], d1 = Q1[static_cast<std::size_t>(q - lo)];
       best = std::min(best, std::sqrt(std::max(d0, d1)) + csag[qi]);
       m0 = std::min(m0, d0);
       m1 = std::min(m1, d1);
       smin = std::min(smin, csag[qi]);
     }
     ends = std::sqrt(std::max(m0, m1)) + smin;
+    if (best > eps && ends <= eps)
+      best = std::min(best, run_bound(q0, q1, cseg.data(), cw.data(), lo, hi, Q0.data(), Q1.data(), chord_val));
     return best;
   };
+  auto cfill = [&](const V2& p, long lo, long hi, std::vector<double>& D) {
+    D.resize(static_cast<std::size_t>(hi - lo + 1));
+    for (long q = lo; q <= hi; ++q) D[static_cast<std::size_t>(q - lo)] = dist2(p, cseg[static_cast<std::size_t>(q)]);
+  };
   std::vector<std::pair<V2, V2>> pj;
+  long clo = 0, chi = -1;  // chord window of the previous segment; K1: its end point's squared distances
   for (std::size_t i = 0; i + 1 < n; ++i) {
     const double li = cum[i + 1] - cum[i];
+    // the whole segment first
+    {
+      long lo, hi;
+      cwindow(cum[i], cum[i + 1], lo, hi);
+      Q0.resize(static_cast<std::size_t>(hi - lo + 1));
+      for (long q = lo; q <= hi; ++q)  // pts[i] is the previous segment's end point
+        Q0[static_cast<std::size_t>(q - lo)] = q >= clo && q <= chi ? K1[static_cast<std::size_t>(q - clo)]
+                                                                 : dist2(pts[i], cseg[static_cast<std::size_t>(q)]);
+      cfill(pts[i + 1], lo, hi, Q1);
+      K1 = Q1;
+      clo = lo;
+      chi = hi;
+      double ends;
+      const double b = poly_bound(pts[i], pts[i + 1], lo, hi, ends);
+      if (b <= eps) {
+        bound = std::max(bound, b);
+        continue;
+      }
+    }
+    // else pieces of at most half a chord, each bisected while it fails
     const long c0 = std::clamp(static_cast<long>(std::upper_bound(cu.begin(), cu.end(), 0.5 * (cum[i] + cum[i + 1])) - cu.begin()) - 1, 0L, nch - 1);
     const double hc = (cp[static_cast<std::size_t>(c0) + 1] - cp[static_cast<std::size_t>(c0)]).norm();
     const int np = std::max(1, static_cast<int>(std::ceil(li / std::max(0.5 * hc, 0.25 * eps))));
@@ -197,8 +234,12 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
       const V2 q0 = pts[i] + (pts[i + 1] - pts[i]) * (static_cast<double>(k) / np);
       const V2 q1 = pts[i] + (pts[i + 1] - pts[i]) * (static_cast<double>(k + 1) / np);
       const double uq = cum[i] + li * (k + 0.5) / np;
+      long lo, hi;
+      cwindow(uq, uq, lo, hi);
       double ends;
-      double best = poly_bound(q0, q1, uq, ends);
+      cfill(q0, lo, hi, Q0);
+      cfill(q1, lo, hi, Q1);
+      double best = poly_bound(q0, q1, lo, hi, ends);
       if (best > eps && ends <= eps) {  // bisect the piece; the first part that fails decides
         pj.assign(1, {q0, q1});
         best = 0;
@@ -206,7 +247,9 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
         while (!pj.empty()) {
           const auto [a0, a1] = pj.back();
           pj.pop_back();
-          const double b = poly_bound(a0, a1, uq, ends);
+          cfill(a0, lo, hi, Q0);
+          cfill(a1, lo, hi, Q1);
+          const double b = poly_bound(a0, a1, lo, hi, ends);
           if (b > eps && ends <= eps && (a1 - a0).norm() > fine && --budget > 0) {
             const V2 am = 0.5 * (a0 + a1);
             pj.push_back({a0, am});
