@@ -55,6 +55,7 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   cp.push_back(sp.P.front());
   cu.push_back(0.0);
   cpar.push_back(0.0);
+  std::size_t mk = 0;  // cursor of amap for the nondecreasing chord parameters
   for (int k = 3; k < m; ++k) {
     const double t0 = sp.t[static_cast<std::size_t>(k)], t1 = sp.t[static_cast<std::size_t>(k + 1)];
     const double h = t1 - t0;
@@ -76,8 +77,8 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     const double sag = k2 * hc * hc / 8.0;
     for (int j = 1; j <= nc; ++j) {
       const double u = j == nc ? t1 : t0 + hc * j;
-      cp.push_back(j == nc && k == m - 1 ? sp.P.back() : sp.point(u));
-      cu.push_back(amap(u));
+      cp.push_back(j == nc && k == m - 1 ? sp.P.back() : sp.point_in(k, u));
+      cu.push_back(amap.walk(u, mk));
       cpar.push_back(u);
       csag.push_back(sag);
       cspan.push_back(k);
@@ -367,6 +368,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   std::vector<double> bad, add;
   std::vector<V2> front, back;
   std::vector<std::array<double, 4>> pen_band;
+  FitWork work;
   for (int round = 0; round < opt.max_refinements; ++round) {
     // clamped cubic: s'(0) = 3 (P1 − P0) / t4 and s'(L) = 3 (P_{m−1} − P_{m−2}) / (L − t_{m−1});
     // a fixed end tangent fixes the second control point for unit speed
@@ -374,7 +376,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
     back.assign(1, pts.back());
     if (ends.fix0) front.push_back(pts.front() + (knots.front() / 3.0) * ends.d0);
     if (ends.fix1) back.insert(back.begin(), pts.back() - ((L - knots.back()) / 3.0) * ends.d1);
-    if (!fit(samples, L, knots, pen, front, back, sp, pen_band)) return false;
+    if (!fit(samples, L, knots, pen, front, back, sp, pen_band, work)) return false;
     bool over = false;
     add.clear();
     int ks = 3;  // span of the previous sample's parameter (the samples are ordered along the curve)

@@ -185,8 +185,9 @@ struct Spline {
       }
     }
   }
-  V2 point(double u) const {
-    const int k = span(u);
+  V2 point(double u) const { return point_in(span(u), u); }
+  // the polynomial of span k at u (u in [t[k], t[k + 1]])
+  V2 point_in(int k, double u) const {
     const auto& c = pw[static_cast<std::size_t>(k)];
     const double x = u - t[static_cast<std::size_t>(k)];
     return c[0] + x * (c[1] + x * (c[2] + x * c[3]));
@@ -208,40 +209,37 @@ struct Spline {
   }
 };
 
-// Symmetric banded solve (half bandwidth 3) by Cholesky; band[i][k] = A(i, i + k). In place on rhs.
-bool band_solve(std::vector<std::array<double, 4>>& band, std::vector<V2>& rhs) {
-  const int n = static_cast<int>(band.size());
-  // L stored as lo[i][k] = L(i, i − k)
-  std::vector<std::array<double, 4>> lo(static_cast<std::size_t>(n));
+// Symmetric banded solve (half bandwidth 3) by Cholesky: A(i, i + k) = band[i][k] for rows 0..n − 1
+// (entries with i + k ≥ n are not read); in place on rhs. lo: workspace, lo[i][k] = L(i, i − k).
+bool band_solve(const std::array<double, 4>* band, V2* rhs, int n, std::vector<std::array<double, 4>>& lo) {
+  lo.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
-    for (int k = 3; k >= 0; --k) {
+    auto& li = lo[static_cast<std::size_t>(i)];
+    li = {0, 0, 0, 0};
+    double diag = band[i][0];
+    for (int k = std::min(i, 3); k >= 1; --k) {  // L(i, j) for j = i − k, from A(j, i) = band[j][k]
       const int j = i - k;
-      if (j < 0) {
-        lo[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] = 0;
-        continue;
-      }
-      double s = band[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)];  // A(j, i) = A(i, j)
+      const auto& lj = lo[static_cast<std::size_t>(j)];
+      double s = band[j][static_cast<std::size_t>(k)];
       for (int q = std::max(0, i - 3); q < j; ++q)
-        s -= lo[static_cast<std::size_t>(i)][static_cast<std::size_t>(i - q)] *
-             lo[static_cast<std::size_t>(j)][static_cast<std::size_t>(j - q)];
-      if (k == 0) {
-        if (!(s > 0)) return false;
-        lo[static_cast<std::size_t>(i)][0] = std::sqrt(s);
-      } else {
-        lo[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] = s / lo[static_cast<std::size_t>(j)][0];
-      }
+        s -= li[static_cast<std::size_t>(i - q)] * lj[static_cast<std::size_t>(j - q)];
+      li[static_cast<std::size_t>(k)] = s / lj[0];
+      diag -= li[static_cast<std::size_t>(k)] * li[static_cast<std::size_t>(k)];
     }
+    if (!(diag > 0)) return false;
+    li[0] = std::sqrt(diag);
   }
   for (int i = 0; i < n; ++i) {
-    V2 s = rhs[static_cast<std::size_t>(i)];
-    for (int q = std::max(0, i - 3); q < i; ++q) s -= lo[static_cast<std::size_t>(i)][static_cast<std::size_t>(i - q)] * rhs[static_cast<std::size_t>(q)];
-    rhs[static_cast<std::size_t>(i)] = s / lo[static_cast<std::size_t>(i)][0];
+    const auto& li = lo[static_cast<std::size_t>(i)];
+    V2 s = rhs[i];
+    for (int q = std::max(0, i - 3); q < i; ++q) s -= li[static_cast<std::size_t>(i - q)] * rhs[q];
+    rhs[i] = s / li[0];
   }
   for (int i = n - 1; i >= 0; --i) {
-    V2 s = rhs[static_cast<std::size_t>(i)];
+    V2 s = rhs[i];
     for (int q = i + 1; q <= std::min(n - 1, i + 3); ++q)
-      s -= lo[static_cast<std::size_t>(q)][static_cast<std::size_t>(q - i)] * rhs[static_cast<std::size_t>(q)];
-    rhs[static_cast<std::size_t>(i)] = s / lo[static_cast<std::size_t>(i)][0];
+      s -= lo[static_cast<std::size_t>(q)][static_cast<std::size_t>(q - i)] * rhs[q];
+    rhs[i] = s / lo[static_cast<std::size_t>(i)][0];
   }
   return true;
 }
@@ -276,10 +274,18 @@ struct ParamMap {
     }
   }
   double operator()(double x) const {
-    const auto it = std::upper_bound(u.begin(), u.end(), x);
-    if (it == u.begin()) return a.front();
-    if (it == u.end()) return a.back();
-    const auto k = static_cast<std::size_t>(it - u.begin());
+    std::size_t k = static_cast<std::size_t>(std::upper_bound(u.begin(), u.end(), x) - u.begin());
+    return at(x, k);
+  }
+  // the same for nondecreasing x over a sequence of calls; k: a cursor, 0 before the first call
+  double walk(double x, std::size_t& k) const {
+    while (k < u.size() && u[k] <= x) ++k;
+    return at(x, k);
+  }
+  // with k the first index with u[k] > x
+  double at(double x, std::size_t k) const {
+    if (k == 0) return a.front();
+    if (k == u.size()) return a.back();
     const double du = u[k] - u[k - 1];
     return du > 0 ? a[k - 1] + (a[k] - a[k - 1]) * (x - u[k - 1]) / du : a[k];
   }
@@ -290,10 +296,16 @@ struct ParamMap {
 // with the first front.size() and the last back.size() control points fixed to the given values
 // (end points, and end tangents when the second control point is fixed too). Banded Cholesky, O(n).
 // pen_band caches the penalty's band for these knots: it is filled when empty and must be cleared
-// when the knots change; sp's power-form basis (Spline::pb) is rebuilt with it.
+// when the knots change; sp's power-form basis (Spline::pb) is rebuilt with it. work: buffers kept
+// between calls.
+struct FitWork {
+  std::vector<std::array<double, 4>> band, lo;
+  std::vector<V2> rhs;
+};
+
 bool fit(const std::vector<Sample>& samples, double L, const std::vector<double>& interior, double pen,
          const std::vector<V2>& front, const std::vector<V2>& back, Spline& sp,
-         std::vector<std::array<double, 4>>& pen_band) {
+         std::vector<std::array<double, 4>>& pen_band, FitWork& work) {
   const int m = static_cast<int>(interior.size()) + 4;
   const int nf = static_cast<int>(front.size()), nk = static_cast<int>(back.size());
   if (nf + nk > m) return false;
@@ -322,8 +334,10 @@ bool fit(const std::vector<Sample>& samples, double L, const std::vector<double>
               pen * (al[r] * al[q] * h + (al[r] * be[q] + al[q] * be[r]) * h2 + be[r] * be[q] * h3);
     }
   }
-  std::vector<std::array<double, 4>> band = pen_band;
-  std::vector<V2> rhs(static_cast<std::size_t>(m), V2::Zero());
+  auto& band = work.band;
+  auto& rhs = work.rhs;
+  band = pen_band;
+  rhs.assign(static_cast<std::size_t>(m), V2::Zero());
   int k = 3;
   for (const Sample& s : samples) {
     k = sp.span_near(s.u, k);
@@ -346,13 +360,9 @@ bool fit(const std::vector<Sample>& samples, double L, const std::vector<double>
     for (int f = std::max(m - nk, i + 1); f <= std::min(m - 1, i + 3); ++f)
       rhs[static_cast<std::size_t>(i)] -= A(i, f) * sp.P[static_cast<std::size_t>(f)];
   }
-  std::vector<std::array<double, 4>> inner(band.begin() + nf, band.end() - nk);
-  for (std::size_t i = 0; i < inner.size(); ++i)
-    for (std::size_t k = 0; k < 4; ++k)
-      if (i + k >= inner.size()) inner[i][k] = 0;
-  std::vector<V2> x(rhs.begin() + nf, rhs.end() - nk);
-  if (!inner.empty() && !band_solve(inner, x)) return false;
-  for (std::size_t i = 0; i < x.size(); ++i) sp.P[i + static_cast<std::size_t>(nf)] = x[i];
+  const int ni = m - nf - nk;  // the free control points nf..m − nk − 1
+  if (ni > 0 && !band_solve(band.data() + nf, rhs.data() + nf, ni, work.lo)) return false;
+  for (int i = nf; i < m - nk; ++i) sp.P[static_cast<std::size_t>(i)] = rhs[static_cast<std::size_t>(i)];
   sp.prepare();
   return true;
 }
