@@ -40,9 +40,9 @@ struct RunFit {
 // really leaves the tube would otherwise be bisected down to `fine` all along the stretch it is out).
 constexpr int max_bisections = 64;
 
-bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector<double>& cum,
-                 const ParamMap& amap, double eps, double mean,
-                 RunFit& out, std::vector<double>& bad) {
+bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector<Seg>& segs,
+                 const std::vector<V2>& wseg, const std::vector<double>& cum, const ParamMap& amap, double eps,
+                 double mean, RunFit& out, std::vector<double>& bad) {
   const std::size_t n = pts.size();
   const double sag_share = 0.05 * eps;
   bad.clear();
@@ -55,6 +55,7 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   cp.push_back(sp.P.front());
   cu.push_back(0.0);
   cpar.push_back(0.0);
+  std::size_t mk = 0;  // cursor of amap for the nondecreasing chord parameters
   for (int k = 3; k < m; ++k) {
     const double t0 = sp.t[static_cast<std::size_t>(k)], t1 = sp.t[static_cast<std::size_t>(k + 1)];
     const double h = t1 - t0;
@@ -76,8 +77,8 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     const double sag = k2 * hc * hc / 8.0;
     for (int j = 1; j <= nc; ++j) {
       const double u = j == nc ? t1 : t0 + hc * j;
-      cp.push_back(j == nc && k == m - 1 ? sp.P.back() : sp.point(u));
-      cu.push_back(amap(u));
+      cp.push_back(j == nc && k == m - 1 ? sp.P.back() : sp.point_in(k, u));
+      cu.push_back(amap.walk(u, mk));
       cpar.push_back(u);
       csag.push_back(sag);
       cspan.push_back(k);
@@ -86,74 +87,147 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   if (out.pieces.empty()) return false;
   double bound = 0;
   const double fine = 0.1 * eps;  // bisect a failing chord down to this length [mm]
-  // spline -> polyline: every spline point between chord points c0, c1 is within
-  // max(d(c0, S), d(c1, S)) + σ of segment S (distance to a segment is convex)
+  // spline -> polyline: every spline point between chord points c0, c1 is within σ of the chord, and
+  // every chord point within run_bound of the polyline segments s − 3..s + 3 (s: the segment at the
+  // chord's middle through the parameter map); squared distances, one root at the end (the root is
+  // increasing, so min and max commute with it)
   const long ns = static_cast<long>(n) - 1;
-  // (in squared distances, one root at the end: the root is monotone, so min and max commute with it)
-  auto chain_bound = [&](const V2& c0, const V2& c1, long s) {
-    double best2 = 1e300;
-    for (long q = std::max(0L, s - 3); q <= std::min(ns - 1, s + 3); ++q) {
-      const auto qi = static_cast<std::size_t>(q);
-      best2 = std::min(best2, std::max(seg_dist2(c0, pts[qi], pts[qi + 1]), seg_dist2(c1, pts[qi], pts[qi + 1])));
+  auto sq = [](double d2, long) { return d2; };
+  double D0[7], D1[7];
+  auto window = [&](long s, long& lo, long& hi) {
+    lo = std::max(0L, s - 3);
+    hi = std::min(ns - 1, s + 3);
+  };
+  // The bound for chord [c0, c1] with sagitta bound sag, D0 and D1 filled for c0, c1 and the window
+  // lo..hi. `lost`: an end point alone is farther than eps from the window, so every part of the chord
+  // that holds it is bounded above eps however the chord is cut (the chord fails).
+  auto chord_bound = [&](const V2& c0, const V2& c1, long lo, long hi, double sag, bool& lost) {
+    double best2 = 1e300, m0 = 1e300, m1 = 1e300;
+    for (long q = lo; q <= hi; ++q) {
+      const auto i = static_cast<std::size_t>(q - lo);
+      best2 = std::min(best2, std::max(D0[i], D1[i]));
+      m0 = std::min(m0, D0[i]);
+      m1 = std::min(m1, D1[i]);
     }
-    return best2 < 1e300 ? std::sqrt(best2) : 1e300;
+    const double b = std::sqrt(best2) + sag;
+    lost = std::sqrt(std::max(m0, m1)) > eps;
+    if (b <= eps || lost) return b;  // one segment will do, or nothing will
+    return std::min(b, std::sqrt(run_bound(c0, c1, segs.data(), wseg.data(), lo, hi, D0, D1, sq)) + sag);
+  };
+  auto fill = [&](const V2& p, long lo, long hi, double* D) {
+    for (long q = lo; q <= hi; ++q) D[q - lo] = dist2(p, segs[static_cast<std::size_t>(q)]);
   };
   struct Job {
     double u0, u1, sag;
+    V2 c0, c1;
   };
   std::vector<Job> jobs;
+  long plo = 0, phi = -1;  // window of the previous chord, whose end point's distances are in D1
+  std::size_t sc = 0;      // segment search: cum[sc] <= um for the chords' nondecreasing middles um
   for (std::size_t j = 0; j + 1 < cp.size(); ++j) {
     const double um = 0.5 * (cu[j] + cu[j + 1]);
-    const long s = std::clamp(static_cast<long>(std::upper_bound(cum.begin(), cum.end(), um) - cum.begin()) - 1, 0L, ns - 1);
-    double best = chain_bound(cp[j], cp[j + 1], s) + csag[j];
-    if (best > eps) {  // bisect the chord where it straddles a polyline vertex
-      jobs.assign(1, Job{cpar[j], cpar[j + 1], csag[j]});
+    while (sc + 1 < cum.size() && cum[sc + 1] <= um) ++sc;
+    const long s = std::clamp(static_cast<long>(sc), 0L, ns - 1);
+    long lo, hi;
+    window(s, lo, hi);
+    // cp[j] is the previous chord's end point: keep its distances where the windows overlap
+    for (long q = lo; q <= hi; ++q)
+      D0[q - lo] = q >= plo && q <= phi ? D1[q - plo] : dist2(cp[j], segs[static_cast<std::size_t>(q)]);
+    fill(cp[j + 1], lo, hi, D1);
+    plo = lo;
+    phi = hi;
+    bool lost;
+    double best = chord_bound(cp[j], cp[j + 1], lo, hi, csag[j], lost);
+    if (best > eps && !lost) {  // bisect the chord; the first part that fails decides
+      jobs.assign(1, Job{cpar[j], cpar[j + 1], csag[j], cp[j], cp[j + 1]});
       best = 0;
       int budget = max_bisections;
       while (!jobs.empty()) {
         const Job jb = jobs.back();
         jobs.pop_back();
-        const V2 c0 = sp.point(jb.u0), c1 = sp.point(jb.u1);
-        const double b = chain_bound(c0, c1, s) + jb.sag;
-        if (b > eps && (c1 - c0).norm() > fine && --budget > 0) {
+        fill(jb.c0, lo, hi, D0);
+        fill(jb.c1, lo, hi, D1);
+        const double b = chord_bound(jb.c0, jb.c1, lo, hi, jb.sag, lost);
+        if (b > eps && !lost && (jb.c1 - jb.c0).norm() > fine && --budget > 0) {
           const double um2 = 0.5 * (jb.u0 + jb.u1);
-          jobs.push_back(Job{jb.u0, um2, 0.25 * jb.sag});
-          jobs.push_back(Job{um2, jb.u1, 0.25 * jb.sag});
+          const V2 cm = sp.point(um2);
+          jobs.push_back(Job{jb.u0, um2, 0.25 * jb.sag, jb.c0, cm});
+          jobs.push_back(Job{um2, jb.u1, 0.25 * jb.sag, cm, jb.c1});
           continue;
         }
         best = std::max(best, b);
+        if (best > eps) break;
       }
+      fill(cp[j + 1], lo, hi, D1);  // the next chord reads its start point's distances from D1
     }
     bound = std::max(bound, best);
     if (best > eps) bad.push_back(um);
   }
-  // polyline -> spline: every point of a polyline piece [q0, q1] is within
-  // max(d(q0, C), d(q1, C)) + σ of the spline over chord C
+  // polyline -> spline: every point of a polyline piece [q0, q1] is within run_bound of the chords, each
+  // chord's part plus its σ, so within that of the spline
   const long nch = static_cast<long>(cp.size()) - 1;
-  // chords whose arc length along the polyline (through the parameter map) lies within ±w of the
-  // piece's; a chord outside the window can only make the bound larger, never smaller
+  std::vector<Seg> cseg;  // the chords and the bisectors at the chord points between them
+  std::vector<V2> cw;
+  cseg.reserve(static_cast<std::size_t>(nch));
+  for (long q = 0; q < nch; ++q) cseg.push_back(make_seg(cp[static_cast<std::size_t>(q)], cp[static_cast<std::size_t>(q) + 1]));
+  for (long q = 0; q + 1 < nch; ++q) cw.push_back(bisector(cseg[static_cast<std::size_t>(q)], cseg[static_cast<std::size_t>(q) + 1]));
+  auto chord_val = [&](double d2, long q) { return std::sqrt(d2) + csag[static_cast<std::size_t>(q)]; };
+  // the chords whose arc length along the polyline (through the parameter map) lies within ±w of the
+  // piece's arc lengths [ua, ub], and two more each side; a chord outside the window can only make the
+  // bound larger, never smaller
   const double w = 0.25 * mean + 4.0 * eps;
+  auto cwindow = [&](double ua, double ub, long& lo, long& hi) {
+    lo = std::max(0L, static_cast<long>(std::lower_bound(cu.begin(), cu.end(), ua - w) - cu.begin()) - 2);
+    hi = std::min(nch - 1, static_cast<long>(std::upper_bound(cu.begin(), cu.end(), ub + w) - cu.begin()) + 1);
+  };
   // Also `ends`: at most the bound of the degenerate pieces [q0, q0] and [q1, q1] (the square root of the
   // larger of the two smallest squared distances plus the smallest σ); above eps, every bisection of
   // the piece keeps a part whose bound is above eps, so the piece fails whatever it is cut into.
-  auto poly_bound = [&](const V2& q0, const V2& q1, double uq, double& ends) {
-    const long lo = std::max(0L, static_cast<long>(std::lower_bound(cu.begin(), cu.end(), uq - w) - cu.begin()) - 2);
-    const long hi = std::min(nch - 1, static_cast<long>(std::upper_bound(cu.begin(), cu.end(), uq + w) - cu.begin()) + 1);
+  // Q0, Q1: squared distances of q0, q1 to the chords lo..hi.
+  std::vector<double> Q0, Q1, K1;
+  auto poly_bound = [&](const V2& q0, const V2& q1, long lo, long hi, double& ends) {
     double best = 1e300, m0 = 1e300, m1 = 1e300, smin = 1e300;
     for (long q = lo; q <= hi; ++q) {
       const auto qi = static_cast<std::size_t>(q);
-      const double d0 = seg_dist2(q0, cp[qi], cp[qi + 1]), d1 = seg_dist2(q1, cp[qi], cp[qi + 1]);
+      const double d0 = Q0[static_cast<std::size_t>(q - lo)], d1 = Q1[static_cast<std::size_t>(q - lo)];
       best = std::min(best, std::sqrt(std::max(d0, d1)) + csag[qi]);
       m0 = std::min(m0, d0);
       m1 = std::min(m1, d1);
       smin = std::min(smin, csag[qi]);
     }
     ends = std::sqrt(std::max(m0, m1)) + smin;
+    if (best > eps && ends <= eps)
+      best = std::min(best, run_bound(q0, q1, cseg.data(), cw.data(), lo, hi, Q0.data(), Q1.data(), chord_val));
     return best;
   };
+  auto cfill = [&](const V2& p, long lo, long hi, std::vector<double>& D) {
+    D.resize(static_cast<std::size_t>(hi - lo + 1));
+    for (long q = lo; q <= hi; ++q) D[static_cast<std::size_t>(q - lo)] = dist2(p, cseg[static_cast<std::size_t>(q)]);
+  };
   std::vector<std::pair<V2, V2>> pj;
+  long clo = 0, chi = -1;  // chord window of the previous segment; K1: its end point's squared distances
   for (std::size_t i = 0; i + 1 < n; ++i) {
     const double li = cum[i + 1] - cum[i];
+    // the whole segment first
+    {
+      long lo, hi;
+      cwindow(cum[i], cum[i + 1], lo, hi);
+      Q0.resize(static_cast<std::size_t>(hi - lo + 1));
+      for (long q = lo; q <= hi; ++q)  // pts[i] is the previous segment's end point
+        Q0[static_cast<std::size_t>(q - lo)] = q >= clo && q <= chi ? K1[static_cast<std::size_t>(q - clo)]
+                                                                 : dist2(pts[i], cseg[static_cast<std::size_t>(q)]);
+      cfill(pts[i + 1], lo, hi, Q1);
+      K1 = Q1;
+      clo = lo;
+      chi = hi;
+      double ends;
+      const double b = poly_bound(pts[i], pts[i + 1], lo, hi, ends);
+      if (b <= eps) {
+        bound = std::max(bound, b);
+        continue;
+      }
+    }
+    // else pieces of at most half a chord, each bisected while it fails
     const long c0 = std::clamp(static_cast<long>(std::upper_bound(cu.begin(), cu.end(), 0.5 * (cum[i] + cum[i + 1])) - cu.begin()) - 1, 0L, nch - 1);
     const double hc = (cp[static_cast<std::size_t>(c0) + 1] - cp[static_cast<std::size_t>(c0)]).norm();
     const int np = std::max(1, static_cast<int>(std::ceil(li / std::max(0.5 * hc, 0.25 * eps))));
@@ -161,16 +235,22 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
       const V2 q0 = pts[i] + (pts[i + 1] - pts[i]) * (static_cast<double>(k) / np);
       const V2 q1 = pts[i] + (pts[i + 1] - pts[i]) * (static_cast<double>(k + 1) / np);
       const double uq = cum[i] + li * (k + 0.5) / np;
+      long lo, hi;
+      cwindow(uq, uq, lo, hi);
       double ends;
-      double best = poly_bound(q0, q1, uq, ends);
-      if (best > eps && ends <= eps) {
+      cfill(q0, lo, hi, Q0);
+      cfill(q1, lo, hi, Q1);
+      double best = poly_bound(q0, q1, lo, hi, ends);
+      if (best > eps && ends <= eps) {  // bisect the piece; the first part that fails decides
         pj.assign(1, {q0, q1});
         best = 0;
         int budget = max_bisections;
         while (!pj.empty()) {
           const auto [a0, a1] = pj.back();
           pj.pop_back();
-          const double b = poly_bound(a0, a1, uq, ends);
+          cfill(a0, lo, hi, Q0);
+          cfill(a1, lo, hi, Q1);
+          const double b = poly_bound(a0, a1, lo, hi, ends);
           if (b > eps && ends <= eps && (a1 - a0).norm() > fine && --budget > 0) {
             const V2 am = 0.5 * (a0 + a1);
             pj.push_back({a0, am});
@@ -178,6 +258,7 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
             continue;
           }
           best = std::max(best, b);
+          if (best > eps) break;  // the piece fails
         }
       }
       bound = std::max(bound, best);
@@ -234,6 +315,10 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   std::vector<double> cum(n, 0.0);
   for (std::size_t i = 1; i < n; ++i) cum[i] = cum[i - 1] + (pts[i] - pts[i - 1]).norm();
   const double L = cum.back();
+  std::vector<Seg> segs;  // the polyline's segments and the bisectors at its interior vertices
+  std::vector<V2> wseg;
+  for (std::size_t i = 0; i + 1 < n; ++i) segs.push_back(make_seg(pts[i], pts[i + 1]));
+  for (std::size_t i = 0; i + 1 < segs.size(); ++i) wseg.push_back(bisector(segs[i], segs[i + 1]));
   const double eps = opt.fit_tolerance();
   const int spans = std::max(3, static_cast<int>(std::ceil(L / (opt.knot_spacing * mean))));
   const double dk = L / spans;
@@ -283,6 +368,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   std::vector<double> bad, add;
   std::vector<V2> front, back;
   std::vector<std::array<double, 4>> pen_band;
+  FitWork work;
   for (int round = 0; round < opt.max_refinements; ++round) {
     // clamped cubic: s'(0) = 3 (P1 − P0) / t4 and s'(L) = 3 (P_{m−1} − P_{m−2}) / (L − t_{m−1});
     // a fixed end tangent fixes the second control point for unit speed
@@ -290,14 +376,17 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
     back.assign(1, pts.back());
     if (ends.fix0) front.push_back(pts.front() + (knots.front() / 3.0) * ends.d0);
     if (ends.fix1) back.insert(back.begin(), pts.back() - ((L - knots.back()) / 3.0) * ends.d1);
-    if (!fit(samples, L, knots, pen, front, back, sp, pen_band)) return false;
+    if (!fit(samples, L, knots, pen, front, back, sp, pen_band, work)) return false;
     bool over = false;
     add.clear();
+    int ks = 3;  // span of the previous sample's parameter (the samples are ordered along the curve)
     for (Sample& s : samples) {
       // foot point by Newton steps on (s(u) − p)·s'(u) = 0, kept only where it brings the curve closer
       double u = s.u;
       V2 c0, c1, c2;
-      sp.eval(u, c0, c1, c2);
+      int k = ks;
+      sp.eval(u, k, c0, c1, c2);
+      ks = k;
       const double r_old = (c0 - s.p).norm();
       for (int it = 0; it < 2; ++it) {
         const V2 r = c0 - s.p;
@@ -305,7 +394,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
         if (!(fp > 0)) break;
         const double du = std::clamp(-r.dot(c1) / fp, -0.25 * mean, 0.25 * mean);
         u = std::clamp(u + du, 0.0, L);
-        sp.eval(u, c0, c1, c2);
+        sp.eval(u, k, c0, c1, c2);
         if (std::abs(du) < 1e-9) break;
       }
       double res = (c0 - s.p).norm();
@@ -325,7 +414,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
     }
     if (!over) {
       amap.build(samples, L);
-      if (!chain_check(sp, pts, cum, amap, eps, mean, out, bad)) return false;
+      if (!chain_check(sp, pts, segs, wseg, cum, amap, eps, mean, out, bad)) return false;
       if (bad.empty()) return true;
       std::sort(bad.begin(), bad.end());
       for (Sample& s : samples) {
