@@ -35,9 +35,12 @@ double corner_arc_gap(const CornerArc& a, double th, const std::vector<V2>& q, d
     const V2 v = x - a.c;
     if (sg * cross2(u1, v) < -slack || sg * cross2(v, u2) < -slack) return 1e300;
   }
+  std::vector<Seg> segs;
+  segs.reserve(q.size());
   for (std::size_t i = 0; i + 1 < q.size(); ++i) {
+    segs.push_back(make_seg(q[i], q[i + 1]));
     const double far = std::max((q[i] - a.c).norm(), (q[i + 1] - a.c).norm());
-    const double near = std::sqrt(seg_dist2(a.c, q[i], q[i + 1]));
+    const double near = std::sqrt(dist2(a.c, segs.back()));
     gap = std::max({gap, far - a.r, a.r - near});
   }
   const int n = std::clamp(static_cast<int>(std::ceil(th * a.r / chord)), 4, 1024);
@@ -49,8 +52,7 @@ double corner_arc_gap(const CornerArc& a, double th, const std::vector<V2>& q, d
     const V2 c1 = k == n ? a.p2 : V2(a.c + V2(std::cos(ang) * u1.x() - std::sin(ang) * u1.y(),
                                                std::sin(ang) * u1.x() + std::cos(ang) * u1.y()));
     double best = 1e300;
-    for (std::size_t i = 0; i + 1 < q.size(); ++i)
-      best = std::min(best, std::max(seg_dist2(c0, q[i], q[i + 1]), seg_dist2(c1, q[i], q[i + 1])));
+    for (const Seg& sg : segs) best = std::min(best, std::max(dist2(c0, sg), dist2(c1, sg)));
     gap = std::max(gap, std::sqrt(best) + sag);
     c0 = c1;
   }
