@@ -50,21 +50,33 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
     return b.kind == MotionKind::line && l > 1e-9 && l <= opt.max_segment;
   };
   auto dir = [&](std::size_t i) { return ((program[i].end - program[i].start) / program[i].length()).eval(); };
+  // shortest block whose direction is sure enough to lend a corner its line (corner_lead below); shorter
+  // lines between two corners' lines are parts of one compound corner (round_corners)
+  const double lead_min = std::max(0.02, 2.0 * opt.tolerance);
   // Is the vertex at the start of micro-segment q (after micro-segment q − 1) a corner that ends a run?
-  // It turns more than max_turn, and more than max_fit_turn or with a straight side (the block on
-  // either side continues the one beyond it within 1e-3 rad). A vertex turning between the two with
-  // curved micro-segments on both sides (a crease in a free-form surface) stays inside the run, whose
-  // curve passes it within the fit tolerance.
-  auto straight_pair = [&](long a) {  // micro-segments a and a + 1 continue each other
+  // It turns more than max_turn, and more than max_fit_turn or with straight sides (the block on each
+  // side continues the one beyond it within 1e-3 rad). A vertex turning between the two where a curve
+  // meets it (a crease of a free-form surface, or a curve running into a straight side) stays inside
+  // the run, whose curve passes it within the fit tolerance.
+  auto straight_pair = [&](long a) {  // line blocks a and a + 1 continue each other
     if (a < 0 || a + 1 >= static_cast<long>(nb)) return false;
     const auto ua = static_cast<std::size_t>(a);
-    return micro(ua) && micro(ua + 1) && turn_between(dir(ua), dir(ua + 1)) < 1e-3;
+    const auto &b0 = program[ua], &b1 = program[ua + 1];
+    return b0.kind == MotionKind::line && b1.kind == MotionKind::line && b0.length() > 1e-9 && b1.length() > 1e-9 &&
+           (b1.start - b0.end).norm() <= 1e-9 && turn_between(dir(ua), dir(ua + 1)) < 1e-3;
+  };
+  // the side of a vertex that begins with block q and goes on with step ±1 is straight: past up to
+  // three blocks shorter than lead_min (tiny CAM blocks at a corner), a block continues the next one
+  auto straight_side = [&](long q, long step) {
+    for (int k = 0; k < 3 && q >= 0 && q < static_cast<long>(nb) && program[static_cast<std::size_t>(q)].length() < lead_min; ++k)
+      q += step;
+    return straight_pair(step > 0 ? q : q - 1);
   };
   auto kept_corner = [&](std::size_t q) {
     const double th = turn_between(dir(q - 1), dir(q));
     if (th <= opt.max_turn) return false;
     if (th > opt.max_fit_turn) return true;
-    return straight_pair(static_cast<long>(q) - 2) || straight_pair(static_cast<long>(q));
+    return straight_side(static_cast<long>(q) - 1, -1) && straight_side(static_cast<long>(q), 1);
   };
   // corners between feed moves
   long prev = -1;
@@ -97,9 +109,6 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
     program_line.push_back(program[i].kind == MotionKind::line);
     tangent_join.push_back(0);
   };
-  // shortest block whose direction is sure enough to lend a corner its line (corner_lead below); shorter
-  // lines between two corners' lines are parts of one compound corner (round_corners)
-  const double lead_min = std::max(0.02, 2.0 * opt.tolerance);
   std::size_t i = 0;
   std::vector<V2> pts;
   while (i < nb) {
@@ -178,7 +187,10 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       if ((joint - (before ? b.end : b.start)).norm() > 1e-9) return false;
       const Vec3 u1 = before ? dir(static_cast<std::size_t>(q)) : dir(e);
       const Vec3 u2 = before ? dir(e) : dir(static_cast<std::size_t>(q));
-      return turn_between(u1, u2) <= opt.max_turn;
+      const double th = turn_between(u1, u2);
+      // a corner a curve runs into (the run's end block turns against its neighbour) is passed too
+      return th <= opt.max_turn ||
+             (th <= opt.max_fit_turn && !straight_side(static_cast<long>(e), before ? 1 : -1));
     };
     // A run that ends at a vertex with no lead (a corner turning more than max_turn, a change of plane
     // or feed, a cut of a run that failed its check) would meet the next block at an angle, left to
@@ -339,9 +351,12 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       if (!fit_run(pts, ends, mean, opt, rf)) return false;
       ++res.runs_smoothed;
       res.max_fit_deviation = std::max(res.max_fit_deviation, rf.bound);
-      // creases the curve passes are no kept corners (the count above took every corner)
+      // creases the curve passes, inside the run or at a lead line, are no kept corners (the count above
+      // took every corner)
       for (std::size_t q = r0 + 1; q < r1; ++q)
         if (turn_between(dir(q - 1), dir(q)) > opt.max_turn) --res.corners_kept;
+      if (lead_in && turn_between(dir(static_cast<std::size_t>(lin)), dir(r0)) > opt.max_turn) --res.corners_kept;
+      if (lead_out && turn_between(dir(r1 - 1), dir(static_cast<std::size_t>(lout))) > opt.max_turn) --res.corners_kept;
       if (lead_in) {  // the line before now ends where the curve starts
         res.blocks.back().end = first3;
         if ((res.blocks.back().end - res.blocks.back().start).norm() <= 1e-12) {

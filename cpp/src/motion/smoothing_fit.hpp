@@ -305,7 +305,7 @@ std::vector<std::size_t> sharp_vertices(const std::vector<V2>& pts, const std::v
 // curve is fitted again, so it is pulled back only where it has to be. Each round the sample
 // parameters move to their foot points on the curve, so a residual is the distance of the sample from
 // the curve. A sample still out after a few rounds gets a knot next to it (its knot span is halved,
-// down to mean/16). When every residual is within 0.8 of the fit tolerance the arc chain is built and
+// down to mean/16). When every residual is within 0.93 of the fit tolerance the arc chain is built and
 // checked both ways with rigorous bounds; where the check fails, the weights of the samples within one
 // mean segment are raised and the round repeats. False when the check still fails after
 // max_refinements rounds.
@@ -362,7 +362,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
     std::sort(samples.begin(), samples.end(), [](const Sample& x, const Sample& y) { return x.u < y.u; });
   const double ell = opt.smoothing_length;
   const double pen = ell * ell * ell * ell;
-  const double target = 0.9 * eps;
+  const double target = 0.93 * eps;
   Spline sp;
   ParamMap amap;
   std::vector<double> bad, add;

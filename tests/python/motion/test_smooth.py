@@ -361,10 +361,14 @@ def _arc_points(c, r, a0, a1, step):
     return np.column_stack([c[0] + r * np.cos(a), c[1] + r * np.sin(a), np.zeros(n)])
 
 
-def _crease(turn_deg, straight_second=False):
+def _crease(turn_deg, straight_second=False, straight_first=False):
     """Two stretches of 0.5 mm moves meeting at a vertex turning `turn_deg`: the first an arc of radius
-    20 mm bending left, the second the same bending left again (or a straight line)."""
-    first = _arc_points(np.array([0.0, 20.0]), 20.0, -np.pi / 2 - 0.5, -np.pi / 2, 0.5)  # ends at (0, 0) heading +X
+    20 mm bending left (or a straight line along +X), the second the same bending left again (or a
+    straight line)."""
+    if straight_first:
+        first = np.column_stack([np.linspace(-10.0, 0.0, 21), np.zeros(21), np.zeros(21)])
+    else:
+        first = _arc_points(np.array([0.0, 20.0]), 20.0, -np.pi / 2 - 0.5, -np.pi / 2, 0.5)  # ends at (0, 0) heading +X
     th = np.radians(turn_deg)
     u = np.array([np.cos(th), np.sin(th)])
     if straight_second:
@@ -379,10 +383,10 @@ def _crease(turn_deg, straight_second=False):
 
 @pytest.mark.parametrize("turn_deg", [45.0, 80.0])
 def test_crease_between_curved_stretches_is_passed_by_the_curve(turn_deg):
-    """A vertex turning more than max_turn (30°) but at most max_fit_turn (92°) with curved micro-segments
-    on both sides (a crease of a free-form surface) stays inside the run: one curve, tangent-continuous,
-    within the fit tolerance both ways; with max_fit_turn = 0 it is a kept corner (two runs); with a
-    straight side it is kept too."""
+    """A vertex turning more than max_turn (30°) but at most max_fit_turn (92°) where a curve meets it
+    (a crease of a free-form surface) stays inside the run: one curve, tangent-continuous, within the fit
+    tolerance both ways; with max_fit_turn = 0 it is a kept corner (two runs). A curve running into a
+    straight side is passed too; with straight sides on both sides the vertex is a kept corner."""
     eps = 0.01
     fit = FIT_SHARE * eps
     pts = _crease(turn_deg)
@@ -396,8 +400,12 @@ def test_crease_between_curved_stretches_is_passed_by_the_curve(turn_deg):
     assert _dist_to_polyline(_sample_blocks(arr, 0.0002), curve).max() <= fit + 1e-5
     st0 = nm.smooth_path(arr, eps, max_fit_turn=0.0)[3]
     assert st0["corners_kept"] == 1 and st0["runs_smoothed"] == 2
-    st1 = nm.smooth_path(nm.polyline_arrays(_crease(turn_deg, straight_second=True), 100.0), eps)[3]
-    assert st1["corners_kept"] == 1
+    pts1 = _crease(turn_deg, straight_second=True)
+    new1, _, _, st1 = nm.smooth_path(nm.polyline_arrays(pts1, 100.0), eps)
+    assert st1["corners_kept"] == 0 and st1["runs_smoothed"] == 1
+    assert _dist_to_polyline(_sample_blocks(new1, 0.0002), pts1).max() <= fit * (1 + 1e-9)
+    st2 = nm.smooth_path(nm.polyline_arrays(_crease(turn_deg, True, True), 100.0), eps)[3]
+    assert st2["corners_kept"] == 1 and st2["runs_smoothed"] == 0
 
 
 @pytest.mark.parametrize("eps", [0.01, 0.03])
