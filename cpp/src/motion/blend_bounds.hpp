@@ -17,15 +17,21 @@ namespace netshape::motion::detail {
 
 // A piece over the table nodes i0..i1 in jerk mode: its largest curvature |κ| at those nodes and the
 // largest |Δ|κ| / Δs| between neighbouring ones (table: the arc lengths of the nodes).
-inline void piece_curvature(const std::array<Vec3, 17>& Kv, const std::array<double, 17>& table, int i0, int i1,
-                            double& kmax, double& rate) noexcept {
+// (k: |κ| at the nodes, Kv[i].norm())
+inline void piece_curvature(const double (&k)[17], const std::array<double, 17>& table, int i0, int i1, double& kmax,
+                            double& rate) noexcept {
   kmax = rate = 0;
   for (int i = i0; i <= i1; ++i) {
     const auto ii = static_cast<std::size_t>(i);
-    kmax = std::max(kmax, Kv[ii].norm());
-    if (i > i0 && table[ii] > table[ii - 1])
-      rate = std::max(rate, std::abs(Kv[ii].norm() - Kv[ii - 1].norm()) / (table[ii] - table[ii - 1]));
+    kmax = std::max(kmax, k[ii]);
+    if (i > i0 && table[ii] > table[ii - 1]) rate = std::max(rate, std::abs(k[ii] - k[ii - 1]) / (table[ii] - table[ii - 1]));
   }
+}
+inline void piece_curvature(const std::array<Vec3, 17>& Kv, const std::array<double, 17>& table, int i0, int i1,
+                            double& kmax, double& rate) noexcept {
+  double k[17];
+  for (int i = i0; i <= i1; ++i) k[i] = Kv[static_cast<std::size_t>(i)].norm();
+  piece_curvature(k, table, i0, i1, kmax, rate);
 }
 
 // The per-axis terms of one axis for both directions of a speed change (BlendBounds::ramps) from the

@@ -34,10 +34,11 @@ void PlannerState::init_cubic_node(Node& n, const toolpath::Block& b, const Cubi
   std::array<Vec3, 17> T, Kv;
   n.segment = Segment::blend(b.start, c.c1, c.c2, b.end, source, &T, &Kv);
   n.segment.block = b;  // the chord (kind line) with the block's feed and line number
-  BlendBounds tab;
-  tab.fill(T, Kv);
-  tab.bounds(0, 16, n.tangent_bound, n.curvature_bound);
-  tab.ramps(0, 16, n.tangent_bound, n.curvature_bound, n.ramp_tangent, n.ramp_curvature);
+  CubicTable& ct = cubic_table(source);
+  ct.bounds.fill(T, Kv);
+  for (std::size_t i = 0; i < 17; ++i) ct.curvature[i] = Kv[i].norm();
+  ct.bounds.bounds(0, 16, n.tangent_bound, n.curvature_bound);
+  ct.bounds.ramps(0, 16, n.tangent_bound, n.curvature_bound, n.ramp_tangent, n.ramp_curvature);
   n.geometry = Geometry::in_node;
 }
 
@@ -49,10 +50,8 @@ void PlannerState::init_cubic_node(Node& n, const toolpath::Block& b, const Cubi
 void PlannerState::split_cubic_block() noexcept {
   const Node base = node(tail_ - 1);
   const Segment& g = base.segment;
-  std::array<Vec3, 17> T, Kv;
-  bezier_node_frames(g.ctrl, T, Kv);  // as init_cubic_node's Segment::blend gave them
-  BlendBounds tab;
-  tab.fill(T, Kv);
+  const CubicTable& ct = cubic_table(base.block);  // from init_cubic_node (no other cubic of its parity since)
+  const BlendBounds& tab = ct.bounds;
   const double L = g.full_length, a = g.trim_start, b = L - g.trim_end;
   const double sliver = 1e-6 * L;  // cuts closer than this to a window end are dropped
   int step = 16 / cubic_piece_count();
@@ -91,7 +90,7 @@ void PlannerState::split_cubic_block() noexcept {
                               i0 + 1, 16);
     tab.bounds(i0, i1, x.tangent_bound, x.curvature_bound);
     tab.ramps(i0, i1, x.tangent_bound, x.curvature_bound, x.ramp_tangent, x.ramp_curvature);
-    piece_curvature(Kv, g.table, i0, i1, x.segment.curvature, x.segment.curvature_rate);
+    piece_curvature(ct.curvature, g.table, i0, i1, x.segment.curvature, x.segment.curvature_rate);
     x.extent = Extent::settled;
     finish_piece(x, base, k, m, v_prev);
     if (k == 0) {

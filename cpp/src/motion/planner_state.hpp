@@ -17,6 +17,7 @@
 #include <limits>
 #include <vector>
 
+#include "blend_bounds.hpp"
 #include "line_blend.hpp"
 #include "planner_geometry.hpp"
 #include "netshape/motion/cubic.hpp"
@@ -138,6 +139,13 @@ struct PassRecord {
   SpeedBound bound = SpeedBound::path;  ///< SpeedBound::path: w = w0 + beta[0]
 };
 
+/// What init_cubic_node() finds on a cubic block's arc-length table and split_cubic_block() cuts it
+/// with: the per-interval bounds and the curvature |κ| at the 17 table nodes.
+struct CubicTable {
+  BlendBounds bounds;
+  double curvature[17] = {};
+};
+
 /// The planner's state and operations. Planner's streaming calls run the operations of the same
 /// name here; its queries read the state directly.
 class PlannerState {
@@ -202,8 +210,9 @@ class PlannerState {
   /// Why a cubic block is not valid (a static message naming the field), or nullptr.
   static const char* cubic_error(const toolpath::Block& b, const CubicControls& c) noexcept;
   /// n becomes the whole cubic block as one node (Geometry::in_node, kind blend, its table filled)
-  /// with bounds over all of it; feed cap, limits, junction and extent: the caller.
-  static void init_cubic_node(Node& n, const toolpath::Block& b, const CubicControls& c, long source) noexcept;
+  /// with bounds over all of it; feed cap, limits, junction and extent: the caller. The interval
+  /// bounds of its table stay in cubic_table(source) for split_cubic_block().
+  void init_cubic_node(Node& n, const toolpath::Block& b, const CubicControls& c, long source) noexcept;
   /// Pieces split_last_block() cuts a cubic block into (runs of table intervals).
   int cubic_piece_count() const noexcept { return jerk_limited_ ? 4 : 16; }
   /// split_last_block() for a cubic block: its trimmed window cut at table nodes, bounds per piece.
@@ -211,6 +220,9 @@ class PlannerState {
   /// Jerk mode: whether the curvature vectors k1, k2 [1/mm] at a tangent joint next to a cubic block
   /// agree up to the rounding of the curves that meet there (no curvature step).
   static bool curvature_continuous(const Vec3& k1, const Vec3& k2) noexcept;
+
+  /// The table of the cubic block `source` (see CubicTable).
+  CubicTable& cubic_table(long source) noexcept { return cubic_tables_[static_cast<std::size_t>(source) & 1u]; }
 
   // --- corner blends (planner_blend.cpp) ---
   /// The blend rule's corner between the previous block's node `prev` (ring index) and the new
@@ -243,6 +255,9 @@ class PlannerState {
   const LineBlendKernels* line_blend_kernels_ = nullptr;
   const LineBlendTables* line_blend_tables_ = nullptr;
 
+  // tables of the last two cubic blocks pushed, by the parity of their source: the block whose end is
+  // not known yet (held whole) and the one push() is building
+  CubicTable cubic_tables_[2];
   std::vector<Node> nodes_;        // the ring
   std::vector<PassRecord> passes_; // pass record of each node, same slot
   Node scratch_;                   // a new node push() cannot build in its ring slot
