@@ -64,41 +64,43 @@ inline void ramp_terms(double tx, double tn, double kx, double kn, double Uabs, 
 // same kind of margin from the second differences of the signed values. ramps() turns them into the
 // per-axis terms of the axis box for each direction of a speed change (see there).
 struct BlendBounds {
-  double mu[16][3], mk[16][3], du[16][3], dk[16][3];  // raw maxima per table interval
-  double tmax[16][3], tmin[16][3], kmax[16][3], kmin[16][3];  // signed extremes per interval
-  double st[16][3], sk[16][3];  // largest second difference of the signed values per interval
+  // per axis c and table interval r (axis-major, so the loops over the nodes run on contiguous rows)
+  double mu[3][16], mk[3][16], du[3][16], dk[3][16];  // raw maxima per table interval
+  double tmax[3][16], tmin[3][16], kmax[3][16], kmin[3][16];  // signed extremes per interval
+  double st[3][16], sk[3][16];  // largest second difference of the signed values per interval
   void fill(const std::array<Vec3, 17>& T, const std::array<Vec3, 17>& Kv) noexcept {
-    double t[17][3], k[17][3], dt[17][3], dkk[17][3], ds[17][3], dks[17][3];
-    for (int i = 0; i < 17; ++i)
-      for (int c = 0; c < 3; ++c) {
-        t[i][c] = std::abs(T[static_cast<std::size_t>(i)][c]);
-        k[i][c] = std::abs(Kv[static_cast<std::size_t>(i)][c]);
+    // per axis as arrays (Eigen vectorises them; abs, max and min are exact, and the second
+    // differences keep the scalar order (a − 2b) + c): the signed node values u_c, κn_c, their
+    // absolute values, and the absolute second differences of all four (0 at the two end nodes)
+    using Nodes = Eigen::Array<double, 17, 1>;
+    using Intervals = Eigen::Array<double, 16, 1>;
+    const auto second = [](const Nodes& x) {
+      Nodes d;
+      d[0] = d[16] = 0.0;
+      d.segment<15>(1) = (x.head<15>() - 2.0 * x.segment<15>(1) + x.tail<15>()).abs();
+      return d;
+    };
+    const auto upper = [](const Nodes& x, double* out) {
+      Eigen::Map<Intervals>{out} = x.head<16>().max(x.tail<16>());
+    };
+    for (int c = 0; c < 3; ++c) {
+      Nodes ts, ks;
+      for (std::size_t i = 0; i < 17; ++i) {
+        ts[static_cast<Eigen::Index>(i)] = T[i][c];
+        ks[static_cast<Eigen::Index>(i)] = Kv[i][c];
       }
-    for (int c = 0; c < 3; ++c)  // ends: none
-      dt[0][c] = dkk[0][c] = dt[16][c] = dkk[16][c] = ds[0][c] = dks[0][c] = ds[16][c] = dks[16][c] = 0.0;
-    for (int i = 1; i <= 15; ++i)
-      for (int c = 0; c < 3; ++c) {
-        const auto im = static_cast<std::size_t>(i - 1), ii = static_cast<std::size_t>(i),
-                   ip = static_cast<std::size_t>(i + 1);
-        dt[i][c] = std::abs(t[i - 1][c] - 2 * t[i][c] + t[i + 1][c]);
-        dkk[i][c] = std::abs(k[i - 1][c] - 2 * k[i][c] + k[i + 1][c]);
-        ds[i][c] = std::abs(T[im][c] - 2 * T[ii][c] + T[ip][c]);
-        dks[i][c] = std::abs(Kv[im][c] - 2 * Kv[ii][c] + Kv[ip][c]);
-      }
-    for (int r = 0; r < 16; ++r)
-      for (int c = 0; c < 3; ++c) {
-        const auto r0 = static_cast<std::size_t>(r), r1 = static_cast<std::size_t>(r + 1);
-        mu[r][c] = std::max(t[r][c], t[r + 1][c]);
-        mk[r][c] = std::max(k[r][c], k[r + 1][c]);
-        du[r][c] = std::max(dt[r][c], dt[r + 1][c]);
-        dk[r][c] = std::max(dkk[r][c], dkk[r + 1][c]);
-        tmax[r][c] = std::max(T[r0][c], T[r1][c]);
-        tmin[r][c] = std::min(T[r0][c], T[r1][c]);
-        kmax[r][c] = std::max(Kv[r0][c], Kv[r1][c]);
-        kmin[r][c] = std::min(Kv[r0][c], Kv[r1][c]);
-        st[r][c] = std::max(ds[r][c], ds[r + 1][c]);
-        sk[r][c] = std::max(dks[r][c], dks[r + 1][c]);
-      }
+      const Nodes t = ts.abs(), k = ks.abs();
+      upper(t, mu[c]);
+      upper(k, mk[c]);
+      upper(second(t), du[c]);
+      upper(second(k), dk[c]);
+      upper(ts, tmax[c]);
+      Eigen::Map<Intervals>{tmin[c]} = ts.head<16>().min(ts.tail<16>());
+      upper(ks, kmax[c]);
+      Eigen::Map<Intervals>{kmin[c]} = ks.head<16>().min(ks.tail<16>());
+      upper(second(ts), st[c]);
+      upper(second(ks), sk[c]);
+    }
   }
   // Per-axis terms over the table intervals [r0, r1) for a speed change along the path: dir 0 speeding
   // up (path acceleration a ≥ 0), dir 1 slowing down. On the piece u_i·a + κn_i·v² lies in [−A_i, A_i]
@@ -111,15 +113,15 @@ struct BlendBounds {
   // axis, most at the highest speed (the passes and the freeze take the lowest speed for it).
   void ramps(int r0, int r1, const Vec3& Uabs, const Vec3& Kabs, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) const noexcept {
     for (int c = 0; c < 3; ++c) {
-      double tx = tmax[r0][c], tn = tmin[r0][c], kx = kmax[r0][c], kn = kmin[r0][c], e = st[r0][c],
-             f = sk[r0][c];
+      double tx = tmax[c][r0], tn = tmin[c][r0], kx = kmax[c][r0], kn = kmin[c][r0], e = st[c][r0],
+             f = sk[c][r0];
       for (int r = r0 + 1; r < r1; ++r) {
-        tx = std::max(tx, tmax[r][c]);
-        tn = std::min(tn, tmin[r][c]);
-        kx = std::max(kx, kmax[r][c]);
-        kn = std::min(kn, kmin[r][c]);
-        e = std::max(e, st[r][c]);
-        f = std::max(f, sk[r][c]);
+        tx = std::max(tx, tmax[c][r]);
+        tn = std::min(tn, tmin[c][r]);
+        kx = std::max(kx, kmax[c][r]);
+        kn = std::min(kn, kmin[c][r]);
+        e = std::max(e, st[c][r]);
+        f = std::max(f, sk[c][r]);
       }
       tx = std::min(1.0, tx + 0.25 * e + 1e-12);
       tn = std::max(-1.0, tn - 0.25 * e - 1e-12);
@@ -136,12 +138,12 @@ struct BlendBounds {
   // bounds over the table intervals [r0, r1)
   void bounds(int r0, int r1, Vec3& U, Vec3& K) const noexcept {
     for (int c = 0; c < 3; ++c) {
-      double a = mu[r0][c], b = mk[r0][c], e = du[r0][c], f = dk[r0][c];
+      double a = mu[c][r0], b = mk[c][r0], e = du[c][r0], f = dk[c][r0];
       for (int r = r0 + 1; r < r1; ++r) {
-        a = std::max(a, mu[r][c]);
-        b = std::max(b, mk[r][c]);
-        e = std::max(e, du[r][c]);
-        f = std::max(f, dk[r][c]);
+        a = std::max(a, mu[c][r]);
+        b = std::max(b, mk[c][r]);
+        e = std::max(e, du[c][r]);
+        f = std::max(f, dk[c][r]);
       }
       U[c] = std::min(1.0, std::max(0.0, a) + 0.25 * std::max(0.0, e) + 1e-12);
       K[c] = std::max(0.0, b) * (1.0 + 1e-9) + 0.25 * std::max(0.0, f);
