@@ -47,11 +47,17 @@ void PlannerState::init_cubic_node(Node& n, const toolpath::Block& b, const Cubi
 // cubics, below); a piece's bounds are those of the table
 // intervals it touches (valid on any part of them, so on the trimmed end pieces too). In jerk mode
 // each piece gets the largest curvature and |dκ/ds| at its table nodes, as the corner blends' pieces.
+// The whole-block node becomes the first piece; the others are written in place in the ring slots
+// after it (free: push() keeps nodes_per_push of them), each with the whole block's segment and
+// every Node field the planner reads before the freeze set.
 void PlannerState::split_cubic_block() noexcept {
-  const Node base = node(tail_ - 1);
-  const Segment& g = base.segment;
-  const CubicTable& ct = cubic_table(base.block);  // from init_cubic_node (no other cubic of its parity since)
+  const long k0 = tail_ - 1;
+  Node& whole = node(k0);
+  const PieceBase base(whole);
+  const long block = whole.block;
+  const CubicTable& ct = cubic_table(block);  // from init_cubic_node (no other cubic of its parity since)
   const BlendBounds& tab = ct.bounds;
+  const Segment& g = whole.segment;  // (the first piece's below: its trims and curvature change)
   const double L = g.full_length, a = g.trim_start, b = L - g.trim_end;
   const double sliver = 1e-6 * L;  // cuts closer than this to a window end are dropped
   int step = 16 / cubic_piece_count();
@@ -59,8 +65,8 @@ void PlannerState::split_cubic_block() noexcept {
     // a gentle cubic (the centripetal part takes at most 2 % of any axis' budget at the fastest speed
     // the tangent bounds allow) is one piece, a moderate one (at most 25 %) four: finer pieces would
     // only relax a bound that hardly binds, and each piece costs a node and its passes
-    const Vec3& U = base.tangent_bound;  // the whole cubic's bounds (init_cubic_node)
-    const Vec3& K = base.curvature_bound;
+    const Vec3& U = whole.tangent_bound;  // the whole cubic's bounds (init_cubic_node)
+    const Vec3& K = whole.curvature_bound;
     double vcap = base.feed_cap;
     for (int i = 0; i < 3; ++i)
       if (U[i] > 0) vcap = std::min(vcap, limits_.velocity[i] / U[i]);
@@ -78,9 +84,17 @@ void PlannerState::split_cubic_block() noexcept {
   }
   cuts[nc++] = b;
   const int m = nc - 1;
+  const AxisMinima minima = axis_minima(g);  // the same axes move on every piece
   double v_prev = 0;
   for (int k = 0; k < m; ++k) {
-    Node x = base;
+    Node& x = k == 0 ? whole : node(k0 + k);
+    if (k > 0) {
+      x.segment = g;
+      x.block = block;
+      x.feed_cap = base.feed_cap;
+      x.v_corner = base.v_corner;
+      x.geometry = Geometry::in_node;
+    }
     const double s0 = cuts[k], s1 = cuts[k + 1];
     x.segment.trim_start = s0;
     x.segment.trim_end = L - s1;
@@ -92,14 +106,11 @@ void PlannerState::split_cubic_block() noexcept {
     tab.ramps(i0, i1, x.tangent_bound, x.curvature_bound, x.ramp_tangent, x.ramp_curvature);
     piece_curvature(ct.curvature, g.table, i0, i1, x.segment.curvature, x.segment.curvature_rate);
     x.extent = Extent::settled;
-    finish_piece(x, base, k, m, v_prev);
-    if (k == 0) {
-      node(tail_ - 1) = x;
-      update_pass(tail_ - 1);
-    } else {
-      append(x);
-    }
+    finish_piece(x, base, k, m, v_prev, &minima);
+    update_pass(k0 + k);
+    if (k > 0) pass(k0 + k).w_backward = 0.0;
   }
+  tail_ = k0 + m;
 }
 
 // Two curves that meet with equal curvature vectors up to rounding (the pieces of one C² spline, whose

@@ -227,7 +227,16 @@ void PlannerState::finish() noexcept {
   }
 }
 
-void PlannerState::set_limits(Node& n, const Vec3* line_dir) const noexcept {
+AxisMinima PlannerState::axis_minima(const Segment& s) const noexcept {
+  const Vec3 moving = s.moving_axes();
+  AxisMinima m;
+  m.acceleration = min_over_moving(limits_.acceleration, moving);
+  m.velocity = min_over_moving(limits_.velocity, moving);
+  m.jerk = min_over_moving(limits_.jerk, moving);
+  return m;
+}
+
+void PlannerState::set_limits(Node& n, const Vec3* line_dir, const AxisMinima* minima) const noexcept {
   const Segment& s = n.segment;
   if (s.kind == SegmentKind::line && !jerk_limited_ && options_.rule != CornerRule::paper) {
     // the common case below without the moving-axes minima it does not use
@@ -238,10 +247,8 @@ void PlannerState::set_limits(Node& n, const Vec3* line_dir) const noexcept {
     n.path_jerk = inf;
     return;
   }
-  const Vec3 moving = s.moving_axes();
-  const double amin = min_over_moving(limits_.acceleration, moving);
-  const double vmin = min_over_moving(limits_.velocity, moving);
-  const double jmin = min_over_moving(limits_.jerk, moving);
+  const AxisMinima mm = minima ? *minima : axis_minima(s);
+  const double amin = mm.acceleration, vmin = mm.velocity, jmin = mm.jerk;
   const bool jerk = std::isfinite(jmin);
   n.bound = SpeedBound::path;
   if (s.kind == SegmentKind::line) {
@@ -344,15 +351,16 @@ void PlannerState::split_last_block() noexcept {
     update_pass(tail_ - 1);
     return;
   }
-  const Node base = p;
-  const double s0 = base.segment.trim_start, s1 = base.segment.full_length - base.segment.trim_end;
-  const int m = arc_piece_count(base.segment);
+  const Node whole = p;
+  const PieceBase base(whole);
+  const double s0 = whole.segment.trim_start, s1 = whole.segment.full_length - whole.segment.trim_end;
+  const int m = arc_piece_count(whole.segment);
   double v_prev = 0;
   for (int k = 0; k < m; ++k) {
-    Node x = base;
+    Node x = whole;
     const double a = s0 + (s1 - s0) * k / m, b = k + 1 == m ? s1 : s0 + (s1 - s0) * (k + 1) / m;
     x.segment.trim_start = a;
-    x.segment.trim_end = base.segment.full_length - b;
+    x.segment.trim_end = whole.segment.full_length - b;
     arc_bounds(x.segment, a, b, x.tangent_bound, x.curvature_bound, x.ramp_tangent, x.ramp_curvature);
     finish_piece(x, base, k, m, v_prev);
     if (k == 0) {
@@ -364,9 +372,10 @@ void PlannerState::split_last_block() noexcept {
   }
 }
 
-void PlannerState::finish_piece(Node& x, const Node& base, int k, int m, double& v_prev) noexcept {
+void PlannerState::finish_piece(Node& x, const PieceBase& base, int k, int m, double& v_prev,
+                                const AxisMinima* minima) noexcept {
   x.v_max = base.feed_cap;
-  set_limits(x);
+  set_limits(x, nullptr, minima);
   x.start.curvature_step = x.end.curvature_step = false;  // set_limits gave the piece its full jerk again
   if (k == 0 && base.start.curvature_step) mark_curvature_step(x, true);
   if (k + 1 == m && base.end.curvature_step) mark_curvature_step(x, false);

@@ -122,6 +122,19 @@ struct Node {
   double t0 = 0;  ///< start time once frozen [s]
 };
 
+/// What the pieces of a block take from its whole-block node (finish_piece).
+struct PieceBase {
+  double feed_cap = 0, v_corner = 0;
+  NodeEnd start, end;
+  explicit PieceBase(const Node& n) noexcept : feed_cap(n.feed_cap), v_corner(n.v_corner), start(n.start), end(n.end) {}
+};
+
+/// The smallest velocity, acceleration and jerk limit of the axes that move on a segment
+/// (Segment::moving_axes; of all axes if none moves). Every piece of a block or blend has the same.
+struct AxisMinima {
+  double velocity = 0, acceleration = 0, jerk = 0;
+};
+
 /// Compact copy of what the backward pass reads and writes, so it walks small records, not Nodes.
 /// The reach of a trapezoidal node is w = min_i alpha_i·w0 + beta_i in squared speeds w = v²: lines
 /// alpha = (1, 0, 0), beta = (2·a·L, inf, inf); curved pieces the axis box, alpha_i = U_i/(U_i + 2·L·K_i),
@@ -180,9 +193,12 @@ class PlannerState {
   /// Length the passes plan with: the node's length minus its windows (and, while the blend at its
   /// end is pending, minus the largest end trim a blend may take) [mm].
   double planned_length(const Node& n) const noexcept;
+  /// The limit minima over the axes that move on s.
+  AxisMinima axis_minima(const Segment& s) const noexcept;
   /// Cruise cap, path acceleration and jerk, speed bound of n from its segment and bounds.
-  /// n.v_max holds the programmed feed cap on entry; line_dir: a line's unit direction if known.
-  void set_limits(Node& n, const Vec3* line_dir = nullptr) const noexcept;
+  /// n.v_max holds the programmed feed cap on entry; line_dir: a line's unit direction if known;
+  /// minima: axis_minima(n.segment) if known.
+  void set_limits(Node& n, const Vec3* line_dir = nullptr, const AxisMinima* minima = nullptr) const noexcept;
   /// The reach coefficients of x (see PassRecord) from its length and n's speed bound and terms.
   void set_reach(PassRecord& x, const Node& n) const noexcept;
   /// Pass record of node k from the node (w_backward and line_blend: the caller).
@@ -195,8 +211,9 @@ class PlannerState {
   void split_last_block() noexcept;
   /// Piece k of m of a block cut into pieces (its geometry and bounds already set): speed cap and
   /// limits, the block's junction, window and curvature-step marks on its first / last piece, and the
-  /// junction speed from the piece before (v_prev, updated to this piece's cap).
-  void finish_piece(Node& x, const Node& base, int k, int m, double& v_prev) noexcept;
+  /// junction speed from the piece before (v_prev, updated to this piece's cap). minima: as set_limits.
+  void finish_piece(Node& x, const PieceBase& base, int k, int m, double& v_prev,
+                    const AxisMinima* minima = nullptr) noexcept;
   /// Jerk mode: a curvature step at the start (or end) of n; its S-curve jerk is halved once.
   static void mark_curvature_step(Node& n, bool at_start) noexcept;
   /// Jerk mode: largest speed at a tangent junction where the curvature vector steps by dk [1/mm]:
