@@ -19,33 +19,36 @@ double PlannerState::reach_squared(const PassRecord& n, double w0) const noexcep
 // the smallest of its junction limit and what it reaches from the next node's. Nodes before
 // dirty_from did not change themselves, so the pass stops at the first of them whose value stays.
 void PlannerState::back_pass(long dirty_from) noexcept {
-  double w_next = 0.0;  // the buffer always ends at rest (squared speeds: no root per node)
   if (tail_ <= frozen_) return;
-  for (long k = tail_ - 1; k >= frozen_; --k) {
-    PassRecord& n = passes_[ring_slot(k)];
+  PassRecord* const rec = passes_.data();
+  const std::size_t mask = ring_mask_;
+  const bool jerk = jerk_limited_;
+  const long first = frozen_;
+  double w_next = 0.0;  // the buffer always ends at rest (squared speeds: no root per node)
+  for (long k = tail_ - 1; k >= first; --k) {
+    PassRecord& n = rec[static_cast<std::size_t>(k) & mask];
     double w;
     if (n.line_blend >= 0) {
       // a line-blend node: its pieces from the last to the first
       LineBlendRecord& r = line_blends_[static_cast<std::size_t>(n.line_blend)];
       w = w_next;
       for (int p = r.np - 1; p >= 0; --p) {
-        w = std::min(std::min(r.w_junction[p], r.alpha[0][p] * w + r.beta[0][p]),
-                     std::min(r.alpha[1][p] * w + r.beta[1][p], r.alpha[2][p] * w + r.beta[2][p]));
+        w = min_of(min_of(r.w_junction[p], r.alpha[0][p] * w + r.beta[0][p]),
+                   min_of(r.alpha[1][p] * w + r.beta[1][p], r.alpha[2][p] * w + r.beta[2][p]));
         if (k < dirty_from && w == r.w_backward[p]) {  // so are the pieces before it (and w == n.w_backward below)
           w = r.w_backward[0];
           break;
         }
         r.w_backward[p] = w;
       }
+    } else if (!jerk) {
+      // Lee & Lee eq. 3 (trapezoid; on curves the axis box), capped by the junction limit: the min of
+      // three affine terms (on a line alpha_down = (1, 0, 0), beta_down = (2·a·L, inf, inf): the first
+      // term is 1·w + b = w + b exactly, the others +inf)
+      w = min_of(min_of(n.w_junction, n.alpha_down[0] * w_next + n.beta_down[0]),
+                 min_of(n.alpha_down[1] * w_next + n.beta_down[1], n.alpha_down[2] * w_next + n.beta_down[2]));
     } else {
-      // Lee & Lee eq. 3 (trapezoid; on curves the axis box), capped by the junction limit (without
-      // jerk limits reach_squared is the min of three affine terms, inlined here; on a line only the
-      // first is finite: the same value with a shorter dependency chain)
-      w = jerk_limited_                   ? std::min(n.w_junction, reach_squared(n, w_next))
-          : n.bound == SpeedBound::path   ? std::min(n.w_junction, w_next + n.beta[0])
-                                          : std::min(std::min(n.w_junction, n.alpha_down[0] * w_next + n.beta_down[0]),
-                                                     std::min(n.alpha_down[1] * w_next + n.beta_down[1],
-                                                              n.alpha_down[2] * w_next + n.beta_down[2]));
+      w = std::min(n.w_junction, reach_squared(n, w_next));
     }
     if (k < dirty_from && w == n.w_backward) break;  // nothing changes further back
     n.w_backward = w;

@@ -323,11 +323,11 @@ void box_reach(double L, const Vec3& U, const Vec3& K, const Vec3& A, double (&a
 void PlannerState::set_reach(PassRecord& x, const Node& n) const noexcept {
   x.bound = n.bound;
   if (n.bound == SpeedBound::path) {
-    x.alpha[0] = 1.0;
-    x.beta[0] = 2.0 * x.path_accel * x.length;
+    x.alpha[0] = x.alpha_down[0] = 1.0;
+    x.beta[0] = x.beta_down[0] = 2.0 * x.path_accel * x.length;
     for (int i = 1; i < 3; ++i) {
-      x.alpha[i] = 0.0;
-      x.beta[i] = inf;
+      x.alpha[i] = x.alpha_down[i] = 0.0;
+      x.beta[i] = x.beta_down[i] = inf;
     }
     return;
   }

@@ -35,6 +35,10 @@ constexpr int max_blend_pieces = 8;
 /// Ring nodes one push() may add: the previous arc's pieces, the blend pieces, the new block.
 constexpr long nodes_per_push = max_arc_pieces + max_blend_pieces + 2;
 
+/// std::min(a, b) by value, (b < a) ? b : a: the same result, but GCC keeps it in registers (one
+/// minsd) where std::min's reference result sometimes goes through the stack.
+inline double min_of(double a, double b) noexcept { return b < a ? b : a; }
+
 /// Smallest of `per_axis` over the axes that move (moving[i] > 0); all axes if none moves.
 inline double min_over_moving(const Vec3& per_axis, const Vec3& moving) {
   double m = inf;
@@ -139,17 +143,18 @@ struct AxisMinima {
 /// The reach of a trapezoidal node is w = min_i alpha_i·w0 + beta_i in squared speeds w = v²: lines
 /// alpha = (1, 0, 0), beta = (2·a·L, inf, inf); curved pieces the axis box, alpha_i = U_i/(U_i + 2·L·K_i),
 /// beta_i = 2·L·A_i/(U_i + 2·L·K_i) with the speeding-up terms of the node (Node::ramp_tangent[0], ...);
-/// alpha_down, beta_down the same with its slowing-down terms, for the backward pass; set by
-/// update_pass() so the passes need no division.
+/// alpha_down, beta_down the same with its slowing-down terms (on lines equal to alpha, beta), for the
+/// backward pass; set by update_pass() so the passes need no division. What the backward pass reads
+/// without jerk limits comes first (w_junction to line_blend).
 struct PassRecord {
   double w_junction = 0;  ///< squared junction limit [mm²/s²]
   double w_backward = 0;  ///< squared speed the backward pass allows at the start [mm²/s²]
-  double length = 0;      ///< planned length (see planned_length) [mm]
-  double path_accel = 1, path_jerk = 0;
-  double alpha[3] = {1, 0, 0}, beta[3] = {0, 0, 0};
   double alpha_down[3] = {1, 0, 0}, beta_down[3] = {0, 0, 0};
   int line_blend = -1;                  ///< Geometry::line_blend_record: its slot in line_blends_, else −1
   SpeedBound bound = SpeedBound::path;  ///< SpeedBound::path: w = w0 + beta[0]
+  double length = 0;                    ///< planned length (see planned_length) [mm]
+  double path_accel = 1, path_jerk = 0;
+  double alpha[3] = {1, 0, 0}, beta[3] = {0, 0, 0};
 };
 
 /// What init_cubic_node() finds on a cubic block's arc-length table and split_cubic_block() cuts it
