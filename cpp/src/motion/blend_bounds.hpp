@@ -39,19 +39,30 @@ inline void piece_curvature(const std::array<Vec3, 17>& Kv, const std::array<dou
 // bounds Uabs, Kabs.
 inline void ramp_terms(double tx, double tn, double kx, double kn, double Uabs, double Kabs, double (&U)[2],
                        double (&K)[2]) noexcept {
-  // sides (U, K): speeding up (tx, kx), (−tn, −kn); slowing down (−tn, kx), (tx, −kn)
-  const double side[2][2][2] = {{{tx, kx}, {-tn, -kn}}, {{-tn, kx}, {tx, -kn}}};
-  for (int d = 0; d < 2; ++d) {
-    double u = 0, k = -std::numeric_limits<double>::infinity();
-    for (int q = 0; q < 2; ++q)
-      if (side[d][q][0] > 0) {
-        u = std::max(u, side[d][q][0]);
-        k = std::max(k, side[d][q][1]);
-      }
-    if (!(u > 0)) k = 0;
-    U[d] = std::min(u, Uabs);
-    K[d] = std::min(k, Kabs);
+  // sides (U, K): speeding up (tx, kx), (−tn, −kn); slowing down (−tn, kx), (tx, −kn). A side counts
+  // when its U is > 0; the term is the larger U and the larger K of the sides that count (0, 0 if
+  // none). Both sides count for both directions when tx > 0 and tn < 0: then both directions get
+  // max(tx, −tn) and max(kx, −kn). (The maxima as (a < b) ? b : a, std::max's result.)
+  const bool up = tx > 0, down = -tn > 0;
+  double u0, k0, u1, k1;
+  if (up && down) {
+    u0 = u1 = tx < -tn ? -tn : tx;
+    k0 = k1 = kx < -kn ? -kn : kx;
+  } else if (up) {
+    u0 = u1 = tx;
+    k0 = kx;
+    k1 = -kn;
+  } else if (down) {
+    u0 = u1 = -tn;
+    k0 = -kn;
+    k1 = kx;
+  } else {
+    u0 = u1 = k0 = k1 = 0.0;
   }
+  U[0] = Uabs < u0 ? Uabs : u0;
+  U[1] = Uabs < u1 ? Uabs : u1;
+  K[0] = Kabs < k0 ? Kabs : k0;
+  K[1] = Kabs < k1 ? Kabs : k1;
 }
 
 // Per-axis bounds of a blend's unit tangent |u_i| (U) and curvature vector |κ n_i| (K) over runs of
