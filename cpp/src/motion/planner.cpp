@@ -57,6 +57,7 @@ PlannerState::PlannerState(const AxisLimits& limits, const PlanOptions& options)
   options_.validate();
   jerk_limited_ = limits_.jerk_limited();
   inv_acceleration_ = limits_.acceleration.cwiseInverse();
+  acceleration2_ << limits_.acceleration.array(), limits_.acceleration.array();
   line_blend_kernels_ = &line_blend_kernels();
   line_blend_tables_ = &line_blend_tables();
   // power-of-two sizes (see ring_slot()): the ring holds one push's nodes plus 12 per block of

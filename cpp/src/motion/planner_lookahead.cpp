@@ -91,21 +91,19 @@ bool PlannerState::freeze_next() noexcept {
     // the lowest speed of the profile, min(vs, ve): A_i − K_i·min(vs², ve²) and K_i = 0 there
     const double lr = std::max(0.0, len - std::min(ws, len) - std::min(we, len));
     const double S = vs * vs + ve * ve, wlow = std::min(vs * vs, ve * ve);
-    double num[6], den[6], U[6], Ae[6], Ke[6];
-    for (int d = 0; d < 2; ++d)
-      for (int i = 0; i < 3; ++i) {
-        const int q = 3 * d + i;
-        const double k = n.ramp_curvature[d][i];
-        U[q] = n.ramp_tangent[d][i];
-        Ke[q] = std::max(k, 0.0);
-        Ae[q] = limits_.acceleration[i] - std::min(k, 0.0) * wlow;
-        num[q] = U[q] * S + 2.0 * lr * Ae[q];
-        den[q] = 2.0 * U[q] + 2.0 * lr * Ke[q];
-      }
-    double wp = std::min({n.v_max * n.v_max, min_ratio(num, den), min_ratio(num + 3, den + 3)});
+    // the six terms (speeding up x, y, z, slowing down x, y, z) as arrays, element by element the
+    // scalar expressions (max / min against 0 as std::max / std::min; Eigen vectorises them)
+    using Six = Eigen::Array<double, 6, 1>;
+    static_assert(sizeof(n.ramp_tangent) == 6 * sizeof(double), "ramp terms are 6 packed doubles");
+    const Eigen::Map<const Six> k(n.ramp_curvature[0].data()), U(n.ramp_tangent[0].data());
+    const Six Ke = k.max(0.0);
+    const Six Ae = acceleration2_ - k.min(0.0) * wlow;
+    Six num = U * S + (2.0 * lr) * Ae;
+    const Six den = 2.0 * U + (2.0 * lr) * Ke;
+    double wp = std::min({n.v_max * n.v_max, min_ratio(num.data(), den.data()), min_ratio(num.data() + 3, den.data() + 3)});
     wp = std::max(wp, std::max(vs * vs, ve * ve));
-    for (int q = 0; q < 6; ++q) num[q] = Ae[q] - Ke[q] * wp;
-    double a = std::min(min_ratio(num, U), min_ratio(num + 3, U + 3));
+    num = Ae - Ke * wp;
+    double a = std::min(min_ratio(num.data(), U.data()), min_ratio(num.data() + 3, U.data() + 3));
     // at the curvature cap the tangential budget is 0: a floor of 1e-6·A keeps the rounding-size speed
     // differences of neighbouring pieces from turning into long ramps
     const double amin = limits_.acceleration.minCoeff();

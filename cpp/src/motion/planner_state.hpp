@@ -273,6 +273,7 @@ class PlannerState {
   PlanOptions options_;
   bool jerk_limited_ = false;     // limits_.jerk_limited()
   Vec3 inv_acceleration_ = Vec3::Zero();  // 1/A_i
+  Eigen::Array<double, 6, 1> acceleration2_ = Eigen::Array<double, 6, 1>::Zero();  // A_x, A_y, A_z twice
   // the array work of blends between two lines, for the best instruction set the CPU has
   const LineBlendKernels* line_blend_kernels_ = nullptr;
   const LineBlendTables* line_blend_tables_ = nullptr;
