@@ -318,6 +318,33 @@ void box_reach(double L, const Vec3& U, const Vec3& K, const Vec3& A, double (&a
     beta[0] = 0.0;
   }
 }
+
+// box_reach() for both directions at once when every denominator of both is > 0 (the common case),
+// as pairs (speeding up, slowing down) per axis, and without branches: den = U + 2L·max(K, 0) and
+// an = U − 2L·min(K, 0) are box_reach()'s U + 2L·K or U (K ≥ 0), U or U − 2L·K (K < 0), since adding
+// or subtracting a zero product leaves U ≥ 0 as it is. The same values. Returns false (nothing
+// written) otherwise.
+bool box_reach_both(double L, const Vec3 (&U)[2], const Vec3 (&K)[2], const Vec3& A, PassRecord& x) noexcept {
+  using Pair = Eigen::Array2d;
+  Pair den[3], an[3];
+  const double L2 = 2.0 * L;
+  for (int i = 0; i < 3; ++i) {
+    const Pair u(U[0][i], U[1][i]), k(K[0][i], K[1][i]);
+    den[i] = u + L2 * k.max(0.0);
+    an[i] = u - L2 * k.min(0.0);
+  }
+  if (!((den[0] > 0.0) && (den[1] > 0.0) && (den[2] > 0.0)).all()) return false;
+  const Pair d01 = den[0] * den[1], r = 1.0 / (d01 * den[2]);
+  const Pair rd[3] = {den[1] * den[2] * r, den[0] * den[2] * r, d01 * r};
+  for (int i = 0; i < 3; ++i) {
+    const Pair alpha = an[i] * rd[i], beta = (2.0 * L * A[i]) * rd[i];
+    x.alpha[i] = alpha[0];
+    x.alpha_down[i] = alpha[1];
+    x.beta[i] = beta[0];
+    x.beta_down[i] = beta[1];
+  }
+  return true;
+}
 }  // namespace
 
 void PlannerState::set_reach(PassRecord& x, const Node& n) const noexcept {
@@ -332,8 +359,10 @@ void PlannerState::set_reach(PassRecord& x, const Node& n) const noexcept {
     return;
   }
   // speeding up: the forward reach; slowing down: the backward pass
-  box_reach(x.length, n.ramp_tangent[0], n.ramp_curvature[0], limits_.acceleration, x.alpha, x.beta);
-  box_reach(x.length, n.ramp_tangent[1], n.ramp_curvature[1], limits_.acceleration, x.alpha_down, x.beta_down);
+  if (!box_reach_both(x.length, n.ramp_tangent, n.ramp_curvature, limits_.acceleration, x)) {
+    box_reach(x.length, n.ramp_tangent[0], n.ramp_curvature[0], limits_.acceleration, x.alpha, x.beta);
+    box_reach(x.length, n.ramp_tangent[1], n.ramp_curvature[1], limits_.acceleration, x.alpha_down, x.beta_down);
+  }
 }
 
 // Arcs are cut into pieces of at most arc_piece_angle, each with its own bounds (the axis box is much
