@@ -50,6 +50,19 @@ inline double min_over_moving(const Vec3& per_axis, const Vec3& moving) {
 /// Smallest num[i]/den[i] over the i with den[i] > 0, +inf if none; one division (the fractions are
 /// compared by cross-multiplication).
 inline double min_ratio(const double* num, const double* den) noexcept {
+  if (den[0] > 0 && den[1] > 0 && den[2] > 0) {
+    // the loop below with every denominator > 0 (the common case), on values instead of an index
+    double nb = num[0], db = den[0];
+    if (num[1] * db < nb * den[1]) {
+      nb = num[1];
+      db = den[1];
+    }
+    if (num[2] * db < nb * den[2]) {
+      nb = num[2];
+      db = den[2];
+    }
+    return nb / db;
+  }
   int best = -1;
   for (int i = 0; i < 3; ++i)
     if (den[i] > 0 && (best < 0 || num[i] * den[best] < num[best] * den[i])) best = i;
