@@ -262,12 +262,15 @@ void PlannerState::set_limits(Node& n, const Vec3* line_dir, const AxisMinima* m
   const Vec3& K = n.curvature_bound;
   if (!jerk) {
     // the per-axis box: |u_i|·v ≤ V_i and K_i·v² ≤ A_i (the tangential share is set per speed)
+    // (the smallest root is the root of the smallest ratio: sqrt is monotone and correctly rounded)
     n.bound = SpeedBound::axis_box;
     n.path_jerk = inf;
+    double wk = inf;
     for (int i = 0; i < 3; ++i) {
       if (U[i] > 0) n.v_max = std::min(n.v_max, limits_.velocity[i] / U[i]);
-      if (K[i] > 0) n.v_max = std::min(n.v_max, std::sqrt(limits_.acceleration[i] / K[i]));
+      if (K[i] > 0) wk = std::min(wk, limits_.acceleration[i] / K[i]);
     }
+    if (wk < inf) n.v_max = std::min(n.v_max, std::sqrt(wk));
     n.path_accel = amin;
     return;
   }
