@@ -76,12 +76,18 @@ void PlannerState::split_cubic_block() noexcept {
     else if (share <= 0.25) step = 4;
   }
   double cuts[18];  // the window's ends and at most 15 table nodes between them
+  int node_at[18];  // the table node a cut lies on, −1 at the window's ends
   int nc = 0;
+  node_at[nc] = -1;
   cuts[nc++] = a;
   for (int i = step; i < 16; i += step) {
     const double s = g.table[static_cast<std::size_t>(i)];
-    if (s > a + sliver && s < b - sliver) cuts[nc++] = s;
+    if (s > a + sliver && s < b - sliver) {
+      node_at[nc] = i;
+      cuts[nc++] = s;
+    }
   }
+  node_at[nc] = -1;
   cuts[nc++] = b;
   const int m = nc - 1;
   const AxisMinima minima = axis_minima(g);  // the same axes move on every piece
@@ -98,10 +104,17 @@ void PlannerState::split_cubic_block() noexcept {
     const double s0 = cuts[k], s1 = cuts[k + 1];
     x.segment.trim_start = s0;
     x.segment.trim_end = L - s1;
-    const int i0 = interval_at(g.table, s0);
-    // the intervals [i0, i1) that hold [s0, s1]: i1 is the first table node at or past s1
-    const int i1 = std::clamp(static_cast<int>(std::lower_bound(g.table.begin(), g.table.end(), s1) - g.table.begin()),
-                              i0 + 1, 16);
+    // the intervals [i0, i1) that hold [s0, s1]: i0 is the interval holding s0 (interval_at), i1 the
+    // first table node at or past s1. A cut on table node i, where the table (non-decreasing) rises
+    // on both sides of it, gives them without a search: interval_at(table[i]) = i when
+    // table[i + 1] > table[i], and the first node at or past table[i] is i when table[i − 1] < table[i]
+    const int n0 = node_at[k], n1 = node_at[k + 1];
+    const auto tab_at = [&g](int i) { return g.table[static_cast<std::size_t>(i)]; };
+    const int i0 = n0 > 0 && tab_at(n0 + 1) > tab_at(n0) ? n0 : interval_at(g.table, s0);
+    const int first_at = n1 > 0 && tab_at(n1 - 1) < tab_at(n1)
+                             ? n1
+                             : static_cast<int>(std::lower_bound(g.table.begin(), g.table.end(), s1) - g.table.begin());
+    const int i1 = std::clamp(first_at, i0 + 1, 16);
     tab.bounds(i0, i1, x.tangent_bound, x.curvature_bound);
     tab.ramps(i0, i1, x.tangent_bound, x.curvature_bound, x.ramp_tangent, x.ramp_curvature);
     piece_curvature(ct.curvature, g.table, i0, i1, x.segment.curvature, x.segment.curvature_rate);
