@@ -15,44 +15,66 @@ double PlannerState::reach_squared(const PassRecord& n, double w0) const noexcep
   return std::min({n.alpha[0] * w0 + n.beta[0], n.alpha[1] * w0 + n.beta[1], n.alpha[2] * w0 + n.beta[2]});
 }
 
+namespace {
+// Backward-pass steps over the nodes k = hi, hi − 1, ..., lo (ring records rec, slot k & mask):
+// w_next becomes each node's new squared speed, min(junction limit, reach(node, w_next)); a line-blend
+// node runs over its pieces (line_blends). With stop_if_same the steps stop at the first node whose
+// value stays (returning false). The mode and the stop test are template parameters, so the loop of
+// the common case (no jerk limits, nodes that changed) carries neither.
+template <bool stop_if_same, class Reach>
+inline bool back_steps(PassRecord* rec, std::size_t mask, LineBlendRecord* line_blends, long hi, long lo,
+                       double& w_next, const Reach& reach) noexcept {
+  for (long k = hi; k >= lo; --k) {
+    PassRecord& n = rec[static_cast<std::size_t>(k) & mask];
+    double w;
+    if (n.line_blend >= 0) {
+      // a line-blend node: its pieces from the last to the first
+      LineBlendRecord& r = line_blends[static_cast<std::size_t>(n.line_blend)];
+      w = w_next;
+      for (int p = r.np - 1; p >= 0; --p) {
+        w = min_of(min_of(r.w_junction[p], r.alpha[0][p] * w + r.beta[0][p]),
+                   min_of(r.alpha[1][p] * w + r.beta[1][p], r.alpha[2][p] * w + r.beta[2][p]));
+        if (stop_if_same && w == r.w_backward[p]) {  // so are the pieces before it (and w == n.w_backward below)
+          w = r.w_backward[0];
+          break;
+        }
+        r.w_backward[p] = w;
+      }
+    } else {
+      w = reach(n, w_next);
+    }
+    if (stop_if_same && w == n.w_backward) return false;  // nothing changes further back
+    n.w_backward = w;
+    w_next = w;
+  }
+  return true;
+}
+}  // namespace
+
 // From the tail (which ends at rest) back to the frozen prefix: each node's backward squared speed is
 // the smallest of its junction limit and what it reaches from the next node's. Nodes before
 // dirty_from did not change themselves, so the pass stops at the first of them whose value stays.
 void PlannerState::back_pass(long dirty_from) noexcept {
   if (tail_ <= frozen_) return;
   PassRecord* const rec = passes_.data();
+  LineBlendRecord* const lb = line_blends_.data();
   const std::size_t mask = ring_mask_;
-  const bool jerk = jerk_limited_;
-  const long first = frozen_;
+  const long changed_end = std::clamp(dirty_from, frozen_, tail_);  // nodes [changed_end, tail_) changed themselves
   double w_next = 0.0;  // the buffer always ends at rest (squared speeds: no root per node)
-  for (long k = tail_ - 1; k >= first; --k) {
-    PassRecord& n = rec[static_cast<std::size_t>(k) & mask];
-    double w;
-    if (n.line_blend >= 0) {
-      // a line-blend node: its pieces from the last to the first
-      LineBlendRecord& r = line_blends_[static_cast<std::size_t>(n.line_blend)];
-      w = w_next;
-      for (int p = r.np - 1; p >= 0; --p) {
-        w = min_of(min_of(r.w_junction[p], r.alpha[0][p] * w + r.beta[0][p]),
-                   min_of(r.alpha[1][p] * w + r.beta[1][p], r.alpha[2][p] * w + r.beta[2][p]));
-        if (k < dirty_from && w == r.w_backward[p]) {  // so are the pieces before it (and w == n.w_backward below)
-          w = r.w_backward[0];
-          break;
-        }
-        r.w_backward[p] = w;
-      }
-    } else if (!jerk) {
-      // Lee & Lee eq. 3 (trapezoid; on curves the axis box), capped by the junction limit: the min of
-      // three affine terms (on a line alpha_down = (1, 0, 0), beta_down = (2·a·L, inf, inf): the first
-      // term is 1·w + b = w + b exactly, the others +inf)
-      w = min_of(min_of(n.w_junction, n.alpha_down[0] * w_next + n.beta_down[0]),
-                 min_of(n.alpha_down[1] * w_next + n.beta_down[1], n.alpha_down[2] * w_next + n.beta_down[2]));
-    } else {
-      w = std::min(n.w_junction, reach_squared(n, w_next));
-    }
-    if (k < dirty_from && w == n.w_backward) break;  // nothing changes further back
-    n.w_backward = w;
-    w_next = w;
+  const auto run = [&](const auto& reach) {
+    back_steps<false>(rec, mask, lb, tail_ - 1, changed_end, w_next, reach);
+    back_steps<true>(rec, mask, lb, changed_end - 1, frozen_, w_next, reach);
+  };
+  if (!jerk_limited_) {
+    // Lee & Lee eq. 3 (trapezoid; on curves the axis box), capped by the junction limit: the min of
+    // three affine terms (on a line alpha_down = (1, 0, 0), beta_down = (2·a·L, inf, inf): the first
+    // term is 1·w + b = w + b exactly, the others +inf)
+    run([](const PassRecord& n, double w) {
+      return min_of(min_of(n.w_junction, n.alpha_down[0] * w + n.beta_down[0]),
+                    min_of(n.alpha_down[1] * w + n.beta_down[1], n.alpha_down[2] * w + n.beta_down[2]));
+    });
+  } else {
+    run([this](const PassRecord& n, double w) { return std::min(n.w_junction, reach_squared(n, w)); });
   }
 }
 
