@@ -55,8 +55,8 @@ void PlannerState::split_cubic_block() noexcept {
   Node& whole = node(k0);
   const PieceBase base(whole);
   const long block = whole.block;
-  const CubicTable& ct = cubic_table(block);  // from init_cubic_node (no other cubic of its parity since)
-  const BlendBounds& tab = ct.bounds;
+  CubicTable& ct = cubic_table(block);  // from init_cubic_node (no other cubic of its parity since)
+  BlendBounds& tab = ct.bounds;
   const Segment& g = whole.segment;  // (the first piece's below: its trims and curvature change)
   const double L = g.full_length, a = g.trim_start, b = L - g.trim_end;
   const double sliver = 1e-6 * L;  // cuts closer than this to a window end are dropped
@@ -91,6 +91,7 @@ void PlannerState::split_cubic_block() noexcept {
   cuts[nc++] = b;
   const int m = nc - 1;
   const AxisMinima minima = axis_minima(g);  // the same axes move on every piece
+  if (step == 1) tab.singles();  // the pieces are single table intervals (but at trimmed ends)
   double v_prev = 0;
   for (int k = 0; k < m; ++k) {
     Node& x = k == 0 ? whole : node(k0 + k);
@@ -115,8 +116,12 @@ void PlannerState::split_cubic_block() noexcept {
                              ? n1
                              : static_cast<int>(std::lower_bound(g.table.begin(), g.table.end(), s1) - g.table.begin());
     const int i1 = std::clamp(first_at, i0 + 1, 16);
-    tab.bounds(i0, i1, x.tangent_bound, x.curvature_bound);
-    tab.ramps(i0, i1, x.tangent_bound, x.curvature_bound, x.ramp_tangent, x.ramp_curvature);
+    if (step == 1 && i1 == i0 + 1) {
+      tab.single(i0, x.tangent_bound, x.curvature_bound, x.ramp_tangent, x.ramp_curvature);
+    } else {
+      tab.bounds(i0, i1, x.tangent_bound, x.curvature_bound);
+      tab.ramps(i0, i1, x.tangent_bound, x.curvature_bound, x.ramp_tangent, x.ramp_curvature);
+    }
     piece_curvature(ct.curvature, g.table, i0, i1, x.segment.curvature, x.segment.curvature_rate);
     x.extent = Extent::settled;
     finish_piece(x, base, k, m, v_prev, &minima);
