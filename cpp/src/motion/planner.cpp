@@ -75,6 +75,7 @@ PlannerState::PlannerState(const AxisLimits& limits, const PlanOptions& options)
   blends_.resize(static_cast<std::size_t>(pow2(options_.lookahead + 4)));
   block_mask_ = blends_.size() - 1;
   line_blends_.resize(blends_.size());
+  cubics_.resize(blends_.size());
 }
 
 void PlannerState::reset() noexcept {

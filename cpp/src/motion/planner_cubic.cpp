@@ -48,8 +48,10 @@ void PlannerState::init_cubic_node(Node& n, const toolpath::Block& b, const Cubi
 // intervals it touches (valid on any part of them, so on the trimmed end pieces too). In jerk mode
 // each piece gets the largest curvature and |dκ/ds| at its table nodes, as the corner blends' pieces.
 // The whole-block node becomes the first piece; the others are written in place in the ring slots
-// after it (free: push() keeps nodes_per_push of them), each with the whole block's segment and
-// every Node field the planner reads before the freeze set.
+// after it (free: push() keeps nodes_per_push of them), with every Node field the planner reads
+// before the freeze set. The last piece holds the whole block's segment (push() and the blend rule
+// read the curve at its end); the ones between keep only kind, trims, length, curvature and source
+// (Geometry::in_cubic_store), the rest of the segment stays once in the cubic store.
 void PlannerState::split_cubic_block() noexcept {
   const long k0 = tail_ - 1;
   Node& whole = node(k0);
@@ -92,15 +94,23 @@ void PlannerState::split_cubic_block() noexcept {
   const int m = nc - 1;
   const AxisMinima minima = axis_minima(g);  // the same axes move on every piece
   if (step == 1) tab.singles();  // the pieces are single table intervals (but at trimmed ends)
+  if (m > 2) cubics_[block_slot(block)] = g;
   double v_prev = 0;
   for (int k = 0; k < m; ++k) {
     Node& x = k == 0 ? whole : node(k0 + k);
-    if (k > 0) {
+    if (k + 1 == m && k > 0) {
       x.segment = g;
+      x.geometry = Geometry::in_node;
+    } else if (k > 0) {
+      x.segment.kind = SegmentKind::blend;
+      x.segment.full_length = L;
+      x.segment.source = g.source;
+      x.geometry = Geometry::in_cubic_store;
+    }
+    if (k > 0) {
       x.block = block;
       x.feed_cap = base.feed_cap;
       x.v_corner = base.v_corner;
-      x.geometry = Geometry::in_node;
     }
     const double s0 = cuts[k], s1 = cuts[k + 1];
     x.segment.trim_start = s0;

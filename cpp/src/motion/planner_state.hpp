@@ -88,6 +88,9 @@ enum class Geometry : std::uint8_t {
   /// A blend piece: `segment` holds kind, trims, length, curvature and source only; the control points
   /// and table stay once per blend in the blend store until segment_of() copies them in (sampling).
   in_blend_store,
+  /// A piece of a cubic block: as in_blend_store, the whole cubic (its Bézier, table and chord) kept
+  /// once per block in the cubic store (split_cubic_block()).
+  in_cubic_store,
   /// One node for a whole blend between two lines: its pieces are in the line-blend record of its
   /// block (the passes and the freeze loop over them, next() and next_segment() hand them out one by
   /// one), its geometry in the blend store.
@@ -299,6 +302,7 @@ class PlannerState {
   Node scratch_;                   // a new node push() cannot build in its ring slot
   std::vector<Segment> blends_;    // whole blend of each block in the buffer, by block slot
   std::vector<LineBlendRecord> line_blends_;  // pieces of the line-blend node of each block, by block slot
+  std::vector<Segment> cubics_;    // whole cubic block, by block slot (Geometry::in_cubic_store pieces)
   long capacity_ = 0;              // ring size
   std::size_t ring_mask_ = 0, block_mask_ = 0;  // capacity_ − 1, blends_.size() − 1
 
