@@ -7,7 +7,7 @@
 
 namespace netshape::motion::detail {
 
-double PlannerState::reach_squared(const PassRecord& n, double w0) const noexcept {
+inline double PlannerState::reach_squared(const PassRecord& n, double w0) const noexcept {
   if (std::isfinite(n.path_jerk)) {
     const double r = reach_speed(std::sqrt(w0), n.length, n.path_accel, n.path_jerk);
     return r * r;
@@ -78,7 +78,7 @@ void PlannerState::back_pass(long dirty_from) noexcept {
   }
 }
 
-bool PlannerState::buffer_ready() const noexcept {
+inline bool PlannerState::buffer_ready() const noexcept {
   // free_blocks() == 0 without its division
   return finished_ || capacity_ - (tail_ - head_) < nodes_per_push || blocks_in_buffer() >= options_.lookahead + 1;
 }

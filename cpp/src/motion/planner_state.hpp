@@ -225,6 +225,7 @@ class PlannerState {
   /// Pass record of node k from the node (w_backward and line_blend: the caller).
   void update_pass(long k) noexcept;
   /// Largest squared speed at one end of a node when the other end runs at sqrt(w0) [mm²/s²].
+  /// (Defined inline in planner_lookahead.cpp, its only user.)
   double reach_squared(const PassRecord& n, double w0) const noexcept;
   /// Node n at the tail with its pass record (w_backward = 0).
   void append(const Node& n) noexcept;
@@ -273,6 +274,7 @@ class PlannerState {
 
   // --- look-ahead: backward pass and freeze (planner_lookahead.cpp) ---
   void back_pass(long dirty_from) noexcept;
+  /// Whether the buffer is deep enough to freeze (inline in planner_lookahead.cpp, its only user).
   bool buffer_ready() const noexcept;
   bool freeze_next() noexcept;
   void freeze_line_blend(Node& n, LineBlendRecord& r, double vs, double wt) noexcept;
