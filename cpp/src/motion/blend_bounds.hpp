@@ -13,19 +13,29 @@
 
 #include "netshape/core/types.hpp"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace netshape::motion::detail {
 
 // A piece over the table nodes i0..i1 in jerk mode: its largest curvature |κ| at those nodes and the
 // largest |Δ|κ| / Δs| between neighbouring ones (table: the arc lengths of the nodes).
-inline void piece_curvature(const std::array<Vec3, 17>& Kv, const std::array<double, 17>& table, int i0, int i1,
-                            double& kmax, double& rate) noexcept {
+// (k: |κ| at the nodes, Kv[i].norm())
+inline void piece_curvature(const double (&k)[17], const std::array<double, 17>& table, int i0, int i1, double& kmax,
+                            double& rate) noexcept {
   kmax = rate = 0;
   for (int i = i0; i <= i1; ++i) {
     const auto ii = static_cast<std::size_t>(i);
-    kmax = std::max(kmax, Kv[ii].norm());
-    if (i > i0 && table[ii] > table[ii - 1])
-      rate = std::max(rate, std::abs(Kv[ii].norm() - Kv[ii - 1].norm()) / (table[ii] - table[ii - 1]));
+    kmax = std::max(kmax, k[ii]);
+    if (i > i0 && table[ii] > table[ii - 1]) rate = std::max(rate, std::abs(k[ii] - k[ii - 1]) / (table[ii] - table[ii - 1]));
   }
+}
+inline void piece_curvature(const std::array<Vec3, 17>& Kv, const std::array<double, 17>& table, int i0, int i1,
+                            double& kmax, double& rate) noexcept {
+  double k[17];
+  for (int i = i0; i <= i1; ++i) k[i] = Kv[static_cast<std::size_t>(i)].norm();
+  piece_curvature(k, table, i0, i1, kmax, rate);
 }
 
 // The per-axis terms of one axis for both directions of a speed change (BlendBounds::ramps) from the
@@ -33,19 +43,30 @@ inline void piece_curvature(const std::array<Vec3, 17>& Kv, const std::array<dou
 // bounds Uabs, Kabs.
 inline void ramp_terms(double tx, double tn, double kx, double kn, double Uabs, double Kabs, double (&U)[2],
                        double (&K)[2]) noexcept {
-  // sides (U, K): speeding up (tx, kx), (−tn, −kn); slowing down (−tn, kx), (tx, −kn)
-  const double side[2][2][2] = {{{tx, kx}, {-tn, -kn}}, {{-tn, kx}, {tx, -kn}}};
-  for (int d = 0; d < 2; ++d) {
-    double u = 0, k = -std::numeric_limits<double>::infinity();
-    for (int q = 0; q < 2; ++q)
-      if (side[d][q][0] > 0) {
-        u = std::max(u, side[d][q][0]);
-        k = std::max(k, side[d][q][1]);
-      }
-    if (!(u > 0)) k = 0;
-    U[d] = std::min(u, Uabs);
-    K[d] = std::min(k, Kabs);
+  // sides (U, K): speeding up (tx, kx), (−tn, −kn); slowing down (−tn, kx), (tx, −kn). A side counts
+  // when its U is > 0; the term is the larger U and the larger K of the sides that count (0, 0 if
+  // none). Both sides count for both directions when tx > 0 and tn < 0: then both directions get
+  // max(tx, −tn) and max(kx, −kn). (The maxima as (a < b) ? b : a, std::max's result.)
+  const bool up = tx > 0, down = -tn > 0;
+  double u0, k0, u1, k1;
+  if (up && down) {
+    u0 = u1 = tx < -tn ? -tn : tx;
+    k0 = k1 = kx < -kn ? -kn : kx;
+  } else if (up) {
+    u0 = u1 = tx;
+    k0 = kx;
+    k1 = -kn;
+  } else if (down) {
+    u0 = u1 = -tn;
+    k0 = -kn;
+    k1 = kx;
+  } else {
+    u0 = u1 = k0 = k1 = 0.0;
   }
+  U[0] = Uabs < u0 ? Uabs : u0;
+  U[1] = Uabs < u1 ? Uabs : u1;
+  K[0] = Kabs < k0 ? Kabs : k0;
+  K[1] = Kabs < k1 ? Kabs : k1;
 }
 
 // Per-axis bounds of a blend's unit tangent |u_i| (U) and curvature vector |κ n_i| (K) over runs of
@@ -58,41 +79,45 @@ inline void ramp_terms(double tx, double tn, double kx, double kn, double Uabs, 
 // same kind of margin from the second differences of the signed values. ramps() turns them into the
 // per-axis terms of the axis box for each direction of a speed change (see there).
 struct BlendBounds {
-  double mu[16][3], mk[16][3], du[16][3], dk[16][3];  // raw maxima per table interval
-  double tmax[16][3], tmin[16][3], kmax[16][3], kmin[16][3];  // signed extremes per interval
-  double st[16][3], sk[16][3];  // largest second difference of the signed values per interval
+  // per axis c and table interval r (axis-major, so the loops over the nodes run on contiguous rows)
+  double mu[3][16], mk[3][16], du[3][16], dk[3][16];  // raw maxima per table interval
+  double tmax[3][16], tmin[3][16], kmax[3][16], kmin[3][16];  // signed extremes per interval
+  double st[3][16], sk[3][16];  // largest second difference of the signed values per interval
+  // singles(): bounds() and ramps() of each table interval alone, [axis][interval]
+  double one_u[3][16], one_k[3][16], one_ua[3][16], one_ka[2][3][16];
   void fill(const std::array<Vec3, 17>& T, const std::array<Vec3, 17>& Kv) noexcept {
-    double t[17][3], k[17][3], dt[17][3], dkk[17][3], ds[17][3], dks[17][3];
-    for (int i = 0; i < 17; ++i)
-      for (int c = 0; c < 3; ++c) {
-        t[i][c] = std::abs(T[static_cast<std::size_t>(i)][c]);
-        k[i][c] = std::abs(Kv[static_cast<std::size_t>(i)][c]);
+    // per axis as arrays (Eigen vectorises them; abs, max and min are exact, and the second
+    // differences keep the scalar order (a − 2b) + c): the signed node values u_c, κn_c, their
+    // absolute values, and the absolute second differences of all four (0 at the two end nodes)
+    using Nodes = Eigen::Array<double, 17, 1>;
+    using Intervals = Eigen::Array<double, 16, 1>;
+    const auto second = [](const Nodes& x) {
+      Nodes d;
+      d[0] = d[16] = 0.0;
+      d.segment<15>(1) = (x.head<15>() - 2.0 * x.segment<15>(1) + x.tail<15>()).abs();
+      return d;
+    };
+    const auto upper = [](const Nodes& x, double* out) {
+      Eigen::Map<Intervals>{out} = x.head<16>().max(x.tail<16>());
+    };
+    for (int c = 0; c < 3; ++c) {
+      Nodes ts, ks;
+      for (std::size_t i = 0; i < 17; ++i) {
+        ts[static_cast<Eigen::Index>(i)] = T[i][c];
+        ks[static_cast<Eigen::Index>(i)] = Kv[i][c];
       }
-    for (int c = 0; c < 3; ++c)  // ends: none
-      dt[0][c] = dkk[0][c] = dt[16][c] = dkk[16][c] = ds[0][c] = dks[0][c] = ds[16][c] = dks[16][c] = 0.0;
-    for (int i = 1; i <= 15; ++i)
-      for (int c = 0; c < 3; ++c) {
-        const auto im = static_cast<std::size_t>(i - 1), ii = static_cast<std::size_t>(i),
-                   ip = static_cast<std::size_t>(i + 1);
-        dt[i][c] = std::abs(t[i - 1][c] - 2 * t[i][c] + t[i + 1][c]);
-        dkk[i][c] = std::abs(k[i - 1][c] - 2 * k[i][c] + k[i + 1][c]);
-        ds[i][c] = std::abs(T[im][c] - 2 * T[ii][c] + T[ip][c]);
-        dks[i][c] = std::abs(Kv[im][c] - 2 * Kv[ii][c] + Kv[ip][c]);
-      }
-    for (int r = 0; r < 16; ++r)
-      for (int c = 0; c < 3; ++c) {
-        const auto r0 = static_cast<std::size_t>(r), r1 = static_cast<std::size_t>(r + 1);
-        mu[r][c] = std::max(t[r][c], t[r + 1][c]);
-        mk[r][c] = std::max(k[r][c], k[r + 1][c]);
-        du[r][c] = std::max(dt[r][c], dt[r + 1][c]);
-        dk[r][c] = std::max(dkk[r][c], dkk[r + 1][c]);
-        tmax[r][c] = std::max(T[r0][c], T[r1][c]);
-        tmin[r][c] = std::min(T[r0][c], T[r1][c]);
-        kmax[r][c] = std::max(Kv[r0][c], Kv[r1][c]);
-        kmin[r][c] = std::min(Kv[r0][c], Kv[r1][c]);
-        st[r][c] = std::max(ds[r][c], ds[r + 1][c]);
-        sk[r][c] = std::max(dks[r][c], dks[r + 1][c]);
-      }
+      const Nodes t = ts.abs(), k = ks.abs();
+      upper(t, mu[c]);
+      upper(k, mk[c]);
+      upper(second(t), du[c]);
+      upper(second(k), dk[c]);
+      upper(ts, tmax[c]);
+      Eigen::Map<Intervals>{tmin[c]} = ts.head<16>().min(ts.tail<16>());
+      upper(ks, kmax[c]);
+      Eigen::Map<Intervals>{kmin[c]} = ks.head<16>().min(ks.tail<16>());
+      upper(second(ts), st[c]);
+      upper(second(ks), sk[c]);
+    }
   }
   // Per-axis terms over the table intervals [r0, r1) for a speed change along the path: dir 0 speeding
   // up (path acceleration a ≥ 0), dir 1 slowing down. On the piece u_i·a + κn_i·v² lies in [−A_i, A_i]
@@ -105,15 +130,15 @@ struct BlendBounds {
   // axis, most at the highest speed (the passes and the freeze take the lowest speed for it).
   void ramps(int r0, int r1, const Vec3& Uabs, const Vec3& Kabs, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) const noexcept {
     for (int c = 0; c < 3; ++c) {
-      double tx = tmax[r0][c], tn = tmin[r0][c], kx = kmax[r0][c], kn = kmin[r0][c], e = st[r0][c],
-             f = sk[r0][c];
+      double tx = tmax[c][r0], tn = tmin[c][r0], kx = kmax[c][r0], kn = kmin[c][r0], e = st[c][r0],
+             f = sk[c][r0];
       for (int r = r0 + 1; r < r1; ++r) {
-        tx = std::max(tx, tmax[r][c]);
-        tn = std::min(tn, tmin[r][c]);
-        kx = std::max(kx, kmax[r][c]);
-        kn = std::min(kn, kmin[r][c]);
-        e = std::max(e, st[r][c]);
-        f = std::max(f, sk[r][c]);
+        tx = std::max(tx, tmax[c][r]);
+        tn = std::min(tn, tmin[c][r]);
+        kx = std::max(kx, kmax[c][r]);
+        kn = std::min(kn, kmin[c][r]);
+        e = std::max(e, st[c][r]);
+        f = std::max(f, sk[c][r]);
       }
       tx = std::min(1.0, tx + 0.25 * e + 1e-12);
       tn = std::max(-1.0, tn - 0.25 * e - 1e-12);
@@ -130,15 +155,79 @@ struct BlendBounds {
   // bounds over the table intervals [r0, r1)
   void bounds(int r0, int r1, Vec3& U, Vec3& K) const noexcept {
     for (int c = 0; c < 3; ++c) {
-      double a = mu[r0][c], b = mk[r0][c], e = du[r0][c], f = dk[r0][c];
+      double a = mu[c][r0], b = mk[c][r0], e = du[c][r0], f = dk[c][r0];
       for (int r = r0 + 1; r < r1; ++r) {
-        a = std::max(a, mu[r][c]);
-        b = std::max(b, mk[r][c]);
-        e = std::max(e, du[r][c]);
-        f = std::max(f, dk[r][c]);
+        a = std::max(a, mu[c][r]);
+        b = std::max(b, mk[c][r]);
+        e = std::max(e, du[c][r]);
+        f = std::max(f, dk[c][r]);
       }
       U[c] = std::min(1.0, std::max(0.0, a) + 0.25 * std::max(0.0, e) + 1e-12);
       K[c] = std::max(0.0, b) * (1.0 + 1e-9) + 0.25 * std::max(0.0, f);
+    }
+  }
+  // bounds() and ramps() over each single table interval, for all 16 at once; single() then reads
+  // them. With SSE2 two intervals per step: the same operations element by element (std::min(a, b)
+  // is _mm_min_pd(b, a) and std::max(a, b) is _mm_max_pd(b, a), including ties and signed zeros;
+  // negation flips the sign bit), ramp_terms' four cases as masks; ramp_terms gives both directions
+  // the same U. Without SSE2, bounds() and ramps() per interval.
+  void singles() noexcept {
+#if defined(__SSE2__)
+    const __m128d zero = _mm_setzero_pd(), one = _mm_set1_pd(1.0), minus_one = _mm_set1_pd(-1.0),
+                  quarter = _mm_set1_pd(0.25), eps = _mm_set1_pd(1e-12), grow = _mm_set1_pd(1.0 + 1e-9),
+                  shrink = _mm_set1_pd(1.0 - 1e-9), sign = _mm_set1_pd(-0.0);
+    const auto min_ab = [](__m128d a, __m128d b) { return _mm_min_pd(b, a); };  // std::min(a, b)
+    const auto max_ab = [](__m128d a, __m128d b) { return _mm_max_pd(b, a); };  // std::max(a, b)
+    const auto pick = [](__m128d mask, __m128d a, __m128d b) {                // mask ? a : b
+      return _mm_or_pd(_mm_and_pd(mask, a), _mm_andnot_pd(mask, b));
+    };
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 16; r += 2) {
+        const auto at = [r](const double* row) { return _mm_loadu_pd(row + r); };
+        // bounds(r, r + 1)
+        const __m128d U = min_ab(one, _mm_add_pd(_mm_add_pd(max_ab(zero, at(mu[c])), _mm_mul_pd(quarter, max_ab(zero, at(du[c])))), eps));
+        const __m128d K = _mm_add_pd(_mm_mul_pd(max_ab(zero, at(mk[c])), grow), _mm_mul_pd(quarter, max_ab(zero, at(dk[c]))));
+        // ramps(r, r + 1): the signed ranges with their margins, then ramp_terms
+        const __m128d e = at(st[c]), f = at(sk[c]), kx0 = at(kmax[c]), kn0 = at(kmin[c]);
+        const __m128d tx = min_ab(one, _mm_add_pd(_mm_add_pd(at(tmax[c]), _mm_mul_pd(quarter, e)), eps));
+        const __m128d tn = max_ab(minus_one, _mm_sub_pd(_mm_sub_pd(at(tmin[c]), _mm_mul_pd(quarter, e)), eps));
+        const __m128d kx = _mm_add_pd(_mm_mul_pd(kx0, pick(_mm_cmpgt_pd(kx0, zero), grow, shrink)), _mm_mul_pd(quarter, f));
+        const __m128d kn = _mm_sub_pd(_mm_mul_pd(kn0, pick(_mm_cmplt_pd(kn0, zero), grow, shrink)), _mm_mul_pd(quarter, f));
+        const __m128d mtn = _mm_xor_pd(tn, sign), mkn = _mm_xor_pd(kn, sign);
+        const __m128d up = _mm_cmpgt_pd(tx, zero), down = _mm_cmpgt_pd(mtn, zero);
+        const __m128d u = pick(up, pick(down, max_ab(tx, mtn), tx), pick(down, mtn, zero));
+        const __m128d kb = max_ab(kx, mkn);
+        const __m128d k0 = pick(up, pick(down, kb, kx), pick(down, mkn, zero));
+        const __m128d k1 = pick(up, pick(down, kb, mkn), pick(down, kx, zero));
+        _mm_storeu_pd(one_u[c] + r, U);
+        _mm_storeu_pd(one_k[c] + r, K);
+        _mm_storeu_pd(one_ua[c] + r, min_ab(u, U));
+        _mm_storeu_pd(one_ka[0][c] + r, min_ab(k0, K));
+        _mm_storeu_pd(one_ka[1][c] + r, min_ab(k1, K));
+      }
+#else
+    for (int r = 0; r < 16; ++r) {
+      Vec3 U, K, Ua[2], Ka[2];
+      bounds(r, r + 1, U, K);
+      ramps(r, r + 1, U, K, Ua, Ka);
+      for (int c = 0; c < 3; ++c) {
+        one_u[c][r] = U[c];
+        one_k[c][r] = K[c];
+        one_ua[c][r] = Ua[0][c];
+        one_ka[0][c][r] = Ka[0][c];
+        one_ka[1][c][r] = Ka[1][c];
+      }
+    }
+#endif
+  }
+  // bounds(r, r + 1, U, K) and ramps(r, r + 1, U, K, Ua, Ka) after singles()
+  void single(int r, Vec3& U, Vec3& K, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) const noexcept {
+    for (int c = 0; c < 3; ++c) {
+      U[c] = one_u[c][r];
+      K[c] = one_k[c][r];
+      Ua[0][c] = Ua[1][c] = one_ua[c][r];
+      Ka[0][c] = one_ka[0][c][r];
+      Ka[1][c] = one_ka[1][c][r];
     }
   }
 };

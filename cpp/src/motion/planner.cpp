@@ -57,6 +57,7 @@ PlannerState::PlannerState(const AxisLimits& limits, const PlanOptions& options)
   options_.validate();
   jerk_limited_ = limits_.jerk_limited();
   inv_acceleration_ = limits_.acceleration.cwiseInverse();
+  acceleration2_ << limits_.acceleration.array(), limits_.acceleration.array();
   line_blend_kernels_ = &line_blend_kernels();
   line_blend_tables_ = &line_blend_tables();
   // power-of-two sizes (see ring_slot()): the ring holds one push's nodes plus 12 per block of
@@ -74,6 +75,7 @@ PlannerState::PlannerState(const AxisLimits& limits, const PlanOptions& options)
   blends_.resize(static_cast<std::size_t>(pow2(options_.lookahead + 4)));
   block_mask_ = blends_.size() - 1;
   line_blends_.resize(blends_.size());
+  cubics_.resize(blends_.size());
 }
 
 void PlannerState::reset() noexcept {

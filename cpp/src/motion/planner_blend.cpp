@@ -51,13 +51,17 @@ void PlannerState::append_corner_blend(long first, Node& nn, const Vec3& u1, con
     const bool pcurve = pseg.kind != SegmentKind::line, ncurve = nn.segment.kind != SegmentKind::line;
     if (pcurve) pseg.piece_polyline(sp, pseg.full_length, cp);
     if (ncurve) nn.segment.piece_polyline(0.0, d, cn);
-    double dev = 0;
-    for (int i = 1; i < 16; ++i) {
+    // the blend fits when each of the 15 points is within the tolerance of either piece (the test
+    // max_i min(d_prev,i, d_next,i) ≤ tolerance, decided point by point: the next piece is measured
+    // only when the previous one is too far, and the first point of neither fails the blend)
+    const double tol = options_.tolerance;
+    bool fits = true;
+    for (int i = 1; i < 16 && fits; ++i) {
       const Vec3 qp = bezier_point(bl, i / 16.0);
-      dev = std::max(dev, std::min(pseg.distance_to_piece(qp, sp, pseg.full_length, pcurve ? &cp : nullptr),
-                                   nn.segment.distance_to_piece(qp, 0.0, d, ncurve ? &cn : nullptr)));
+      fits = pseg.distance_to_piece(qp, sp, pseg.full_length, pcurve ? &cp : nullptr, tol) <= tol ||
+             nn.segment.distance_to_piece(qp, 0.0, d, ncurve ? &cn : nullptr, tol) <= tol;
     }
-    if (dev <= options_.tolerance) break;
+    if (fits) break;
     d *= 0.5;
   }
   node(first).segment.trim_end = d;

@@ -34,10 +34,11 @@ void PlannerState::init_cubic_node(Node& n, const toolpath::Block& b, const Cubi
   std::array<Vec3, 17> T, Kv;
   n.segment = Segment::blend(b.start, c.c1, c.c2, b.end, source, &T, &Kv);
   n.segment.block = b;  // the chord (kind line) with the block's feed and line number
-  BlendBounds tab;
-  tab.fill(T, Kv);
-  tab.bounds(0, 16, n.tangent_bound, n.curvature_bound);
-  tab.ramps(0, 16, n.tangent_bound, n.curvature_bound, n.ramp_tangent, n.ramp_curvature);
+  CubicTable& ct = cubic_table(source);
+  ct.bounds.fill(T, Kv);
+  for (std::size_t i = 0; i < 17; ++i) ct.curvature[i] = Kv[i].norm();
+  ct.bounds.bounds(0, 16, n.tangent_bound, n.curvature_bound);
+  ct.bounds.ramps(0, 16, n.tangent_bound, n.curvature_bound, n.ramp_tangent, n.ramp_curvature);
   n.geometry = Geometry::in_node;
 }
 
@@ -46,13 +47,19 @@ void PlannerState::init_cubic_node(Node& n, const toolpath::Block& b, const Cubi
 // cubics, below); a piece's bounds are those of the table
 // intervals it touches (valid on any part of them, so on the trimmed end pieces too). In jerk mode
 // each piece gets the largest curvature and |dκ/ds| at its table nodes, as the corner blends' pieces.
+// The whole-block node becomes the first piece; the others are written in place in the ring slots
+// after it (free: push() keeps nodes_per_push of them), with every Node field the planner reads
+// before the freeze set. The last piece holds the whole block's segment (push() and the blend rule
+// read the curve at its end); the ones between keep only kind, trims, length, curvature and source
+// (Geometry::in_cubic_store), the rest of the segment stays once in the cubic store.
 void PlannerState::split_cubic_block() noexcept {
-  const Node base = node(tail_ - 1);
-  const Segment& g = base.segment;
-  std::array<Vec3, 17> T, Kv;
-  bezier_node_frames(g.ctrl, T, Kv);  // as init_cubic_node's Segment::blend gave them
-  BlendBounds tab;
-  tab.fill(T, Kv);
+  const long k0 = tail_ - 1;
+  Node& whole = node(k0);
+  const PieceBase base(whole);
+  const long block = whole.block;
+  CubicTable& ct = cubic_table(block);  // from init_cubic_node (no other cubic of its parity since)
+  BlendBounds& tab = ct.bounds;
+  const Segment& g = whole.segment;  // (the first piece's below: its trims and curvature change)
   const double L = g.full_length, a = g.trim_start, b = L - g.trim_end;
   const double sliver = 1e-6 * L;  // cuts closer than this to a window end are dropped
   int step = 16 / cubic_piece_count();
@@ -60,8 +67,8 @@ void PlannerState::split_cubic_block() noexcept {
     // a gentle cubic (the centripetal part takes at most 2 % of any axis' budget at the fastest speed
     // the tangent bounds allow) is one piece, a moderate one (at most 25 %) four: finer pieces would
     // only relax a bound that hardly binds, and each piece costs a node and its passes
-    const Vec3& U = base.tangent_bound;  // the whole cubic's bounds (init_cubic_node)
-    const Vec3& K = base.curvature_bound;
+    const Vec3& U = whole.tangent_bound;  // the whole cubic's bounds (init_cubic_node)
+    const Vec3& K = whole.curvature_bound;
     double vcap = base.feed_cap;
     for (int i = 0; i < 3; ++i)
       if (U[i] > 0) vcap = std::min(vcap, limits_.velocity[i] / U[i]);
@@ -71,36 +78,67 @@ void PlannerState::split_cubic_block() noexcept {
     else if (share <= 0.25) step = 4;
   }
   double cuts[18];  // the window's ends and at most 15 table nodes between them
+  int node_at[18];  // the table node a cut lies on, −1 at the window's ends
   int nc = 0;
+  node_at[nc] = -1;
   cuts[nc++] = a;
   for (int i = step; i < 16; i += step) {
     const double s = g.table[static_cast<std::size_t>(i)];
-    if (s > a + sliver && s < b - sliver) cuts[nc++] = s;
+    if (s > a + sliver && s < b - sliver) {
+      node_at[nc] = i;
+      cuts[nc++] = s;
+    }
   }
+  node_at[nc] = -1;
   cuts[nc++] = b;
   const int m = nc - 1;
+  const AxisMinima minima = axis_minima(g);  // the same axes move on every piece
+  if (step == 1) tab.singles();  // the pieces are single table intervals (but at trimmed ends)
+  if (m > 2) cubics_[block_slot(block)] = g;
   double v_prev = 0;
   for (int k = 0; k < m; ++k) {
-    Node x = base;
+    Node& x = k == 0 ? whole : node(k0 + k);
+    if (k + 1 == m && k > 0) {
+      x.segment = g;
+      x.geometry = Geometry::in_node;
+    } else if (k > 0) {
+      x.segment.kind = SegmentKind::blend;
+      x.segment.full_length = L;
+      x.segment.source = g.source;
+      x.geometry = Geometry::in_cubic_store;
+    }
+    if (k > 0) {
+      x.block = block;
+      x.feed_cap = base.feed_cap;
+      x.v_corner = base.v_corner;
+    }
     const double s0 = cuts[k], s1 = cuts[k + 1];
     x.segment.trim_start = s0;
     x.segment.trim_end = L - s1;
-    const int i0 = interval_at(g.table, s0);
-    // the intervals [i0, i1) that hold [s0, s1]: i1 is the first table node at or past s1
-    const int i1 = std::clamp(static_cast<int>(std::lower_bound(g.table.begin(), g.table.end(), s1) - g.table.begin()),
-                              i0 + 1, 16);
-    tab.bounds(i0, i1, x.tangent_bound, x.curvature_bound);
-    tab.ramps(i0, i1, x.tangent_bound, x.curvature_bound, x.ramp_tangent, x.ramp_curvature);
-    piece_curvature(Kv, g.table, i0, i1, x.segment.curvature, x.segment.curvature_rate);
-    x.extent = Extent::settled;
-    finish_piece(x, base, k, m, v_prev);
-    if (k == 0) {
-      node(tail_ - 1) = x;
-      update_pass(tail_ - 1);
+    // the intervals [i0, i1) that hold [s0, s1]: i0 is the interval holding s0 (interval_at), i1 the
+    // first table node at or past s1. A cut on table node i, where the table (non-decreasing) rises
+    // on both sides of it, gives them without a search: interval_at(table[i]) = i when
+    // table[i + 1] > table[i], and the first node at or past table[i] is i when table[i − 1] < table[i]
+    const int n0 = node_at[k], n1 = node_at[k + 1];
+    const auto tab_at = [&g](int i) { return g.table[static_cast<std::size_t>(i)]; };
+    const int i0 = n0 > 0 && tab_at(n0 + 1) > tab_at(n0) ? n0 : interval_at(g.table, s0);
+    const int first_at = n1 > 0 && tab_at(n1 - 1) < tab_at(n1)
+                             ? n1
+                             : static_cast<int>(std::lower_bound(g.table.begin(), g.table.end(), s1) - g.table.begin());
+    const int i1 = std::clamp(first_at, i0 + 1, 16);
+    if (step == 1 && i1 == i0 + 1) {
+      tab.single(i0, x.tangent_bound, x.curvature_bound, x.ramp_tangent, x.ramp_curvature);
     } else {
-      append(x);
+      tab.bounds(i0, i1, x.tangent_bound, x.curvature_bound);
+      tab.ramps(i0, i1, x.tangent_bound, x.curvature_bound, x.ramp_tangent, x.ramp_curvature);
     }
+    piece_curvature(ct.curvature, g.table, i0, i1, x.segment.curvature, x.segment.curvature_rate);
+    x.extent = Extent::settled;
+    finish_piece(x, base, k, m, v_prev, &minima);
+    update_pass(k0 + k);
+    if (k > 0) pass(k0 + k).w_backward = 0.0;
   }
+  tail_ = k0 + m;
 }
 
 // Two curves that meet with equal curvature vectors up to rounding (the pieces of one C² spline, whose

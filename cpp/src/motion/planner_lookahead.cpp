@@ -7,7 +7,7 @@
 
 namespace netshape::motion::detail {
 
-double PlannerState::reach_squared(const PassRecord& n, double w0) const noexcept {
+inline double PlannerState::reach_squared(const PassRecord& n, double w0) const noexcept {
   if (std::isfinite(n.path_jerk)) {
     const double r = reach_speed(std::sqrt(w0), n.length, n.path_accel, n.path_jerk);
     return r * r;
@@ -15,45 +15,70 @@ double PlannerState::reach_squared(const PassRecord& n, double w0) const noexcep
   return std::min({n.alpha[0] * w0 + n.beta[0], n.alpha[1] * w0 + n.beta[1], n.alpha[2] * w0 + n.beta[2]});
 }
 
-// From the tail (which ends at rest) back to the frozen prefix: each node's backward squared speed is
-// the smallest of its junction limit and what it reaches from the next node's. Nodes before
-// dirty_from did not change themselves, so the pass stops at the first of them whose value stays.
-void PlannerState::back_pass(long dirty_from) noexcept {
-  double w_next = 0.0;  // the buffer always ends at rest (squared speeds: no root per node)
-  if (tail_ <= frozen_) return;
-  for (long k = tail_ - 1; k >= frozen_; --k) {
-    PassRecord& n = passes_[ring_slot(k)];
+namespace {
+// Backward-pass steps over the nodes k = hi, hi − 1, ..., lo (ring records rec, slot k & mask):
+// w_next becomes each node's new squared speed, min(junction limit, reach(node, w_next)); a line-blend
+// node runs over its pieces (line_blends). With stop_if_same the steps stop at the first node whose
+// value stays (returning false). The mode and the stop test are template parameters, so the loop of
+// the common case (no jerk limits, nodes that changed) carries neither.
+template <bool stop_if_same, class Reach>
+inline bool back_steps(PassRecord* rec, std::size_t mask, LineBlendRecord* line_blends, long hi, long lo,
+                       double& w_next, const Reach& reach) noexcept {
+  for (long k = hi; k >= lo; --k) {
+    PassRecord& n = rec[static_cast<std::size_t>(k) & mask];
     double w;
     if (n.line_blend >= 0) {
       // a line-blend node: its pieces from the last to the first
-      LineBlendRecord& r = line_blends_[static_cast<std::size_t>(n.line_blend)];
+      LineBlendRecord& r = line_blends[static_cast<std::size_t>(n.line_blend)];
       w = w_next;
       for (int p = r.np - 1; p >= 0; --p) {
-        w = std::min(std::min(r.w_junction[p], r.alpha[0][p] * w + r.beta[0][p]),
-                     std::min(r.alpha[1][p] * w + r.beta[1][p], r.alpha[2][p] * w + r.beta[2][p]));
-        if (k < dirty_from && w == r.w_backward[p]) {  // so are the pieces before it (and w == n.w_backward below)
+        w = min_of(min_of(r.w_junction[p], r.alpha[0][p] * w + r.beta[0][p]),
+                   min_of(r.alpha[1][p] * w + r.beta[1][p], r.alpha[2][p] * w + r.beta[2][p]));
+        if (stop_if_same && w == r.w_backward[p]) {  // so are the pieces before it (and w == n.w_backward below)
           w = r.w_backward[0];
           break;
         }
         r.w_backward[p] = w;
       }
     } else {
-      // Lee & Lee eq. 3 (trapezoid; on curves the axis box), capped by the junction limit (without
-      // jerk limits reach_squared is the min of three affine terms, inlined here; on a line only the
-      // first is finite: the same value with a shorter dependency chain)
-      w = jerk_limited_                   ? std::min(n.w_junction, reach_squared(n, w_next))
-          : n.bound == SpeedBound::path   ? std::min(n.w_junction, w_next + n.beta[0])
-                                          : std::min(std::min(n.w_junction, n.alpha_down[0] * w_next + n.beta_down[0]),
-                                                     std::min(n.alpha_down[1] * w_next + n.beta_down[1],
-                                                              n.alpha_down[2] * w_next + n.beta_down[2]));
+      w = reach(n, w_next);
     }
-    if (k < dirty_from && w == n.w_backward) break;  // nothing changes further back
+    if (stop_if_same && w == n.w_backward) return false;  // nothing changes further back
     n.w_backward = w;
     w_next = w;
   }
+  return true;
+}
+}  // namespace
+
+// From the tail (which ends at rest) back to the frozen prefix: each node's backward squared speed is
+// the smallest of its junction limit and what it reaches from the next node's. Nodes before
+// dirty_from did not change themselves, so the pass stops at the first of them whose value stays.
+void PlannerState::back_pass(long dirty_from) noexcept {
+  if (tail_ <= frozen_) return;
+  PassRecord* const rec = passes_.data();
+  LineBlendRecord* const lb = line_blends_.data();
+  const std::size_t mask = ring_mask_;
+  const long changed_end = std::clamp(dirty_from, frozen_, tail_);  // nodes [changed_end, tail_) changed themselves
+  double w_next = 0.0;  // the buffer always ends at rest (squared speeds: no root per node)
+  const auto run = [&](const auto& reach) {
+    back_steps<false>(rec, mask, lb, tail_ - 1, changed_end, w_next, reach);
+    back_steps<true>(rec, mask, lb, changed_end - 1, frozen_, w_next, reach);
+  };
+  if (!jerk_limited_) {
+    // Lee & Lee eq. 3 (trapezoid; on curves the axis box), capped by the junction limit: the min of
+    // three affine terms (on a line alpha_down = (1, 0, 0), beta_down = (2·a·L, inf, inf): the first
+    // term is 1·w + b = w + b exactly, the others +inf)
+    run([](const PassRecord& n, double w) {
+      return min_of(min_of(n.w_junction, n.alpha_down[0] * w + n.beta_down[0]),
+                    min_of(n.alpha_down[1] * w + n.beta_down[1], n.alpha_down[2] * w + n.beta_down[2]));
+    });
+  } else {
+    run([this](const PassRecord& n, double w) { return std::min(n.w_junction, reach_squared(n, w)); });
+  }
 }
 
-bool PlannerState::buffer_ready() const noexcept {
+inline bool PlannerState::buffer_ready() const noexcept {
   // free_blocks() == 0 without its division
   return finished_ || capacity_ - (tail_ - head_) < nodes_per_push || blocks_in_buffer() >= options_.lookahead + 1;
 }
@@ -88,21 +113,19 @@ bool PlannerState::freeze_next() noexcept {
     // the lowest speed of the profile, min(vs, ve): A_i − K_i·min(vs², ve²) and K_i = 0 there
     const double lr = std::max(0.0, len - std::min(ws, len) - std::min(we, len));
     const double S = vs * vs + ve * ve, wlow = std::min(vs * vs, ve * ve);
-    double num[6], den[6], U[6], Ae[6], Ke[6];
-    for (int d = 0; d < 2; ++d)
-      for (int i = 0; i < 3; ++i) {
-        const int q = 3 * d + i;
-        const double k = n.ramp_curvature[d][i];
-        U[q] = n.ramp_tangent[d][i];
-        Ke[q] = std::max(k, 0.0);
-        Ae[q] = limits_.acceleration[i] - std::min(k, 0.0) * wlow;
-        num[q] = U[q] * S + 2.0 * lr * Ae[q];
-        den[q] = 2.0 * U[q] + 2.0 * lr * Ke[q];
-      }
-    double wp = std::min({n.v_max * n.v_max, min_ratio(num, den), min_ratio(num + 3, den + 3)});
+    // the six terms (speeding up x, y, z, slowing down x, y, z) as arrays, element by element the
+    // scalar expressions (max / min against 0 as std::max / std::min; Eigen vectorises them)
+    using Six = Eigen::Array<double, 6, 1>;
+    static_assert(sizeof(n.ramp_tangent) == 6 * sizeof(double), "ramp terms are 6 packed doubles");
+    const Eigen::Map<const Six> k(n.ramp_curvature[0].data()), U(n.ramp_tangent[0].data());
+    const Six Ke = k.max(0.0);
+    const Six Ae = acceleration2_ - k.min(0.0) * wlow;
+    Six num = U * S + (2.0 * lr) * Ae;
+    const Six den = 2.0 * U + (2.0 * lr) * Ke;
+    double wp = std::min({n.v_max * n.v_max, min_ratio(num.data(), den.data()), min_ratio(num.data() + 3, den.data() + 3)});
     wp = std::max(wp, std::max(vs * vs, ve * ve));
-    for (int q = 0; q < 6; ++q) num[q] = Ae[q] - Ke[q] * wp;
-    double a = std::min(min_ratio(num, U), min_ratio(num + 3, U + 3));
+    num = Ae - Ke * wp;
+    double a = std::min(min_ratio(num.data(), U.data()), min_ratio(num.data() + 3, U.data() + 3));
     // at the curvature cap the tangential budget is 0: a floor of 1e-6·A keeps the rounding-size speed
     // differences of neighbouring pieces from turning into long ramps
     const double amin = limits_.acceleration.minCoeff();

@@ -59,7 +59,8 @@ void PlannerState::copy_segment(const Node& n, Segment& out) noexcept {
     out = n.segment;
     return;
   }
-  copy_blend_geometry(blends_[block_slot(n.block)], out);
+  const auto& store = n.geometry == Geometry::in_cubic_store ? cubics_ : blends_;
+  copy_blend_geometry(store[block_slot(n.block)], out);
   out.trim_start = n.segment.trim_start;
   out.trim_end = n.segment.trim_end;
   out.curvature = n.segment.curvature;
@@ -67,7 +68,7 @@ void PlannerState::copy_segment(const Node& n, Segment& out) noexcept {
 }
 
 const Segment& PlannerState::segment_of(Node& n) noexcept {
-  if (n.geometry == Geometry::in_blend_store) {
+  if (n.geometry == Geometry::in_blend_store || n.geometry == Geometry::in_cubic_store) {
     Segment full;
     copy_segment(n, full);
     n.segment = full;

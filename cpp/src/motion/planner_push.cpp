@@ -227,7 +227,16 @@ void PlannerState::finish() noexcept {
   }
 }
 
-void PlannerState::set_limits(Node& n, const Vec3* line_dir) const noexcept {
+AxisMinima PlannerState::axis_minima(const Segment& s) const noexcept {
+  const Vec3 moving = s.moving_axes();
+  AxisMinima m;
+  m.acceleration = min_over_moving(limits_.acceleration, moving);
+  m.velocity = min_over_moving(limits_.velocity, moving);
+  m.jerk = min_over_moving(limits_.jerk, moving);
+  return m;
+}
+
+void PlannerState::set_limits(Node& n, const Vec3* line_dir, const AxisMinima* minima) const noexcept {
   const Segment& s = n.segment;
   if (s.kind == SegmentKind::line && !jerk_limited_ && options_.rule != CornerRule::paper) {
     // the common case below without the moving-axes minima it does not use
@@ -238,10 +247,8 @@ void PlannerState::set_limits(Node& n, const Vec3* line_dir) const noexcept {
     n.path_jerk = inf;
     return;
   }
-  const Vec3 moving = s.moving_axes();
-  const double amin = min_over_moving(limits_.acceleration, moving);
-  const double vmin = min_over_moving(limits_.velocity, moving);
-  const double jmin = min_over_moving(limits_.jerk, moving);
+  const AxisMinima mm = minima ? *minima : axis_minima(s);
+  const double amin = mm.acceleration, vmin = mm.velocity, jmin = mm.jerk;
   const bool jerk = std::isfinite(jmin);
   n.bound = SpeedBound::path;
   if (s.kind == SegmentKind::line) {
@@ -255,12 +262,15 @@ void PlannerState::set_limits(Node& n, const Vec3* line_dir) const noexcept {
   const Vec3& K = n.curvature_bound;
   if (!jerk) {
     // the per-axis box: |u_i|·v ≤ V_i and K_i·v² ≤ A_i (the tangential share is set per speed)
+    // (the smallest root is the root of the smallest ratio: sqrt is monotone and correctly rounded)
     n.bound = SpeedBound::axis_box;
     n.path_jerk = inf;
+    double wk = inf;
     for (int i = 0; i < 3; ++i) {
       if (U[i] > 0) n.v_max = std::min(n.v_max, limits_.velocity[i] / U[i]);
-      if (K[i] > 0) n.v_max = std::min(n.v_max, std::sqrt(limits_.acceleration[i] / K[i]));
+      if (K[i] > 0) wk = std::min(wk, limits_.acceleration[i] / K[i]);
     }
+    if (wk < inf) n.v_max = std::min(n.v_max, std::sqrt(wk));
     n.path_accel = amin;
     return;
   }
@@ -311,22 +321,51 @@ void box_reach(double L, const Vec3& U, const Vec3& K, const Vec3& A, double (&a
     beta[0] = 0.0;
   }
 }
+
+// box_reach() for both directions at once when every denominator of both is > 0 (the common case),
+// as pairs (speeding up, slowing down) per axis, and without branches: den = U + 2L·max(K, 0) and
+// an = U − 2L·min(K, 0) are box_reach()'s U + 2L·K or U (K ≥ 0), U or U − 2L·K (K < 0), since adding
+// or subtracting a zero product leaves U ≥ 0 as it is. The same values. Returns false (nothing
+// written) otherwise.
+bool box_reach_both(double L, const Vec3 (&U)[2], const Vec3 (&K)[2], const Vec3& A, PassRecord& x) noexcept {
+  using Pair = Eigen::Array2d;
+  Pair den[3], an[3];
+  const double L2 = 2.0 * L;
+  for (int i = 0; i < 3; ++i) {
+    const Pair u(U[0][i], U[1][i]), k(K[0][i], K[1][i]);
+    den[i] = u + L2 * k.max(0.0);
+    an[i] = u - L2 * k.min(0.0);
+  }
+  if (!((den[0] > 0.0) && (den[1] > 0.0) && (den[2] > 0.0)).all()) return false;
+  const Pair d01 = den[0] * den[1], r = 1.0 / (d01 * den[2]);
+  const Pair rd[3] = {den[1] * den[2] * r, den[0] * den[2] * r, d01 * r};
+  for (int i = 0; i < 3; ++i) {
+    const Pair alpha = an[i] * rd[i], beta = (2.0 * L * A[i]) * rd[i];
+    x.alpha[i] = alpha[0];
+    x.alpha_down[i] = alpha[1];
+    x.beta[i] = beta[0];
+    x.beta_down[i] = beta[1];
+  }
+  return true;
+}
 }  // namespace
 
 void PlannerState::set_reach(PassRecord& x, const Node& n) const noexcept {
   x.bound = n.bound;
   if (n.bound == SpeedBound::path) {
-    x.alpha[0] = 1.0;
-    x.beta[0] = 2.0 * x.path_accel * x.length;
+    x.alpha[0] = x.alpha_down[0] = 1.0;
+    x.beta[0] = x.beta_down[0] = 2.0 * x.path_accel * x.length;
     for (int i = 1; i < 3; ++i) {
-      x.alpha[i] = 0.0;
-      x.beta[i] = inf;
+      x.alpha[i] = x.alpha_down[i] = 0.0;
+      x.beta[i] = x.beta_down[i] = inf;
     }
     return;
   }
   // speeding up: the forward reach; slowing down: the backward pass
-  box_reach(x.length, n.ramp_tangent[0], n.ramp_curvature[0], limits_.acceleration, x.alpha, x.beta);
-  box_reach(x.length, n.ramp_tangent[1], n.ramp_curvature[1], limits_.acceleration, x.alpha_down, x.beta_down);
+  if (!box_reach_both(x.length, n.ramp_tangent, n.ramp_curvature, limits_.acceleration, x)) {
+    box_reach(x.length, n.ramp_tangent[0], n.ramp_curvature[0], limits_.acceleration, x.alpha, x.beta);
+    box_reach(x.length, n.ramp_tangent[1], n.ramp_curvature[1], limits_.acceleration, x.alpha_down, x.beta_down);
+  }
 }
 
 // Arcs are cut into pieces of at most arc_piece_angle, each with its own bounds (the axis box is much
@@ -344,15 +383,16 @@ void PlannerState::split_last_block() noexcept {
     update_pass(tail_ - 1);
     return;
   }
-  const Node base = p;
-  const double s0 = base.segment.trim_start, s1 = base.segment.full_length - base.segment.trim_end;
-  const int m = arc_piece_count(base.segment);
+  const Node whole = p;
+  const PieceBase base(whole);
+  const double s0 = whole.segment.trim_start, s1 = whole.segment.full_length - whole.segment.trim_end;
+  const int m = arc_piece_count(whole.segment);
   double v_prev = 0;
   for (int k = 0; k < m; ++k) {
-    Node x = base;
+    Node x = whole;
     const double a = s0 + (s1 - s0) * k / m, b = k + 1 == m ? s1 : s0 + (s1 - s0) * (k + 1) / m;
     x.segment.trim_start = a;
-    x.segment.trim_end = base.segment.full_length - b;
+    x.segment.trim_end = whole.segment.full_length - b;
     arc_bounds(x.segment, a, b, x.tangent_bound, x.curvature_bound, x.ramp_tangent, x.ramp_curvature);
     finish_piece(x, base, k, m, v_prev);
     if (k == 0) {
@@ -364,9 +404,10 @@ void PlannerState::split_last_block() noexcept {
   }
 }
 
-void PlannerState::finish_piece(Node& x, const Node& base, int k, int m, double& v_prev) noexcept {
+void PlannerState::finish_piece(Node& x, const PieceBase& base, int k, int m, double& v_prev,
+                                const AxisMinima* minima) noexcept {
   x.v_max = base.feed_cap;
-  set_limits(x);
+  set_limits(x, nullptr, minima);
   x.start.curvature_step = x.end.curvature_step = false;  // set_limits gave the piece its full jerk again
   if (k == 0 && base.start.curvature_step) mark_curvature_step(x, true);
   if (k + 1 == m && base.end.curvature_step) mark_curvature_step(x, false);

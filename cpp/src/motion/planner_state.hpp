@@ -17,6 +17,7 @@
 #include <limits>
 #include <vector>
 
+#include "blend_bounds.hpp"
 #include "line_blend.hpp"
 #include "planner_geometry.hpp"
 #include "netshape/motion/cubic.hpp"
@@ -34,6 +35,10 @@ constexpr int max_blend_pieces = 8;
 /// Ring nodes one push() may add: the previous arc's pieces, the blend pieces, the new block.
 constexpr long nodes_per_push = max_arc_pieces + max_blend_pieces + 2;
 
+/// std::min(a, b) by value, (b < a) ? b : a: the same result, but GCC keeps it in registers (one
+/// minsd) where std::min's reference result sometimes goes through the stack.
+inline double min_of(double a, double b) noexcept { return b < a ? b : a; }
+
 /// Smallest of `per_axis` over the axes that move (moving[i] > 0); all axes if none moves.
 inline double min_over_moving(const Vec3& per_axis, const Vec3& moving) {
   double m = inf;
@@ -45,6 +50,19 @@ inline double min_over_moving(const Vec3& per_axis, const Vec3& moving) {
 /// Smallest num[i]/den[i] over the i with den[i] > 0, +inf if none; one division (the fractions are
 /// compared by cross-multiplication).
 inline double min_ratio(const double* num, const double* den) noexcept {
+  if (den[0] > 0 && den[1] > 0 && den[2] > 0) {
+    // the loop below with every denominator > 0 (the common case), on values instead of an index
+    double nb = num[0], db = den[0];
+    if (num[1] * db < nb * den[1]) {
+      nb = num[1];
+      db = den[1];
+    }
+    if (num[2] * db < nb * den[2]) {
+      nb = num[2];
+      db = den[2];
+    }
+    return nb / db;
+  }
   int best = -1;
   for (int i = 0; i < 3; ++i)
     if (den[i] > 0 && (best < 0 || num[i] * den[best] < num[best] * den[i])) best = i;
@@ -70,6 +88,9 @@ enum class Geometry : std::uint8_t {
   /// A blend piece: `segment` holds kind, trims, length, curvature and source only; the control points
   /// and table stay once per blend in the blend store until segment_of() copies them in (sampling).
   in_blend_store,
+  /// A piece of a cubic block: as in_blend_store, the whole cubic (its Bézier, table and chord) kept
+  /// once per block in the cubic store (split_cubic_block()).
+  in_cubic_store,
   /// One node for a whole blend between two lines: its pieces are in the line-blend record of its
   /// block (the passes and the freeze loop over them, next() and next_segment() hand them out one by
   /// one), its geometry in the blend store.
@@ -121,21 +142,42 @@ struct Node {
   double t0 = 0;  ///< start time once frozen [s]
 };
 
+/// What the pieces of a block take from its whole-block node (finish_piece).
+struct PieceBase {
+  double feed_cap = 0, v_corner = 0;
+  NodeEnd start, end;
+  explicit PieceBase(const Node& n) noexcept : feed_cap(n.feed_cap), v_corner(n.v_corner), start(n.start), end(n.end) {}
+};
+
+/// The smallest velocity, acceleration and jerk limit of the axes that move on a segment
+/// (Segment::moving_axes; of all axes if none moves). Every piece of a block or blend has the same.
+struct AxisMinima {
+  double velocity = 0, acceleration = 0, jerk = 0;
+};
+
 /// Compact copy of what the backward pass reads and writes, so it walks small records, not Nodes.
 /// The reach of a trapezoidal node is w = min_i alpha_i·w0 + beta_i in squared speeds w = v²: lines
 /// alpha = (1, 0, 0), beta = (2·a·L, inf, inf); curved pieces the axis box, alpha_i = U_i/(U_i + 2·L·K_i),
 /// beta_i = 2·L·A_i/(U_i + 2·L·K_i) with the speeding-up terms of the node (Node::ramp_tangent[0], ...);
-/// alpha_down, beta_down the same with its slowing-down terms, for the backward pass; set by
-/// update_pass() so the passes need no division.
+/// alpha_down, beta_down the same with its slowing-down terms (on lines equal to alpha, beta), for the
+/// backward pass; set by update_pass() so the passes need no division. What the backward pass reads
+/// without jerk limits comes first (w_junction to line_blend).
 struct PassRecord {
   double w_junction = 0;  ///< squared junction limit [mm²/s²]
   double w_backward = 0;  ///< squared speed the backward pass allows at the start [mm²/s²]
-  double length = 0;      ///< planned length (see planned_length) [mm]
-  double path_accel = 1, path_jerk = 0;
-  double alpha[3] = {1, 0, 0}, beta[3] = {0, 0, 0};
   double alpha_down[3] = {1, 0, 0}, beta_down[3] = {0, 0, 0};
   int line_blend = -1;                  ///< Geometry::line_blend_record: its slot in line_blends_, else −1
   SpeedBound bound = SpeedBound::path;  ///< SpeedBound::path: w = w0 + beta[0]
+  double length = 0;                    ///< planned length (see planned_length) [mm]
+  double path_accel = 1, path_jerk = 0;
+  double alpha[3] = {1, 0, 0}, beta[3] = {0, 0, 0};
+};
+
+/// What init_cubic_node() finds on a cubic block's arc-length table and split_cubic_block() cuts it
+/// with: the per-interval bounds and the curvature |κ| at the 17 table nodes.
+struct CubicTable {
+  BlendBounds bounds;
+  double curvature[17] = {};
 };
 
 /// The planner's state and operations. Planner's streaming calls run the operations of the same
@@ -172,14 +214,18 @@ class PlannerState {
   /// Length the passes plan with: the node's length minus its windows (and, while the blend at its
   /// end is pending, minus the largest end trim a blend may take) [mm].
   double planned_length(const Node& n) const noexcept;
+  /// The limit minima over the axes that move on s.
+  AxisMinima axis_minima(const Segment& s) const noexcept;
   /// Cruise cap, path acceleration and jerk, speed bound of n from its segment and bounds.
-  /// n.v_max holds the programmed feed cap on entry; line_dir: a line's unit direction if known.
-  void set_limits(Node& n, const Vec3* line_dir = nullptr) const noexcept;
+  /// n.v_max holds the programmed feed cap on entry; line_dir: a line's unit direction if known;
+  /// minima: axis_minima(n.segment) if known.
+  void set_limits(Node& n, const Vec3* line_dir = nullptr, const AxisMinima* minima = nullptr) const noexcept;
   /// The reach coefficients of x (see PassRecord) from its length and n's speed bound and terms.
   void set_reach(PassRecord& x, const Node& n) const noexcept;
   /// Pass record of node k from the node (w_backward and line_blend: the caller).
   void update_pass(long k) noexcept;
   /// Largest squared speed at one end of a node when the other end runs at sqrt(w0) [mm²/s²].
+  /// (Defined inline in planner_lookahead.cpp, its only user.)
   double reach_squared(const PassRecord& n, double w0) const noexcept;
   /// Node n at the tail with its pass record (w_backward = 0).
   void append(const Node& n) noexcept;
@@ -187,8 +233,9 @@ class PlannerState {
   void split_last_block() noexcept;
   /// Piece k of m of a block cut into pieces (its geometry and bounds already set): speed cap and
   /// limits, the block's junction, window and curvature-step marks on its first / last piece, and the
-  /// junction speed from the piece before (v_prev, updated to this piece's cap).
-  void finish_piece(Node& x, const Node& base, int k, int m, double& v_prev) noexcept;
+  /// junction speed from the piece before (v_prev, updated to this piece's cap). minima: as set_limits.
+  void finish_piece(Node& x, const PieceBase& base, int k, int m, double& v_prev,
+                    const AxisMinima* minima = nullptr) noexcept;
   /// Jerk mode: a curvature step at the start (or end) of n; its S-curve jerk is halved once.
   static void mark_curvature_step(Node& n, bool at_start) noexcept;
   /// Jerk mode: largest speed at a tangent junction where the curvature vector steps by dk [1/mm]:
@@ -202,8 +249,9 @@ class PlannerState {
   /// Why a cubic block is not valid (a static message naming the field), or nullptr.
   static const char* cubic_error(const toolpath::Block& b, const CubicControls& c) noexcept;
   /// n becomes the whole cubic block as one node (Geometry::in_node, kind blend, its table filled)
-  /// with bounds over all of it; feed cap, limits, junction and extent: the caller.
-  static void init_cubic_node(Node& n, const toolpath::Block& b, const CubicControls& c, long source) noexcept;
+  /// with bounds over all of it; feed cap, limits, junction and extent: the caller. The interval
+  /// bounds of its table stay in cubic_table(source) for split_cubic_block().
+  void init_cubic_node(Node& n, const toolpath::Block& b, const CubicControls& c, long source) noexcept;
   /// Pieces split_last_block() cuts a cubic block into (runs of table intervals).
   int cubic_piece_count() const noexcept { return jerk_limited_ ? 4 : 16; }
   /// split_last_block() for a cubic block: its trimmed window cut at table nodes, bounds per piece.
@@ -211,6 +259,9 @@ class PlannerState {
   /// Jerk mode: whether the curvature vectors k1, k2 [1/mm] at a tangent joint next to a cubic block
   /// agree up to the rounding of the curves that meet there (no curvature step).
   static bool curvature_continuous(const Vec3& k1, const Vec3& k2) noexcept;
+
+  /// The table of the cubic block `source` (see CubicTable).
+  CubicTable& cubic_table(long source) noexcept { return cubic_tables_[static_cast<std::size_t>(source) & 1u]; }
 
   // --- corner blends (planner_blend.cpp) ---
   /// The blend rule's corner between the previous block's node `prev` (ring index) and the new
@@ -223,6 +274,7 @@ class PlannerState {
 
   // --- look-ahead: backward pass and freeze (planner_lookahead.cpp) ---
   void back_pass(long dirty_from) noexcept;
+  /// Whether the buffer is deep enough to freeze (inline in planner_lookahead.cpp, its only user).
   bool buffer_ready() const noexcept;
   bool freeze_next() noexcept;
   void freeze_line_blend(Node& n, LineBlendRecord& r, double vs, double wt) noexcept;
@@ -239,15 +291,20 @@ class PlannerState {
   PlanOptions options_;
   bool jerk_limited_ = false;     // limits_.jerk_limited()
   Vec3 inv_acceleration_ = Vec3::Zero();  // 1/A_i
+  Eigen::Array<double, 6, 1> acceleration2_ = Eigen::Array<double, 6, 1>::Zero();  // A_x, A_y, A_z twice
   // the array work of blends between two lines, for the best instruction set the CPU has
   const LineBlendKernels* line_blend_kernels_ = nullptr;
   const LineBlendTables* line_blend_tables_ = nullptr;
 
+  // tables of the last two cubic blocks pushed, by the parity of their source: the block whose end is
+  // not known yet (held whole) and the one push() is building
+  CubicTable cubic_tables_[2];
   std::vector<Node> nodes_;        // the ring
   std::vector<PassRecord> passes_; // pass record of each node, same slot
   Node scratch_;                   // a new node push() cannot build in its ring slot
   std::vector<Segment> blends_;    // whole blend of each block in the buffer, by block slot
   std::vector<LineBlendRecord> line_blends_;  // pieces of the line-blend node of each block, by block slot
+  std::vector<Segment> cubics_;    // whole cubic block, by block slot (Geometry::in_cubic_store pieces)
   long capacity_ = 0;              // ring size
   std::size_t ring_mask_ = 0, block_mask_ = 0;  // capacity_ − 1, blends_.size() − 1
 

@@ -251,7 +251,8 @@ void Segment::piece_polyline(double s0, double s1, PiecePolyline& out) const noe
   }
 }
 
-double Segment::distance_to_piece(const Vec3& p, double s0, double s1, const PiecePolyline* coarse) const noexcept {
+double Segment::distance_to_piece(const Vec3& p, double s0, double s1, const PiecePolyline* coarse,
+                                  double enough) const noexcept {
   s0 = std::clamp(s0, 0.0, full_length);
   s1 = std::clamp(s1, s0, full_length);
   if (kind == SegmentKind::line) {
@@ -276,6 +277,7 @@ double Segment::distance_to_piece(const Vec3& p, double s0, double s1, const Pie
     if (d < best) {
       best = d;
       sb = s0 + (s1 - s0) * i / n;
+      if (best <= enough) return best;  // (the smallest distance is at most this one)
     }
   }
   // second, finer pass on the best chord pair
@@ -286,6 +288,7 @@ double Segment::distance_to_piece(const Vec3& p, double s0, double s1, const Pie
     const double s = a + (b - a) * i / n;
     const Vec3 next = at(s);
     best = std::min(best, point_segment_distance(p, prev, next));
+    if (best <= enough) return best;
     prev = next;
   }
   return best;

@@ -90,6 +90,40 @@ TEST_CASE("ramp terms of cubic pieces keep every axis within its limit (random c
   CHECK(tighter > pieces / 2);
 }
 
+TEST_CASE("BlendBounds::singles gives bounds() and ramps() of every single interval, bit for bit") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U01(-1.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    // random cubics, some planar (an axis whose terms are all zero) and some with a straight part
+    const Vec3 p0(0, 0, 0);
+    const double z = trial % 3 == 0 ? 0.0 : 0.4;
+    const Vec3 p1 = p0 + Vec3(1.0 + 0.5 * U01(rng), 0.6 * U01(rng), z * U01(rng));
+    const Vec3 p2 = trial % 5 == 0 ? Vec3(2.0 * p1) : Vec3(p1 + Vec3(0.8 * U01(rng), 1.0 + 0.5 * U01(rng), z * U01(rng)));
+    const Vec3 p3 = p2 + Vec3(0.6 * U01(rng) - 0.5, 0.5 * U01(rng) + 0.5, z * U01(rng));
+    std::array<Vec3, 17> T, Kv;
+    Segment::blend(p0, p1, p2, p3, 0, &T, &Kv);
+    BlendBounds tab;
+    tab.fill(T, Kv);
+    tab.singles();
+    for (int r = 0; r < 16; ++r) {
+      Vec3 U, K, Ua[2], Ka[2], U1, K1, Ua1[2], Ka1[2];
+      tab.bounds(r, r + 1, U, K);
+      tab.ramps(r, r + 1, U, K, Ua, Ka);
+      tab.single(r, U1, K1, Ua1, Ka1);
+      for (int c = 0; c < 3; ++c) {
+        CHECK(std::signbit(U1[c]) == std::signbit(U[c]));
+        CHECK(U1[c] == U[c]);
+        CHECK(K1[c] == K[c]);
+        for (int d = 0; d < 2; ++d) {
+          CHECK(Ua1[d][c] == Ua[d][c]);
+          CHECK(Ka1[d][c] == Ka[d][c]);
+          CHECK(std::signbit(Ka1[d][c]) == std::signbit(Ka[d][c]));
+        }
+      }
+    }
+  }
+}
+
 TEST_CASE("ramp terms of arc pieces keep every axis within its limit (both senses, helices, every quadrant)") {
   const Vec3 A(3000.0, 3000.0, 1000.0);
   double worst = 0;

@@ -49,7 +49,10 @@ struct Segment {
   void piece_polyline(double s0, double s1, PiecePolyline& out) const noexcept;
   /// Distance from p to the untrimmed programmed piece between arc lengths [s0, s1] [mm]. `coarse`:
   /// the piece_polyline of the same window, when the caller measures several points against it.
-  double distance_to_piece(const Vec3& p, double s0, double s1, const PiecePolyline* coarse = nullptr) const noexcept;
+  /// `enough`: the caller only asks whether the distance is ≤ enough; the search stops at the first
+  /// chord that close (it returns that chord's distance, then not always the smallest one).
+  double distance_to_piece(const Vec3& p, double s0, double s1, const PiecePolyline* coarse = nullptr,
+                           double enough = -1.0) const noexcept;
   /// Blend: the Bézier parameter u ∈ [0, 1] at arc length s from the untrimmed start [mm].
   double bezier_u(double s) const noexcept;
 };
