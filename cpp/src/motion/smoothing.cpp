@@ -246,8 +246,8 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
     auto fit_emit = [&](std::size_t i, std::size_t j) -> bool {
       // Leads: the kept long line i − 1 (the block just emitted, shortened) and the long line j lend the
       // run their parts next to the joints, so the curve starts / ends tangent to them; without such a
-      // line, next to a corner the run's own end block lends its run-side half (corner_lead) and its
-      // corner-side half is emitted as a line.
+      // line, next to a corner the run's own end block (or the block behind up to three tiny ones) lends
+      // its run-side part (corner_lead, corner_skip) and its corner-side part is emitted as a line.
       long lin = -1, lout = -1;
       bool lin_inner = false, lout_inner = false;
       std::size_t lin_skip = 0, lout_skip = 0;  // tiny blocks kept between the corner and its line (corner_skip)

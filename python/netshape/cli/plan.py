@@ -28,9 +28,10 @@ Corner rules:
                       --tolerance of the program (checked both ways), planned as its curvature-
                       continuous cubic Bézier pieces;
                       sharper vertices are corners, rounded by an arc where they lie between lines and
-                      blended within the rest, except creases (<= --max-fit-turn deg between curved
-                      micro-segments), which the curve passes; then planned as blend. Adds runs_smoothed,
-                      corners_kept, corners_rounded; max_path_deviation_mm is measured against the
+                      blended within the rest, except where a curve meets them (<= --max-fit-turn
+                      deg, not straight on both sides): the curve passes those; then planned as
+                      blend. Adds runs_smoothed, corners_kept, corners_rounded;
+                      max_path_deviation_mm is measured against the
                       original program
 """
 
@@ -64,8 +65,8 @@ def register(sub) -> None:
     p.add_argument("--max-turn", type=a.real("--max-turn", "deg", gt=0, lt=180), default=30.0, metavar="DEG",
                    help="smooth rule: a vertex turning more is a corner that is kept [deg] in (0, 180) (30)")
     p.add_argument("--max-fit-turn", type=a.real("--max-fit-turn", "deg", ge=0, lt=180), default=92.0, metavar="DEG",
-                   help="smooth rule: a corner turning at most this between curved micro-segments (no "
-                        "straight side) is passed by the run's curve within the tolerance; 0 keeps every "
+                   help="smooth rule: a corner turning at most this that a curve meets (not straight on "
+                        "both sides) is passed by the run's curve within the tolerance; 0 keeps every "
                         "corner [deg] in [0, 180) (92)")
     p.add_argument("--smoothed-gcode", metavar="OUT.ngc",
                    help="smooth rule: write the smoothed program (G1/G2/G3, G17-G19) atomically")

@@ -220,9 +220,9 @@ def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float
     Vertices turning more are corners, kept: the run ends there, and a vertex between two program lines
     becomes an arc within ``fit_share·tolerance`` (a corner made of several vertices around blocks
     shorter than max(0.02 mm, 2·tolerance) gets one arc). A corner turning at most `max_fit_turn` [rad]
-    between curved micro-segments (neither side continues straight) is a crease of a free-form surface:
-    it stays inside the run and the curve passes it within the fit tolerance (``max_fit_turn=0`` keeps
-    every corner). A straight run next to a corner stays as programmed. Returns ``(arrays, first, last, stats)``: the new blocks as block arrays,
+    that a curve meets (it is not straight on both sides: a crease of a free-form surface, a curve
+    running into a wall) stays inside the run and the curve passes it within the fit tolerance
+    (``max_fit_turn=0`` keeps every corner). A straight run next to a corner stays as programmed. Returns ``(arrays, first, last, stats)``: the new blocks as block arrays,
     per new block the first and last program block it replaces, and ``runs_smoothed``, ``runs_kept``,
     ``corners_kept``, ``corners_rounded``, ``max_fit_deviation_mm``.
     """

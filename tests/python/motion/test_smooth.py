@@ -173,6 +173,8 @@ def test_smooth_rule_bad_input():
         nm.plan(pts, lim, feed=100.0, rule="smooth", tolerance=-1.0)
     with pytest.raises(ValueError, match="max_turn"):
         nm.smooth_path(pts, 0.01, feed=100.0, max_turn=4.0)
+    with pytest.raises(ValueError, match="max_fit_turn = -0.1"):
+        nm.smooth_path(pts, 0.01, feed=100.0, max_fit_turn=-0.1)
 
 
 @pytest.mark.slow
@@ -332,6 +334,17 @@ def test_straight_run_in_a_side_plane_borrows_leads_from_its_lines():
     assert _dist_to_polyline(_sample_blocks(arr, 0.0005), curve).max() <= fit + 1e-5
 
 
+def _tangent_continuous_within(new, arr, pts, fit):
+    """Assert that the smoothed blocks `new` are tangent-continuous and within `fit` of the program
+    polyline `pts` (blocks `arr`) both ways, on 0.2 µm samples; returns the samples of `new`."""
+    t0, t1 = _tangents(new)
+    assert np.all(np.einsum("ij,ij->i", t1[:-1], t0[1:]) > 1 - 1e-9)
+    curve = _sample_blocks(new, 0.0002)
+    assert _dist_to_polyline(curve, pts).max() <= fit * (1 + 1e-9)
+    assert _dist_to_polyline(_sample_blocks(arr, 0.0002), curve).max() <= fit + 1e-5
+    return curve
+
+
 @pytest.mark.parametrize("turn_deg", [40.0, 60.0, 90.0, 120.0])
 def test_sharp_vertex_inside_a_run_is_fitted_within_tolerance(turn_deg):
     """With max_turn above the turn, a vertex of 40°–120° between two rows of 0.5 mm moves stays inside
@@ -346,11 +359,7 @@ def test_sharp_vertex_inside_a_run_is_fitted_within_tolerance(turn_deg):
     arr = nm.polyline_arrays(pts, 100.0)
     new, first, last, st = nm.smooth_path(arr, eps, max_turn=np.radians(150.0))
     assert st["runs_smoothed"] == 1 and st["corners_kept"] == 0 and st["runs_kept"] == 0
-    t0, t1 = _tangents(new)
-    assert np.all(np.einsum("ij,ij->i", t1[:-1], t0[1:]) > 1 - 1e-9)
-    curve = _sample_blocks(new, 0.0002)
-    assert _dist_to_polyline(curve, pts).max() <= fit * (1 + 1e-9)
-    assert _dist_to_polyline(_sample_blocks(arr, 0.0002), curve).max() <= fit + 1e-5
+    curve = _tangent_continuous_within(new, arr, pts, fit)
     assert np.linalg.norm(curve - pts[20], axis=1).min() <= fit + 1e-5  # the vertex itself
 
 
@@ -393,11 +402,7 @@ def test_crease_between_curved_stretches_is_passed_by_the_curve(turn_deg):
     arr = nm.polyline_arrays(pts, 100.0)
     new, first, last, st = nm.smooth_path(arr, eps)
     assert st["runs_smoothed"] == 1 and st["corners_kept"] == 0 and st["runs_kept"] == 0
-    t0, t1 = _tangents(new)
-    assert np.all(np.einsum("ij,ij->i", t1[:-1], t0[1:]) > 1 - 1e-9)
-    curve = _sample_blocks(new, 0.0002)
-    assert _dist_to_polyline(curve, pts).max() <= fit * (1 + 1e-9)
-    assert _dist_to_polyline(_sample_blocks(arr, 0.0002), curve).max() <= fit + 1e-5
+    _tangent_continuous_within(new, arr, pts, fit)
     st0 = nm.smooth_path(arr, eps, max_fit_turn=0.0)[3]
     assert st0["corners_kept"] == 1 and st0["runs_smoothed"] == 2
     pts1 = _crease(turn_deg, straight_second=True)
@@ -428,8 +433,4 @@ def test_corner_over_tiny_blocks_gets_one_arc(eps):
     r = np.linalg.norm(np.asarray(new["start"][i]) - np.asarray(new["center"][i]))
     sphi = np.cos(np.pi / 4)
     assert r >= fit * sphi / (1 - sphi)
-    t0, t1 = _tangents(new)
-    assert np.all(np.einsum("ij,ij->i", t1[:-1], t0[1:]) > 1 - 1e-9)
-    curve = _sample_blocks(new, 0.0002)
-    assert _dist_to_polyline(curve, pts).max() <= fit * (1 + 1e-9)
-    assert _dist_to_polyline(_sample_blocks(arr, 0.0002), curve).max() <= fit + 1e-5
+    _tangent_continuous_within(new, arr, pts, fit)

@@ -14,11 +14,13 @@
 /// polyline and every point of the polyline within it of the spline — with rigorous upper bounds from
 /// chord samples (below). A run that still fails after `max_refinements` rounds is cut at its sharpest
 /// interior vertex and both parts are tried again; a part shorter than `min_blocks` that fails is left
-/// as programmed. Vertices turning more than `max_turn` are corners: they end a run. A vertex between
-/// two program lines (a corner between lines, a vertex of a run left as programmed) becomes a tangent
-/// arc inside it whose distance from the vertex is at most `fit_tolerance()` (`round_corners`); the
-/// planner's blend rule blends the rest within the remaining tolerance. Arcs, rapids and other long
-/// lines pass through unchanged.
+/// as programmed. Vertices turning more than `max_turn` are corners: they end a run, except where a curve
+/// meets one turning at most `max_fit_turn` (not straight on both sides): the run's curve passes it. A
+/// straight run next to a corner stays as programmed. A vertex between two program lines (a corner
+/// between lines, a vertex of a run left as programmed) becomes a tangent arc inside it whose distance
+/// from the vertex is at most `fit_tolerance()` (`round_corners`), one arc for a corner turned over
+/// several blocks shorter than max(0.02 mm, 2·tolerance); the planner's blend rule blends the rest within
+/// the remaining tolerance. Arcs, rapids and other long lines pass through unchanged.
 ///
 /// Error bounds: between two chord points c0 = s(u0), c1 = s(u1) in one knot span the spline deviates
 /// from the chord by at most σ = (u1 − u0)²/8 · max|s''| (s'' is linear on a span); dist(c, S) to a
@@ -41,8 +43,8 @@ struct SmoothOptions {
   double fit_share = 0.98;    ///< share of ε given to the fitted curves; the rest is the blend tolerance
   double max_segment = 4.0;   ///< a line longer than this is not a micro-segment [mm]
   double max_turn = 0.5236;   ///< a vertex turning more than this (30°) is a corner that is kept [rad]
-  /// a corner turning at most this (92°) between curved micro-segments (no straight side) stays inside
-  /// the run, passed by its curve within the fit tolerance [rad]
+  /// a corner turning at most this (92°) that a curve meets (not straight on both sides) stays inside
+  /// the run, passed by its curve within the fit tolerance; 0 keeps every corner [rad]
   double max_fit_turn = 1.6057;
   int min_blocks = 3;         ///< shortest run that is smoothed [blocks]
   int window = 4096;          ///< longest run fitted at once [blocks] (longer runs are cut at a vertex)
