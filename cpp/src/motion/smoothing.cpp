@@ -201,14 +201,21 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
     // next to the corner are shorter (tiny blocks around corners are common in CAM output), they are
     // kept as programmed and the first longer block r behind them lends instead (corner_skip); the
     // corner then spans the tiny blocks and is rounded as one (compound corners, below).
-    // The length the corner arc below needs on each line at the vertex at the start of block c: for a
-    // turn θ (half interior angle φ = (π − θ)/2) the arc within the fit tolerance e of the vertex has
-    // radius R = e·sin φ / (1 − sin φ) and touches the lines T = R·tan(θ/2) from it.
+    // The turn at the vertex at the start of block c between two feed moves joined end to end, else 0.
+    auto vertex_turn = [&](std::size_t c) {
+      if (c == 0 || c >= nb) return 0.0;
+      const auto &b0 = program[c - 1], &b1 = program[c];
+      if (b0.kind == MotionKind::rapid || b1.kind == MotionKind::rapid || b0.length() <= 1e-9 ||
+          b1.length() <= 1e-9 || (b1.start - b0.end).norm() > 1e-9)
+        return 0.0;
+      return turn_between(b0.tangent_at(1.0), b1.tangent_at(0.0));
+    };
+    // The length the corner arc below needs on each line at the vertex at the start of block c (the arc
+    // within the fit tolerance of the vertex touches the lines R·tan(θ/2) from it, corner_arc_radius).
     auto corner_need = [&](std::size_t c) {
-      const double th = turn_between(program[c - 1].tangent_at(1.0), program[c].tangent_at(0.0));
+      const double th = vertex_turn(c);
       if (!(th > 1e-3) || th > pi - 1e-3) return 0.0;
-      const double sphi = std::cos(0.5 * th);
-      return opt.fit_tolerance() * sphi / (1.0 - sphi) * std::tan(0.5 * th);
+      return corner_arc_radius(th, opt.fit_tolerance()) * std::tan(0.5 * th);
     };
     // The part of block q a run uses as its lead: up to lead_length, at most half of q; when q is the
     // run's end block next to a corner (beside: the length of the tiny blocks kept between them, need:
@@ -218,15 +225,8 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       const double a = std::min(opt.lead_length, 0.5 * len);
       return std::min(a, std::max(0.1 * len, len + beside - need));
     };
-    auto corner_at = [&](std::size_t q, bool at_start) {  // the vertex at q's outer end is a corner
-      const std::size_t c = at_start ? q : q + 1;  // the corner is at the start of block c
-      if (c == 0 || c >= nb) return false;
-      const auto &b0 = program[c - 1], &b1 = program[c];
-      if (b0.kind == MotionKind::rapid || b1.kind == MotionKind::rapid || b0.length() <= 1e-9 ||
-          b1.length() <= 1e-9 || (b1.start - b0.end).norm() > 1e-9)
-        return false;
-      return turn_between(b0.tangent_at(1.0), b1.tangent_at(0.0)) >= 1e-3;
-    };
+    // the vertex at q's outer end (its start when at_start) turns at least 1e-3 rad
+    auto corner_at = [&](std::size_t q, bool at_start) { return vertex_turn(at_start ? q : q + 1) >= 1e-3; };
     auto lends = [&](std::size_t q, std::size_t r) {
       return program[q].length() >= lead_min && turn_between(dir(std::min(q, r)), dir(std::max(q, r))) <= 0.5 * opt.max_turn;
     };
@@ -413,10 +413,7 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       return true;
     };
     // the vertex at q's start (at_start) or end joins another feed move turning more than max_turn
-    auto corner_end = [&](std::size_t q, bool at_start) {
-      const std::size_t c = at_start ? q : q + 1;
-      return corner_at(q, at_start) && turn_between(program[c - 1].tangent_at(1.0), program[c].tangent_at(0.0)) > opt.max_turn;
-    };
+    auto corner_end = [&](std::size_t q, bool at_start) { return vertex_turn(at_start ? q : q + 1) > opt.max_turn; };
     // a run that fails the check is cut at its sharpest interior vertex and both parts are tried
     std::vector<std::pair<std::size_t, std::size_t>> parts{{i, j}};
     const auto mb = static_cast<std::size_t>(opt.min_blocks);
@@ -474,18 +471,24 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       return k + 1 < nr && program_line[k] && program_line[k + 1] && res.blocks[k].feed == res.blocks[k + 1].feed &&
              (res.blocks[k + 1].start - res.blocks[k].end).norm() <= 1e-9;
     };
-    // the normal axis of a coordinate plane holding points pts (Z, then Y, then X), or −1
-    auto plane_of = [&](const std::vector<Vec3>& p3) {
+    // a coordinate plane holding the points p3 (normal Z, then Y, then X); false when none does
+    auto plane_of = [&](const std::vector<Vec3>& p3, toolpath::Plane& plane) {
       for (int a : {2, 1, 0}) {
         bool in = true;
         for (const Vec3& v : p3) in = in && std::abs(v[a] - p3.front()[a]) <= opt.plane_tolerance;
-        if (in) return a;
+        if (in) {
+          plane = a == 2 ? toolpath::Plane::xy : a == 1 ? toolpath::Plane::zx : toolpath::Plane::yz;
+          return true;
+        }
       }
-      return -1;
+      return false;
     };
-    auto arc_block = [&](const toolpath::Block& like, int n, const Vec3& p1, const Vec3& p2, const V2& c2,
-                         bool ccw) {
-      const toolpath::Plane plane = n == 2 ? toolpath::Plane::xy : n == 1 ? toolpath::Plane::zx : toolpath::Plane::yz;
+    SmoothResult out;
+    out.blocks.reserve(nr);
+    // the arc from p1 to p2 about c2 (in the plane's coordinates), replacing the vertices between res
+    // blocks first and last; it takes the feed and the rest of its fields from `like`
+    auto emit_arc = [&](const toolpath::Block& like, toolpath::Plane plane, const Vec3& p1, const Vec3& p2,
+                        const V2& c2, bool ccw, std::size_t first, std::size_t last) {
       const auto ax = toolpath::plane_axes(plane);
       toolpath::Block arc = like;
       arc.kind = MotionKind::arc;
@@ -497,10 +500,12 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       arc.center[ax.b] = c2.y();
       arc.clockwise = !ccw;
       arc.turns = 1;
-      return arc;
+      out.blocks.push_back(arc);
+      out.controls.emplace_back();
+      out.source_first.push_back(res.source_first[first]);
+      out.source_last.push_back(res.source_last[last]);
+      ++out.corners_rounded;
     };
-    SmoothResult out;
-    out.blocks.reserve(nr);
     auto emit = [&](std::size_t k) {
       out.blocks.push_back(res.blocks[k]);
       out.controls.push_back(res.controls[k]);
@@ -524,10 +529,10 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       if (m > k + 1 && closes(m)) {
         p3.assign({b1.start, b1.end});
         for (std::size_t q = k + 1; q <= m; ++q) p3.push_back(res.blocks[q].end);
-        const int n = plane_of(p3);
+        toolpath::Plane plane;
         const double l2 = res.blocks[m].length();
-        if (n >= 0 && l2 > 1e-9) {
-          const auto ax = toolpath::plane_axes(n == 2 ? toolpath::Plane::xy : n == 1 ? toolpath::Plane::zx : toolpath::Plane::yz);
+        if (plane_of(p3, plane) && l2 > 1e-9) {
+          const auto ax = toolpath::plane_axes(plane);
           auto to2 = [&](const Vec3& v) { return V2(v[ax.a], v[ax.b]); };
           const Vec3 d2 = (res.blocks[m].end - res.blocks[m].start) / l2;
           mid.assign(1, to2(b1.end));
@@ -540,11 +545,7 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
             const Vec3 q2 = res.blocks[m].start + (ca.p2 - to2(res.blocks[m].start)).dot(to2(d2)) * d2;
             b1.end = q1;
             res.blocks[m].start = q2;
-            out.blocks.push_back(arc_block(res.blocks[m], n, q1, q2, ca.c, ca.ccw));
-            out.controls.emplace_back();
-            out.source_first.push_back(res.source_first[k]);
-            out.source_last.push_back(res.source_last[m]);
-            ++out.corners_rounded;
+            emit_arc(res.blocks[m], plane, q1, q2, ca.c, ca.ccw, k, m);
             k = m - 1;  // block m is emitted next
             continue;
           }
@@ -557,12 +558,11 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       const double th = turn_between(d1, d2);
       if (th < 1e-3 || th > pi - 1e-3) continue;  // nearly straight: the planner blends it; reversals stay
       p3.assign({b1.start, b1.end, b2.end});
-      const int n = plane_of(p3);
-      if (n < 0) continue;
-      const auto ax = toolpath::plane_axes(n == 2 ? toolpath::Plane::xy : n == 1 ? toolpath::Plane::zx : toolpath::Plane::yz);
-      const double sphi = std::cos(0.5 * th);  // sin φ
+      toolpath::Plane plane;
+      if (!plane_of(p3, plane)) continue;
+      const auto ax = toolpath::plane_axes(plane);
       const double tan_half = std::tan(0.5 * th);
-      double R = e * sphi / (1.0 - sphi);
+      double R = corner_arc_radius(th, e);
       double T = R * tan_half;
       const double cap = std::min({cap_end(k), cap_start(k + 1), l1 - 1e-9, l2 - 1e-9});
       if (T > cap) {
@@ -577,11 +577,7 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
       const V2 c2 = V2(p1[ax.a], p1[ax.b]) + R * (ccw ? perp(t1) : V2(-perp(t1)));
       b1.end = p1;
       res.blocks[k + 1].start = p2;
-      out.blocks.push_back(arc_block(b2, n, p1, p2, c2, ccw));
-      out.controls.emplace_back();
-      out.source_first.push_back(res.source_first[k]);
-      out.source_last.push_back(res.source_last[k + 1]);
-      ++out.corners_rounded;
+      emit_arc(b2, plane, p1, p2, c2, ccw, k, k + 1);
     }
     res.blocks = std::move(out.blocks);
     res.controls = std::move(out.controls);

@@ -11,6 +11,14 @@
 namespace netshape::motion {
 namespace {
 
+// The arc inside a sharp corner turning th whose distance from the vertex is e: for the half interior
+// angle φ = (π − th)/2 its radius is e·sin φ / (1 − sin φ), and it touches each line R·tan(th/2) from the
+// vertex.
+double corner_arc_radius(double th, double e) {
+  const double sphi = std::cos(0.5 * th);
+  return e * sphi / (1.0 - sphi);
+}
+
 // A tangent arc from p1 on line 1 to p2 on line 2 (center c, radius r, turning counter-clockwise when
 // ccw).
 struct CornerArc {
