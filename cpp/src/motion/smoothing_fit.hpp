@@ -114,9 +114,7 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     if (b <= eps || lost) return b;  // one segment will do, or nothing will
     return std::min(b, std::sqrt(run_bound(c0, c1, segs.data(), wseg.data(), lo, hi, D0, D1, sq)) + sag);
   };
-  auto fill = [&](const V2& p, long lo, long hi, double* D) {
-    for (long q = lo; q <= hi; ++q) D[q - lo] = dist2(p, segs[static_cast<std::size_t>(q)]);
-  };
+  auto fill = [&](const V2& p, long lo, long hi, double* D) { dist2_window(p, segs.data(), lo, hi, D); };
   struct Job {
     double u0, u1, sag;
     V2 c0, c1;
@@ -131,8 +129,7 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     long lo, hi;
     window(s, lo, hi);
     // cp[j] is the previous chord's end point: keep its distances where the windows overlap
-    for (long q = lo; q <= hi; ++q)
-      D0[q - lo] = q >= plo && q <= phi ? D1[q - plo] : dist2(cp[j], segs[static_cast<std::size_t>(q)]);
+    dist2_window(cp[j], segs.data(), lo, hi, D0, D1, plo, phi);
     fill(cp[j + 1], lo, hi, D1);
     plo = lo;
     phi = hi;
@@ -202,7 +199,7 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   };
   auto cfill = [&](const V2& p, long lo, long hi, std::vector<double>& D) {
     D.resize(static_cast<std::size_t>(hi - lo + 1));
-    for (long q = lo; q <= hi; ++q) D[static_cast<std::size_t>(q - lo)] = dist2(p, cseg[static_cast<std::size_t>(q)]);
+    dist2_window(p, cseg.data(), lo, hi, D.data());
   };
   std::vector<std::pair<V2, V2>> pj;
   long clo = 0, chi = -1;  // chord window of the previous segment; K1: its end point's squared distances
@@ -212,10 +209,8 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     {
       long lo, hi;
       cwindow(cum[i], cum[i + 1], lo, hi);
-      Q0.resize(static_cast<std::size_t>(hi - lo + 1));
-      for (long q = lo; q <= hi; ++q)  // pts[i] is the previous segment's end point
-        Q0[static_cast<std::size_t>(q - lo)] = q >= clo && q <= chi ? K1[static_cast<std::size_t>(q - clo)]
-                                                                 : dist2(pts[i], cseg[static_cast<std::size_t>(q)]);
+      Q0.resize(static_cast<std::size_t>(hi - lo + 1));  // pts[i] is the previous segment's end point
+      dist2_window(pts[i], cseg.data(), lo, hi, Q0.data(), K1.data(), clo, chi);
       cfill(pts[i + 1], lo, hi, Q1);
       K1 = Q1;
       clo = lo;

@@ -38,6 +38,13 @@ double dist2(const V2& p, const Seg& s) {
   return (r - t * s.d).squaredNorm();
 }
 
+// Squared distances of p to the segments lo..hi into D[0..hi − lo]; where prev holds the same point's
+// distances to the segments plo..phi, they are taken from there instead of computed again.
+void dist2_window(const V2& p, const Seg* segs, long lo, long hi, double* D, const double* prev = nullptr,
+                  long plo = 0, long phi = -1) {
+  for (long q = lo; q <= hi; ++q) D[q - lo] = prev && q >= plo && q <= phi ? prev[q - plo] : dist2(p, segs[q]);
+}
+
 // Direction of the bisector at the vertex between consecutive segments s0 and s1: u1 − u0 for their unit
 // directions u0, u1 (points on the line through the vertex with this direction are equally far from
 // both segments), the normal of s0 where they run straight on, any direction for a point segment.
