@@ -15,6 +15,14 @@ inline double PlannerState::reach_squared(const PassRecord& n, double w0) const 
   return std::min({n.alpha[0] * w0 + n.beta[0], n.alpha[1] * w0 + n.beta[1], n.alpha[2] * w0 + n.beta[2]});
 }
 
+// Jerk-limited backward step: the largest squared start speed from which the node slows down to any
+// end speed from sqrt(w_next) up (reach_back_speed: monotone in w_next although one S-curve ramp's
+// distance is not, so the start speed promised to the node before stays feasible when w_next rises).
+inline double reach_back_squared(const PassRecord& n, double w_next) noexcept {
+  const double r = reach_back_speed(std::sqrt(w_next), n.length, n.path_accel, n.path_jerk);
+  return r * r;
+}
+
 namespace {
 // Backward-pass steps over the nodes k = hi, hi − 1, ..., lo (ring records rec, slot k & mask):
 // w_next becomes each node's new squared speed, min(junction limit, reach(node, w_next)); a line-blend
@@ -74,7 +82,7 @@ void PlannerState::back_pass(long dirty_from) noexcept {
                     min_of(n.alpha_down[1] * w + n.beta_down[1], n.alpha_down[2] * w + n.beta_down[2]));
     });
   } else {
-    run([this](const PassRecord& n, double w) { return std::min(n.w_junction, reach_squared(n, w)); });
+    run([](const PassRecord& n, double w) { return std::min(n.w_junction, reach_back_squared(n, w)); });
   }
 }
 

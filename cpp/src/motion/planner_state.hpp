@@ -224,8 +224,8 @@ class PlannerState {
   void set_reach(PassRecord& x, const Node& n) const noexcept;
   /// Pass record of node k from the node (w_backward and line_blend: the caller).
   void update_pass(long k) noexcept;
-  /// Largest squared speed at one end of a node when the other end runs at sqrt(w0) [mm²/s²].
-  /// (Defined inline in planner_lookahead.cpp, its only user.)
+  /// Largest squared speed at the end of a node that starts at sqrt(w0) [mm²/s²] (the backward pass
+  /// has its own step). (Defined inline in planner_lookahead.cpp, its only user.)
   double reach_squared(const PassRecord& n, double w0) const noexcept;
   /// Node n at the tail with its pass record (w_backward = 0).
   void append(const Node& n) noexcept;

@@ -30,6 +30,30 @@ double reach_speed(double v, double length, double a, double j) noexcept {
   return lo;
 }
 
+namespace {
+// Longest slow-down from u to an end speed in [w, u]: ramp_distance(u, ·) falls from 0 up to the
+// switch between acceleration- and jerk-bound ramps, rises from there to u/3 while the jerk binds and
+// falls beyond u/3, so its largest value over [w, u] is at w or at u/3.
+double longest_slow_down(double u, double w, double a, double j) noexcept {
+  if (u <= w) return 0.0;
+  const double d = ramp_distance(u, w, a, j);
+  return w < u / 3.0 ? std::max(d, ramp_distance(u, u / 3.0, a, j)) : d;
+}
+}  // namespace
+
+double reach_back_speed(double w, double length, double a, double j) noexcept {
+  if (length <= 0) return w;
+  // every ramp needs at least the trapezoid's distance at a: u ≤ √(w² + 2aL)
+  const double trap = std::sqrt(w * w + 2.0 * a * length);
+  if (!std::isfinite(j)) return trap;
+  double lo = w, hi = trap;  // longest_slow_down is increasing in u
+  for (int it = 0; it < 60 && hi - lo > 1e-12 * (1.0 + hi); ++it) {
+    const double m = 0.5 * (lo + hi);
+    (longest_slow_down(m, w, a, j) <= length ? lo : hi) = m;
+  }
+  return lo;
+}
+
 Profile detail::make_scurve(double length, double vs, double ve, double vmax, double a, double j, double ws,
                            double we) noexcept {
   Profile p;

@@ -2,6 +2,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -66,6 +67,99 @@ TEST_CASE("eq. 3 and 5: reach speed is sqrt(v^2 + 2 a L) for trapezoids") {
   CHECK(s < std::sqrt(2000.0));
   CHECK(s > 0.0);
   CHECK(ramp_distance(0.0, s, 1000.0, 1e5) == doctest::Approx(1.0).epsilon(1e-6));
+}
+
+TEST_CASE("S-curve backward reach: every end speed from w up is reached, monotone in w, tight") {
+  // Independent check by a scan of end speeds: from u = reach_back_speed(w, L, a, j) a single ramp
+  // reaches every end speed in [w, u] within L, from a slightly higher start some end speed in that
+  // range is out of reach, and u does not fall when w rises. Over both regimes (jerk- and
+  // acceleration-bound ramps) and end speeds from rest to near the start speed.
+  const double a_s[] = {500.0, 3000.0, 20000.0};
+  const double j_s[] = {1e4, 1e5, 1e6, 1e7};
+  const double L_s[] = {1e-3, 0.05, 1.0, 7.0, 50.0};
+  const auto worst_ramp = [](double u, double w, double a, double j) {  // longest ramp to [w, u], by scan
+    double d = 0;
+    for (int k = 0; k <= 2000; ++k) d = std::max(d, ramp_distance(u, w + (u - w) * k / 2000.0, a, j));
+    return d;
+  };
+  long cases = 0, non_monotone_ramps = 0;
+  for (const double a : a_s)
+    for (const double j : j_s)
+      for (const double L : L_s) {
+        double u_prev = 0;
+        for (int q = 0; q <= 40; ++q) {
+          const double w = 300.0 * q * q / 1600.0;  // 0 ... 300 mm/s, dense near rest
+          const double u = reach_back_speed(w, L, a, j);
+          CAPTURE(a);
+          CAPTURE(j);
+          CAPTURE(L);
+          CAPTURE(w);
+          CHECK(u >= w);
+          CHECK(u >= u_prev * (1 - 1e-12));
+          CHECK(worst_ramp(u, w, a, j) <= L * (1 + 1e-6));
+          const double up = u * (1 + 1e-6) + 1e-9;
+          CHECK(worst_ramp(up, w, a, j) > L);
+          if (ramp_distance(u, w, a, j) < worst_ramp(u, w, a, j) * (1 - 1e-3)) ++non_monotone_ramps;
+          u_prev = u;
+          ++cases;
+        }
+      }
+  CHECK(cases == 3 * 4 * 5 * 41);
+  CHECK(non_monotone_ramps > 50);  // the case the bound exists for: a lower end speed, a shorter ramp
+  // without a jerk limit it is Lee & Lee eq. 3 read backwards
+  CHECK(reach_back_speed(10.0, 2.0, 1000.0, INFINITY) == doctest::Approx(std::sqrt(100.0 + 4000.0)));
+}
+
+TEST_CASE("jerk limits, short look-ahead: every profile covers exactly its segment, axes within limits") {
+  // Long lines, each followed by a run of 0.05 mm lines: with a buffer of a few blocks the stop at its
+  // end keeps the long line's end speed low (a slow-down by more than 2/3 of the speed, where a
+  // jerk-bound S-curve ramp's distance grows again as its end speed rises), and each block pushed
+  // raises it a little. The start speed promised to the long line must stay reachable.
+  std::vector<toolpath::Block> prog;
+  Vec3 p(0, 0, 0);
+  double heading = 0;
+  for (int r = 0; r < 12; ++r) {
+    for (int i = 0; i < 61; ++i) {
+      heading += i == 0 ? 0.4 + 0.1 * r : 0.01 * std::sin(0.3 * i);
+      const double len = i == 0 ? 4.0 + 2.0 * r : 0.05;
+      const Vec3 q = p + len * Vec3(std::cos(heading), std::sin(heading), 0.0);
+      prog.push_back(line(p, q, 250.0));
+      p = q;
+    }
+  }
+  for (const double jerk : {3e4, 1e5, 1e6})
+    for (const int la : {2, 4, 16})
+      for (const CornerRule r : {CornerRule::vector, CornerRule::blend}) {
+        PlanOptions o;
+        o.rule = r;
+        o.lookahead = la;
+        o.tolerance = 0.01;
+        AxisLimits lim = AxisLimits::uniform(250, 3000);
+        lim.jerk = Vec3::Constant(jerk);
+        Planner pl(lim, o);
+        PlannedSegment seg;
+        std::size_t i = 0;
+        long segments = 0, bad = 0;
+        for (Status st; (st = pl.next_segment(seg)) != Status::finished;) {
+          if (st == Status::ok) {
+            ++segments;
+            double d = 0;
+            for (const double x : seg.profile.d) d += x;
+            if (std::abs(d - seg.segment.length()) > 1e-9 * std::max(1.0, seg.segment.length())) ++bad;
+          } else if (i < prog.size()) {
+            REQUIRE(pl.push(prog[i++]) == Status::ok);
+          } else {
+            pl.finish();
+          }
+        }
+        CAPTURE(jerk);
+        CAPTURE(la);
+        CAPTURE(static_cast<int>(r));
+        CHECK(segments >= static_cast<long>(prog.size()));
+        CHECK(bad == 0);
+        const auto tr = plan(prog, lim, o);
+        for (int k = 0; k < 3; ++k) CHECK(tr.stats.axis_acceleration[k] <= lim.acceleration[k] * (1 + 1e-3));
+      }
 }
 
 TEST_CASE("corner rules: eq. 4 against the velocity-jump bound (issue's 23x at 5 degrees)") {

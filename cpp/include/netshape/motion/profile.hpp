@@ -19,6 +19,15 @@ double ramp_distance(double v0, double v1, double a, double j) noexcept;
 /// sqrt(v² + 2·a·L)) [mm/s].
 double reach_speed(double v, double length, double a, double j) noexcept;
 
+/// Largest start speed u from which a segment of length L can slow down to every end speed in
+/// [w, u] [mm/s] (= reach_speed(w, L, a, j) without a jerk limit). With finite jerk one S-curve
+/// ramp's distance is not monotone in its end speed: a jerk-bound ramp (T = √(6Δv/j)) from u down to
+/// w covers (u + w)/2·T, which shrinks again as w falls below u/3 (the peak acceleration 1.5Δv/T grows
+/// with Δv). A look-ahead that promises a start speed for one end speed must keep the promise when
+/// that end speed rises, so u is bounded by the longest slow-down to an end speed in [w, u]:
+/// max(ramp_distance(u, w), ramp_distance(u, u/3) where w < u/3), non-increasing in w.
+double reach_back_speed(double w, double length, double a, double j) noexcept;
+
 /// The profile of one segment of length L.
 struct Profile {
   double vs = 0, ve = 0, vp = 0;  ///< start, end, peak speed [mm/s]
