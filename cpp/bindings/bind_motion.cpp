@@ -1,6 +1,11 @@
-// Bindings of the `motion` area (netshape._core.motion). Thin: lambdas only turn out-parameters into returns.
+// Bindings of the `motion` area (netshape._core.motion). Thin: lambdas turn out-parameters into returns;
+// the bench drivers (_smooth_plan, _throughput) loop in C++ so that Python stays out of what they time.
+#include <atomic>
 #include <limits>
 #include <string>
+#include <thread>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "default_types.hpp"
@@ -97,6 +102,67 @@ py::dict smooth_stats(const SmoothResult& r) {
   stats["max_fit_deviation_mm"] = r.max_fit_deviation;
   return stats;
 }
+// Program -> Smoother in a second thread, its blocks handed through a bounded single-producer /
+// single-consumer ring to the Planner in this one (the two-stage pipeline of a controller, where
+// smoothing and planning run in tasks of their own). Planned segments without sampling; returns
+// (segments, end time of the last one [s]). An error of the Smoother is rethrown here.
+std::pair<long, double> smooth_plan_threaded(const std::vector<toolpath::Block>& blocks, Smoother& sm, Planner& p) {
+  constexpr std::size_t cap = 1024;  // ring slots (a power of two)
+  std::vector<SmoothedBlock> ring(cap);
+  std::atomic<std::size_t> head{0}, tail{0};  // blocks written / read so far
+  std::atomic<bool> done{false};              // the Smoother has handed out its last block
+  std::string error;                          // set before done when the Smoother failed
+  std::thread producer([&] {
+    SmoothedBlock sb;
+    std::size_t i = 0;
+    for (;;) {
+      const Status ss = sm.next(sb);
+      if (ss == Status::ok) {
+        const std::size_t h = head.load(std::memory_order_relaxed);
+        while (h - tail.load(std::memory_order_acquire) == cap) std::this_thread::yield();
+        ring[h & (cap - 1)] = sb;
+        head.store(h + 1, std::memory_order_release);
+      } else if (ss == Status::need_blocks) {
+        if (i < blocks.size()) sm.push(blocks[i++]);
+        else sm.finish();
+      } else {
+        if (ss == Status::invalid_input) error = sm.last_error();
+        break;
+      }
+    }
+    done.store(true, std::memory_order_release);
+  });
+  PlannedSegment seg;
+  long segments = 0;
+  double t_end = 0;
+  for (;;) {
+    const Status st = p.next_segment(seg);
+    if (st == Status::ok) {
+      ++segments;
+      t_end = seg.t0 + seg.profile.duration;
+      continue;
+    }
+    if (st != Status::need_blocks) break;
+    const std::size_t t = tail.load(std::memory_order_relaxed);
+    for (;;) {
+      if (head.load(std::memory_order_acquire) != t) {
+        const SmoothedBlock& sb = ring[t & (cap - 1)];
+        p.push(sb.block, sb.controls);
+        tail.store(t + 1, std::memory_order_release);
+        break;
+      }
+      if (done.load(std::memory_order_acquire) && head.load(std::memory_order_acquire) == t) {
+        p.finish();
+        break;
+      }
+      std::this_thread::yield();
+    }
+  }
+  producer.join();
+  if (!error.empty()) throw std::invalid_argument(error);
+  return {segments, t_end};
+}
+
 }  // namespace
 
 void bind_motion(py::module_& m) {
@@ -306,10 +372,12 @@ void bind_motion(py::module_& m) {
          py_types::RefPoints3 center, const Eigen::Ref<const Eigen::VectorXi>& clockwise,
          const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
          py_types::RefVector feed, double tolerance, int window, const AxisLimits& limits, const PlanOptions& options,
-         bool streamed, int repeat) {
+         bool streamed, int repeat, int threads) {
         // Smoothing and planning without sampling (planned segments): streamed, program -> Smoother ->
-        // Planner one block at a time; else smooth() on the whole program, then the Planner. Returns
+        // Planner one block at a time (threads 2: the Smoother in a thread of its own,
+        // smooth_plan_threaded); else smooth() on the whole program, then the Planner. Returns
         // (segments, cycle time [s]) of the last repeat.
+        NETSHAPE_CHECK(threads == 1 || threads == 2, "threads", threads, "must be 1 or 2");
         SmoothOptions o;
         o.tolerance = tolerance;
         o.window = window;
@@ -325,6 +393,10 @@ void bind_motion(py::module_& m) {
           p.reset();
           sm.reset();
           segments = 0;
+          if (streamed && threads == 2) {
+            std::tie(segments, t_end) = smooth_plan_threaded(blocks, sm, p);
+            continue;
+          }
           SmoothResult smoothed;
           if (!streamed) smoothed = smooth(blocks, o);
           std::size_t i = 0, j = 0;
@@ -358,7 +430,7 @@ void bind_motion(py::module_& m) {
       },
       py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
       py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("window"), py::arg("limits"),
-      py::arg("options"), py::arg("streamed"), py::arg("repeat") = 1);
+      py::arg("options"), py::arg("streamed"), py::arg("repeat") = 1, py::arg("threads") = 1);
   m.def(
       "_deviation_to_program",
       [](const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,

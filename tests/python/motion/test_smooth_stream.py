@@ -58,6 +58,11 @@ def test_smoother_to_planner_cycle_time(chips):
     seg_s, t_s = nm._m._smooth_plan(*args, 0.01, 200, LIM, opts, True)
     assert t_b > 30.0
     assert abs(t_s - t_b) <= 1e-9 and seg_s == seg_b
+    # the Smoother in a thread of its own, blocks handed over through a ring: the same plan
+    seg_t, t_t = nm._m._smooth_plan(*args, 0.01, 200, LIM, opts, True, 2, 2)
+    assert abs(t_t - t_b) <= 1e-9 and seg_t == seg_b
+    with pytest.raises(ValueError, match="threads"):
+        nm._m._smooth_plan(*args, 0.01, 200, LIM, opts, True, 1, 3)
 
 
 def test_bad_block_names_the_field():
