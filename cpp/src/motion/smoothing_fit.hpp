@@ -40,9 +40,22 @@ struct RunFit {
 // really leaves the tube would otherwise be bisected down to `fine` all along the stretch it is out).
 constexpr int max_bisections = 64;
 
+// The bounds of the last check, so that a check of a spline that changed only in places re-checks only
+// what the change reaches. A bound is an upper bound of distances between real points of the spline
+// and the polyline, so it stays valid while the chords and segments it was computed from stay (which
+// chords and segments a window holds only makes it tighter or looser). A bound that is negative (to
+// be checked) or above eps is computed again.
+struct CheckCache {
+  std::vector<double> span_bound;      // per knot span: the largest bound of its chords (spline -> polyline)
+  std::vector<double> seg_bound;       // per polyline segment: its bound (polyline -> spline)
+  std::vector<double> seg_u0, seg_u1;  // per polyline segment: the parameter range of the chords it was bounded by
+};
+
+// In a check with the cache, the chords of a knot span whose bound is valid and the polyline segments
+// whose chords all lie in such spans keep their bounds.
 bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector<Seg>& segs,
                  const std::vector<V2>& wseg, const std::vector<double>& cum, const ParamMap& amap, double eps,
-                 double mean, RunFit& out, std::vector<double>& bad) {
+                 double mean, CheckCache& cache, RunFit& out, std::vector<double>& bad) {
   const std::size_t n = pts.size();
   const double sag_share = 0.05 * eps;
   bad.clear();
@@ -122,9 +135,32 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   std::vector<Job> jobs;
   long plo = 0, phi = -1;  // window of the previous chord, whose end point's distances are in D1
   std::size_t sc = 0;      // segment search: cum[sc] <= um for the chords' nondecreasing middles um
+  auto& span_bound = cache.span_bound;
+  auto valid = [eps](double b) { return b >= 0 && b <= eps; };
+  // the spans to check (their bounds start at 0) and their parameter ranges, merged
+  std::vector<char> todo(static_cast<std::size_t>(m), 0);
+  std::vector<std::pair<double, double>> fresh;
+  for (int k = 3; k < m; ++k) {
+    const auto uk = static_cast<std::size_t>(k);
+    if (valid(span_bound[uk]) || !(sp.t[uk + 1] > sp.t[uk])) continue;
+    todo[uk] = 1;
+    span_bound[uk] = 0;
+    if (!fresh.empty() && fresh.back().second >= sp.t[uk]) {
+      fresh.back().second = sp.t[uk + 1];
+    } else {
+      fresh.emplace_back(sp.t[uk], sp.t[uk + 1]);
+    }
+  }
   for (std::size_t j = 0; j + 1 < cp.size(); ++j) {
     const double um = 0.5 * (cu[j] + cu[j + 1]);
     while (sc + 1 < cum.size() && cum[sc + 1] <= um) ++sc;
+    double& sb = span_bound[static_cast<std::size_t>(cspan[j])];
+    if (!todo[static_cast<std::size_t>(cspan[j])]) {
+      bound = std::max(bound, sb);
+      plo = 0;
+      phi = -1;
+      continue;
+    }
     const long s = std::clamp(static_cast<long>(sc), 0L, ns - 1);
     long lo, hi;
     window(s, lo, hi);
@@ -159,6 +195,7 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     }
     bound = std::max(bound, best);
     if (best > eps) bad.push_back(um);
+    sb = std::max(sb, best);
   }
   // polyline -> spline: every point of a polyline piece [q0, q1] is within run_bound of the chords, each
   // chord's part plus its σ, so within that of the spline
@@ -203,12 +240,34 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   };
   std::vector<std::pair<V2, V2>> pj;
   long clo = 0, chi = -1;  // chord window of the previous segment; K1: its end point's squared distances
+  // does the parameter range [u0, u1] meet a span checked again?
+  auto meets_fresh = [&](double u0, double u1) {
+    const auto it = std::lower_bound(fresh.begin(), fresh.end(), u0,
+                                     [](const std::pair<double, double>& f, double u) { return f.second < u; });
+    return it != fresh.end() && it->first <= u1;
+  };
   for (std::size_t i = 0; i + 1 < n; ++i) {
+    double& gb = cache.seg_bound[i];
+    double& gu0 = cache.seg_u0[i];
+    double& gu1 = cache.seg_u1[i];
+    if (valid(gb) && !meets_fresh(gu0, gu1)) {
+      bound = std::max(bound, gb);
+      chi = -1;
+      continue;
+    }
     const double li = cum[i + 1] - cum[i];
+    // the chords a window lo..hi holds span the parameters cpar[lo]..cpar[hi + 1]
+    auto used = [&](long lo, long hi) {
+      gu0 = std::min(gu0, cpar[static_cast<std::size_t>(lo)]);
+      gu1 = std::max(gu1, cpar[static_cast<std::size_t>(hi) + 1]);
+    };
+    gu0 = 1e300;
+    gu1 = -1e300;
     // the whole segment first
     {
       long lo, hi;
       cwindow(cum[i], cum[i + 1], lo, hi);
+      used(lo, hi);
       Q0.resize(static_cast<std::size_t>(hi - lo + 1));  // pts[i] is the previous segment's end point
       dist2_window(pts[i], cseg.data(), lo, hi, Q0.data(), K1.data(), clo, chi);
       cfill(pts[i + 1], lo, hi, Q1);
@@ -219,9 +278,11 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
       const double b = poly_bound(pts[i], pts[i + 1], lo, hi, ends);
       if (b <= eps) {
         bound = std::max(bound, b);
+        gb = b;
         continue;
       }
     }
+    gb = 0;
     // else pieces of at most half a chord, each bisected while it fails
     const long c0 = std::clamp(static_cast<long>(std::upper_bound(cu.begin(), cu.end(), 0.5 * (cum[i] + cum[i + 1])) - cu.begin()) - 1, 0L, nch - 1);
     const double hc = (cp[static_cast<std::size_t>(c0) + 1] - cp[static_cast<std::size_t>(c0)]).norm();
@@ -232,6 +293,7 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
       const double uq = cum[i] + li * (k + 0.5) / np;
       long lo, hi;
       cwindow(uq, uq, lo, hi);
+      used(lo, hi);
       double ends;
       cfill(q0, lo, hi, Q0);
       cfill(q1, lo, hi, Q1);
@@ -257,6 +319,7 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
         }
       }
       bound = std::max(bound, best);
+      gb = std::max(gb, best);
       if (best > eps) bad.push_back(uq);
     }
   }
@@ -276,6 +339,7 @@ struct RunEnds {
 
 constexpr double sharp_turn = 0.3;  // [rad] a vertex turning more gets dense knots and samples
 constexpr int sharp_reach = 8;      // they reach ±2·sharp_reach fit tolerances from the vertex
+constexpr int fit_reach = 16;       // a round solves the control points this many spans around raised samples
 
 // Interior vertices of the polyline turning more than sharp_turn.
 std::vector<std::size_t> sharp_vertices(const std::vector<V2>& pts, const std::vector<double>& cum) {
@@ -297,13 +361,17 @@ std::vector<std::size_t> sharp_vertices(const std::vector<V2>& pts, const std::v
 // polyline (every ≤ mean/2, w_k first the arc length each stands for) plus smoothing_length⁴·∫|s''|².
 // A long smoothing length lets the curve use the whole tube (both sides of the polyline) and keeps its
 // curvature low; where the curve then leaves the tube the weights of those samples are raised and the
-// curve is fitted again, so it is pulled back only where it has to be. Each round the sample
+// curve is fitted again, so it is pulled back only where it has to be. The first fit is global; a later
+// round solves only the control points within fit_reach spans of the samples whose weights rose, the
+// others held (a block Gauss–Seidel sweep on the same normal equations: the spline's response to a
+// weight decays along the curve), and moves only the samples on the spans it changed — a sample elsewhere keeps its foot point and its residual within the target. The sample
 // parameters move to their foot points on the curve, so a residual is the distance of the sample from
 // the curve. A sample still out after a few rounds gets a knot next to it (its knot span is halved,
-// down to mean/16). When every residual is within 0.93 of the fit tolerance the arc chain is built and
-// checked both ways with rigorous bounds; where the check fails, the weights of the samples within one
-// mean segment are raised and the round repeats. False when the check still fails after
-// max_refinements rounds.
+// down to mean/16; the knot is inserted without changing the curve). When every residual is within
+// 0.93 of the fit tolerance the arc chain is built and checked both ways with rigorous bounds, again
+// only where the spline changed since the last check (CheckCache); where the check fails, the weights
+// of the samples within one mean segment are raised and the round repeats. False when the check still
+// fails after max_refinements rounds.
 bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const SmoothOptions& opt,
              RunFit& out) {
   const std::size_t n = pts.size();  // vertices
@@ -359,29 +427,69 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   const double pen = ell * ell * ell * ell;
   const double target = 0.93 * eps;
   Spline sp;
+  sp.t.assign(4, 0.0);
+  sp.t.insert(sp.t.end(), knots.begin(), knots.end());
+  sp.t.insert(sp.t.end(), 4, L);
+  sp.P.assign(knots.size() + 4, V2::Zero());
+  const int nf = ends.fix0 ? 2 : 1, nk = ends.fix1 ? 2 : 1;  // control points held at each end
+  // clamped cubic: s'(0) = 3 (P1 − P0) / t4 and s'(L) = 3 (P_{m−1} − P_{m−2}) / (L − t_{m−1});
+  // a fixed end tangent fixes the second control point for unit speed
+  auto hold_ends = [&] {
+    const std::size_t m = sp.P.size();
+    sp.P.front() = pts.front();
+    sp.P.back() = pts.back();
+    if (ends.fix0) sp.P[1] = pts.front() + (sp.t[4] / 3.0) * ends.d0;
+    if (ends.fix1) sp.P[m - 2] = pts.back() - ((L - sp.t[m - 1]) / 3.0) * ends.d1;
+  };
+  hold_ends();
+  std::vector<std::array<double, 4>> pen_band;
+  penalty_band(sp, pen, pen_band);
+  std::vector<int> span(samples.size());  // each sample's knot span
+  for (std::size_t q = 0; q < samples.size(); ++q) span[q] = sp.span(samples[q].u);
+  std::vector<char> raised(samples.size(), 1);  // weight raised since the last solve (all before the first)
+  std::vector<char> changed;                    // per knot span: its polynomial changed in this round
+  std::vector<std::pair<int, int>> win;
   ParamMap amap;
   std::vector<double> bad, add;
-  std::vector<V2> front, back;
-  std::vector<std::array<double, 4>> pen_band;
   FitWork work;
+  CheckCache cache;  // the bounds of the last check, per knot span and per polyline segment
+  cache.span_bound.assign(sp.P.size(), -1.0);
+  cache.seg_bound.assign(n - 1, -1.0);
+  cache.seg_u0.assign(n - 1, 0.0);
+  cache.seg_u1.assign(n - 1, 0.0);
   for (int round = 0; round < opt.max_refinements; ++round) {
-    // clamped cubic: s'(0) = 3 (P1 − P0) / t4 and s'(L) = 3 (P_{m−1} − P_{m−2}) / (L − t_{m−1});
-    // a fixed end tangent fixes the second control point for unit speed
-    front.assign(1, pts.front());
-    back.assign(1, pts.back());
-    if (ends.fix0) front.push_back(pts.front() + (knots.front() / 3.0) * ends.d0);
-    if (ends.fix1) back.insert(back.begin(), pts.back() - ((L - knots.back()) / 3.0) * ends.d1);
-    if (!fit(samples, L, knots, pen, front, back, sp, pen_band, work)) return false;
+    // Solve the control points within `reach` of the spans of the samples whose weights rose (block
+    // Gauss–Seidel on the normal equations: the others are held), windows closer than the band merged.
+    const int m = static_cast<int>(sp.P.size());
+    if (nf + nk > m) return false;
+    win.clear();
+    if (round == 0) win.emplace_back(nf, m - nk - 1);  // the first solve is global
+    for (std::size_t q = 0; q < samples.size() && round > 0; ++q)
+      if (raised[q]) win.emplace_back(std::max(nf, span[q] - 3 - fit_reach), std::min(m - nk - 1, span[q] + fit_reach));
+    std::sort(win.begin(), win.end());
+    changed.assign(static_cast<std::size_t>(m), 0);
+    for (std::size_t w = 0; w < win.size();) {
+      auto [lo, hi] = win[w];
+      for (++w; w < win.size() && win[w].first <= hi + 4; ++w) hi = std::max(hi, win[w].second);
+      if (lo > hi) continue;
+      if (!solve_window(samples, span, lo, hi, pen_band, sp, work)) return false;
+      std::fill(changed.begin() + lo, changed.begin() + std::min(m, hi + 4), 1);
+    }
+    for (int k = 0; k < m; ++k)
+      if (changed[static_cast<std::size_t>(k)]) cache.span_bound[static_cast<std::size_t>(k)] = -1.0;
+    std::fill(raised.begin(), raised.end(), 0);
     bool over = false;
     add.clear();
-    int ks = 3;  // span of the previous sample's parameter (the samples are ordered along the curve)
-    for (Sample& s : samples) {
+    for (std::size_t q = 0; q < samples.size(); ++q) {
+      // a sample on a span the solve left alone keeps its foot point and residual (within the target)
+      if (!changed[static_cast<std::size_t>(span[q])]) continue;
+      Sample& s = samples[q];
       // foot point by Newton steps on (s(u) − p)·s'(u) = 0, kept only where it brings the curve closer
       double u = s.u;
       V2 c0, c1, c2;
-      int k = ks;
+      int k = span[q];
       sp.eval(u, k, c0, c1, c2);
-      ks = k;
+      const int k_old = k;
       const double r_old = (c0 - s.p).norm();
       for (int it = 0; it < 2; ++it) {
         const V2 r = c0 - s.p;
@@ -395,12 +503,15 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
       double res = (c0 - s.p).norm();
       if (res <= r_old) {
         s.u = u;
+        span[q] = k;
       } else {
         res = r_old;
+        span[q] = k_old;
       }
       if (res > target) {
         const double g = res / target;
         s.w *= std::clamp(1.2 * g * g, 1.2, 100.0);
+        raised[q] = 1;
         over = true;
         // a sample that stays out of the tube for a few rounds gets a knot next to it: the spline's
         // curvature may then change there (the ∫|s''|² penalty keeps the added freedom smooth)
@@ -409,27 +520,37 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
     }
     if (!over) {
       amap.build(samples, L);
-      if (!chain_check(sp, pts, segs, wseg, cum, amap, eps, mean, out, bad)) return false;
+      if (!chain_check(sp, pts, segs, wseg, cum, amap, eps, mean, cache, out, bad)) return false;
       if (bad.empty()) return true;
       std::sort(bad.begin(), bad.end());
-      for (Sample& s : samples) {
+      for (std::size_t q = 0; q < samples.size(); ++q) {
+        Sample& s = samples[q];
         const auto it = std::lower_bound(bad.begin(), bad.end(), s.a - mean);
-        if (it != bad.end() && *it <= s.a + mean) s.w *= 4.0;
+        if (it != bad.end() && *it <= s.a + mean) {
+          s.w *= 4.0;
+          raised[q] = 1;
+        }
       }
     }
     if (!add.empty()) {  // split the knot spans that hold the samples, down to 1/16 of the mean segment
-      std::vector<double> breaks{0.0};
-      breaks.insert(breaks.end(), knots.begin(), knots.end());
-      breaks.push_back(L);
+      std::vector<double> mids;
       for (double u : add) {
-        const auto k = static_cast<std::size_t>(
-            std::clamp<long>(std::upper_bound(breaks.begin(), breaks.end(), u) - breaks.begin(), 1,
-                             static_cast<long>(breaks.size()) - 1));
-        if (breaks[k] - breaks[k - 1] > std::min(mean / 16.0, 0.5 * eps)) knots.push_back(0.5 * (breaks[k - 1] + breaks[k]));
+        const auto k = static_cast<std::size_t>(sp.span(u));
+        if (sp.t[k + 1] - sp.t[k] > std::min(mean / 16.0, 0.5 * eps)) mids.push_back(0.5 * (sp.t[k] + sp.t[k + 1]));
       }
-      std::sort(knots.begin(), knots.end());
-      knots.erase(std::unique(knots.begin(), knots.end()), knots.end());
-      pen_band.clear();
+      std::sort(mids.begin(), mids.end());
+      mids.erase(std::unique(mids.begin(), mids.end()), mids.end());
+      if (!mids.empty()) {  // the same curve on the finer knots; the raised samples' windows reach the new knots
+        for (const double x : mids) {  // the split span's two halves are checked again
+          const auto k = static_cast<std::size_t>(sp.insert_knot(x));
+          cache.span_bound[k] = -1.0;
+          cache.span_bound.insert(cache.span_bound.begin() + static_cast<long>(k) + 1, -1.0);
+        }
+        hold_ends();
+        penalty_band(sp, pen, pen_band);
+        sp.prepare(3, static_cast<int>(sp.P.size()) - 1);
+        for (std::size_t q = 0; q < samples.size(); ++q) span[q] = sp.span(samples[q].u);
+      }
     }
   }
   return false;
