@@ -238,7 +238,11 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     D.resize(static_cast<std::size_t>(hi - lo + 1));
     dist2_window(p, cseg.data(), lo, hi, D.data());
   };
-  std::vector<std::pair<V2, V2>> pj;
+  struct Part {
+    V2 a0, a1;
+    double ua, ub;
+  };
+  std::vector<Part> pj;
   long clo = 0, chi = -1;  // chord window of the previous segment; K1: its end point's squared distances
   // does the parameter range [u0, u1] meet a span checked again?
   auto meets_fresh = [&](double u0, double u1) {
@@ -283,44 +287,39 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
       }
     }
     gb = 0;
-    // else pieces of at most half a chord, each bisected while it fails
+    // else the segment is bisected while a part fails, each part [a0, a1] (arc lengths ua..ub) bounded
+    // against the chords within ±w of it; the first part that fails decides. The budget is 64
+    // bisections for each piece of half a chord the segment holds.
     const long c0 = std::clamp(static_cast<long>(std::upper_bound(cu.begin(), cu.end(), 0.5 * (cum[i] + cum[i + 1])) - cu.begin()) - 1, 0L, nch - 1);
     const double hc = (cp[static_cast<std::size_t>(c0) + 1] - cp[static_cast<std::size_t>(c0)]).norm();
     const int np = std::max(1, static_cast<int>(std::ceil(li / std::max(0.5 * hc, 0.25 * eps))));
-    for (int k = 0; k < np; ++k) {
-      const V2 q0 = pts[i] + (pts[i + 1] - pts[i]) * (static_cast<double>(k) / np);
-      const V2 q1 = pts[i] + (pts[i + 1] - pts[i]) * (static_cast<double>(k + 1) / np);
-      const double uq = cum[i] + li * (k + 0.5) / np;
+    long budget = static_cast<long>(max_bisections) * np;
+    const V2 pm = 0.5 * (pts[i] + pts[i + 1]);
+    const double um = 0.5 * (cum[i] + cum[i + 1]);
+    pj.assign({Part{pm, pts[i + 1], um, cum[i + 1]}, Part{pts[i], pm, cum[i], um}});
+    while (!pj.empty()) {
+      const Part pt = pj.back();
+      pj.pop_back();
       long lo, hi;
-      cwindow(uq, uq, lo, hi);
+      cwindow(pt.ua, pt.ub, lo, hi);
       used(lo, hi);
       double ends;
-      cfill(q0, lo, hi, Q0);
-      cfill(q1, lo, hi, Q1);
-      double best = poly_bound(q0, q1, lo, hi, ends);
-      if (best > eps && ends <= eps) {  // bisect the piece; the first part that fails decides
-        pj.assign(1, {q0, q1});
-        best = 0;
-        int budget = max_bisections;
-        while (!pj.empty()) {
-          const auto [a0, a1] = pj.back();
-          pj.pop_back();
-          cfill(a0, lo, hi, Q0);
-          cfill(a1, lo, hi, Q1);
-          const double b = poly_bound(a0, a1, lo, hi, ends);
-          if (b > eps && ends <= eps && (a1 - a0).norm() > fine && --budget > 0) {
-            const V2 am = 0.5 * (a0 + a1);
-            pj.push_back({a0, am});
-            pj.push_back({am, a1});
-            continue;
-          }
-          best = std::max(best, b);
-          if (best > eps) break;  // the piece fails
-        }
+      cfill(pt.a0, lo, hi, Q0);
+      cfill(pt.a1, lo, hi, Q1);
+      const double b = poly_bound(pt.a0, pt.a1, lo, hi, ends);
+      if (b > eps && ends <= eps && (pt.a1 - pt.a0).norm() > fine && --budget > 0) {
+        const V2 am = 0.5 * (pt.a0 + pt.a1);
+        const double uh = 0.5 * (pt.ua + pt.ub);
+        pj.push_back(Part{am, pt.a1, uh, pt.ub});
+        pj.push_back(Part{pt.a0, am, pt.ua, uh});
+        continue;
       }
-      bound = std::max(bound, best);
-      gb = std::max(gb, best);
-      if (best > eps) bad.push_back(uq);
+      bound = std::max(bound, b);
+      gb = std::max(gb, b);
+      if (b > eps) {  // the segment fails
+        bad.push_back(0.5 * (pt.ua + pt.ub));
+        break;
+      }
     }
   }
   out.bound = bound;
