@@ -441,8 +441,11 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
     if (ends.fix1) sp.P[m - 2] = pts.back() - ((L - sp.t[m - 1]) / 3.0) * ends.d1;
   };
   hold_ends();
-  std::vector<std::array<double, 4>> pen_band;
-  penalty_band(sp, pen, pen_band);
+  const int m0 = static_cast<int>(sp.P.size());
+  sp.pb.resize(sp.P.size());
+  sp.power_basis(3, m0 - 1);
+  std::vector<std::array<double, 4>> pen_band(sp.P.size());
+  penalty_rows(sp, pen, pen_band, 0, m0 - 1);
   std::vector<int> span(samples.size());  // each sample's knot span
   for (std::size_t q = 0; q < samples.size(); ++q) span[q] = sp.span(samples[q].u);
   std::vector<char> raised(samples.size(), 1);  // weight raised since the last solve (all before the first)
@@ -541,13 +544,41 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
       mids.erase(std::unique(mids.begin(), mids.end()), mids.end());
       if (!mids.empty()) {  // the same curve on the finer knots; the raised samples' windows reach the new knots
         for (const double x : mids) {  // the split span's two halves are checked again
-          const auto k = static_cast<std::size_t>(sp.insert_knot(x));
-          cache.span_bound[k] = -1.0;
-          cache.span_bound.insert(cache.span_bound.begin() + static_cast<long>(k) + 1, -1.0);
+          const int k = sp.insert_knot(x);
+          pen_band.insert(pen_band.begin() + k, std::array<double, 4>{});
+          cache.span_bound[static_cast<std::size_t>(k)] = -1.0;
+          cache.span_bound.insert(cache.span_bound.begin() + k + 1, -1.0);
         }
-        hold_ends();
-        penalty_band(sp, pen, pen_band);
-        sp.prepare(3, static_cast<int>(sp.P.size()) - 1);
+        hold_ends();  // as the insertions left them, up to rounding
+        // the basis and the pieces of the spans a new knot reaches (knot j: spans j − 4..j + 3) and of
+        // the end spans, then the penalty rows that sum them
+        const int m1 = static_cast<int>(sp.P.size());
+        changed.assign(static_cast<std::size_t>(m1), 0);
+        auto touch = [&](int k0, int k1) {
+          std::fill(changed.begin() + std::max(k0, 3), changed.begin() + std::min(k1, m1 - 1) + 1, 1);
+        };
+        for (const double x : mids) {
+          const int j = static_cast<int>(std::lower_bound(sp.t.begin(), sp.t.end(), x) - sp.t.begin());
+          touch(j - 4, j + 3);
+        }
+        touch(3, 4);
+        touch(m1 - 2, m1 - 1);
+        for (int pass = 0; pass < 2; ++pass)  // every span's basis first: a penalty row sums four spans
+          for (int k0 = 3; k0 < m1;) {
+            if (!changed[static_cast<std::size_t>(k0)]) {
+              ++k0;
+              continue;
+            }
+            int k1 = k0;
+            while (k1 + 1 < m1 && changed[static_cast<std::size_t>(k1 + 1)]) ++k1;
+            if (pass == 0) {
+              sp.power_basis(k0, k1);
+              sp.prepare(k0, k1);
+            } else {
+              penalty_rows(sp, pen, pen_band, k0 - 3, k1);
+            }
+            k0 = k1 + 1;
+          }
         for (std::size_t q = 0; q < samples.size(); ++q) span[q] = sp.span(samples[q].u);
       }
     }

@@ -131,16 +131,18 @@ struct Spline {
   // change; point(), deriv() and eval() read only them.
   std::vector<std::array<V2, 4>> pw;
   // The same for the basis functions: pb[k][4·j + r] = D_j(N_{k−3+r})(t[k]) / j!, the coefficient of x^j
-  // of basis function k − 3 + r on span k, which depend on the knots only. power_basis() fills them
-  // after the knots change; prepare() combines them with P and basis() evaluates them.
+  // of basis function k − 3 + r on span k, which depend on the knots t[k − 3..k + 4] only.
+  // power_basis() fills them after the knots change; prepare() combines them with P and basis()
+  // evaluates them.
   std::vector<std::array<double, 16>> pb;
   // Built by the Cox–de Boor recursion on polynomials in x = u − t[k]:
   //   N_{i,p} = (u − t_i)/(t_{i+p} − t_i) · N_{i,p−1} + (t_{i+p+1} − u)/(t_{i+p+1} − t_{i+1}) · N_{i+1,p−1}
   // (a term with a zero denominator is zero), starting from N_{k,0} = 1 on span k.
-  void power_basis() {
+  // pb of the spans k0..k1 (clipped to 3..m − 1); pb holds m entries
+  void power_basis(int k0, int k1) {
     const int m = static_cast<int>(P.size());
-    pb.assign(static_cast<std::size_t>(m), std::array<double, 16>{});
-    for (int k = 3; k < m; ++k) {
+    for (int k = std::max(k0, 3); k <= std::min(k1, m - 1); ++k) {
+      pb[static_cast<std::size_t>(k)] = {};
       const double tk = t[static_cast<std::size_t>(k)];
       if (!(t[static_cast<std::size_t>(k + 1)] > tk)) continue;
       double d[8];  // d[q] = t[k − 3 + q] − t[k]
@@ -196,7 +198,9 @@ struct Spline {
   }
   // Insert the knot x (t[3] < x < t[m], no knot yet) without changing the curve (Boehm): in x's span k
   // the control points k − 2..k become P'_i = a_i·P_i + (1 − a_i)·P_{i−1}, a_i = (x − t_i)/(t_{i+3} − t_i),
-  // and the ones after move up by one. pb and pw must be rebuilt after (power_basis, prepare).
+  // and the ones after move up by one; span k becomes spans k and k + 1, and pb and pw move up with the
+  // spans. pb and pw of the spans the new knot reaches (k − 3..k + 4) must be rebuilt after
+  // (power_basis, prepare). Returns k.
   int insert_knot(double x) {
     const int k = span(x);
     P.insert(P.begin() + k, V2::Zero());  // the old P_i, i ≥ k, is now at i + 1
@@ -207,6 +211,8 @@ struct Spline {
       P[static_cast<std::size_t>(i)] = a * pi + (1.0 - a) * P[static_cast<std::size_t>(i - 1)];
     }
     t.insert(t.begin() + k + 1, x);
+    pb.insert(pb.begin() + k + 1, std::array<double, 16>{});
+    pw.insert(pw.begin() + k + 1, std::array<V2, 4>{});
     return k;
   }
   V2 point(double u) const { return point_in(span(u), u); }
@@ -315,14 +321,16 @@ struct ParamMap {
   }
 };
 
-// The band of pen·∫|s''|² over [0, L] in the control points (rows as in band_solve) for sp's knots, with
-// sp.pb rebuilt first: on span k the basis function r has N_r'' = α_r + β_r·x (x = u − t[k]), with
-// α_r = 2·pb[8 + r] and β_r = 6·pb[12 + r], so ∫_0^h N_r''·N_q'' dx is exact in closed form.
-void penalty_band(Spline& sp, double pen, std::vector<std::array<double, 4>>& pen_band) {
+// Rows r0..r1 (clipped to 0..m − 1) of the band of pen·∫|s''|² over [0, L] in the control points (rows
+// as in band_solve) from sp's power basis: row r sums the spans r..r + 3. On span k the basis function
+// r has N_r'' = α_r + β_r·x (x = u − t[k]), with α_r = 2·pb[8 + r] and β_r = 6·pb[12 + r], so
+// ∫_0^h N_r''·N_q'' dx is exact in closed form.
+void penalty_rows(const Spline& sp, double pen, std::vector<std::array<double, 4>>& pen_band, int r0, int r1) {
   const int m = static_cast<int>(sp.P.size());
-  sp.power_basis();
-  pen_band.assign(static_cast<std::size_t>(m), std::array<double, 4>{0, 0, 0, 0});
-  for (int k = 3; k < m; ++k) {
+  r0 = std::max(r0, 0);
+  r1 = std::min(r1, m - 1);
+  for (int r = r0; r <= r1; ++r) pen_band[static_cast<std::size_t>(r)] = {0, 0, 0, 0};
+  for (int k = std::max(r0, 3); k <= std::min(r1 + 3, m - 1); ++k) {
     const double h = sp.t[static_cast<std::size_t>(k + 1)] - sp.t[static_cast<std::size_t>(k)];
     if (!(h > 0)) continue;
     const auto& b = sp.pb[static_cast<std::size_t>(k)];
@@ -332,7 +340,7 @@ void penalty_band(Spline& sp, double pen, std::vector<std::array<double, 4>>& pe
       be[r] = 6.0 * b[12 + r];
     }
     const double h2 = 0.5 * h * h, h3 = h * h * h / 3.0;
-    for (int r = 0; r < 4; ++r)
+    for (int r = std::max(0, r0 - k + 3); r < 4 && k - 3 + r <= r1; ++r)
       for (int q = r; q < 4; ++q)
         pen_band[static_cast<std::size_t>(k - 3 + r)][static_cast<std::size_t>(q - r)] +=
             pen * (al[r] * al[q] * h + (al[r] * be[q] + al[q] * be[r]) * h2 + be[r] * be[q] * h3);
@@ -345,8 +353,8 @@ void penalty_band(Spline& sp, double pen, std::vector<std::array<double, 4>>& pe
 // held points moved to the right-hand side; banded Cholesky, O(hi − lo) plus a pass over the samples'
 // spans. Row i involves the samples in spans i..i + 3 only, so the samples in spans lo..hi + 3 (span[k]:
 // sample k's) give rows lo..hi and their couplings to the held points lo − 3..lo − 1 in full. With lo
-// and hi the first and last free control point this is the global solve. pen_band: penalty_band() for
-// sp's knots; sp.pw of the spans lo..hi + 3 is rebuilt. work: buffers kept between calls.
+// and hi the first and last free control point this is the global solve. pen_band: penalty_rows() of
+// every row; sp.pw of the spans lo..hi + 3 is rebuilt. work: buffers kept between calls.
 struct FitWork {
   std::vector<std::array<double, 4>> band, lo;
   std::vector<V2> rhs;
