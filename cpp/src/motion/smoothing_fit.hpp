@@ -49,6 +49,13 @@ struct CheckCache {
   std::vector<double> span_bound;      // per knot span: the largest bound of its chords (spline -> polyline)
   std::vector<double> seg_bound;       // per polyline segment: its bound (polyline -> spline)
   std::vector<double> seg_u0, seg_u1;  // per polyline segment: the parameter range of the chords it was bounded by
+  // buffers kept between checks (chain_check says what they hold)
+  std::vector<V2> cp, cw;
+  std::vector<double> cu, cpar, csag, Q0, Q1, K1;
+  std::vector<int> cspan;
+  std::vector<char> todo;
+  std::vector<std::pair<double, double>> fresh;
+  std::vector<Seg> cseg;
 };
 
 // In a check with the cache, the chords of a knot span whose bound is valid and the polyline segments
@@ -62,10 +69,16 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   out.pieces.clear();
   const int m = static_cast<int>(sp.P.size());
   // chord samples of the spline with their parameters, sagitta bound and span
-  std::vector<V2> cp;
-  std::vector<double> cu, cpar, csag;  // cu: polyline arc length of each chord point; cpar: its parameter
-  std::vector<int> cspan;              // per chord j (cp[j], cp[j+1]): its knot span
-  cp.push_back(sp.P.front());
+  auto& cp = cache.cp;
+  auto& cu = cache.cu;      // polyline arc length of each chord point
+  auto& cpar = cache.cpar;  // parameter of each chord point
+  auto& csag = cache.csag;
+  auto& cspan = cache.cspan;  // per chord j (cp[j], cp[j+1]): its knot span
+  cp.assign(1, sp.P.front());
+  cu.clear();
+  cpar.clear();
+  csag.clear();
+  cspan.clear();
   cu.push_back(0.0);
   cpar.push_back(0.0);
   std::size_t mk = 0;  // cursor of amap for the nondecreasing chord parameters
@@ -138,8 +151,10 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   auto& span_bound = cache.span_bound;
   auto valid = [eps](double b) { return b >= 0 && b <= eps; };
   // the spans to check (their bounds start at 0) and their parameter ranges, merged
-  std::vector<char> todo(static_cast<std::size_t>(m), 0);
-  std::vector<std::pair<double, double>> fresh;
+  auto& todo = cache.todo;
+  auto& fresh = cache.fresh;
+  todo.assign(static_cast<std::size_t>(m), 0);
+  fresh.clear();
   for (int k = 3; k < m; ++k) {
     const auto uk = static_cast<std::size_t>(k);
     if (valid(span_bound[uk]) || !(sp.t[uk + 1] > sp.t[uk])) continue;
@@ -200,9 +215,10 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   // polyline -> spline: every point of a polyline piece [q0, q1] is within run_bound of the chords, each
   // chord's part plus its σ, so within that of the spline
   const long nch = static_cast<long>(cp.size()) - 1;
-  std::vector<Seg> cseg;  // the chords and the bisectors at the chord points between them
-  std::vector<V2> cw;
-  cseg.reserve(static_cast<std::size_t>(nch));
+  auto& cseg = cache.cseg;  // the chords and the bisectors at the chord points between them
+  auto& cw = cache.cw;
+  cseg.clear();
+  cw.clear();
   for (long q = 0; q < nch; ++q) cseg.push_back(make_seg(cp[static_cast<std::size_t>(q)], cp[static_cast<std::size_t>(q) + 1]));
   for (long q = 0; q + 1 < nch; ++q) cw.push_back(bisector(cseg[static_cast<std::size_t>(q)], cseg[static_cast<std::size_t>(q) + 1]));
   auto chord_val = [&](double d2, long q) { return std::sqrt(d2) + csag[static_cast<std::size_t>(q)]; };
@@ -218,7 +234,9 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   // larger of the two smallest squared distances plus the smallest σ); above eps, every bisection of
   // the piece keeps a part whose bound is above eps, so the piece fails whatever it is cut into.
   // Q0, Q1: squared distances of q0, q1 to the chords lo..hi.
-  std::vector<double> Q0, Q1, K1;
+  auto& Q0 = cache.Q0;
+  auto& Q1 = cache.Q1;
+  auto& K1 = cache.K1;
   auto poly_bound = [&](const V2& q0, const V2& q1, long lo, long hi, double& ends) {
     double best = 1e300, m0 = 1e300, m1 = 1e300, smin = 1e300;
     for (long q = lo; q <= hi; ++q) {
@@ -244,6 +262,7 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   };
   std::vector<Part> pj;
   long clo = 0, chi = -1;  // chord window of the previous segment; K1: its end point's squared distances
+  std::size_t wa = 0, wb = 0;  // cwindow's searches for the segments' nondecreasing arc lengths
   // does the parameter range [u0, u1] meet a span checked again?
   auto meets_fresh = [&](double u0, double u1) {
     const auto it = std::lower_bound(fresh.begin(), fresh.end(), u0,
@@ -269,17 +288,18 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     gu1 = -1e300;
     // the whole segment first
     {
-      long lo, hi;
-      cwindow(cum[i], cum[i + 1], lo, hi);
+      while (wa < cu.size() && cu[wa] < cum[i] - w) ++wa;
+      while (wb < cu.size() && cu[wb] <= cum[i + 1] + w) ++wb;
+      const long lo = std::max(0L, static_cast<long>(wa) - 2), hi = std::min(nch - 1, static_cast<long>(wb) + 1);
       used(lo, hi);
       Q0.resize(static_cast<std::size_t>(hi - lo + 1));  // pts[i] is the previous segment's end point
       dist2_window(pts[i], cseg.data(), lo, hi, Q0.data(), K1.data(), clo, chi);
       cfill(pts[i + 1], lo, hi, Q1);
-      K1 = Q1;
-      clo = lo;
-      chi = hi;
       double ends;
       const double b = poly_bound(pts[i], pts[i + 1], lo, hi, ends);
+      std::swap(K1, Q1);
+      clo = lo;
+      chi = hi;
       if (b <= eps) {
         bound = std::max(bound, b);
         gb = b;
@@ -323,9 +343,10 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     }
   }
   out.bound = bound;
+  std::size_t pk = 0;  // the pieces' parameters are nondecreasing
   for (Piece& p : out.pieces) {
-    p.ua = amap(p.ua);
-    p.ub = amap(p.ub);
+    p.ua = amap.walk(p.ua, pk);
+    p.ub = amap.walk(p.ub, pk);
   }
   return true;
 }
