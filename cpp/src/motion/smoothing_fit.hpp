@@ -390,8 +390,8 @@ std::vector<std::size_t> sharp_vertices(const std::vector<V2>& pts, const std::v
 // down to mean/16; the knot is inserted without changing the curve). When every residual is within
 // 0.93 of the fit tolerance the arc chain is built and checked both ways with rigorous bounds, again
 // only where the spline changed since the last check (CheckCache); where the check fails, the weights
-// of the samples within one mean segment are raised and the round repeats. False when the check still
-// fails after max_refinements rounds.
+// of the samples within one mean segment are raised, a failing place between samples gets a sample of
+// its own, and the round repeats. False when the check still fails after max_refinements rounds.
 bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const SmoothOptions& opt,
              RunFit& out) {
   const std::size_t n = pts.size();  // vertices
@@ -553,6 +553,23 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
           s.w *= 4.0;
           raised[q] = 1;
         }
+      }
+      // A failing place between two samples more than mean/16 from both gets a sample of its own (the
+      // polyline point there, weighted as the heavier neighbour, its parameter interpolated between
+      // theirs): the curve may leave the tube between samples however heavy they are.
+      for (const double b : bad) {
+        const auto it = std::lower_bound(samples.begin(), samples.end(), b,
+                                         [](const Sample& x, double v) { return x.a < v; });
+        if (it == samples.begin() || it == samples.end()) continue;
+        const Sample &s0 = *(it - 1), &s1 = *it;
+        if (b - s0.a < mean / 16.0 || s1.a - b < mean / 16.0) continue;
+        const std::size_t i = std::min(static_cast<std::size_t>(std::upper_bound(cum.begin(), cum.end(), b) - cum.begin()) - 1, n - 2);
+        const double f = std::clamp((b - cum[i]) / (cum[i + 1] - cum[i]), 0.0, 1.0);
+        const double u = s0.u + (b - s0.a) / (s1.a - s0.a) * (s1.u - s0.u);
+        const auto q = it - samples.begin();
+        samples.insert(it, Sample{u, V2(pts[i] + f * (pts[i + 1] - pts[i])), std::max(s0.w, s1.w), b});
+        span.insert(span.begin() + q, sp.span(u));
+        raised.insert(raised.begin() + q, 1);
       }
     }
     if (!add.empty()) {  // split the knot spans that hold the samples, down to 1/16 of the mean segment
