@@ -581,13 +581,24 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
       std::sort(mids.begin(), mids.end());
       mids.erase(std::unique(mids.begin(), mids.end()), mids.end());
       if (!mids.empty()) {  // the same curve on the finer knots; the raised samples' windows reach the new knots
-        for (const double x : mids) {  // the split span's two halves are checked again
-          const int k = sp.insert_knot(x);
-          pen_band.insert(pen_band.begin() + k, std::array<double, 4>{});
-          cache.span_bound[static_cast<std::size_t>(k)] = -1.0;
-          cache.span_bound.insert(cache.span_bound.begin() + k + 1, -1.0);
-        }
+        const std::vector<double> t0 = sp.t;
+        for (const double x : mids) sp.insert_knot(x);
         hold_ends();  // as the insertions left them, up to rounding
+        // A span or penalty row k no new knot reaches moves to k + (the new knots below t0[k]); the
+        // others are rebuilt below, and the split spans' two halves are checked again.
+        auto remap = [&](auto& v, const auto& blank) {
+          auto old = std::move(v);
+          v.assign(sp.P.size(), blank);
+          std::size_t c = 0;
+          for (std::size_t k = 0; k < old.size(); ++k) {
+            while (c < mids.size() && mids[c] < t0[k]) ++c;
+            v[k + c] = old[k];
+          }
+        };
+        remap(sp.pb, std::array<double, 16>{});
+        remap(sp.pw, std::array<V2, 4>{});
+        remap(pen_band, std::array<double, 4>{});
+        remap(cache.span_bound, -1.0);
         // the basis and the pieces of the spans a new knot reaches (knot j: spans j − 4..j + 3) and of
         // the end spans, then the penalty rows that sum them
         const int m1 = static_cast<int>(sp.P.size());
@@ -598,6 +609,8 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
         for (const double x : mids) {
           const int j = static_cast<int>(std::lower_bound(sp.t.begin(), sp.t.end(), x) - sp.t.begin());
           touch(j - 4, j + 3);
+          cache.span_bound[static_cast<std::size_t>(j - 1)] = -1.0;
+          cache.span_bound[static_cast<std::size_t>(j)] = -1.0;
         }
         touch(3, 4);
         touch(m1 - 2, m1 - 1);
@@ -617,7 +630,8 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
             }
             k0 = k1 + 1;
           }
-        for (std::size_t q = 0; q < samples.size(); ++q) span[q] = sp.span(samples[q].u);
+        int k = 3;  // the samples' parameters nearly ascend: each search starts at the previous span
+        for (std::size_t q = 0; q < samples.size(); ++q) k = span[q] = sp.span_near(samples[q].u, k);
       }
     }
   }

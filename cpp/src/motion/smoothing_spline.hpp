@@ -198,9 +198,8 @@ struct Spline {
   }
   // Insert the knot x (t[3] < x < t[m], no knot yet) without changing the curve (Boehm): in x's span k
   // the control points k − 2..k become P'_i = a_i·P_i + (1 − a_i)·P_{i−1}, a_i = (x − t_i)/(t_{i+3} − t_i),
-  // and the ones after move up by one; span k becomes spans k and k + 1, and pb and pw move up with the
-  // spans. pb and pw of the spans the new knot reaches (k − 3..k + 4) must be rebuilt after
-  // (power_basis, prepare). Returns k.
+  // and the ones after move up by one; span k becomes spans k and k + 1. pb and pw are left to the caller
+  // (a span the new knot does not reach, outside k − 3..k + 4, keeps them, one index up). Returns k.
   int insert_knot(double x) {
     const int k = span(x);
     P.insert(P.begin() + k, V2::Zero());  // the old P_i, i ≥ k, is now at i + 1
@@ -211,8 +210,6 @@ struct Spline {
       P[static_cast<std::size_t>(i)] = a * pi + (1.0 - a) * P[static_cast<std::size_t>(i - 1)];
     }
     t.insert(t.begin() + k + 1, x);
-    pb.insert(pb.begin() + k + 1, std::array<double, 16>{});
-    pw.insert(pw.begin() + k + 1, std::array<V2, 4>{});
     return k;
   }
   V2 point(double u) const { return point_in(span(u), u); }
@@ -243,33 +240,53 @@ struct Spline {
 // (entries with i + k ≥ n are not read); in place on rhs. lo: workspace, lo[i][k] = L(i, i − k).
 bool band_solve(const std::array<double, 4>* band, V2* rhs, int n, std::vector<std::array<double, 4>>& lo) {
   lo.resize(static_cast<std::size_t>(n));
+  auto L = [&](int i) -> std::array<double, 4>& { return lo[static_cast<std::size_t>(i)]; };
   for (int i = 0; i < n; ++i) {
-    auto& li = lo[static_cast<std::size_t>(i)];
+    auto& li = L(i);
     li = {0, 0, 0, 0};
     double diag = band[i][0];
-    for (int k = std::min(i, 3); k >= 1; --k) {  // L(i, j) for j = i − k, from A(j, i) = band[j][k]
-      const int j = i - k;
-      const auto& lj = lo[static_cast<std::size_t>(j)];
-      double s = band[j][static_cast<std::size_t>(k)];
-      for (int q = std::max(0, i - 3); q < j; ++q)
-        s -= li[static_cast<std::size_t>(i - q)] * lj[static_cast<std::size_t>(j - q)];
-      li[static_cast<std::size_t>(k)] = s / lj[0];
-      diag -= li[static_cast<std::size_t>(k)] * li[static_cast<std::size_t>(k)];
+    if (i >= 3) {  // the general case below, unrolled
+      li[3] = band[i - 3][3] / L(i - 3)[0];
+      diag -= li[3] * li[3];
+      li[2] = (band[i - 2][2] - li[3] * L(i - 2)[1]) / L(i - 2)[0];
+      diag -= li[2] * li[2];
+      li[1] = (band[i - 1][1] - li[3] * L(i - 1)[2] - li[2] * L(i - 1)[1]) / L(i - 1)[0];
+      diag -= li[1] * li[1];
+    } else {
+      for (int k = i; k >= 1; --k) {  // L(i, j) for j = i − k, from A(j, i) = band[j][k]
+        const int j = i - k;
+        const auto& lj = L(j);
+        double s = band[j][static_cast<std::size_t>(k)];
+        for (int q = 0; q < j; ++q) s -= li[static_cast<std::size_t>(i - q)] * lj[static_cast<std::size_t>(j - q)];
+        li[static_cast<std::size_t>(k)] = s / lj[0];
+        diag -= li[static_cast<std::size_t>(k)] * li[static_cast<std::size_t>(k)];
+      }
     }
     if (!(diag > 0)) return false;
     li[0] = std::sqrt(diag);
   }
   for (int i = 0; i < n; ++i) {
-    const auto& li = lo[static_cast<std::size_t>(i)];
+    const auto& li = L(i);
     V2 s = rhs[i];
-    for (int q = std::max(0, i - 3); q < i; ++q) s -= li[static_cast<std::size_t>(i - q)] * rhs[q];
+    if (i >= 3) {
+      s -= li[3] * rhs[i - 3];
+      s -= li[2] * rhs[i - 2];
+      s -= li[1] * rhs[i - 1];
+    } else {
+      for (int q = 0; q < i; ++q) s -= li[static_cast<std::size_t>(i - q)] * rhs[q];
+    }
     rhs[i] = s / li[0];
   }
   for (int i = n - 1; i >= 0; --i) {
     V2 s = rhs[i];
-    for (int q = i + 1; q <= std::min(n - 1, i + 3); ++q)
-      s -= lo[static_cast<std::size_t>(q)][static_cast<std::size_t>(q - i)] * rhs[q];
-    rhs[i] = s / lo[static_cast<std::size_t>(i)][0];
+    if (i + 3 < n) {
+      s -= L(i + 1)[1] * rhs[i + 1];
+      s -= L(i + 2)[2] * rhs[i + 2];
+      s -= L(i + 3)[3] * rhs[i + 3];
+    } else {
+      for (int q = i + 1; q < n; ++q) s -= L(q)[static_cast<std::size_t>(q - i)] * rhs[q];
+    }
+    rhs[i] = s / L(i)[0];
   }
   return true;
 }
@@ -378,11 +395,24 @@ bool solve_window(const std::vector<Sample>& samples, const std::vector<int>& sp
     const Sample& s = samples[q];
     double N[4];
     sp.basis(k, s.u, N);
-    for (int r = 0; r < 4; ++r) {
-      const auto i = static_cast<std::size_t>(k - 3 + r);
-      rhs[i] += s.w * N[r] * s.p;
-      for (int c = r; c < 4; ++c) band[i][static_cast<std::size_t>(c - r)] += s.w * N[r] * N[c];
-    }
+    // rows k − 3..k: rhs += w·N_r·p, A(r, c) += w·N_r·N_c
+    const double w0 = s.w * N[0], w1 = s.w * N[1], w2 = s.w * N[2], w3 = s.w * N[3];
+    auto* b = band.data() + (k - 3);
+    V2* y = rhs.data() + (k - 3);
+    b[0][0] += w0 * N[0];
+    b[0][1] += w0 * N[1];
+    b[0][2] += w0 * N[2];
+    b[0][3] += w0 * N[3];
+    b[1][0] += w1 * N[1];
+    b[1][1] += w1 * N[2];
+    b[1][2] += w1 * N[3];
+    b[2][0] += w2 * N[2];
+    b[2][1] += w2 * N[3];
+    b[3][0] += w3 * N[3];
+    y[0] += w0 * s.p;
+    y[1] += w1 * s.p;
+    y[2] += w2 * s.p;
+    y[3] += w3 * s.p;
   }
   // move the held control points to the right-hand side: A(i, f) = band[min(i, f)][|i − f|]
   for (int i = lo; i <= hi; ++i) {
