@@ -33,7 +33,7 @@ struct RunFit {
 // b0 = a0, b1 = a0 + a1/3, b2 = a0 + 2a1/3 + a2/3, b3 = a0 + a1 + a2 + a3), then the two-way check of the
 // spline against the polyline. Chords of the spline within one knot span, at parameters u0 < u1,
 // deviate from it by at most σ = (u1 − u0)²/8 · max|s''| (linear interpolation error; s'' is linear
-// on a span, so its largest norm is at u0 or u1); chords are placed so that σ ≤ 0.05·eps and no chord
+// on a span, so its largest norm is at u0 or u1); chords are placed so that σ ≤ 0.03·eps and no chord
 // is longer than half a mean segment. Fills out.pieces (their ua, ub as arc lengths along the polyline)
 // and out.bound; the polyline arc lengths of the places where the bound exceeds eps go to bad.
 // Bisections of one failing chord or polyline piece before it counts as out of the tube (a curve that
@@ -64,7 +64,7 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
                  const std::vector<V2>& wseg, const std::vector<double>& cum, const ParamMap& amap, double eps,
                  double mean, CheckCache& cache, RunFit& out, std::vector<double>& bad) {
   const std::size_t n = pts.size();
-  const double sag_share = 0.05 * eps;
+  const double sag_share = 0.03 * eps;
   bad.clear();
   out.pieces.clear();
   const int m = static_cast<int>(sp.P.size());
