@@ -428,7 +428,5 @@ bool solve_window(const std::vector<Sample>& samples, const std::vector<int>& sp
   return true;
 }
 
-// One planar piece of the chain: a line (k = 0) or an arc of signed curvature k [1/mm].
-
 }  // namespace
 }  // namespace netshape::motion
