@@ -384,9 +384,9 @@ std::vector<std::size_t> sharp_vertices(const std::vector<V2>& pts, const std::v
 // curve is fitted again, so it is pulled back only where it has to be. The first fit is global; a later
 // round solves only the control points within fit_reach spans of the samples whose weights rose, the
 // others held (a block Gauss–Seidel sweep on the same normal equations: the spline's response to a
-// weight decays along the curve), and moves only the samples on the spans it changed — a sample elsewhere keeps its foot point and its residual within the target. The sample
-// parameters move to their foot points on the curve, so a residual is the distance of the sample from
-// the curve. A sample still out after a few rounds gets a knot next to it (its knot span is halved,
+// weight decays along the curve), and moves only the samples on the spans it changed — a sample
+// elsewhere keeps its foot point and its residual within the target. The sample parameters move to
+// their foot points on the curve, so a residual is the distance of the sample from the curve. A sample still out after a few rounds gets a knot next to it (its knot span is halved,
 // down to mean/16; the knot is inserted without changing the curve). When every residual is within
 // 0.93 of the fit tolerance the arc chain is built and checked both ways with rigorous bounds, again
 // only where the spline changed since the last check (CheckCache); where the check fails, the weights
@@ -481,14 +481,17 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   cache.seg_u0.assign(n - 1, 0.0);
   cache.seg_u1.assign(n - 1, 0.0);
   for (int round = 0; round < opt.max_refinements; ++round) {
-    // Solve the control points within `reach` of the spans of the samples whose weights rose (block
-    // Gauss–Seidel on the normal equations: the others are held), windows closer than the band merged.
+    // Solve the free control points within fit_reach spans of the samples whose weights rose (block
+    // Gauss–Seidel on the normal equations: the others are held), windows closer than the band merged;
+    // the first solve is global. (A run has at least 3 spans, so at least 2 free control points.)
     const int m = static_cast<int>(sp.P.size());
-    if (nf + nk > m) return false;
     win.clear();
-    if (round == 0) win.emplace_back(nf, m - nk - 1);  // the first solve is global
-    for (std::size_t q = 0; q < samples.size() && round > 0; ++q)
-      if (raised[q]) win.emplace_back(std::max(nf, span[q] - 3 - fit_reach), std::min(m - nk - 1, span[q] + fit_reach));
+    if (round == 0) {
+      win.emplace_back(nf, m - nk - 1);
+    } else {
+      for (std::size_t q = 0; q < samples.size(); ++q)
+        if (raised[q]) win.emplace_back(std::max(nf, span[q] - 3 - fit_reach), std::min(m - nk - 1, span[q] + fit_reach));
+    }
     std::sort(win.begin(), win.end());
     changed.assign(static_cast<std::size_t>(m), 0);
     for (std::size_t w = 0; w < win.size();) {
