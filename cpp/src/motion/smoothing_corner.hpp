@@ -34,7 +34,8 @@ struct CornerArc {
 //   a segment ‖x − c‖ is convex, so its largest value is at an end and its smallest at the foot of c.
 //   arc -> polyline: chords of the arc with sagitta σ; a chord's points are within
 //   max(d(c0, S), d(c1, S)) + σ of segment S (the distance to a segment is convex).
-double corner_arc_gap(const CornerArc& a, double th, const std::vector<V2>& q, double chord) {
+// Returns as soon as the bound exceeds `limit` (a value above it then).
+double corner_arc_gap(const CornerArc& a, double th, const std::vector<V2>& q, double chord, double limit) {
   const V2 u1 = a.p1 - a.c, u2 = a.p2 - a.c;
   const double sg = a.ccw ? 1.0 : -1.0;
   const double slack = 1e-12 * (1.0 + a.r);
@@ -51,6 +52,7 @@ double corner_arc_gap(const CornerArc& a, double th, const std::vector<V2>& q, d
     const double near = std::sqrt(dist2(a.c, segs.back()));
     gap = std::max({gap, far - a.r, a.r - near});
   }
+  if (gap > limit) return gap;
   const int n = std::clamp(static_cast<int>(std::ceil(th * a.r / chord)), 4, 1024);
   const double step = th / n;
   const double sag = a.r * (1.0 - std::cos(0.5 * step));
@@ -62,6 +64,7 @@ double corner_arc_gap(const CornerArc& a, double th, const std::vector<V2>& q, d
     double best = 1e300;
     for (const Seg& sg : segs) best = std::min(best, std::max(dist2(c0, sg), dist2(c1, sg)));
     gap = std::max(gap, std::sqrt(best) + sag);
+    if (gap > limit) return gap;
     c0 = c1;
   }
   return gap;
@@ -99,7 +102,7 @@ bool compound_corner_arc(const std::vector<V2>& mid, const V2& d1, const V2& d2,
     q.assign(1, a.p1);
     q.insert(q.end(), mid.begin(), mid.end());
     q.push_back(a.p2);
-    return corner_arc_gap(a, th, q, chord);
+    return corner_arc_gap(a, th, q, chord, e);
   };
   CornerArc a;
   if (gap_at(hi, a) <= e) {

@@ -33,26 +33,52 @@ struct RunFit {
 // b0 = a0, b1 = a0 + a1/3, b2 = a0 + 2a1/3 + a2/3, b3 = a0 + a1 + a2 + a3), then the two-way check of the
 // spline against the polyline. Chords of the spline within one knot span, at parameters u0 < u1,
 // deviate from it by at most σ = (u1 − u0)²/8 · max|s''| (linear interpolation error; s'' is linear
-// on a span, so its largest norm is at u0 or u1); chords are placed so that σ ≤ 0.05·eps and no chord
+// on a span, so its largest norm is at u0 or u1); chords are placed so that σ ≤ 0.03·eps and no chord
 // is longer than half a mean segment. Fills out.pieces (their ua, ub as arc lengths along the polyline)
 // and out.bound; the polyline arc lengths of the places where the bound exceeds eps go to bad.
 // Bisections of one failing chord or polyline piece before it counts as out of the tube (a curve that
 // really leaves the tube would otherwise be bisected down to `fine` all along the stretch it is out).
 constexpr int max_bisections = 64;
 
+// The bounds of the last check, so that a check of a spline that changed only in places re-checks only
+// what the change reaches. A bound is an upper bound of distances between real points of the spline
+// and the polyline, so it stays valid while the chords and segments it was computed from stay (which
+// chords and segments a window holds only makes it tighter or looser). A bound that is negative (to
+// be checked) or above eps is computed again.
+struct CheckCache {
+  std::vector<double> span_bound;      // per knot span: the largest bound of its chords (spline -> polyline)
+  std::vector<double> seg_bound;       // per polyline segment: its bound (polyline -> spline)
+  std::vector<double> seg_u0, seg_u1;  // per polyline segment: the parameter range of the chords it was bounded by
+  // buffers kept between checks (chain_check says what they hold)
+  std::vector<V2> cp, cw;
+  std::vector<double> cu, cpar, csag, Q0, Q1, K1;
+  std::vector<int> cspan;
+  std::vector<char> todo;
+  std::vector<std::pair<double, double>> fresh;
+  std::vector<Seg> cseg;
+};
+
+// In a check with the cache, the chords of a knot span whose bound is valid and the polyline segments
+// whose chords all lie in such spans keep their bounds.
 bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector<Seg>& segs,
                  const std::vector<V2>& wseg, const std::vector<double>& cum, const ParamMap& amap, double eps,
-                 double mean, RunFit& out, std::vector<double>& bad) {
+                 double mean, CheckCache& cache, RunFit& out, std::vector<double>& bad) {
   const std::size_t n = pts.size();
-  const double sag_share = 0.05 * eps;
+  const double sag_share = 0.03 * eps;
   bad.clear();
   out.pieces.clear();
   const int m = static_cast<int>(sp.P.size());
   // chord samples of the spline with their parameters, sagitta bound and span
-  std::vector<V2> cp;
-  std::vector<double> cu, cpar, csag;  // cu: polyline arc length of each chord point; cpar: its parameter
-  std::vector<int> cspan;              // per chord j (cp[j], cp[j+1]): its knot span
-  cp.push_back(sp.P.front());
+  auto& cp = cache.cp;
+  auto& cu = cache.cu;      // polyline arc length of each chord point
+  auto& cpar = cache.cpar;  // parameter of each chord point
+  auto& csag = cache.csag;
+  auto& cspan = cache.cspan;  // per chord j (cp[j], cp[j+1]): its knot span
+  cp.assign(1, sp.P.front());
+  cu.clear();
+  cpar.clear();
+  csag.clear();
+  cspan.clear();
   cu.push_back(0.0);
   cpar.push_back(0.0);
   std::size_t mk = 0;  // cursor of amap for the nondecreasing chord parameters
@@ -122,9 +148,34 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   std::vector<Job> jobs;
   long plo = 0, phi = -1;  // window of the previous chord, whose end point's distances are in D1
   std::size_t sc = 0;      // segment search: cum[sc] <= um for the chords' nondecreasing middles um
+  auto& span_bound = cache.span_bound;
+  auto valid = [eps](double b) { return b >= 0 && b <= eps; };
+  // the spans to check (their bounds start at 0) and their parameter ranges, merged
+  auto& todo = cache.todo;
+  auto& fresh = cache.fresh;
+  todo.assign(static_cast<std::size_t>(m), 0);
+  fresh.clear();
+  for (int k = 3; k < m; ++k) {
+    const auto uk = static_cast<std::size_t>(k);
+    if (valid(span_bound[uk]) || !(sp.t[uk + 1] > sp.t[uk])) continue;
+    todo[uk] = 1;
+    span_bound[uk] = 0;
+    if (!fresh.empty() && fresh.back().second >= sp.t[uk]) {
+      fresh.back().second = sp.t[uk + 1];
+    } else {
+      fresh.emplace_back(sp.t[uk], sp.t[uk + 1]);
+    }
+  }
   for (std::size_t j = 0; j + 1 < cp.size(); ++j) {
     const double um = 0.5 * (cu[j] + cu[j + 1]);
     while (sc + 1 < cum.size() && cum[sc + 1] <= um) ++sc;
+    double& sb = span_bound[static_cast<std::size_t>(cspan[j])];
+    if (!todo[static_cast<std::size_t>(cspan[j])]) {
+      bound = std::max(bound, sb);
+      plo = 0;
+      phi = -1;
+      continue;
+    }
     const long s = std::clamp(static_cast<long>(sc), 0L, ns - 1);
     long lo, hi;
     window(s, lo, hi);
@@ -159,13 +210,15 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     }
     bound = std::max(bound, best);
     if (best > eps) bad.push_back(um);
+    sb = std::max(sb, best);
   }
   // polyline -> spline: every point of a polyline piece [q0, q1] is within run_bound of the chords, each
   // chord's part plus its σ, so within that of the spline
   const long nch = static_cast<long>(cp.size()) - 1;
-  std::vector<Seg> cseg;  // the chords and the bisectors at the chord points between them
-  std::vector<V2> cw;
-  cseg.reserve(static_cast<std::size_t>(nch));
+  auto& cseg = cache.cseg;  // the chords and the bisectors at the chord points between them
+  auto& cw = cache.cw;
+  cseg.clear();
+  cw.clear();
   for (long q = 0; q < nch; ++q) cseg.push_back(make_seg(cp[static_cast<std::size_t>(q)], cp[static_cast<std::size_t>(q) + 1]));
   for (long q = 0; q + 1 < nch; ++q) cw.push_back(bisector(cseg[static_cast<std::size_t>(q)], cseg[static_cast<std::size_t>(q) + 1]));
   auto chord_val = [&](double d2, long q) { return std::sqrt(d2) + csag[static_cast<std::size_t>(q)]; };
@@ -181,7 +234,9 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   // larger of the two smallest squared distances plus the smallest σ); above eps, every bisection of
   // the piece keeps a part whose bound is above eps, so the piece fails whatever it is cut into.
   // Q0, Q1: squared distances of q0, q1 to the chords lo..hi.
-  std::vector<double> Q0, Q1, K1;
+  auto& Q0 = cache.Q0;
+  auto& Q1 = cache.Q1;
+  auto& K1 = cache.K1;
   auto poly_bound = [&](const V2& q0, const V2& q1, long lo, long hi, double& ends) {
     double best = 1e300, m0 = 1e300, m1 = 1e300, smin = 1e300;
     for (long q = lo; q <= hi; ++q) {
@@ -201,69 +256,97 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     D.resize(static_cast<std::size_t>(hi - lo + 1));
     dist2_window(p, cseg.data(), lo, hi, D.data());
   };
-  std::vector<std::pair<V2, V2>> pj;
+  struct Part {
+    V2 a0, a1;
+    double ua, ub;
+  };
+  std::vector<Part> pj;
   long clo = 0, chi = -1;  // chord window of the previous segment; K1: its end point's squared distances
+  std::size_t wa = 0, wb = 0;  // cwindow's searches for the segments' nondecreasing arc lengths
+  // does the parameter range [u0, u1] meet a span checked again?
+  auto meets_fresh = [&](double u0, double u1) {
+    const auto it = std::lower_bound(fresh.begin(), fresh.end(), u0,
+                                     [](const std::pair<double, double>& f, double u) { return f.second < u; });
+    return it != fresh.end() && it->first <= u1;
+  };
   for (std::size_t i = 0; i + 1 < n; ++i) {
+    double& gb = cache.seg_bound[i];
+    double& gu0 = cache.seg_u0[i];
+    double& gu1 = cache.seg_u1[i];
+    if (valid(gb) && !meets_fresh(gu0, gu1)) {
+      bound = std::max(bound, gb);
+      chi = -1;
+      continue;
+    }
     const double li = cum[i + 1] - cum[i];
+    // the chords a window lo..hi holds span the parameters cpar[lo]..cpar[hi + 1]
+    auto used = [&](long lo, long hi) {
+      gu0 = std::min(gu0, cpar[static_cast<std::size_t>(lo)]);
+      gu1 = std::max(gu1, cpar[static_cast<std::size_t>(hi) + 1]);
+    };
+    gu0 = 1e300;
+    gu1 = -1e300;
     // the whole segment first
     {
-      long lo, hi;
-      cwindow(cum[i], cum[i + 1], lo, hi);
+      while (wa < cu.size() && cu[wa] < cum[i] - w) ++wa;
+      while (wb < cu.size() && cu[wb] <= cum[i + 1] + w) ++wb;
+      const long lo = std::max(0L, static_cast<long>(wa) - 2), hi = std::min(nch - 1, static_cast<long>(wb) + 1);
+      used(lo, hi);
       Q0.resize(static_cast<std::size_t>(hi - lo + 1));  // pts[i] is the previous segment's end point
       dist2_window(pts[i], cseg.data(), lo, hi, Q0.data(), K1.data(), clo, chi);
       cfill(pts[i + 1], lo, hi, Q1);
-      K1 = Q1;
-      clo = lo;
-      chi = hi;
       double ends;
       const double b = poly_bound(pts[i], pts[i + 1], lo, hi, ends);
+      std::swap(K1, Q1);
+      clo = lo;
+      chi = hi;
       if (b <= eps) {
         bound = std::max(bound, b);
+        gb = b;
         continue;
       }
     }
-    // else pieces of at most half a chord, each bisected while it fails
+    gb = 0;
+    // else the segment is bisected while a part fails, each part [a0, a1] (arc lengths ua..ub) bounded
+    // against the chords within ±w of it; the first part that fails decides. The budget is 64
+    // bisections for each piece of half a chord the segment holds.
     const long c0 = std::clamp(static_cast<long>(std::upper_bound(cu.begin(), cu.end(), 0.5 * (cum[i] + cum[i + 1])) - cu.begin()) - 1, 0L, nch - 1);
     const double hc = (cp[static_cast<std::size_t>(c0) + 1] - cp[static_cast<std::size_t>(c0)]).norm();
     const int np = std::max(1, static_cast<int>(std::ceil(li / std::max(0.5 * hc, 0.25 * eps))));
-    for (int k = 0; k < np; ++k) {
-      const V2 q0 = pts[i] + (pts[i + 1] - pts[i]) * (static_cast<double>(k) / np);
-      const V2 q1 = pts[i] + (pts[i + 1] - pts[i]) * (static_cast<double>(k + 1) / np);
-      const double uq = cum[i] + li * (k + 0.5) / np;
+    long budget = static_cast<long>(max_bisections) * np;
+    const V2 pm = 0.5 * (pts[i] + pts[i + 1]);
+    const double um = 0.5 * (cum[i] + cum[i + 1]);
+    pj.assign({Part{pm, pts[i + 1], um, cum[i + 1]}, Part{pts[i], pm, cum[i], um}});
+    while (!pj.empty()) {
+      const Part pt = pj.back();
+      pj.pop_back();
       long lo, hi;
-      cwindow(uq, uq, lo, hi);
+      cwindow(pt.ua, pt.ub, lo, hi);
+      used(lo, hi);
       double ends;
-      cfill(q0, lo, hi, Q0);
-      cfill(q1, lo, hi, Q1);
-      double best = poly_bound(q0, q1, lo, hi, ends);
-      if (best > eps && ends <= eps) {  // bisect the piece; the first part that fails decides
-        pj.assign(1, {q0, q1});
-        best = 0;
-        int budget = max_bisections;
-        while (!pj.empty()) {
-          const auto [a0, a1] = pj.back();
-          pj.pop_back();
-          cfill(a0, lo, hi, Q0);
-          cfill(a1, lo, hi, Q1);
-          const double b = poly_bound(a0, a1, lo, hi, ends);
-          if (b > eps && ends <= eps && (a1 - a0).norm() > fine && --budget > 0) {
-            const V2 am = 0.5 * (a0 + a1);
-            pj.push_back({a0, am});
-            pj.push_back({am, a1});
-            continue;
-          }
-          best = std::max(best, b);
-          if (best > eps) break;  // the piece fails
-        }
+      cfill(pt.a0, lo, hi, Q0);
+      cfill(pt.a1, lo, hi, Q1);
+      const double b = poly_bound(pt.a0, pt.a1, lo, hi, ends);
+      if (b > eps && ends <= eps && (pt.a1 - pt.a0).norm() > fine && --budget > 0) {
+        const V2 am = 0.5 * (pt.a0 + pt.a1);
+        const double uh = 0.5 * (pt.ua + pt.ub);
+        pj.push_back(Part{am, pt.a1, uh, pt.ub});
+        pj.push_back(Part{pt.a0, am, pt.ua, uh});
+        continue;
       }
-      bound = std::max(bound, best);
-      if (best > eps) bad.push_back(uq);
+      bound = std::max(bound, b);
+      gb = std::max(gb, b);
+      if (b > eps) {  // the segment fails
+        bad.push_back(0.5 * (pt.ua + pt.ub));
+        break;
+      }
     }
   }
   out.bound = bound;
+  std::size_t pk = 0;  // the pieces' parameters are nondecreasing
   for (Piece& p : out.pieces) {
-    p.ua = amap(p.ua);
-    p.ub = amap(p.ub);
+    p.ua = amap.walk(p.ua, pk);
+    p.ub = amap.walk(p.ub, pk);
   }
   return true;
 }
@@ -276,6 +359,7 @@ struct RunEnds {
 
 constexpr double sharp_turn = 0.3;  // [rad] a vertex turning more gets dense knots and samples
 constexpr int sharp_reach = 8;      // they reach ±2·sharp_reach fit tolerances from the vertex
+constexpr int fit_reach = 16;       // a round solves the control points this many spans around raised samples
 
 // Interior vertices of the polyline turning more than sharp_turn.
 std::vector<std::size_t> sharp_vertices(const std::vector<V2>& pts, const std::vector<double>& cum) {
@@ -297,13 +381,17 @@ std::vector<std::size_t> sharp_vertices(const std::vector<V2>& pts, const std::v
 // polyline (every ≤ mean/2, w_k first the arc length each stands for) plus smoothing_length⁴·∫|s''|².
 // A long smoothing length lets the curve use the whole tube (both sides of the polyline) and keeps its
 // curvature low; where the curve then leaves the tube the weights of those samples are raised and the
-// curve is fitted again, so it is pulled back only where it has to be. Each round the sample
-// parameters move to their foot points on the curve, so a residual is the distance of the sample from
-// the curve. A sample still out after a few rounds gets a knot next to it (its knot span is halved,
-// down to mean/16). When every residual is within 0.93 of the fit tolerance the arc chain is built and
-// checked both ways with rigorous bounds; where the check fails, the weights of the samples within one
-// mean segment are raised and the round repeats. False when the check still fails after
-// max_refinements rounds.
+// curve is fitted again, so it is pulled back only where it has to be. The first fit is global; a later
+// round solves only the control points within fit_reach spans of the samples whose weights rose, the
+// others held (a block Gauss–Seidel sweep on the same normal equations: the spline's response to a
+// weight decays along the curve), and moves only the samples on the spans it changed — a sample
+// elsewhere keeps its foot point and its residual within the target. The sample parameters move to
+// their foot points on the curve, so a residual is the distance of the sample from the curve. A sample still out after a few rounds gets a knot next to it (its knot span is halved,
+// down to mean/16; the knot is inserted without changing the curve). When every residual is within
+// 0.93 of the fit tolerance the arc chain is built and checked both ways with rigorous bounds, again
+// only where the spline changed since the last check (CheckCache); where the check fails, the weights
+// of the samples within one mean segment are raised, a failing place between samples gets a sample of
+// its own, and the round repeats. False when the check still fails after max_refinements rounds.
 bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const SmoothOptions& opt,
              RunFit& out) {
   const std::size_t n = pts.size();  // vertices
@@ -359,29 +447,75 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   const double pen = ell * ell * ell * ell;
   const double target = 0.93 * eps;
   Spline sp;
+  sp.t.assign(4, 0.0);
+  sp.t.insert(sp.t.end(), knots.begin(), knots.end());
+  sp.t.insert(sp.t.end(), 4, L);
+  sp.P.assign(knots.size() + 4, V2::Zero());
+  const int nf = ends.fix0 ? 2 : 1, nk = ends.fix1 ? 2 : 1;  // control points held at each end
+  // clamped cubic: s'(0) = 3 (P1 − P0) / t4 and s'(L) = 3 (P_{m−1} − P_{m−2}) / (L − t_{m−1});
+  // a fixed end tangent fixes the second control point for unit speed
+  auto hold_ends = [&] {
+    const std::size_t m = sp.P.size();
+    sp.P.front() = pts.front();
+    sp.P.back() = pts.back();
+    if (ends.fix0) sp.P[1] = pts.front() + (sp.t[4] / 3.0) * ends.d0;
+    if (ends.fix1) sp.P[m - 2] = pts.back() - ((L - sp.t[m - 1]) / 3.0) * ends.d1;
+  };
+  hold_ends();
+  const int m0 = static_cast<int>(sp.P.size());
+  sp.pb.resize(sp.P.size());
+  sp.power_basis(3, m0 - 1);
+  std::vector<std::array<double, 4>> pen_band(sp.P.size());
+  penalty_rows(sp, pen, pen_band, 0, m0 - 1);
+  std::vector<int> span(samples.size());  // each sample's knot span
+  for (std::size_t q = 0; q < samples.size(); ++q) span[q] = sp.span(samples[q].u);
+  std::vector<char> raised(samples.size(), 1);  // weight raised since the last solve (all before the first)
+  std::vector<char> changed;                    // per knot span: its polynomial changed in this round
+  std::vector<std::pair<int, int>> win;
   ParamMap amap;
   std::vector<double> bad, add;
-  std::vector<V2> front, back;
-  std::vector<std::array<double, 4>> pen_band;
   FitWork work;
+  CheckCache cache;  // the bounds of the last check, per knot span and per polyline segment
+  cache.span_bound.assign(sp.P.size(), -1.0);
+  cache.seg_bound.assign(n - 1, -1.0);
+  cache.seg_u0.assign(n - 1, 0.0);
+  cache.seg_u1.assign(n - 1, 0.0);
   for (int round = 0; round < opt.max_refinements; ++round) {
-    // clamped cubic: s'(0) = 3 (P1 − P0) / t4 and s'(L) = 3 (P_{m−1} − P_{m−2}) / (L − t_{m−1});
-    // a fixed end tangent fixes the second control point for unit speed
-    front.assign(1, pts.front());
-    back.assign(1, pts.back());
-    if (ends.fix0) front.push_back(pts.front() + (knots.front() / 3.0) * ends.d0);
-    if (ends.fix1) back.insert(back.begin(), pts.back() - ((L - knots.back()) / 3.0) * ends.d1);
-    if (!fit(samples, L, knots, pen, front, back, sp, pen_band, work)) return false;
+    // Solve the free control points within fit_reach spans of the samples whose weights rose (block
+    // Gauss–Seidel on the normal equations: the others are held), windows closer than the band merged;
+    // the first solve is global. (A run has at least 3 spans, so at least 2 free control points.)
+    const int m = static_cast<int>(sp.P.size());
+    win.clear();
+    if (round == 0) {
+      win.emplace_back(nf, m - nk - 1);
+    } else {
+      for (std::size_t q = 0; q < samples.size(); ++q)
+        if (raised[q]) win.emplace_back(std::max(nf, span[q] - 3 - fit_reach), std::min(m - nk - 1, span[q] + fit_reach));
+    }
+    std::sort(win.begin(), win.end());
+    changed.assign(static_cast<std::size_t>(m), 0);
+    for (std::size_t w = 0; w < win.size();) {
+      auto [lo, hi] = win[w];
+      for (++w; w < win.size() && win[w].first <= hi + 4; ++w) hi = std::max(hi, win[w].second);
+      if (lo > hi) continue;
+      if (!solve_window(samples, span, lo, hi, pen_band, sp, work)) return false;
+      std::fill(changed.begin() + lo, changed.begin() + std::min(m, hi + 4), 1);
+    }
+    for (int k = 0; k < m; ++k)
+      if (changed[static_cast<std::size_t>(k)]) cache.span_bound[static_cast<std::size_t>(k)] = -1.0;
+    std::fill(raised.begin(), raised.end(), 0);
     bool over = false;
     add.clear();
-    int ks = 3;  // span of the previous sample's parameter (the samples are ordered along the curve)
-    for (Sample& s : samples) {
+    for (std::size_t q = 0; q < samples.size(); ++q) {
+      // a sample on a span the solve left alone keeps its foot point and residual (within the target)
+      if (!changed[static_cast<std::size_t>(span[q])]) continue;
+      Sample& s = samples[q];
       // foot point by Newton steps on (s(u) − p)·s'(u) = 0, kept only where it brings the curve closer
       double u = s.u;
       V2 c0, c1, c2;
-      int k = ks;
+      int k = span[q];
       sp.eval(u, k, c0, c1, c2);
-      ks = k;
+      const int k_old = k;
       const double r_old = (c0 - s.p).norm();
       for (int it = 0; it < 2; ++it) {
         const V2 r = c0 - s.p;
@@ -395,12 +529,15 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
       double res = (c0 - s.p).norm();
       if (res <= r_old) {
         s.u = u;
+        span[q] = k;
       } else {
         res = r_old;
+        span[q] = k_old;
       }
       if (res > target) {
         const double g = res / target;
         s.w *= std::clamp(1.2 * g * g, 1.2, 100.0);
+        raised[q] = 1;
         over = true;
         // a sample that stays out of the tube for a few rounds gets a knot next to it: the spline's
         // curvature may then change there (the ∫|s''|² penalty keeps the added freedom smooth)
@@ -409,27 +546,96 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
     }
     if (!over) {
       amap.build(samples, L);
-      if (!chain_check(sp, pts, segs, wseg, cum, amap, eps, mean, out, bad)) return false;
+      if (!chain_check(sp, pts, segs, wseg, cum, amap, eps, mean, cache, out, bad)) return false;
       if (bad.empty()) return true;
       std::sort(bad.begin(), bad.end());
-      for (Sample& s : samples) {
+      for (std::size_t q = 0; q < samples.size(); ++q) {
+        Sample& s = samples[q];
         const auto it = std::lower_bound(bad.begin(), bad.end(), s.a - mean);
-        if (it != bad.end() && *it <= s.a + mean) s.w *= 4.0;
+        if (it != bad.end() && *it <= s.a + mean) {
+          s.w *= 4.0;
+          raised[q] = 1;
+        }
+      }
+      // A failing place between two samples more than mean/16 from both gets a sample of its own (the
+      // polyline point there, weighted as the heavier neighbour, its parameter interpolated between
+      // theirs): the curve may leave the tube between samples however heavy they are.
+      for (const double b : bad) {
+        const auto it = std::lower_bound(samples.begin(), samples.end(), b,
+                                         [](const Sample& x, double v) { return x.a < v; });
+        if (it == samples.begin() || it == samples.end()) continue;
+        const Sample &s0 = *(it - 1), &s1 = *it;
+        if (b - s0.a < mean / 16.0 || s1.a - b < mean / 16.0) continue;
+        const std::size_t i = std::min(static_cast<std::size_t>(std::upper_bound(cum.begin(), cum.end(), b) - cum.begin()) - 1, n - 2);
+        const double f = std::clamp((b - cum[i]) / (cum[i + 1] - cum[i]), 0.0, 1.0);
+        const double u = s0.u + (b - s0.a) / (s1.a - s0.a) * (s1.u - s0.u);
+        const auto q = it - samples.begin();
+        samples.insert(it, Sample{u, V2(pts[i] + f * (pts[i + 1] - pts[i])), std::max(s0.w, s1.w), b});
+        span.insert(span.begin() + q, sp.span(u));
+        raised.insert(raised.begin() + q, 1);
       }
     }
     if (!add.empty()) {  // split the knot spans that hold the samples, down to 1/16 of the mean segment
-      std::vector<double> breaks{0.0};
-      breaks.insert(breaks.end(), knots.begin(), knots.end());
-      breaks.push_back(L);
+      std::vector<double> mids;
       for (double u : add) {
-        const auto k = static_cast<std::size_t>(
-            std::clamp<long>(std::upper_bound(breaks.begin(), breaks.end(), u) - breaks.begin(), 1,
-                             static_cast<long>(breaks.size()) - 1));
-        if (breaks[k] - breaks[k - 1] > std::min(mean / 16.0, 0.5 * eps)) knots.push_back(0.5 * (breaks[k - 1] + breaks[k]));
+        const auto k = static_cast<std::size_t>(sp.span(u));
+        if (sp.t[k + 1] - sp.t[k] > std::min(mean / 16.0, 0.5 * eps)) mids.push_back(0.5 * (sp.t[k] + sp.t[k + 1]));
       }
-      std::sort(knots.begin(), knots.end());
-      knots.erase(std::unique(knots.begin(), knots.end()), knots.end());
-      pen_band.clear();
+      std::sort(mids.begin(), mids.end());
+      mids.erase(std::unique(mids.begin(), mids.end()), mids.end());
+      if (!mids.empty()) {  // the same curve on the finer knots; the raised samples' windows reach the new knots
+        const std::vector<double> t0 = sp.t;
+        for (const double x : mids) sp.insert_knot(x);
+        hold_ends();  // as the insertions left them, up to rounding
+        // A span or penalty row k no new knot reaches moves to k + (the new knots below t0[k]); the
+        // others are rebuilt below, and the split spans' two halves are checked again.
+        auto remap = [&](auto& v, const auto& blank) {
+          auto old = std::move(v);
+          v.assign(sp.P.size(), blank);
+          std::size_t c = 0;
+          for (std::size_t k = 0; k < old.size(); ++k) {
+            while (c < mids.size() && mids[c] < t0[k]) ++c;
+            v[k + c] = old[k];
+          }
+        };
+        remap(sp.pb, std::array<double, 16>{});
+        remap(sp.pw, std::array<V2, 4>{});
+        remap(pen_band, std::array<double, 4>{});
+        remap(cache.span_bound, -1.0);
+        // the basis and the pieces of the spans a new knot reaches (knot j: spans j − 4..j + 3) and of
+        // the end spans, then the penalty rows that sum them
+        const int m1 = static_cast<int>(sp.P.size());
+        changed.assign(static_cast<std::size_t>(m1), 0);
+        auto touch = [&](int k0, int k1) {
+          std::fill(changed.begin() + std::max(k0, 3), changed.begin() + std::min(k1, m1 - 1) + 1, 1);
+        };
+        for (const double x : mids) {
+          const int j = static_cast<int>(std::lower_bound(sp.t.begin(), sp.t.end(), x) - sp.t.begin());
+          touch(j - 4, j + 3);
+          cache.span_bound[static_cast<std::size_t>(j - 1)] = -1.0;
+          cache.span_bound[static_cast<std::size_t>(j)] = -1.0;
+        }
+        touch(3, 4);
+        touch(m1 - 2, m1 - 1);
+        for (int pass = 0; pass < 2; ++pass)  // every span's basis first: a penalty row sums four spans
+          for (int k0 = 3; k0 < m1;) {
+            if (!changed[static_cast<std::size_t>(k0)]) {
+              ++k0;
+              continue;
+            }
+            int k1 = k0;
+            while (k1 + 1 < m1 && changed[static_cast<std::size_t>(k1 + 1)]) ++k1;
+            if (pass == 0) {
+              sp.power_basis(k0, k1);
+              sp.prepare(k0, k1);
+            } else {
+              penalty_rows(sp, pen, pen_band, k0 - 3, k1);
+            }
+            k0 = k1 + 1;
+          }
+        int k = 3;  // the samples' parameters nearly ascend: each search starts at the previous span
+        for (std::size_t q = 0; q < samples.size(); ++q) k = span[q] = sp.span_near(samples[q].u, k);
+      }
     }
   }
   return false;

@@ -131,16 +131,18 @@ struct Spline {
   // change; point(), deriv() and eval() read only them.
   std::vector<std::array<V2, 4>> pw;
   // The same for the basis functions: pb[k][4·j + r] = D_j(N_{k−3+r})(t[k]) / j!, the coefficient of x^j
-  // of basis function k − 3 + r on span k, which depend on the knots only. power_basis() fills them
-  // after the knots change; prepare() combines them with P and basis() evaluates them.
+  // of basis function k − 3 + r on span k, which depend on the knots t[k − 3..k + 4] only.
+  // power_basis() fills them after the knots change; prepare() combines them with P and basis()
+  // evaluates them.
   std::vector<std::array<double, 16>> pb;
   // Built by the Cox–de Boor recursion on polynomials in x = u − t[k]:
   //   N_{i,p} = (u − t_i)/(t_{i+p} − t_i) · N_{i,p−1} + (t_{i+p+1} − u)/(t_{i+p+1} − t_{i+1}) · N_{i+1,p−1}
   // (a term with a zero denominator is zero), starting from N_{k,0} = 1 on span k.
-  void power_basis() {
+  // pb of the spans k0..k1 (clipped to 3..m − 1); pb holds m entries
+  void power_basis(int k0, int k1) {
     const int m = static_cast<int>(P.size());
-    pb.assign(static_cast<std::size_t>(m), std::array<double, 16>{});
-    for (int k = 3; k < m; ++k) {
+    for (int k = std::max(k0, 3); k <= std::min(k1, m - 1); ++k) {
+      pb[static_cast<std::size_t>(k)] = {};
       const double tk = t[static_cast<std::size_t>(k)];
       if (!(t[static_cast<std::size_t>(k + 1)] > tk)) continue;
       double d[8];  // d[q] = t[k − 3 + q] − t[k]
@@ -175,14 +177,16 @@ struct Spline {
         for (std::size_t r = 0; r < 4; ++r) b[4 * j + r] = N[r][j];
     }
   }
-  void prepare() {
+  // pw of the spans k0..k1 (clipped to 3..m − 1) from pb and P; the spans a control point i reaches
+  // are i..i + 3, so after P[lo..hi] change, prepare(lo, hi + 3) brings pw up to date
+  void prepare(int k0, int k1) {
     const int m = static_cast<int>(P.size());
-    if (pb.size() != P.size()) power_basis();
-    pw.assign(static_cast<std::size_t>(m), std::array<V2, 4>{V2::Zero(), V2::Zero(), V2::Zero(), V2::Zero()});
-    for (int k = 3; k < m; ++k) {
+    if (pw.size() != P.size()) pw.resize(P.size());
+    for (int k = std::max(k0, 3); k <= std::min(k1, m - 1); ++k) {
+      auto& c = pw[static_cast<std::size_t>(k)];
+      c = {V2::Zero(), V2::Zero(), V2::Zero(), V2::Zero()};
       if (!(t[static_cast<std::size_t>(k + 1)] > t[static_cast<std::size_t>(k)])) continue;
       const auto& b = pb[static_cast<std::size_t>(k)];
-      auto& c = pw[static_cast<std::size_t>(k)];
       for (int r = 0; r < 4; ++r) {
         const V2& Pr = P[static_cast<std::size_t>(k - 3 + r)];
         c[0] += b[static_cast<std::size_t>(r)] * Pr;
@@ -191,6 +195,22 @@ struct Spline {
         c[3] += b[static_cast<std::size_t>(12 + r)] * Pr;
       }
     }
+  }
+  // Insert the knot x (t[3] < x < t[m], no knot yet) without changing the curve (Boehm): in x's span k
+  // the control points k − 2..k become P'_i = a_i·P_i + (1 − a_i)·P_{i−1}, a_i = (x − t_i)/(t_{i+3} − t_i),
+  // and the ones after move up by one; span k becomes spans k and k + 1. pb and pw are left to the caller
+  // (a span the new knot does not reach, outside k − 3..k + 4, keeps them, one index up). Returns k.
+  int insert_knot(double x) {
+    const int k = span(x);
+    P.insert(P.begin() + k, V2::Zero());  // the old P_i, i ≥ k, is now at i + 1
+    for (int i = k; i >= k - 2; --i) {
+      const double ti = t[static_cast<std::size_t>(i)];
+      const double a = (x - ti) / (t[static_cast<std::size_t>(i + 3)] - ti);
+      const V2& pi = P[static_cast<std::size_t>(i == k ? k + 1 : i)];
+      P[static_cast<std::size_t>(i)] = a * pi + (1.0 - a) * P[static_cast<std::size_t>(i - 1)];
+    }
+    t.insert(t.begin() + k + 1, x);
+    return k;
   }
   V2 point(double u) const { return point_in(span(u), u); }
   // the polynomial of span k at u (u in [t[k], t[k + 1]])
@@ -220,33 +240,53 @@ struct Spline {
 // (entries with i + k ≥ n are not read); in place on rhs. lo: workspace, lo[i][k] = L(i, i − k).
 bool band_solve(const std::array<double, 4>* band, V2* rhs, int n, std::vector<std::array<double, 4>>& lo) {
   lo.resize(static_cast<std::size_t>(n));
+  auto L = [&](int i) -> std::array<double, 4>& { return lo[static_cast<std::size_t>(i)]; };
   for (int i = 0; i < n; ++i) {
-    auto& li = lo[static_cast<std::size_t>(i)];
+    auto& li = L(i);
     li = {0, 0, 0, 0};
     double diag = band[i][0];
-    for (int k = std::min(i, 3); k >= 1; --k) {  // L(i, j) for j = i − k, from A(j, i) = band[j][k]
-      const int j = i - k;
-      const auto& lj = lo[static_cast<std::size_t>(j)];
-      double s = band[j][static_cast<std::size_t>(k)];
-      for (int q = std::max(0, i - 3); q < j; ++q)
-        s -= li[static_cast<std::size_t>(i - q)] * lj[static_cast<std::size_t>(j - q)];
-      li[static_cast<std::size_t>(k)] = s / lj[0];
-      diag -= li[static_cast<std::size_t>(k)] * li[static_cast<std::size_t>(k)];
+    if (i >= 3) {  // the general case below, unrolled
+      li[3] = band[i - 3][3] / L(i - 3)[0];
+      diag -= li[3] * li[3];
+      li[2] = (band[i - 2][2] - li[3] * L(i - 2)[1]) / L(i - 2)[0];
+      diag -= li[2] * li[2];
+      li[1] = (band[i - 1][1] - li[3] * L(i - 1)[2] - li[2] * L(i - 1)[1]) / L(i - 1)[0];
+      diag -= li[1] * li[1];
+    } else {
+      for (int k = i; k >= 1; --k) {  // L(i, j) for j = i − k, from A(j, i) = band[j][k]
+        const int j = i - k;
+        const auto& lj = L(j);
+        double s = band[j][static_cast<std::size_t>(k)];
+        for (int q = 0; q < j; ++q) s -= li[static_cast<std::size_t>(i - q)] * lj[static_cast<std::size_t>(j - q)];
+        li[static_cast<std::size_t>(k)] = s / lj[0];
+        diag -= li[static_cast<std::size_t>(k)] * li[static_cast<std::size_t>(k)];
+      }
     }
     if (!(diag > 0)) return false;
     li[0] = std::sqrt(diag);
   }
   for (int i = 0; i < n; ++i) {
-    const auto& li = lo[static_cast<std::size_t>(i)];
+    const auto& li = L(i);
     V2 s = rhs[i];
-    for (int q = std::max(0, i - 3); q < i; ++q) s -= li[static_cast<std::size_t>(i - q)] * rhs[q];
+    if (i >= 3) {
+      s -= li[3] * rhs[i - 3];
+      s -= li[2] * rhs[i - 2];
+      s -= li[1] * rhs[i - 1];
+    } else {
+      for (int q = 0; q < i; ++q) s -= li[static_cast<std::size_t>(i - q)] * rhs[q];
+    }
     rhs[i] = s / li[0];
   }
   for (int i = n - 1; i >= 0; --i) {
     V2 s = rhs[i];
-    for (int q = i + 1; q <= std::min(n - 1, i + 3); ++q)
-      s -= lo[static_cast<std::size_t>(q)][static_cast<std::size_t>(q - i)] * rhs[q];
-    rhs[i] = s / lo[static_cast<std::size_t>(i)][0];
+    if (i + 3 < n) {
+      s -= L(i + 1)[1] * rhs[i + 1];
+      s -= L(i + 2)[2] * rhs[i + 2];
+      s -= L(i + 3)[3] * rhs[i + 3];
+    } else {
+      for (int q = i + 1; q < n; ++q) s -= L(q)[static_cast<std::size_t>(q - i)] * rhs[q];
+    }
+    rhs[i] = s / L(i)[0];
   }
   return true;
 }
@@ -298,84 +338,95 @@ struct ParamMap {
   }
 };
 
-// Penalised least squares: the control points minimise
+// Rows r0..r1 (clipped to 0..m − 1) of the band of pen·∫|s''|² over [0, L] in the control points (rows
+// as in band_solve) from sp's power basis: row r sums the spans r..r + 3. On span k the basis function
+// r has N_r'' = α_r + β_r·x (x = u − t[k]), with α_r = 2·pb[8 + r] and β_r = 6·pb[12 + r], so
+// ∫_0^h N_r''·N_q'' dx is exact in closed form.
+void penalty_rows(const Spline& sp, double pen, std::vector<std::array<double, 4>>& pen_band, int r0, int r1) {
+  const int m = static_cast<int>(sp.P.size());
+  r0 = std::max(r0, 0);
+  r1 = std::min(r1, m - 1);
+  for (int r = r0; r <= r1; ++r) pen_band[static_cast<std::size_t>(r)] = {0, 0, 0, 0};
+  for (int k = std::max(r0, 3); k <= std::min(r1 + 3, m - 1); ++k) {
+    const double h = sp.t[static_cast<std::size_t>(k + 1)] - sp.t[static_cast<std::size_t>(k)];
+    if (!(h > 0)) continue;
+    const auto& b = sp.pb[static_cast<std::size_t>(k)];
+    double al[4], be[4];
+    for (std::size_t r = 0; r < 4; ++r) {
+      al[r] = 2.0 * b[8 + r];
+      be[r] = 6.0 * b[12 + r];
+    }
+    const double h2 = 0.5 * h * h, h3 = h * h * h / 3.0;
+    for (int r = std::max(0, r0 - k + 3); r < 4 && k - 3 + r <= r1; ++r)
+      for (int q = r; q < 4; ++q)
+        pen_band[static_cast<std::size_t>(k - 3 + r)][static_cast<std::size_t>(q - r)] +=
+            pen * (al[r] * al[q] * h + (al[r] * be[q] + al[q] * be[r]) * h2 + be[r] * be[q] * h3);
+  }
+}
+
+// Penalised least squares on a window of control points: P[lo..hi] minimise
 //   Σ_k w_k |s(u_k) − p_k|² + pen · ∫ |s''(u)|² du
-// with the first front.size() and the last back.size() control points fixed to the given values
-// (end points, and end tangents when the second control point is fixed too). Banded Cholesky, O(n).
-// pen_band caches the penalty's band for these knots: it is filled when empty and must be cleared
-// when the knots change; sp's power-form basis (Spline::pb) is rebuilt with it. work: buffers kept
-// between calls.
+// with every other control point held at its value in sp.P — rows lo..hi of the normal equations, the
+// held points moved to the right-hand side; banded Cholesky, O(hi − lo) plus a pass over the samples'
+// spans. Row i involves the samples in spans i..i + 3 only, so the samples in spans lo..hi + 3 (span[k]:
+// sample k's) give rows lo..hi and their couplings to the held points lo − 3..lo − 1 in full. With lo
+// and hi the first and last free control point this is the global solve. pen_band: penalty_rows() of
+// every row; sp.pw of the spans lo..hi + 3 is rebuilt. work: buffers kept between calls.
 struct FitWork {
   std::vector<std::array<double, 4>> band, lo;
   std::vector<V2> rhs;
 };
 
-bool fit(const std::vector<Sample>& samples, double L, const std::vector<double>& interior, double pen,
-         const std::vector<V2>& front, const std::vector<V2>& back, Spline& sp,
-         std::vector<std::array<double, 4>>& pen_band, FitWork& work) {
-  const int m = static_cast<int>(interior.size()) + 4;
-  const int nf = static_cast<int>(front.size()), nk = static_cast<int>(back.size());
-  if (nf + nk > m) return false;
-  sp.t.assign(4, 0.0);
-  sp.t.insert(sp.t.end(), interior.begin(), interior.end());
-  sp.t.insert(sp.t.end(), 4, L);
-  sp.P.assign(static_cast<std::size_t>(m), V2::Zero());
-  if (pen_band.empty()) {
-    sp.power_basis();
-    // pen·∫|s''|² over [0, L]: on span k the basis function r has N_r'' = α_r + β_r·x (x = u − t[k]),
-    // with α_r = 2·pb[8 + r] and β_r = 6·pb[12 + r], so ∫_0^h N_r''·N_q'' dx is exact in closed form
-    pen_band.assign(static_cast<std::size_t>(m), std::array<double, 4>{0, 0, 0, 0});
-    for (int k = 3; k < m; ++k) {
-      const double h = sp.t[static_cast<std::size_t>(k + 1)] - sp.t[static_cast<std::size_t>(k)];
-      if (!(h > 0)) continue;
-      const auto& b = sp.pb[static_cast<std::size_t>(k)];
-      double al[4], be[4];
-      for (std::size_t r = 0; r < 4; ++r) {
-        al[r] = 2.0 * b[8 + r];
-        be[r] = 6.0 * b[12 + r];
-      }
-      const double h2 = 0.5 * h * h, h3 = h * h * h / 3.0;
-      for (int r = 0; r < 4; ++r)
-        for (int q = r; q < 4; ++q)
-          pen_band[static_cast<std::size_t>(k - 3 + r)][static_cast<std::size_t>(q - r)] +=
-              pen * (al[r] * al[q] * h + (al[r] * be[q] + al[q] * be[r]) * h2 + be[r] * be[q] * h3);
-    }
-  }
+bool solve_window(const std::vector<Sample>& samples, const std::vector<int>& span, int lo, int hi,
+                  const std::vector<std::array<double, 4>>& pen_band, Spline& sp, FitWork& work) {
+  const int m = static_cast<int>(sp.P.size());
   auto& band = work.band;
   auto& rhs = work.rhs;
-  band = pen_band;
-  rhs.assign(static_cast<std::size_t>(m), V2::Zero());
-  int k = 3;
-  for (const Sample& s : samples) {
-    k = sp.span_near(s.u, k);
+  band.resize(static_cast<std::size_t>(m));
+  rhs.resize(static_cast<std::size_t>(m));
+  const int r0 = std::max(0, lo - 3), r1 = std::min(m - 1, hi + 3);  // rows the samples below touch
+  for (int i = r0; i <= r1; ++i) {
+    band[static_cast<std::size_t>(i)] = pen_band[static_cast<std::size_t>(i)];
+    rhs[static_cast<std::size_t>(i)] = V2::Zero();
+  }
+  for (std::size_t q = 0; q < samples.size(); ++q) {
+    const int k = span[q];
+    if (k < lo || k > hi + 3) continue;
+    const Sample& s = samples[q];
     double N[4];
     sp.basis(k, s.u, N);
-    for (int r = 0; r < 4; ++r) {
-      const auto i = static_cast<std::size_t>(k - 3 + r);
-      rhs[i] += s.w * N[r] * s.p;
-      for (int q = r; q < 4; ++q) band[i][static_cast<std::size_t>(q - r)] += s.w * N[r] * N[q];
-    }
+    // rows k − 3..k: rhs += w·N_r·p, A(r, c) += w·N_r·N_c
+    const double w0 = s.w * N[0], w1 = s.w * N[1], w2 = s.w * N[2], w3 = s.w * N[3];
+    auto* b = band.data() + (k - 3);
+    V2* y = rhs.data() + (k - 3);
+    b[0][0] += w0 * N[0];
+    b[0][1] += w0 * N[1];
+    b[0][2] += w0 * N[2];
+    b[0][3] += w0 * N[3];
+    b[1][0] += w1 * N[1];
+    b[1][1] += w1 * N[2];
+    b[1][2] += w1 * N[3];
+    b[2][0] += w2 * N[2];
+    b[2][1] += w2 * N[3];
+    b[3][0] += w3 * N[3];
+    y[0] += w0 * s.p;
+    y[1] += w1 * s.p;
+    y[2] += w2 * s.p;
+    y[3] += w3 * s.p;
   }
-  for (int q = 0; q < nf; ++q) sp.P[static_cast<std::size_t>(q)] = front[static_cast<std::size_t>(q)];
-  for (int q = 0; q < nk; ++q) sp.P[static_cast<std::size_t>(m - nk + q)] = back[static_cast<std::size_t>(q)];
-  // move the fixed control points to the right-hand side: A(i, f) = band[min(i, f)][|i − f|]
-  auto A = [&](int i, int f) {
-    return band[static_cast<std::size_t>(std::min(i, f))][static_cast<std::size_t>(std::abs(i - f))];
-  };
-  for (int i = nf; i < m - nk; ++i) {
-    for (int f = std::max(0, i - 3); f < nf; ++f) rhs[static_cast<std::size_t>(i)] -= A(i, f) * sp.P[static_cast<std::size_t>(f)];
-    for (int f = std::max(m - nk, i + 1); f <= std::min(m - 1, i + 3); ++f)
-      rhs[static_cast<std::size_t>(i)] -= A(i, f) * sp.P[static_cast<std::size_t>(f)];
+  // move the held control points to the right-hand side: A(i, f) = band[min(i, f)][|i − f|]
+  for (int i = lo; i <= hi; ++i) {
+    auto& ri = rhs[static_cast<std::size_t>(i)];
+    for (int f = std::max(0, i - 3); f < lo; ++f)
+      ri -= band[static_cast<std::size_t>(f)][static_cast<std::size_t>(i - f)] * sp.P[static_cast<std::size_t>(f)];
+    for (int f = hi + 1; f <= std::min(m - 1, i + 3); ++f)
+      ri -= band[static_cast<std::size_t>(i)][static_cast<std::size_t>(f - i)] * sp.P[static_cast<std::size_t>(f)];
   }
-  const int ni = m - nf - nk;  // the free control points nf..m − nk − 1
-  if (ni > 0 && !band_solve(band.data() + nf, rhs.data() + nf, ni, work.lo)) return false;
-  for (int i = nf; i < m - nk; ++i) sp.P[static_cast<std::size_t>(i)] = rhs[static_cast<std::size_t>(i)];
-  sp.prepare();
+  if (!band_solve(band.data() + lo, rhs.data() + lo, hi - lo + 1, work.lo)) return false;
+  for (int i = lo; i <= hi; ++i) sp.P[static_cast<std::size_t>(i)] = rhs[static_cast<std::size_t>(i)];
+  sp.prepare(lo, hi + 3);
   return true;
 }
-
-
-// One planar piece of the chain: a line (k = 0) or an arc of signed curvature k [1/mm].
 
 }  // namespace
 }  // namespace netshape::motion

@@ -8,7 +8,8 @@
 /// chord, plus its inner control points), so the new path is curvature-continuous along a run: a cubic
 /// B-spline that minimises the weighted squared distance to samples of the polyline plus ℓ⁴·∫|s''|²
 /// (`smoothing_length` ℓ), then is pulled back into the tube by raising the weights of the samples it
-/// leaves (knots are added next to samples that stay out for several rounds). A long line adjoining a
+/// leaves, each round solving only the control points near them (knots are added next to samples that
+/// stay out for several rounds, samples where the check below fails between two). A long line adjoining a
 /// run lends it up to `lead_length`, so the curve joins the line tangentially. The spline is checked
 /// against the run's polyline both ways — every point of the spline within `fit_tolerance()` of the
 /// polyline and every point of the polyline within it of the spline — with rigorous upper bounds from
