@@ -76,6 +76,7 @@ PlannerState::PlannerState(const AxisLimits& limits, const PlanOptions& options)
   block_mask_ = blends_.size() - 1;
   line_blends_.resize(blends_.size());
   cubics_.resize(blends_.size());
+  cubic_records_.resize(blends_.size());
 }
 
 void PlannerState::reset() noexcept {

@@ -145,7 +145,7 @@ void PlannerState::append_corner_blend(long first, Node& nn, const Vec3& u1, con
     x.path_jerk = bn.path_jerk;
     set_reach(x, bn);
     x.w_backward = 0.0;
-    x.line_blend = -1;
+    x.line_blend = x.cubic = -1;
     ++tail_;
   }
   nn.v_corner = v_prev;
@@ -216,6 +216,7 @@ void PlannerState::append_line_blend(long source, long psource, const Vec3& p0, 
   x.w_backward = 0.0;
   x.bound = SpeedBound::axis_box;
   x.line_blend = static_cast<int>(ri);
+  x.cubic = -1;
   ++tail_;
 }
 

@@ -1,7 +1,8 @@
 // Cubic blocks (cubic.hpp) in the planner: their validation, the whole-block node (the Bézier with its
 // arc-length table, bounds over all of it), the cut into pieces at table nodes once the block's end is
-// known (per-axis bounds per piece, as the corner blends' pieces), and the test for a curvature-
-// continuous joint. push() (planner_push.cpp) sets their junctions like any block's.
+// known (per-axis bounds per piece, as the corner blends' pieces; without jerk limits the pieces are
+// arrays in one record behind one ring node), and the test for a curvature-continuous joint. push()
+// (planner_push.cpp) sets their junctions like any block's.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -9,6 +10,10 @@
 #include "blend_bounds.hpp"
 #include "planner_geometry.hpp"
 #include "planner_state.hpp"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace netshape::motion::detail {
 
@@ -47,11 +52,13 @@ void PlannerState::init_cubic_node(Node& n, const toolpath::Block& b, const Cubi
 // cubics, below); a piece's bounds are those of the table
 // intervals it touches (valid on any part of them, so on the trimmed end pieces too). In jerk mode
 // each piece gets the largest curvature and |dκ/ds| at its table nodes, as the corner blends' pieces.
-// The whole-block node becomes the first piece; the others are written in place in the ring slots
-// after it (free: push() keeps nodes_per_push of them), with every Node field the planner reads
-// before the freeze set. The last piece holds the whole block's segment (push() and the blend rule
-// read the curve at its end); the ones between keep only kind, trims, length, curvature and source
-// (Geometry::in_cubic_store), the rest of the segment stays once in the cubic store.
+// Without jerk limits and windows (cubic_records_used()) the pieces go into the cubic record of the
+// block and the whole-block node stays its one node (fill_cubic_record()). Else the whole-block node
+// becomes the first piece; the others are written in place in the ring slots after it (free: push()
+// keeps nodes_per_push of them), with every Node field the planner reads before the freeze set. The
+// last piece holds the whole block's segment (push() and the blend rule read the curve at its end);
+// the ones between keep only kind, trims, length, curvature and source (Geometry::in_cubic_store),
+// the rest of the segment stays once in the cubic store.
 void PlannerState::split_cubic_block() noexcept {
   const long k0 = tail_ - 1;
   Node& whole = node(k0);
@@ -94,6 +101,25 @@ void PlannerState::split_cubic_block() noexcept {
   const int m = nc - 1;
   const AxisMinima minima = axis_minima(g);  // the same axes move on every piece
   if (step == 1) tab.singles();  // the pieces are single table intervals (but at trimmed ends)
+  // the intervals [i0, i1) that hold piece k, [cuts[k], cuts[k + 1]]: i0 is the interval holding its
+  // start (interval_at), i1 the first table node at or past its end. A cut on table node i, where the
+  // table (non-decreasing) rises on both sides of it, gives them without a search: interval_at(table[i])
+  // = i when table[i + 1] > table[i], and the first node at or past table[i] is i when
+  // table[i − 1] < table[i]
+  const auto tab_at = [&g](int i) { return g.table[static_cast<std::size_t>(i)]; };
+  const auto intervals = [&](int k, int& i0, int& i1) {
+    const int n0 = node_at[k], n1 = node_at[k + 1];
+    i0 = n0 > 0 && tab_at(n0 + 1) > tab_at(n0) ? n0 : interval_at(g.table, cuts[k]);
+    const int first_at =
+        n1 > 0 && tab_at(n1 - 1) < tab_at(n1)
+            ? n1
+            : static_cast<int>(std::lower_bound(g.table.begin(), g.table.end(), cuts[k + 1]) - g.table.begin());
+    i1 = std::clamp(first_at, i0 + 1, 16);
+  };
+  if (cubic_records_used()) {
+    fill_cubic_record(whole, base, cuts, m, step, minima.acceleration, intervals);
+    return;
+  }
   if (m > 2) cubics_[block_slot(block)] = g;
   double v_prev = 0;
   for (int k = 0; k < m; ++k) {
@@ -112,20 +138,10 @@ void PlannerState::split_cubic_block() noexcept {
       x.feed_cap = base.feed_cap;
       x.v_corner = base.v_corner;
     }
-    const double s0 = cuts[k], s1 = cuts[k + 1];
-    x.segment.trim_start = s0;
-    x.segment.trim_end = L - s1;
-    // the intervals [i0, i1) that hold [s0, s1]: i0 is the interval holding s0 (interval_at), i1 the
-    // first table node at or past s1. A cut on table node i, where the table (non-decreasing) rises
-    // on both sides of it, gives them without a search: interval_at(table[i]) = i when
-    // table[i + 1] > table[i], and the first node at or past table[i] is i when table[i − 1] < table[i]
-    const int n0 = node_at[k], n1 = node_at[k + 1];
-    const auto tab_at = [&g](int i) { return g.table[static_cast<std::size_t>(i)]; };
-    const int i0 = n0 > 0 && tab_at(n0 + 1) > tab_at(n0) ? n0 : interval_at(g.table, s0);
-    const int first_at = n1 > 0 && tab_at(n1 - 1) < tab_at(n1)
-                             ? n1
-                             : static_cast<int>(std::lower_bound(g.table.begin(), g.table.end(), s1) - g.table.begin());
-    const int i1 = std::clamp(first_at, i0 + 1, 16);
+    x.segment.trim_start = cuts[k];
+    x.segment.trim_end = L - cuts[k + 1];
+    int i0, i1;
+    intervals(k, i0, i1);
     if (step == 1 && i1 == i0 + 1) {
       tab.single(i0, x.tangent_bound, x.curvature_bound, x.ramp_tangent, x.ramp_curvature);
     } else {
@@ -139,6 +155,164 @@ void PlannerState::split_cubic_block() noexcept {
     if (k > 0) pass(k0 + k).w_backward = 0.0;
   }
   tail_ = k0 + m;
+}
+
+// The pieces of the cubic block in node `whole` (its cuts, m pieces, table step as split_cubic_block())
+// into the cubic record of its block, with what finish_piece(), set_limits() and update_pass() give a
+// piece node of a curved block without jerk limits or windows; `whole` becomes the record's node. The
+// bounds per piece as there; the caps and reach coefficients of all pieces at once: with SSE2 two pieces
+// per step, the same operations element by element (as BlendBounds::singles(); box_reach_both()'s
+// where each of its denominators is > 0, else set_box_reach() for that piece alone).
+template <class Intervals>
+void PlannerState::fill_cubic_record(Node& whole, const PieceBase& base, const double* cuts, int m, int step,
+                                     double amin, const Intervals& intervals) noexcept {
+  const long k0 = tail_ - 1;
+  const long block = whole.block;
+  const CubicTable& ct = cubic_table(block);
+  const BlendBounds& tab = ct.bounds;
+  const Segment& g = whole.segment;
+  const double L = g.full_length;
+  const std::size_t bs = block_slot(block);
+  CubicRecord& r = cubic_records_[bs];
+  Segment& store = cubics_[bs];
+  store = g;
+  store.trim_start = store.trim_end = 0.0;  // (next() samples a piece at its offset on the whole cubic)
+  r.np = m;
+  r.cursor = 0;
+  constexpr int P = CubicRecord::pieces;
+  double Ub[3][P], Kb[3][P];  // the unsigned bounds per axis
+  const auto ramps_of = [&r](int k, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) {
+    for (int d = 0; d < 2; ++d)
+      for (int i = 0; i < 3; ++i) {
+        Ua[d][i] = r.ramp_u[d][i][k];
+        Ka[d][i] = r.ramp_k[d][i][k];
+      }
+  };
+  for (int k = 0; k < m; ++k) {
+    int i0, i1;
+    intervals(k, i0, i1);
+    Vec3 U, K, Ua[2], Ka[2];
+    if (step == 1 && i1 == i0 + 1) {
+      tab.single(i0, U, K, Ua, Ka);
+    } else {
+      tab.bounds(i0, i1, U, K);
+      tab.ramps(i0, i1, U, K, Ua, Ka);
+    }
+    for (int i = 0; i < 3; ++i) {
+      Ub[i][k] = U[i];
+      Kb[i][k] = K[i];
+      for (int d = 0; d < 2; ++d) {
+        r.ramp_u[d][i][k] = Ua[d][i];
+        r.ramp_k[d][i][k] = Ka[d][i];
+      }
+    }
+    piece_curvature(ct.curvature, g.table, i0, i1, r.curvature[k], r.curvature_rate[k]);
+    r.trim_start[k] = cuts[k];
+    r.trim_end[k] = L - cuts[k + 1];
+    r.len[k] = L - r.trim_start[k] - r.trim_end[k];  // (Segment::length(); ≥ 0: rounding is monotone)
+  }
+  // the reach coefficients of one piece alone (set_box_reach)
+  const auto scalar_reach = [&](int k) {
+    PassRecord x;
+    x.length = std::max(0.0, r.len[k]);
+    Vec3 Ua[2], Ka[2];
+    ramps_of(k, Ua, Ka);
+    set_box_reach(x, Ua, Ka);
+    for (int i = 0; i < 3; ++i) {
+      r.alpha[i][k] = x.alpha[i];
+      r.beta[i][k] = x.beta[i];
+      r.alpha_down[i][k] = x.alpha_down[i];
+      r.beta_down[i][k] = x.beta_down[i];
+    }
+  };
+#if defined(__SSE2__)
+  if (m % 2) {  // the odd last lane repeats the last piece
+    r.len[m] = r.len[m - 1];
+    for (int i = 0; i < 3; ++i) {
+      Ub[i][m] = Ub[i][m - 1];
+      Kb[i][m] = Kb[i][m - 1];
+      for (int d = 0; d < 2; ++d) {
+        r.ramp_u[d][i][m] = r.ramp_u[d][i][m - 1];
+        r.ramp_k[d][i][m] = r.ramp_k[d][i][m - 1];
+      }
+    }
+  }
+  const __m128d zero = _mm_setzero_pd(), one = _mm_set1_pd(1.0), two = _mm_set1_pd(2.0), inf2 = _mm_set1_pd(inf);
+  const auto min_ab = [](__m128d a, __m128d b) { return _mm_min_pd(b, a); };  // std::min(a, b)
+  const auto max_ab = [](__m128d a, __m128d b) { return _mm_max_pd(b, a); };  // std::max(a, b)
+  const auto pick = [](__m128d mask, __m128d a, __m128d b) {                // mask ? a : b
+    return _mm_or_pd(_mm_and_pd(mask, a), _mm_andnot_pd(mask, b));
+  };
+  for (int k = 0; k < m; k += 2) {
+    __m128d v = _mm_set1_pd(base.feed_cap), wk = inf2;
+    for (int i = 0; i < 3; ++i) {
+      const __m128d U = _mm_loadu_pd(Ub[i] + k), K = _mm_loadu_pd(Kb[i] + k);
+      v = pick(_mm_cmpgt_pd(U, zero), min_ab(v, _mm_div_pd(_mm_set1_pd(limits_.velocity[i]), U)), v);
+      wk = pick(_mm_cmpgt_pd(K, zero), min_ab(wk, _mm_div_pd(_mm_set1_pd(limits_.acceleration[i]), K)), wk);
+    }
+    v = pick(_mm_cmplt_pd(wk, inf2), min_ab(v, _mm_sqrt_pd(wk)), v);
+    _mm_storeu_pd(r.v_max + k, v);
+    // box_reach_both(): den = U + 2L·max(K, 0), an = U − 2L·min(K, 0) per direction and axis
+    const __m128d L2 = _mm_mul_pd(two, max_ab(zero, _mm_loadu_pd(r.len + k)));
+    __m128d ok = _mm_cmpeq_pd(zero, zero);
+    for (int d = 0; d < 2; ++d) {
+      __m128d den[3], an[3];
+      for (int i = 0; i < 3; ++i) {
+        const __m128d u = _mm_loadu_pd(r.ramp_u[d][i] + k), kk = _mm_loadu_pd(r.ramp_k[d][i] + k);
+        den[i] = _mm_add_pd(u, _mm_mul_pd(L2, max_ab(kk, zero)));
+        an[i] = _mm_sub_pd(u, _mm_mul_pd(L2, min_ab(kk, zero)));
+        ok = _mm_and_pd(ok, _mm_cmpgt_pd(den[i], zero));
+      }
+      const __m128d d01 = _mm_mul_pd(den[0], den[1]), rr = _mm_div_pd(one, _mm_mul_pd(d01, den[2]));
+      const __m128d rd[3] = {_mm_mul_pd(_mm_mul_pd(den[1], den[2]), rr), _mm_mul_pd(_mm_mul_pd(den[0], den[2]), rr),
+                             _mm_mul_pd(d01, rr)};
+      double(&al)[3][P] = d == 0 ? r.alpha : r.alpha_down;
+      double(&be)[3][P] = d == 0 ? r.beta : r.beta_down;
+      for (int i = 0; i < 3; ++i) {
+        _mm_storeu_pd(al[i] + k, _mm_mul_pd(an[i], rd[i]));
+        _mm_storeu_pd(be[i] + k, _mm_mul_pd(_mm_mul_pd(L2, _mm_set1_pd(limits_.acceleration[i])), rd[i]));
+      }
+    }
+    const int good = _mm_movemask_pd(ok);
+    if (!(good & 1)) scalar_reach(k);
+    if (!(good & 2) && k + 1 < m) scalar_reach(k + 1);
+  }
+#else
+  for (int k = 0; k < m; ++k) {
+    // the per-axis box |u_i|·v ≤ V_i, K_i·v² ≤ A_i (set_limits)
+    double v = base.feed_cap, wk = inf;
+    for (int i = 0; i < 3; ++i) {
+      if (Ub[i][k] > 0) v = std::min(v, limits_.velocity[i] / Ub[i][k]);
+      if (Kb[i][k] > 0) wk = std::min(wk, limits_.acceleration[i] / Kb[i][k]);
+    }
+    if (wk < inf) v = std::min(v, std::sqrt(wk));
+    r.v_max[k] = v;
+    scalar_reach(k);
+  }
+#endif
+  // junction limits: the block's corner at the first piece, the cap before at the others (finish_piece)
+  for (int k = 0; k < m; ++k) {
+    const double vj = std::min(k == 0 ? base.v_corner : r.v_max[k - 1], r.v_max[k]);
+    if (k == 0) whole.v_junction = vj;
+    r.w_junction[k] = vj * vj;
+    r.w_backward[k] = 0.0;
+  }
+  // the node: the whole cubic with its trims (push() and the blend rule read its curve at the end),
+  // the first piece's junction and the last piece's cap (the junction after it reads v_max)
+  whole.geometry = Geometry::cubic_record;
+  whole.bound = SpeedBound::axis_box;
+  whole.path_accel = amin;
+  whole.path_jerk = inf;
+  whole.v_max = r.v_max[m - 1];
+  PassRecord& x = pass(k0);
+  x.w_junction = r.w_junction[0];
+  x.w_backward = 0.0;
+  x.length = g.length();
+  x.path_accel = amin;
+  x.path_jerk = inf;
+  x.bound = SpeedBound::axis_box;
+  x.line_blend = -1;
+  x.cubic = static_cast<int>(bs);
 }
 
 // Two curves that meet with equal curvature vectors up to rounding (the pieces of one C² spline, whose

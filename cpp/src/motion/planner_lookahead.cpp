@@ -5,6 +5,10 @@
 
 #include "planner_state.hpp"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace netshape::motion::detail {
 
 inline double PlannerState::reach_squared(const PassRecord& n, double w0) const noexcept {
@@ -26,12 +30,12 @@ inline double reach_back_squared(const PassRecord& n, double w_next) noexcept {
 namespace {
 // Backward-pass steps over the nodes k = hi, hi − 1, ..., lo (ring records rec, slot k & mask):
 // w_next becomes each node's new squared speed, min(junction limit, reach(node, w_next)); a line-blend
-// node runs over its pieces (line_blends). With stop_if_same the steps stop at the first node whose
-// value stays (returning false). The mode and the stop test are template parameters, so the loop of
-// the common case (no jerk limits, nodes that changed) carries neither.
+// or cubic-record node runs over its pieces (line_blends, cubics). With stop_if_same the steps stop at
+// the first node whose value stays (returning false). The mode and the stop test are template
+// parameters, so the loop of the common case (no jerk limits, nodes that changed) carries neither.
 template <bool stop_if_same, class Reach>
-inline bool back_steps(PassRecord* rec, std::size_t mask, LineBlendRecord* line_blends, long hi, long lo,
-                       double& w_next, const Reach& reach) noexcept {
+inline bool back_steps(PassRecord* rec, std::size_t mask, LineBlendRecord* line_blends, CubicRecord* cubics, long hi,
+                       long lo, double& w_next, const Reach& reach) noexcept {
   for (long k = hi; k >= lo; --k) {
     PassRecord& n = rec[static_cast<std::size_t>(k) & mask];
     double w;
@@ -43,6 +47,20 @@ inline bool back_steps(PassRecord* rec, std::size_t mask, LineBlendRecord* line_
         w = min_of(min_of(r.w_junction[p], r.alpha[0][p] * w + r.beta[0][p]),
                    min_of(r.alpha[1][p] * w + r.beta[1][p], r.alpha[2][p] * w + r.beta[2][p]));
         if (stop_if_same && w == r.w_backward[p]) {  // so are the pieces before it (and w == n.w_backward below)
+          w = r.w_backward[0];
+          break;
+        }
+        r.w_backward[p] = w;
+      }
+    } else if (n.cubic >= 0) {
+      // a cubic-record node: its pieces from the last to the first, each as a node of its own
+      CubicRecord& r = cubics[static_cast<std::size_t>(n.cubic)];
+      w = w_next;
+      for (int p = r.np - 1; p >= 0; --p) {
+        // the step of a node without jerk limits (the only mode with cubic records)
+        w = min_of(min_of(r.w_junction[p], r.alpha_down[0][p] * w + r.beta_down[0][p]),
+                   min_of(r.alpha_down[1][p] * w + r.beta_down[1][p], r.alpha_down[2][p] * w + r.beta_down[2][p]));
+        if (stop_if_same && w == r.w_backward[p]) {  // as for the line-blend pieces above
           w = r.w_backward[0];
           break;
         }
@@ -66,12 +84,13 @@ void PlannerState::back_pass(long dirty_from) noexcept {
   if (tail_ <= frozen_) return;
   PassRecord* const rec = passes_.data();
   LineBlendRecord* const lb = line_blends_.data();
+  CubicRecord* const cr = cubic_records_.data();
   const std::size_t mask = ring_mask_;
   const long changed_end = std::clamp(dirty_from, frozen_, tail_);  // nodes [changed_end, tail_) changed themselves
   double w_next = 0.0;  // the buffer always ends at rest (squared speeds: no root per node)
   const auto run = [&](const auto& reach) {
-    back_steps<false>(rec, mask, lb, tail_ - 1, changed_end, w_next, reach);
-    back_steps<true>(rec, mask, lb, changed_end - 1, frozen_, w_next, reach);
+    back_steps<false>(rec, mask, lb, cr, tail_ - 1, changed_end, w_next, reach);
+    back_steps<true>(rec, mask, lb, cr, changed_end - 1, frozen_, w_next, reach);
   };
   if (!jerk_limited_) {
     // Lee & Lee eq. 3 (trapezoid; on curves the axis box), capped by the junction limit: the min of
@@ -91,6 +110,37 @@ inline bool PlannerState::buffer_ready() const noexcept {
   return finished_ || capacity_ - (tail_ - head_) < nodes_per_push || blocks_in_buffer() >= options_.lookahead + 1;
 }
 
+// Peak speed and tangential acceleration from the axis box at that speed, one acceleration for both
+// ramps (the smaller of the speeding-up and slowing-down terms' — a ramp the passes planned with the
+// larger one is monotone, and Profile::make raises a to fit it):
+// 2·w − vs² − ve² = 2·L·(A_i − K_i·w)/U_i for the binding term; a term with K_i < 0 is worst at the
+// lowest speed of the profile, min(vs, ve): A_i − K_i·min(vs², ve²) and K_i = 0 there.
+inline Profile PlannerState::axis_box_profile(double len, double vs, double ve, double v_max,
+                                              const Vec3 (&ramp_tangent)[2], const Vec3 (&ramp_curvature)[2], double ws,
+                                              double we) const noexcept {
+  const double lr = std::max(0.0, len - std::min(ws, len) - std::min(we, len));
+  const double S = vs * vs + ve * ve, wlow = std::min(vs * vs, ve * ve);
+  // the six terms (speeding up x, y, z, slowing down x, y, z) as arrays, element by element the
+  // scalar expressions (max / min against 0 as std::max / std::min; Eigen vectorises them)
+  using Six = Eigen::Array<double, 6, 1>;
+  static_assert(sizeof(ramp_tangent) == 6 * sizeof(double), "ramp terms are 6 packed doubles");
+  const Eigen::Map<const Six> k(ramp_curvature[0].data()), U(ramp_tangent[0].data());
+  const Six Ke = k.max(0.0);
+  const Six Ae = acceleration2_ - k.min(0.0) * wlow;
+  Six num = U * S + (2.0 * lr) * Ae;
+  const Six den = 2.0 * U + (2.0 * lr) * Ke;
+  double wp = std::min({v_max * v_max, min_ratio(num.data(), den.data()), min_ratio(num.data() + 3, den.data() + 3)});
+  wp = std::max(wp, std::max(vs * vs, ve * ve));
+  num = Ae - Ke * wp;
+  double a = std::min(min_ratio(num.data(), U.data()), min_ratio(num.data() + 3, U.data() + 3));
+  // at the curvature cap the tangential budget is 0: a floor of 1e-6·A keeps the rounding-size speed
+  // differences of neighbouring pieces from turning into long ramps
+  const double amin = limits_.acceleration.minCoeff();
+  if (!(a > 1e-6 * amin)) a = 1e-6 * amin;
+  if (!std::isfinite(a)) a = amin;
+  return Profile::make(len, vs, ve, std::sqrt(wp), a, inf, ws, we);
+}
+
 // The profile of segment frozen_ from the end speed of the frozen prefix to the smaller of what the
 // next segment allows (its backward speed) and what it reaches; only when the buffer is full or
 // finished, and never the last segment before finish().
@@ -108,38 +158,17 @@ bool PlannerState::freeze_next() noexcept {
     freeze_line_blend(n, line_blends_[static_cast<std::size_t>(qn.line_blend)], vs, wt);
     return true;
   }
+  if (qn.cubic >= 0) {
+    freeze_cubic_record(n, cubic_records_[static_cast<std::size_t>(qn.cubic)], vs, wt);
+    return true;
+  }
   const double ve = std::sqrt(std::min(wt, reach_squared(qn, vs * vs)));
   const double wf = window_periods();
   const double ws = n.start.velocity_jump ? wf * options_.ts2 * vs : 0.0;
   const double we = n.end.velocity_jump ? wf * options_.ts2 * ve : 0.0;
   const double len = n.segment.length();
   if (n.bound == SpeedBound::axis_box && !std::isfinite(qn.path_jerk)) {
-    // peak speed and tangential acceleration from the axis box at that speed, one acceleration for
-    // both ramps (the smaller of the speeding-up and slowing-down terms' — a ramp the passes planned
-    // with the larger one is monotone, and Profile::make raises a to fit it):
-    // 2·w − vs² − ve² = 2·L·(A_i − K_i·w)/U_i for the binding term; a term with K_i < 0 is worst at
-    // the lowest speed of the profile, min(vs, ve): A_i − K_i·min(vs², ve²) and K_i = 0 there
-    const double lr = std::max(0.0, len - std::min(ws, len) - std::min(we, len));
-    const double S = vs * vs + ve * ve, wlow = std::min(vs * vs, ve * ve);
-    // the six terms (speeding up x, y, z, slowing down x, y, z) as arrays, element by element the
-    // scalar expressions (max / min against 0 as std::max / std::min; Eigen vectorises them)
-    using Six = Eigen::Array<double, 6, 1>;
-    static_assert(sizeof(n.ramp_tangent) == 6 * sizeof(double), "ramp terms are 6 packed doubles");
-    const Eigen::Map<const Six> k(n.ramp_curvature[0].data()), U(n.ramp_tangent[0].data());
-    const Six Ke = k.max(0.0);
-    const Six Ae = acceleration2_ - k.min(0.0) * wlow;
-    Six num = U * S + (2.0 * lr) * Ae;
-    const Six den = 2.0 * U + (2.0 * lr) * Ke;
-    double wp = std::min({n.v_max * n.v_max, min_ratio(num.data(), den.data()), min_ratio(num.data() + 3, den.data() + 3)});
-    wp = std::max(wp, std::max(vs * vs, ve * ve));
-    num = Ae - Ke * wp;
-    double a = std::min(min_ratio(num.data(), U.data()), min_ratio(num.data() + 3, U.data() + 3));
-    // at the curvature cap the tangential budget is 0: a floor of 1e-6·A keeps the rounding-size speed
-    // differences of neighbouring pieces from turning into long ramps
-    const double amin = limits_.acceleration.minCoeff();
-    if (!(a > 1e-6 * amin)) a = 1e-6 * amin;
-    if (!std::isfinite(a)) a = amin;
-    n.profile = Profile::make(len, vs, ve, std::sqrt(wp), a, inf, ws, we);
+    n.profile = axis_box_profile(len, vs, ve, n.v_max, n.ramp_tangent, n.ramp_curvature, ws, we);
   } else {
     n.profile = Profile::make(len, vs, ve, std::max(n.v_max, std::max(vs, ve)), n.path_accel, n.path_jerk, ws, we);
   }
@@ -162,6 +191,152 @@ void PlannerState::freeze_line_blend(Node& n, LineBlendRecord& r, double vs, dou
   n.t0 = t_frozen_end_;
   t_frozen_end_ = t;
   v_frozen_end_ = v_end;
+  ++frozen_;
+}
+
+// The pieces of a cubic-record node one after the other, as freeze_next() freezes nodes: each piece's
+// end speed is the smaller of the next piece's backward speed (of the next node: wt) and what it
+// reaches from its start speed (a sequential chain); then every piece's profile, axis_box_profile()
+// without windows. With SSE2 two pieces per step: the same operations element by element (std::min(a,
+// b) is _mm_min_pd(b, a), std::max(a, b) is _mm_max_pd(b, a), including ties and signed zeros; the
+// branches of min_ratio() and make_trapezoid() as masks, min_ratio's fast path being its loop's result
+// when every denominator is > 0). A piece's length is ≥ 0, so the windows' min(0, length) are 0 and the
+// ramps get the whole length.
+void PlannerState::freeze_cubic_record(Node& n, CubicRecord& r, double vs, double wt) noexcept {
+  const int np = r.np;
+  double v = vs;
+  for (int k = 0; k < np; ++k) {
+    const double w_end = k + 1 < np ? r.w_backward[k + 1] : wt;
+    const double w0 = v * v;  // reach_squared() without jerk limits
+    const double reach = std::min({r.alpha[0][k] * w0 + r.beta[0][k], r.alpha[1][k] * w0 + r.beta[1][k],
+                                   r.alpha[2][k] * w0 + r.beta[2][k]});
+    r.vs[k] = v;
+    v = std::sqrt(std::min(w_end, reach));
+    r.ve[k] = v;
+  }
+#if defined(__SSE2__)
+  if (np % 2) {  // the odd last lane repeats the last piece
+    r.vs[np] = r.vs[np - 1];
+    r.ve[np] = r.ve[np - 1];
+    r.len[np] = r.len[np - 1];
+    r.v_max[np] = r.v_max[np - 1];
+    for (int d = 0; d < 2; ++d)
+      for (int i = 0; i < 3; ++i) {
+        r.ramp_u[d][i][np] = r.ramp_u[d][i][np - 1];
+        r.ramp_k[d][i][np] = r.ramp_k[d][i][np - 1];
+      }
+  }
+  const __m128d zero = _mm_setzero_pd(), two = _mm_set1_pd(2.0), half = _mm_set1_pd(0.5), one = _mm_set1_pd(1.0),
+                inf2 = _mm_set1_pd(inf);
+  const double amin = limits_.acceleration.minCoeff();
+  const __m128d floor_a = _mm_set1_pd(1e-6 * amin), amin2 = _mm_set1_pd(amin);
+  const auto min_ab = [](__m128d a, __m128d b) { return _mm_min_pd(b, a); };  // std::min(a, b)
+  const auto max_ab = [](__m128d a, __m128d b) { return _mm_max_pd(b, a); };  // std::max(a, b)
+  const auto pick = [](__m128d mask, __m128d a, __m128d b) {                // mask ? a : b
+    return _mm_or_pd(_mm_and_pd(mask, a), _mm_andnot_pd(mask, b));
+  };
+  const __m128d A[3] = {_mm_set1_pd(limits_.acceleration[0]), _mm_set1_pd(limits_.acceleration[1]),
+                        _mm_set1_pd(limits_.acceleration[2])};
+  // one step of min_ratio()'s loop: the fraction num/den replaces the best nb/db (has: one was taken)
+  const auto ratio_step = [&](__m128d num, __m128d den, __m128d& nb, __m128d& db, __m128d& has) {
+    const __m128d better = _mm_cmplt_pd(_mm_mul_pd(num, db), _mm_mul_pd(nb, den));
+    const __m128d take = _mm_and_pd(_mm_cmpgt_pd(den, zero), _mm_or_pd(better, _mm_cmpeq_pd(has, zero)));
+    nb = pick(take, num, nb);
+    db = pick(take, den, db);
+    has = _mm_or_pd(has, take);
+  };
+  for (int k = 0; k < np; k += 2) {
+    const auto at = [k](const double* row) { return _mm_loadu_pd(row + k); };
+    const __m128d vs_ = at(r.vs), ve_ = at(r.ve), len = at(r.len);
+    const __m128d vs2 = _mm_mul_pd(vs_, vs_), ve2 = _mm_mul_pd(ve_, ve_);
+    const __m128d S = _mm_add_pd(vs2, ve2), wlow = min_ab(vs2, ve2);
+    const __m128d lr2 = _mm_mul_pd(two, len);
+    // axis_box_profile(): the peak squared speed (the terms Ke = max(K, 0), Ae = A − min(K, 0)·wlow
+    // are found again for the acceleration below)
+    __m128d wp = _mm_mul_pd(at(r.v_max), at(r.v_max));
+    for (int d = 0; d < 2; ++d) {
+      __m128d nb = zero, db = one, has = zero;
+      for (int i = 0; i < 3; ++i) {
+        const __m128d kk = at(r.ramp_k[d][i]), U = at(r.ramp_u[d][i]);
+        const __m128d Ae = _mm_sub_pd(A[i], _mm_mul_pd(min_ab(kk, zero), wlow));
+        ratio_step(_mm_add_pd(_mm_mul_pd(U, S), _mm_mul_pd(lr2, Ae)),
+                   _mm_add_pd(_mm_mul_pd(two, U), _mm_mul_pd(lr2, max_ab(kk, zero))), nb, db, has);
+      }
+      wp = min_ab(wp, pick(has, _mm_div_pd(nb, db), inf2));
+    }
+    wp = max_ab(wp, max_ab(vs2, ve2));
+    __m128d a = inf2;
+    for (int d = 0; d < 2; ++d) {
+      __m128d nb = zero, db = one, has = zero;
+      for (int i = 0; i < 3; ++i) {
+        const __m128d kk = at(r.ramp_k[d][i]), U = at(r.ramp_u[d][i]);
+        const __m128d Ae = _mm_sub_pd(A[i], _mm_mul_pd(min_ab(kk, zero), wlow));
+        ratio_step(_mm_sub_pd(Ae, _mm_mul_pd(max_ab(kk, zero), wp)), U, nb, db, has);
+      }
+      const __m128d ad = pick(has, _mm_div_pd(nb, db), inf2);
+      a = d == 0 ? ad : min_ab(a, ad);
+    }
+    a = pick(_mm_cmpgt_pd(a, floor_a), a, floor_a);
+    a = pick(_mm_cmpeq_pd(a, inf2), amin2, a);
+    // make_trapezoid() without windows, cruise cap sqrt(wp)
+    const __m128d vlow = max_ab(vs_, ve_);
+    __m128d vp = _mm_sqrt_pd(max_ab(zero, _mm_div_pd(_mm_add_pd(_mm_mul_pd(_mm_mul_pd(two, a), len), S), two)));
+    vp = max_ab(vlow, min_ab(vp, max_ab(_mm_sqrt_pd(wp), vlow)));
+    const __m128d need = _mm_sub_pd(_mm_mul_pd(_mm_mul_pd(two, vp), vp), S);
+    const __m128d raise = _mm_and_pd(_mm_cmpgt_pd(len, zero), _mm_cmpgt_pd(need, _mm_mul_pd(lr2, a)));
+    a = pick(raise, _mm_div_pd(need, lr2), a);
+    const __m128d ia = _mm_div_pd(one, a);
+    const __m128d t1 = _mm_mul_pd(_mm_sub_pd(vp, vs_), ia), d1 = _mm_mul_pd(_mm_mul_pd(half, _mm_add_pd(vs_, vp)), t1);
+    const __m128d t3 = _mm_mul_pd(_mm_sub_pd(vp, ve_), ia), d3 = _mm_mul_pd(_mm_mul_pd(half, _mm_add_pd(vp, ve_)), t3);
+    __m128d d2 = max_ab(zero, _mm_sub_pd(_mm_sub_pd(len, d1), d3));
+    const __m128d moving = _mm_cmpgt_pd(vp, zero);
+    __m128d d2m = _mm_add_pd(d2, _mm_sub_pd(len, _mm_add_pd(_mm_add_pd(d1, d2), d3)));
+    d2m = pick(_mm_cmplt_pd(d2m, zero), zero, d2m);
+    d2 = pick(moving, d2m, d2);
+    const __m128d t2 = pick(moving, _mm_div_pd(d2, vp), zero);
+    _mm_storeu_pd(r.vp + k, vp);
+    _mm_storeu_pd(r.acc + k, a);
+    _mm_storeu_pd(r.t1 + k, t1);
+    _mm_storeu_pd(r.t2 + k, t2);
+    _mm_storeu_pd(r.t3 + k, t3);
+    _mm_storeu_pd(r.d1 + k, d1);
+    _mm_storeu_pd(r.d2 + k, d2);
+    _mm_storeu_pd(r.d3 + k, d3);
+    _mm_storeu_pd(r.dur + k, _mm_add_pd(_mm_add_pd(t1, t2), t3));
+  }
+#else
+  for (int k = 0; k < np; ++k) {
+    Vec3 Ua[2], Ka[2];
+    for (int d = 0; d < 2; ++d)
+      for (int i = 0; i < 3; ++i) {
+        Ua[d][i] = r.ramp_u[d][i][k];
+        Ka[d][i] = r.ramp_k[d][i][k];
+      }
+    const Profile p = axis_box_profile(r.len[k], r.vs[k], r.ve[k], r.v_max[k], Ua, Ka, 0.0, 0.0);
+    r.vp[k] = p.vp;
+    r.acc[k] = p.a;
+    r.t1[k] = p.t[1];
+    r.t2[k] = p.t[2];
+    r.t3[k] = p.t[3];
+    r.d1[k] = p.d[1];
+    r.d2[k] = p.d[2];
+    r.d3[k] = p.d[3];
+    r.dur[k] = p.duration;
+  }
+#endif
+  double t = t_frozen_end_;
+  for (int k = 0; k < np; ++k) {
+    r.t0[k] = t;
+    t += r.dur[k];
+  }
+  r.cursor = 0;
+  // of the node's profile only the end speeds and the duration are read (the pieces have their own)
+  n.profile.vs = vs;
+  n.profile.ve = v;
+  n.profile.duration = t - t_frozen_end_;
+  n.t0 = t_frozen_end_;
+  t_frozen_end_ = t;
+  v_frozen_end_ = v;
   ++frozen_;
 }
 

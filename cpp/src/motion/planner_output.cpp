@@ -26,6 +26,25 @@ void LineBlendRecord::profile(int k, Profile& p) const noexcept {
   p.duration = dur[k];
 }
 
+void CubicRecord::profile(int k, Profile& p) const noexcept {
+  p.vs = vs[k];
+  p.ve = ve[k];
+  p.vp = vp[k];
+  p.a = acc[k];
+  p.j = inf;
+  p.t[0] = 0.0;
+  p.t[1] = t1[k];
+  p.t[2] = t2[k];
+  p.t[3] = t3[k];
+  p.t[4] = 0.0;
+  p.d[0] = 0.0;
+  p.d[1] = d1[k];
+  p.d[2] = d2[k];
+  p.d[3] = d3[k];
+  p.d[4] = 0.0;
+  p.duration = dur[k];
+}
+
 void PlannerState::copy_blend_geometry(const Segment& g, Segment& out) const noexcept {
   // the pieces of a blend come one after the other: the caller's segment often holds this blend's
   // geometry already (same control points bit for bit, length and source); then only the trims change
@@ -126,6 +145,17 @@ Status PlannerState::next(Sample& out) noexcept {
     pk.eval(t - r.t0[k], s, v, acc);
     sg = &blend_geometry(n.block);
     s += r.trim_s[k];
+  } else if (n.geometry == Geometry::cubic_record) {
+    // the same for the piece of a cubic block, on the untrimmed cubic in the cubic store
+    CubicRecord& r = cubic_records_[block_slot(n.block)];
+    int k = r.cursor;
+    while (k + 1 < r.np && r.t0[k] + r.dur[k] <= t) ++k;
+    r.cursor = k;
+    Profile pk;
+    r.profile(k, pk);
+    pk.eval(t - r.t0[k], s, v, acc);
+    sg = &cubics_[block_slot(n.block)];
+    s += r.trim_start[k];
   } else {
     sg = &segment_of(n);
     n.profile.eval(t - n.t0, s, v, acc);
@@ -156,6 +186,24 @@ Status PlannerState::next_segment(PlannedSegment& out) noexcept {
     out.segment.trim_end = r.trim_e[k];
     out.segment.curvature = g.curvature;
     out.segment.curvature_rate = g.curvature_rate;
+    r.profile(k, out.profile);
+    out.t0 = r.t0[k];
+    if (++r.cursor == r.np) {
+      r.cursor = 0;
+      ++head_;
+    }
+    return Status::ok;
+  }
+  if (n.geometry == Geometry::cubic_record) {
+    // the record and the cubic store share the block slot
+    const std::size_t bs = static_cast<std::size_t>(passes_[slot].cubic);
+    CubicRecord& r = cubic_records_[bs];
+    const int k = r.cursor;
+    copy_blend_geometry(cubics_[bs], out.segment);
+    out.segment.trim_start = r.trim_start[k];
+    out.segment.trim_end = r.trim_end[k];
+    out.segment.curvature = r.curvature[k];
+    out.segment.curvature_rate = r.curvature_rate[k];
     r.profile(k, out.profile);
     out.t0 = r.t0[k];
     if (++r.cursor == r.np) {

@@ -361,10 +361,15 @@ void PlannerState::set_reach(PassRecord& x, const Node& n) const noexcept {
     }
     return;
   }
+  set_box_reach(x, n.ramp_tangent, n.ramp_curvature);
+}
+
+void PlannerState::set_box_reach(PassRecord& x, const Vec3 (&U)[2], const Vec3 (&K)[2]) const noexcept {
+  x.bound = SpeedBound::axis_box;
   // speeding up: the forward reach; slowing down: the backward pass
-  if (!box_reach_both(x.length, n.ramp_tangent, n.ramp_curvature, limits_.acceleration, x)) {
-    box_reach(x.length, n.ramp_tangent[0], n.ramp_curvature[0], limits_.acceleration, x.alpha, x.beta);
-    box_reach(x.length, n.ramp_tangent[1], n.ramp_curvature[1], limits_.acceleration, x.alpha_down, x.beta_down);
+  if (!box_reach_both(x.length, U, K, limits_.acceleration, x)) {
+    box_reach(x.length, U[0], K[0], limits_.acceleration, x.alpha, x.beta);
+    box_reach(x.length, U[1], K[1], limits_.acceleration, x.alpha_down, x.beta_down);
   }
 }
 

@@ -8,7 +8,8 @@
 /// Invariants: segments [head_, frozen_) are frozen (their profiles fixed, times increasing from
 /// t0 = 0), [frozen_, tail_) are planned and may still change; node k lives in ring slot
 /// k & ring_mask_ and its pass record in the same slot of passes_; the blend of program block b lives
-/// in slot b & block_mask_ of the blend stores. The buffer always ends at rest.
+/// in slot b & block_mask_ of the blend stores, a cubic block b (and its cubic record) in that slot of
+/// the cubic stores. The buffer always ends at rest.
 
 #include <algorithm>
 #include <cmath>
@@ -95,6 +96,10 @@ enum class Geometry : std::uint8_t {
   /// block (the passes and the freeze loop over them, next() and next_segment() hand them out one by
   /// one), its geometry in the blend store.
   line_blend_record,
+  /// One node for a whole cubic block cut into pieces (without jerk limits and velocity-jump windows):
+  /// its pieces are in the cubic record of its block (CubicRecord; handled as line_blend_record), the
+  /// node's segment is the whole cubic with its trims and its untrimmed copy is in the cubic store.
+  cubic_record,
 };
 
 /// Whether a node's extent is final.
@@ -167,10 +172,38 @@ struct PassRecord {
   double w_backward = 0;  ///< squared speed the backward pass allows at the start [mm²/s²]
   double alpha_down[3] = {1, 0, 0}, beta_down[3] = {0, 0, 0};
   int line_blend = -1;                  ///< Geometry::line_blend_record: its slot in line_blends_, else −1
+  int cubic = -1;                       ///< Geometry::cubic_record: its slot in cubic_records_, else −1
   SpeedBound bound = SpeedBound::path;  ///< SpeedBound::path: w = w0 + beta[0]
   double length = 0;                    ///< planned length (see planned_length) [mm]
   double path_accel = 1, path_jerk = 0;
   double alpha[3] = {1, 0, 0}, beta[3] = {0, 0, 0};
+};
+
+/// The pieces of a cubic block held by one ring node (Geometry::cubic_record; only without jerk
+/// limits), kept once per block by the planner. Per piece: its trims of the whole cubic and length,
+/// largest curvature and |dκ/ds| (the output segment's), speed cap, squared junction limit, the reach
+/// coefficients of both directions (PassRecord's alpha, beta, alpha_down, beta_down), the backward
+/// squared speed at its start, the per-axis ramp terms (Node::ramp_tangent, ramp_curvature) and, once
+/// frozen, its trapezoid (speeds, acceleration, phase times and distances; no windows) and start time.
+/// Every field is an array over the pieces ([axis][piece], [direction][axis][piece]); the passes, the
+/// freeze and the output run over them as over nodes of their own, with the same arithmetic.
+struct CubicRecord {
+  static constexpr int pieces = 16;
+  int np = 0;      ///< pieces in use (1..pieces)
+  int cursor = 0;  ///< next piece to hand out (next_segment) or the piece being sampled (next)
+  double trim_start[pieces] = {}, trim_end[pieces] = {}, len[pieces] = {};  ///< [mm]
+  double curvature[pieces] = {}, curvature_rate[pieces] = {};             ///< [1/mm], [1/mm²]
+  double v_max[pieces] = {};                                              ///< [mm/s]
+  double w_junction[pieces] = {}, w_backward[pieces] = {};                ///< [mm²/s²]
+  double alpha[3][pieces] = {}, beta[3][pieces] = {}, alpha_down[3][pieces] = {}, beta_down[3][pieces] = {};
+  double ramp_u[2][3][pieces] = {}, ramp_k[2][3][pieces] = {};
+  // frozen: speed-up, cruise, slow-down
+  double vs[pieces] = {}, ve[pieces] = {}, vp[pieces] = {}, acc[pieces] = {};
+  double t1[pieces] = {}, t2[pieces] = {}, t3[pieces] = {};
+  double d1[pieces] = {}, d2[pieces] = {}, d3[pieces] = {};
+  double dur[pieces] = {}, t0[pieces] = {};
+  /// The frozen profile of piece k.
+  void profile(int k, Profile& p) const noexcept;
 };
 
 /// What init_cubic_node() finds on a cubic block's arc-length table and split_cubic_block() cuts it
@@ -222,6 +255,8 @@ class PlannerState {
   void set_limits(Node& n, const Vec3* line_dir = nullptr, const AxisMinima* minima = nullptr) const noexcept;
   /// The reach coefficients of x (see PassRecord) from its length and n's speed bound and terms.
   void set_reach(PassRecord& x, const Node& n) const noexcept;
+  /// The same for an axis-box piece with ramp terms U, K (x.bound set to SpeedBound::axis_box).
+  void set_box_reach(PassRecord& x, const Vec3 (&U)[2], const Vec3 (&K)[2]) const noexcept;
   /// Pass record of node k from the node (w_backward and line_blend: the caller).
   void update_pass(long k) noexcept;
   /// Largest squared speed at the end of a node that starts at sqrt(w0) [mm²/s²] (the backward pass
@@ -256,6 +291,17 @@ class PlannerState {
   int cubic_piece_count() const noexcept { return jerk_limited_ ? 4 : 16; }
   /// split_last_block() for a cubic block: its trimmed window cut at table nodes, bounds per piece.
   void split_cubic_block() noexcept;
+  /// split_cubic_block() into the cubic record of the block (cubic_records_used()): m pieces between
+  /// cuts (arc lengths), table step `step`; intervals(k, i0, i1) gives the table intervals of piece k;
+  /// amin: the smallest acceleration of the axes that move. (Defined in planner_cubic.cpp.)
+  template <class Intervals>
+  void fill_cubic_record(Node& whole, const PieceBase& base, const double* cuts, int m, int step, double amin,
+                         const Intervals& intervals) noexcept;
+  /// Whether cubic blocks are cut into the pieces of one cubic-record node (no jerk limits, no
+  /// velocity-jump windows) rather than into ring nodes.
+  bool cubic_records_used() const noexcept {
+    return !jerk_limited_ && options_.rule != CornerRule::vector && options_.rule != CornerRule::per_axis;
+  }
   /// Jerk mode: whether the curvature vectors k1, k2 [1/mm] at a tangent joint next to a cubic block
   /// agree up to the rounding of the curves that meet there (no curvature step).
   static bool curvature_continuous(const Vec3& k1, const Vec3& k2) noexcept;
@@ -278,6 +324,13 @@ class PlannerState {
   bool buffer_ready() const noexcept;
   bool freeze_next() noexcept;
   void freeze_line_blend(Node& n, LineBlendRecord& r, double vs, double wt) noexcept;
+  /// The pieces of a cubic-record node one after the other, as freeze_next() for single nodes.
+  void freeze_cubic_record(Node& n, CubicRecord& r, double vs, double wt) noexcept;
+  /// The profile of a SpeedBound::axis_box piece without jerk limits over length len from vs to ve
+  /// (windows ws, we) with cruise cap v_max and the piece's ramp terms (Node::ramp_tangent,
+  /// ramp_curvature). (Defined inline in planner_lookahead.cpp, its only user.)
+  Profile axis_box_profile(double len, double vs, double ve, double v_max, const Vec3 (&ramp_tangent)[2],
+                           const Vec3 (&ramp_curvature)[2], double ws, double we) const noexcept;
 
   // --- output (planner_output.cpp) ---
   Status ensure_frozen_until(double t) noexcept;
@@ -304,7 +357,8 @@ class PlannerState {
   Node scratch_;                   // a new node push() cannot build in its ring slot
   std::vector<Segment> blends_;    // whole blend of each block in the buffer, by block slot
   std::vector<LineBlendRecord> line_blends_;  // pieces of the line-blend node of each block, by block slot
-  std::vector<Segment> cubics_;    // whole cubic block, by block slot (Geometry::in_cubic_store pieces)
+  std::vector<Segment> cubics_;    // whole cubic block, by block slot (in_cubic_store pieces; cubic_record: untrimmed)
+  std::vector<CubicRecord> cubic_records_;  // pieces of the cubic-record node of each block, by block slot
   long capacity_ = 0;              // ring size
   std::size_t ring_mask_ = 0, block_mask_ = 0;  // capacity_ − 1, blends_.size() − 1
 
@@ -345,12 +399,13 @@ inline double PlannerState::planned_length(const Node& n) const noexcept {
 
 inline void PlannerState::update_pass(long k) noexcept {
   const Node& n = node(k);
+  if (n.geometry == Geometry::cubic_record) return;  // its pieces' records are final (split_cubic_block)
   PassRecord& x = pass(k);
   x.w_junction = n.v_junction * n.v_junction;
   x.length = planned_length(n);
   x.path_accel = n.path_accel;
   x.path_jerk = n.path_jerk;
-  x.line_blend = -1;
+  x.line_blend = x.cubic = -1;
   set_reach(x, n);
 }
 
