@@ -1,6 +1,7 @@
 // Bindings of the `motion` area (netshape._core.motion). Thin: lambdas turn out-parameters into returns;
 // the bench drivers (_smooth_plan, _throughput) loop in C++ so that Python stays out of what they time.
 #include <atomic>
+#include <chrono>
 #include <limits>
 #include <string>
 #include <thread>
@@ -108,6 +109,8 @@ py::dict smooth_stats(const SmoothResult& r) {
 // (segments, end time of the last one [s]). An error of the Smoother is rethrown here.
 std::pair<long, double> smooth_plan_threaded(const std::vector<toolpath::Block>& blocks, Smoother& sm, Planner& p) {
   constexpr std::size_t cap = 1024;  // ring slots (a power of two)
+  // a side that finds the ring full / empty sleeps (not spins), so the CPU time counts work only
+  constexpr std::chrono::microseconds pause{20};
   std::vector<SmoothedBlock> ring(cap);
   std::atomic<std::size_t> head{0}, tail{0};  // blocks written / read so far
   std::atomic<bool> done{false};              // the Smoother has handed out its last block
@@ -119,7 +122,7 @@ std::pair<long, double> smooth_plan_threaded(const std::vector<toolpath::Block>&
       const Status ss = sm.next(sb);
       if (ss == Status::ok) {
         const std::size_t h = head.load(std::memory_order_relaxed);
-        while (h - tail.load(std::memory_order_acquire) == cap) std::this_thread::yield();
+        while (h - tail.load(std::memory_order_acquire) == cap) std::this_thread::sleep_for(pause);
         ring[h & (cap - 1)] = sb;
         head.store(h + 1, std::memory_order_release);
       } else if (ss == Status::need_blocks) {
@@ -155,7 +158,7 @@ std::pair<long, double> smooth_plan_threaded(const std::vector<toolpath::Block>&
         p.finish();
         break;
       }
-      std::this_thread::yield();
+      std::this_thread::sleep_for(pause);
     }
   }
   producer.join();
