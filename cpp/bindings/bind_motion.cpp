@@ -103,6 +103,17 @@ py::dict smooth_stats(const SmoothResult& r) {
   stats["max_fit_deviation_mm"] = r.max_fit_deviation;
   return stats;
 }
+// Hands out the Planner's segments until it needs blocks or is done (returns that status), counting
+// them and keeping the end time of the last [s].
+Status drain(Planner& p, PlannedSegment& seg, long& segments, double& t_end) {
+  for (;;) {
+    const Status st = p.next_segment(seg);
+    if (st != Status::ok) return st;
+    ++segments;
+    t_end = seg.t0 + seg.profile.duration;
+  }
+}
+
 // Program -> Smoother in a second thread, its blocks handed through a bounded single-producer /
 // single-consumer ring to the Planner in this one (the two-stage pipeline of a controller, where
 // smoothing and planning run in tasks of their own). Planned segments without sampling; returns
@@ -138,14 +149,7 @@ std::pair<long, double> smooth_plan_threaded(const std::vector<toolpath::Block>&
   PlannedSegment seg;
   long segments = 0;
   double t_end = 0;
-  for (;;) {
-    const Status st = p.next_segment(seg);
-    if (st == Status::ok) {
-      ++segments;
-      t_end = seg.t0 + seg.profile.duration;
-      continue;
-    }
-    if (st != Status::need_blocks) break;
+  while (drain(p, seg, segments, t_end) == Status::need_blocks) {
     const std::size_t t = tail.load(std::memory_order_relaxed);
     for (;;) {
       if (head.load(std::memory_order_acquire) != t) {
@@ -404,13 +408,8 @@ void bind_motion(py::module_& m) {
           if (!streamed) smoothed = smooth(blocks, o);
           std::size_t i = 0, j = 0;
           for (;;) {
-            const Status st = p.next_segment(seg);
-            if (st == Status::ok) {
-              ++segments;
-              t_end = seg.t0 + seg.profile.duration;
-              continue;
-            }
-            if (st == Status::finished) break;
+            const Status st = drain(p, seg, segments, t_end);
+            if (st != Status::need_blocks) break;
             if (!streamed) {
               if (j < smoothed.blocks.size()) {
                 p.push(smoothed.blocks[j], smoothed.controls[j]);
@@ -465,13 +464,8 @@ void bind_motion(py::module_& m) {
           b.feed = feed;
           Eigen::Index i = 1;
           for (;;) {
-            const Status st = p.next_segment(seg);
-            if (st == Status::ok) {
-              ++segments;
-              t_end = seg.t0 + seg.profile.duration;
-              continue;
-            }
-            if (st == Status::finished) break;
+            const Status st = drain(p, seg, segments, t_end);
+            if (st != Status::need_blocks) break;
             while (i < n) {
               b.start = points.row(i - 1).transpose();
               b.end = points.row(i).transpose();

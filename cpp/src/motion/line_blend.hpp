@@ -6,12 +6,36 @@
 /// every instruction set gives the same bits. Only plain doubles and Vec3 cross between the kernels and
 /// the rest of the library.
 
+#include <limits>
+
 #include "core/dispatch.hpp"
 #include "netshape/core/types.hpp"
 #include "netshape/motion/profile.hpp"
 #include "netshape/motion/segment.hpp"
 
 namespace netshape::motion::detail {
+
+/// The frozen profile of piece k of a record of pieces (LineBlendRecord, CubicRecord: the arrays vs,
+/// ve, vp, acc, t1..t3, d1..d3, dur): a trapezoid without windows.
+template <class Record>
+void frozen_profile(const Record& r, int k, Profile& p) noexcept {
+  p.vs = r.vs[k];
+  p.ve = r.ve[k];
+  p.vp = r.vp[k];
+  p.a = r.acc[k];
+  p.j = std::numeric_limits<double>::infinity();
+  p.t[0] = 0.0;
+  p.t[1] = r.t1[k];
+  p.t[2] = r.t2[k];
+  p.t[3] = r.t3[k];
+  p.t[4] = 0.0;
+  p.d[0] = 0.0;
+  p.d[1] = r.d1[k];
+  p.d[2] = r.d2[k];
+  p.d[3] = r.d3[k];
+  p.d[4] = 0.0;
+  p.duration = r.dur[k];
+}
 
 /// The pieces of a corner blend between two lines, kept once per blend by the planner.
 /// Per piece: trims of the whole blend, length, speed cap, squared junction limit (piece 0: with the
@@ -36,7 +60,7 @@ struct LineBlendRecord {
   double d1[pieces] = {}, d2[pieces] = {}, d3[pieces] = {};
   double dur[pieces] = {}, t0[pieces] = {};
   /// The frozen profile of piece k (a trapezoid without windows).
-  void profile(int k, Profile& p) const noexcept;
+  void profile(int k, Profile& p) const noexcept { frozen_profile(*this, k, p); }
 };
 
 // Between two lines (symmetric blends, curvature peak at node 8) four pieces, narrower around the

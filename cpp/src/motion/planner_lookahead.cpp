@@ -183,14 +183,19 @@ bool PlannerState::freeze_next() noexcept {
 // freeze_next() does for single nodes.
 void PlannerState::freeze_line_blend(Node& n, LineBlendRecord& r, double vs, double wt) noexcept {
   const double v_end = line_blend_kernels_->freeze(r, vs, wt, limits_.acceleration, t_frozen_end_);
-  const double t = r.t0[r.np - 1] + r.dur[r.np - 1];
-  // of the node's profile only the end speeds and the duration are read (the pieces have their own)
+  freeze_record_node(n, vs, v_end, r.t0[r.np - 1] + r.dur[r.np - 1]);
+}
+
+// A node whose pieces live in a record (line blend, cubic) is frozen from vs to ve, its last piece
+// ending at time t_end: of the node's profile only the end speeds and the duration are read (the
+// pieces have their own); the frozen prefix moves past it.
+void PlannerState::freeze_record_node(Node& n, double vs, double ve, double t_end) noexcept {
   n.profile.vs = vs;
-  n.profile.ve = v_end;
-  n.profile.duration = t - t_frozen_end_;
+  n.profile.ve = ve;
+  n.profile.duration = t_end - t_frozen_end_;
   n.t0 = t_frozen_end_;
-  t_frozen_end_ = t;
-  v_frozen_end_ = v_end;
+  t_frozen_end_ = t_end;
+  v_frozen_end_ = ve;
   ++frozen_;
 }
 
@@ -330,14 +335,7 @@ void PlannerState::freeze_cubic_record(Node& n, CubicRecord& r, double vs, doubl
     t += r.dur[k];
   }
   r.cursor = 0;
-  // of the node's profile only the end speeds and the duration are read (the pieces have their own)
-  n.profile.vs = vs;
-  n.profile.ve = v;
-  n.profile.duration = t - t_frozen_end_;
-  n.t0 = t_frozen_end_;
-  t_frozen_end_ = t;
-  v_frozen_end_ = v;
-  ++frozen_;
+  freeze_record_node(n, vs, v, t);
 }
 
 }  // namespace netshape::motion::detail

@@ -7,44 +7,6 @@
 
 namespace netshape::motion::detail {
 
-void LineBlendRecord::profile(int k, Profile& p) const noexcept {
-  p.vs = vs[k];
-  p.ve = ve[k];
-  p.vp = vp[k];
-  p.a = acc[k];
-  p.j = inf;
-  p.t[0] = 0.0;
-  p.t[1] = t1[k];
-  p.t[2] = t2[k];
-  p.t[3] = t3[k];
-  p.t[4] = 0.0;
-  p.d[0] = 0.0;
-  p.d[1] = d1[k];
-  p.d[2] = d2[k];
-  p.d[3] = d3[k];
-  p.d[4] = 0.0;
-  p.duration = dur[k];
-}
-
-void CubicRecord::profile(int k, Profile& p) const noexcept {
-  p.vs = vs[k];
-  p.ve = ve[k];
-  p.vp = vp[k];
-  p.a = acc[k];
-  p.j = inf;
-  p.t[0] = 0.0;
-  p.t[1] = t1[k];
-  p.t[2] = t2[k];
-  p.t[3] = t3[k];
-  p.t[4] = 0.0;
-  p.d[0] = 0.0;
-  p.d[1] = d1[k];
-  p.d[2] = d2[k];
-  p.d[3] = d3[k];
-  p.d[4] = 0.0;
-  p.duration = dur[k];
-}
-
 void PlannerState::copy_blend_geometry(const Segment& g, Segment& out) const noexcept {
   // the pieces of a blend come one after the other: the caller's segment often holds this blend's
   // geometry already (same control points bit for bit, length and source); then only the trims change

@@ -203,7 +203,7 @@ struct CubicRecord {
   double d1[pieces] = {}, d2[pieces] = {}, d3[pieces] = {};
   double dur[pieces] = {}, t0[pieces] = {};
   /// The frozen profile of piece k.
-  void profile(int k, Profile& p) const noexcept;
+  void profile(int k, Profile& p) const noexcept { frozen_profile(*this, k, p); }
 };
 
 /// What init_cubic_node() finds on a cubic block's arc-length table and split_cubic_block() cuts it
@@ -326,6 +326,8 @@ class PlannerState {
   void freeze_line_blend(Node& n, LineBlendRecord& r, double vs, double wt) noexcept;
   /// The pieces of a cubic-record node one after the other, as freeze_next() for single nodes.
   void freeze_cubic_record(Node& n, CubicRecord& r, double vs, double wt) noexcept;
+  /// Node n, whose pieces are in a record, frozen from vs to ve with its last piece ending at t_end.
+  void freeze_record_node(Node& n, double vs, double ve, double t_end) noexcept;
   /// The profile of a SpeedBound::axis_box piece without jerk limits over length len from vs to ve
   /// (windows ws, we) with cruise cap v_max and the piece's ramp terms (Node::ramp_tangent,
   /// ramp_curvature). (Defined inline in planner_lookahead.cpp, its only user.)
