@@ -19,6 +19,17 @@
 
 namespace netshape::motion::detail {
 
+#if defined(__SSE2__)
+// Two-lane forms of the scalar operations the SIMD paths repeat bit for bit: std::min(a, b) is
+// _mm_min_pd(b, a) and std::max(a, b) is _mm_max_pd(b, a), including ties and signed zeros.
+inline __m128d min_ab(__m128d a, __m128d b) noexcept { return _mm_min_pd(b, a); }
+inline __m128d max_ab(__m128d a, __m128d b) noexcept { return _mm_max_pd(b, a); }
+// mask ? a : b, lane by lane
+inline __m128d pick(__m128d mask, __m128d a, __m128d b) noexcept {
+  return _mm_or_pd(_mm_and_pd(mask, a), _mm_andnot_pd(mask, b));
+}
+#endif
+
 // A piece over the table nodes i0..i1 in jerk mode: its largest curvature |κ| at those nodes and the
 // largest |Δ|κ| / Δs| between neighbouring ones (table: the arc lengths of the nodes).
 // (k: |κ| at the nodes, Kv[i].norm())
@@ -176,11 +187,6 @@ struct BlendBounds {
     const __m128d zero = _mm_setzero_pd(), one = _mm_set1_pd(1.0), minus_one = _mm_set1_pd(-1.0),
                   quarter = _mm_set1_pd(0.25), eps = _mm_set1_pd(1e-12), grow = _mm_set1_pd(1.0 + 1e-9),
                   shrink = _mm_set1_pd(1.0 - 1e-9), sign = _mm_set1_pd(-0.0);
-    const auto min_ab = [](__m128d a, __m128d b) { return _mm_min_pd(b, a); };  // std::min(a, b)
-    const auto max_ab = [](__m128d a, __m128d b) { return _mm_max_pd(b, a); };  // std::max(a, b)
-    const auto pick = [](__m128d mask, __m128d a, __m128d b) {                // mask ? a : b
-      return _mm_or_pd(_mm_and_pd(mask, a), _mm_andnot_pd(mask, b));
-    };
     for (int c = 0; c < 3; ++c)
       for (int r = 0; r < 16; r += 2) {
         const auto at = [r](const double* row) { return _mm_loadu_pd(row + r); };

@@ -181,13 +181,6 @@ void PlannerState::fill_cubic_record(Node& whole, const PieceBase& base, const d
   r.cursor = 0;
   constexpr int P = CubicRecord::pieces;
   double Ub[3][P], Kb[3][P];  // the unsigned bounds per axis
-  const auto ramps_of = [&r](int k, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) {
-    for (int d = 0; d < 2; ++d)
-      for (int i = 0; i < 3; ++i) {
-        Ua[d][i] = r.ramp_u[d][i][k];
-        Ka[d][i] = r.ramp_k[d][i][k];
-      }
-  };
   for (int k = 0; k < m; ++k) {
     int i0, i1;
     intervals(k, i0, i1);
@@ -216,7 +209,7 @@ void PlannerState::fill_cubic_record(Node& whole, const PieceBase& base, const d
     PassRecord x;
     x.length = std::max(0.0, r.len[k]);
     Vec3 Ua[2], Ka[2];
-    ramps_of(k, Ua, Ka);
+    r.ramps(k, Ua, Ka);
     set_box_reach(x, Ua, Ka);
     for (int i = 0; i < 3; ++i) {
       r.alpha[i][k] = x.alpha[i];
@@ -238,11 +231,6 @@ void PlannerState::fill_cubic_record(Node& whole, const PieceBase& base, const d
     }
   }
   const __m128d zero = _mm_setzero_pd(), one = _mm_set1_pd(1.0), two = _mm_set1_pd(2.0), inf2 = _mm_set1_pd(inf);
-  const auto min_ab = [](__m128d a, __m128d b) { return _mm_min_pd(b, a); };  // std::min(a, b)
-  const auto max_ab = [](__m128d a, __m128d b) { return _mm_max_pd(b, a); };  // std::max(a, b)
-  const auto pick = [](__m128d mask, __m128d a, __m128d b) {                // mask ? a : b
-    return _mm_or_pd(_mm_and_pd(mask, a), _mm_andnot_pd(mask, b));
-  };
   for (int k = 0; k < m; k += 2) {
     __m128d v = _mm_set1_pd(base.feed_cap), wk = inf2;
     for (int i = 0; i < 3; ++i) {

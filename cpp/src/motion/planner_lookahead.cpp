@@ -220,26 +220,15 @@ void PlannerState::freeze_cubic_record(Node& n, CubicRecord& r, double vs, doubl
     r.ve[k] = v;
   }
 #if defined(__SSE2__)
-  if (np % 2) {  // the odd last lane repeats the last piece
+  if (np % 2) {  // the odd last lane repeats the last piece (its length, cap and ramp terms already do:
+                 // fill_cubic_record)
     r.vs[np] = r.vs[np - 1];
     r.ve[np] = r.ve[np - 1];
-    r.len[np] = r.len[np - 1];
-    r.v_max[np] = r.v_max[np - 1];
-    for (int d = 0; d < 2; ++d)
-      for (int i = 0; i < 3; ++i) {
-        r.ramp_u[d][i][np] = r.ramp_u[d][i][np - 1];
-        r.ramp_k[d][i][np] = r.ramp_k[d][i][np - 1];
-      }
   }
   const __m128d zero = _mm_setzero_pd(), two = _mm_set1_pd(2.0), half = _mm_set1_pd(0.5), one = _mm_set1_pd(1.0),
                 inf2 = _mm_set1_pd(inf);
   const double amin = limits_.acceleration.minCoeff();
   const __m128d floor_a = _mm_set1_pd(1e-6 * amin), amin2 = _mm_set1_pd(amin);
-  const auto min_ab = [](__m128d a, __m128d b) { return _mm_min_pd(b, a); };  // std::min(a, b)
-  const auto max_ab = [](__m128d a, __m128d b) { return _mm_max_pd(b, a); };  // std::max(a, b)
-  const auto pick = [](__m128d mask, __m128d a, __m128d b) {                // mask ? a : b
-    return _mm_or_pd(_mm_and_pd(mask, a), _mm_andnot_pd(mask, b));
-  };
   const __m128d A[3] = {_mm_set1_pd(limits_.acceleration[0]), _mm_set1_pd(limits_.acceleration[1]),
                         _mm_set1_pd(limits_.acceleration[2])};
   // one step of min_ratio()'s loop: the fraction num/den replaces the best nb/db (has: one was taken)
@@ -312,11 +301,7 @@ void PlannerState::freeze_cubic_record(Node& n, CubicRecord& r, double vs, doubl
 #else
   for (int k = 0; k < np; ++k) {
     Vec3 Ua[2], Ka[2];
-    for (int d = 0; d < 2; ++d)
-      for (int i = 0; i < 3; ++i) {
-        Ua[d][i] = r.ramp_u[d][i][k];
-        Ka[d][i] = r.ramp_k[d][i][k];
-      }
+    r.ramps(k, Ua, Ka);
     const Profile p = axis_box_profile(r.len[k], r.vs[k], r.ve[k], r.v_max[k], Ua, Ka, 0.0, 0.0);
     r.vp[k] = p.vp;
     r.acc[k] = p.a;

@@ -7,6 +7,22 @@
 
 namespace netshape::motion::detail {
 
+namespace {
+// The piece of a record (LineBlendRecord, CubicRecord) that runs at time t, found from the record's
+// cursor forward (samples come in time order) and kept there; its distance s from the piece's start,
+// speed v and path acceleration acc at t. Returns the piece.
+template <class Record>
+int eval_record_at(Record& r, double t, double& s, double& v, double& acc) noexcept {
+  int k = r.cursor;
+  while (k + 1 < r.np && r.t0[k] + r.dur[k] <= t) ++k;
+  r.cursor = k;
+  Profile pk;
+  r.profile(k, pk);
+  pk.eval(t - r.t0[k], s, v, acc);
+  return k;
+}
+}  // namespace
+
 void PlannerState::copy_blend_geometry(const Segment& g, Segment& out) const noexcept {
   // the pieces of a blend come one after the other: the caller's segment often holds this blend's
   // geometry already (same control points bit for bit, length and source); then only the trims change
@@ -99,23 +115,13 @@ Status PlannerState::next(Sample& out) noexcept {
   if (n.geometry == Geometry::line_blend_record) {
     // the piece of the blend that runs at t, on the whole blend (trims 0) at the piece's offset
     LineBlendRecord& r = line_blends_[block_slot(n.block)];
-    int k = r.cursor;
-    while (k + 1 < r.np && r.t0[k] + r.dur[k] <= t) ++k;
-    r.cursor = k;
-    Profile pk;
-    r.profile(k, pk);
-    pk.eval(t - r.t0[k], s, v, acc);
+    const int k = eval_record_at(r, t, s, v, acc);
     sg = &blend_geometry(n.block);
     s += r.trim_s[k];
   } else if (n.geometry == Geometry::cubic_record) {
     // the same for the piece of a cubic block, on the untrimmed cubic in the cubic store
     CubicRecord& r = cubic_records_[block_slot(n.block)];
-    int k = r.cursor;
-    while (k + 1 < r.np && r.t0[k] + r.dur[k] <= t) ++k;
-    r.cursor = k;
-    Profile pk;
-    r.profile(k, pk);
-    pk.eval(t - r.t0[k], s, v, acc);
+    const int k = eval_record_at(r, t, s, v, acc);
     sg = &cubics_[block_slot(n.block)];
     s += r.trim_start[k];
   } else {

@@ -204,6 +204,14 @@ struct CubicRecord {
   double dur[pieces] = {}, t0[pieces] = {};
   /// The frozen profile of piece k.
   void profile(int k, Profile& p) const noexcept { frozen_profile(*this, k, p); }
+  /// The ramp terms of piece k as a Node holds them (Node::ramp_tangent, Node::ramp_curvature).
+  void ramps(int k, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) const noexcept {
+    for (int d = 0; d < 2; ++d)
+      for (int i = 0; i < 3; ++i) {
+        Ua[d][i] = ramp_u[d][i][k];
+        Ka[d][i] = ramp_k[d][i][k];
+      }
+  }
 };
 
 /// What init_cubic_node() finds on a cubic block's arc-length table and split_cubic_block() cuts it
