@@ -21,6 +21,18 @@ int eval_record_at(Record& r, double t, double& s, double& v, double& acc) noexc
   pk.eval(t - r.t0[k], s, v, acc);
   return k;
 }
+
+// Piece r.cursor of a record handed out: its profile and start time into out, the cursor to the next
+// piece. True when that was the last piece (the cursor is back at 0 and the record's node is done).
+template <class Record>
+bool hand_out_piece(Record& r, PlannedSegment& out) noexcept {
+  const int k = r.cursor;
+  r.profile(k, out.profile);
+  out.t0 = r.t0[k];
+  if (++r.cursor < r.np) return false;
+  r.cursor = 0;
+  return true;
+}
 }  // namespace
 
 void PlannerState::copy_blend_geometry(const Segment& g, Segment& out) const noexcept {
@@ -154,12 +166,7 @@ Status PlannerState::next_segment(PlannedSegment& out) noexcept {
     out.segment.trim_end = r.trim_e[k];
     out.segment.curvature = g.curvature;
     out.segment.curvature_rate = g.curvature_rate;
-    r.profile(k, out.profile);
-    out.t0 = r.t0[k];
-    if (++r.cursor == r.np) {
-      r.cursor = 0;
-      ++head_;
-    }
+    if (hand_out_piece(r, out)) ++head_;
     return Status::ok;
   }
   if (n.geometry == Geometry::cubic_record) {
@@ -172,12 +179,7 @@ Status PlannerState::next_segment(PlannedSegment& out) noexcept {
     out.segment.trim_end = r.trim_end[k];
     out.segment.curvature = r.curvature[k];
     out.segment.curvature_rate = r.curvature_rate[k];
-    r.profile(k, out.profile);
-    out.t0 = r.t0[k];
-    if (++r.cursor == r.np) {
-      r.cursor = 0;
-      ++head_;
-    }
+    if (hand_out_piece(r, out)) ++head_;
     return Status::ok;
   }
   copy_segment(n, out.segment);
