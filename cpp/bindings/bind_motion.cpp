@@ -60,14 +60,16 @@ SmoothOptions smooth_options(double tolerance, double fit_share, double max_segm
 // The program through a Smoother, pushed in bursts of `chunk` blocks (each burst stops early when the
 // buffer is full) with the output drained after each burst.
 SmoothResult smooth_streamed(const std::vector<toolpath::Block>& blocks, const SmoothOptions& o, int chunk,
-                             SmoothCounts& counts) {
-  Smoother sm(o);
+                             int min_chunk, SmoothCounts& counts, long& first_out_after) {
+  Smoother sm(o, min_chunk);
+  first_out_after = -1;
   SmoothResult r;
   SmoothedBlock sb;
   std::size_t i = 0;
   auto drain = [&] {
     Status st;
     while ((st = sm.next(sb)) == Status::ok) {
+      if (r.blocks.empty()) first_out_after = sm.blocks_pushed();
       r.blocks.push_back(sb.block);
       r.controls.push_back(sb.controls);
       r.source_first.push_back(sb.source_first);
@@ -349,30 +351,34 @@ void bind_motion(py::module_& m) {
          py_types::RefPoints3 center, const Eigen::Ref<const Eigen::VectorXi>& clockwise,
          const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
          py_types::RefVector feed, double tolerance, double fit_share, double max_segment, double max_turn,
-         int min_blocks, int window, double smoothing_length, double lead_length, int chunk, double max_fit_turn) {
+         int min_blocks, int window, double smoothing_length, double lead_length, int chunk, double max_fit_turn,
+         int min_chunk) {
         // _smooth_arrays through the streaming Smoother (smoother.hpp), blocks pushed `chunk` at a time;
-        // stats add the number of chunks smoothed and of forced cuts.
+        // stats add the number of chunks smoothed and of forced cuts, and the blocks pushed before the
+        // first block came out.
         NETSHAPE_CHECK(chunk >= 1, "chunk", chunk, "must be >= 1 [blocks]");
         const SmoothOptions o = smooth_options(tolerance, fit_share, max_segment, max_turn, min_blocks, window,
                                                smoothing_length, lead_length, max_fit_turn);
         const auto blocks = blocks_from_arrays(kind, start, end, center, clockwise, plane, turns, feed);
         SmoothResult r;
         SmoothCounts counts;
+        long first_out_after = -1;
         {
           py::gil_scoped_release release;
-          r = smooth_streamed(blocks, o, chunk, counts);
+          r = smooth_streamed(blocks, o, chunk, min_chunk, counts, first_out_after);
         }
         py::dict arrays = block_arrays(r.blocks, r.controls);
         py::dict stats = smooth_stats(r);
         stats["chunks"] = counts.chunks;
         stats["forced_cuts"] = counts.forced_cuts;
+        stats["first_output_after_blocks"] = first_out_after;
         return py::make_tuple(arrays, r.source_first, r.source_last, stats);
       },
       py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
       py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("fit_share") = 0.98, py::arg("max_segment") = 4.0,
       py::arg("max_turn") = 0.5236, py::arg("min_blocks") = 3, py::arg("window") = 4096,
       py::arg("smoothing_length") = 10.0, py::arg("lead_length") = 2.0, py::arg("chunk") = 1,
-      py::arg("max_fit_turn") = 1.6057);
+      py::arg("max_fit_turn") = 1.6057, py::arg("min_chunk") = Smoother::default_min_chunk);
   m.def(
       "_smooth_plan",
       [](const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,

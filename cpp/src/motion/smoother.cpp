@@ -22,11 +22,13 @@ bool micro_line(const toolpath::Block& b, const SmoothOptions& o) noexcept {
 }
 }  // namespace
 
-Smoother::Smoother(const SmoothOptions& options) : options_(options) {
+Smoother::Smoother(const SmoothOptions& options, int min_chunk) : options_(options) {
   options_.validate();
   NETSHAPE_CHECK(options_.window <= max_window, "window", options_.window,
                  "must be <= 16777216 [blocks] for the streaming smoother");
+  NETSHAPE_CHECK(min_chunk >= 1, "min_chunk", min_chunk, "must be >= 1 [blocks]");
   capacity_ = 2 * options_.window + 2;
+  min_chunk_ = std::min(min_chunk, capacity_ - 1);
   buf_.reserve(static_cast<std::size_t>(capacity_));
   chunk_.reserve(static_cast<std::size_t>(capacity_));
   error_.reserve(256);
@@ -59,7 +61,10 @@ Status Smoother::next(SmoothedBlock& out) noexcept {
   try {
     while (out_pos_ == out_end_) {  // each pass hands out a chunk or consumes blocks, so it ends
       if (done_) return Status::finished;
-      if (!finished_ && buf_.size() < static_cast<std::size_t>(capacity_)) return Status::need_blocks;
+      if (!finished_ && buf_.size() < static_cast<std::size_t>(capacity_)) {
+        if (!eager_cut()) return Status::need_blocks;
+        continue;
+      }
       smooth_chunk(finished_);
     }
     const std::size_t k = out_pos_++;
@@ -84,6 +89,9 @@ void Smoother::reset() noexcept {
   result_ = SmoothResult{};
   out_pos_ = out_end_ = 0;
   base_ = out_base_ = pushed_ = 0;
+  scanned_ = 0;
+  eager_refused_ = 0;
+  front_moved_ = false;
   finished_ = done_ = false;
   counts_ = SmoothCounts{};
   error_.clear();
@@ -98,8 +106,7 @@ void Smoother::smooth_chunk(bool finishing) {
   if (finishing) {  // the rest of the program in one chunk
     done_ = true;
     if (n == 0) return;
-    chunk_.assign(buf_.begin(), buf_.end());
-    result_ = smooth(chunk_, options_);
+    smooth_front(n);
     take(n, result_.blocks.size());
     return;
   }
@@ -114,9 +121,22 @@ void Smoother::smooth_chunk(bool finishing) {
   forced_cut();
 }
 
+bool Smoother::eager_cut() {
+  // the cut blocks pushed since the last look, newest first, with at least min_chunk_ blocks before
+  // them; a chunk tries at most cut_attempts of them (each refusal smooths the chunk once more)
+  const std::size_t n = buf_.size(), first = std::max<std::size_t>(scanned_, static_cast<std::size_t>(min_chunk_));
+  scanned_ = n;
+  for (std::size_t c = n; c-- > first && eager_refused_ < cut_attempts;) {
+    const toolpath::Block& b = buf_[c];
+    if (b.length() <= 1e-9 || micro_line(b, options_)) continue;
+    if (try_cut(c)) return true;
+    ++eager_refused_;
+  }
+  return false;
+}
+
 bool Smoother::try_cut(std::size_t c) {
-  chunk_.assign(buf_.begin(), buf_.begin() + static_cast<std::ptrdiff_t>(c) + 1);
-  result_ = smooth(chunk_, options_);
+  smooth_front(c + 1);
   const auto& r = result_;
   const std::size_t m = r.blocks.size();
   const long cl = static_cast<long>(c);
@@ -144,7 +164,9 @@ bool Smoother::try_cut(std::size_t c) {
     return false;  // a block before c reaches into c without moving it (a lead of zero length)
   }
   take(c, m - 1);
-  buf_[0].start = own.start;
+  // c stays in the buffer as programmed, its output starting where this chunk's ended
+  front_moved_ = own.start != prog.start;
+  front_start_ = own.start;
   return true;
 }
 
@@ -165,15 +187,20 @@ void Smoother::forced_cut() {
       v = q;
     }
   }
-  chunk_.assign(buf_.begin(), buf_.begin() + static_cast<std::ptrdiff_t>(v));
-  result_ = smooth(chunk_, options_);
+  smooth_front(v);
   take(v, result_.blocks.size());
   // the vertex at the cut lies in neither chunk: count it here when it is a corner
   if (worst > options_.max_turn) ++counts_.corners_kept;
   ++counts_.forced_cuts;
 }
 
+void Smoother::smooth_front(std::size_t blocks) {
+  chunk_.assign(buf_.begin(), buf_.begin() + static_cast<std::ptrdiff_t>(blocks));
+  result_ = front_moved_ ? smooth(chunk_, options_, front_start_) : smooth(chunk_, options_);
+}
+
 void Smoother::take(std::size_t blocks, std::size_t out_blocks) {
+  front_moved_ = false;  // the new front block is as programmed (try_cut() may say otherwise)
   out_pos_ = 0;
   out_end_ = out_blocks;
   out_base_ = base_;
@@ -185,6 +212,8 @@ void Smoother::take(std::size_t blocks, std::size_t out_blocks) {
   ++counts_.chunks;
   buf_.erase(buf_.begin(), buf_.begin() + static_cast<std::ptrdiff_t>(std::min(blocks, buf_.size())));
   base_ += static_cast<long>(blocks);
+  scanned_ = 0;  // the blocks left are looked at again from the new front
+  eager_refused_ = 0;
 }
 
 }  // namespace netshape::motion

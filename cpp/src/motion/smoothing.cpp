@@ -31,7 +31,25 @@ void SmoothOptions::validate() const {
 }
 
 
+namespace {
+SmoothResult smooth_program(const std::vector<toolpath::Block>& program, const SmoothOptions& opt,
+                            const Vec3* first_start);
+}  // namespace
+
 SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOptions& opt) {
+  return smooth_program(program, opt, nullptr);
+}
+
+SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOptions& opt, const Vec3& first_start) {
+  NETSHAPE_CHECK(!program.empty() && program.front().kind == toolpath::MotionKind::line, "blocks[0].kind",
+                 program.empty() ? "none" : "not line", "must be a line when its start is moved (first_start)");
+  NETSHAPE_CHECK(first_start.allFinite(), "first_start", "non-finite", "must be a point on blocks[0]");
+  return smooth_program(program, opt, &first_start);
+}
+
+namespace {
+SmoothResult smooth_program(const std::vector<toolpath::Block>& program, const SmoothOptions& opt,
+                            const Vec3* first_start) {
   opt.validate();
   using toolpath::MotionKind;
   const std::size_t nb = program.size();
@@ -94,12 +112,12 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
     prev = static_cast<long>(i);
   }
   // a line whose first part became the lead-out of the run before it starts later
-  long start_override_block = -1;
+  long start_override_block = first_start ? 0 : -1;
   std::vector<bool> program_line;  // per new block: a program line block or a part of one
   // per new block: bit 0 its start, bit 1 its end joins a run's curve with the same tangent (set for
   // the corner lines of runs only: a long line's length may differ between the chunks of a stream)
   std::vector<unsigned char> tangent_join;
-  Vec3 start_override = Vec3::Zero();
+  Vec3 start_override = first_start ? *first_start : Vec3::Zero();
   auto keep = [&](std::size_t i) {
     res.blocks.push_back(program[i]);
     res.controls.emplace_back();
@@ -587,6 +605,7 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
   }
   return res;
 }
+}  // namespace
 
 double deviation_to_program(const std::vector<toolpath::Block>& program, const Points3& points,
                             const std::vector<long>& first, const std::vector<long>& last) {

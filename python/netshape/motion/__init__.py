@@ -233,17 +233,20 @@ def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float
 def smooth_path_streamed(program, tolerance: float = 0.01, *, chunk: int = 1, feed=None, fit_share: float = 0.98,
                          max_segment: float = 4.0, max_turn: float = 0.5236, min_blocks: int = 3,
                          window: int = 4096, smoothing_length: float = 10.0, lead_length: float = 2.0,
-                         max_fit_turn: float = 1.6057):
+                         max_fit_turn: float = 1.6057, min_chunk: int = 64):
     """:func:`smooth_path` through the streaming C++ ``netshape::motion::Smoother``.
 
     The program is pushed `chunk` blocks at a time into a smoother that holds at most ``2·window + 2``
-    blocks, and its output is drained after every push. Returns what :func:`smooth_path` returns, with
-    ``chunks`` (smooth() calls) and ``forced_cuts`` (cuts inside a stretch of micro-segments longer
-    than the buffer) added to the stats; with no forced cut the blocks equal :func:`smooth_path`'s.
+    blocks, and its output is drained after every push. The smoother smooths a chunk as soon as a block
+    that no smoothing reaches across (a rapid, an arc, a line longer than `max_segment`) arrives with
+    at least `min_chunk` blocks before it. Returns what :func:`smooth_path` returns, with ``chunks``
+    (smooth() calls), ``forced_cuts`` (cuts inside a stretch of micro-segments longer than the buffer)
+    and ``first_output_after_blocks`` (blocks pushed before the first block came out) added to the
+    stats; with no forced cut the blocks equal :func:`smooth_path`'s bit for bit.
     """
     return _run_smoother(_m._smooth_stream_arrays, program, feed, tolerance, fit_share, max_segment, max_turn,
                          min_blocks, window, smoothing_length, lead_length, int(chunk),
-                         max_fit_turn=float(max_fit_turn))
+                         max_fit_turn=float(max_fit_turn), min_chunk=int(min_chunk))
 
 
 def _run_smoother(binding, program, feed, tolerance, fit_share, max_segment, max_turn, min_blocks, window,

@@ -2,6 +2,7 @@
 // longer than the buffer, bad input, and Smoother -> Planner against smooth() + Planner.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -87,8 +88,9 @@ struct Streamed {
 
 enum class Pattern { fill_then_drain, one_then_pull, pull_driven };
 
-Streamed stream(const std::vector<Block>& prog, const SmoothOptions& o, Pattern pat) {
-  Smoother s(o);
+Streamed stream(const std::vector<Block>& prog, const SmoothOptions& o, Pattern pat,
+                int min_chunk = Smoother::default_min_chunk) {
+  Smoother s(o, min_chunk);
   Streamed r;
   SmoothedBlock sb;
   std::size_t i = 0;
@@ -145,7 +147,7 @@ void check_equal(const SmoothResult& batch, const Streamed& st) {
   }
   CHECK(kinds == 0);
   CHECK(sources == 0);
-  CHECK(worst <= 1e-12);
+  CHECK(worst == 0.0);  // bit for bit
   CHECK(st.counts.runs_smoothed == batch.runs_smoothed);
   CHECK(st.counts.runs_kept == batch.runs_kept);
   CHECK(st.counts.corners_kept == batch.corners_kept);
@@ -197,13 +199,17 @@ TEST_CASE("smoother: streamed output equals smooth() on a synthetic program, eve
     const SmoothResult batch = smooth(prog, o);
     CHECK(batch.runs_smoothed >= 4);
     CHECK(batch.corners_rounded >= 1);
-    for (const Pattern pat : {Pattern::fill_then_drain, Pattern::one_then_pull, Pattern::pull_driven}) {
-      CAPTURE(window);
-      CAPTURE(static_cast<int>(pat));
-      const Streamed st = stream(prog, o, pat);
-      check_equal(batch, st);
-      if (window == 64) CHECK(st.counts.chunks >= 4);  // the program really went through in pieces
-    }
+    // min_chunk 1: a cut at every cut block; 1 << 20: only when the buffer is full
+    for (const int min_chunk : {1, 20, Smoother::default_min_chunk, 1 << 20})
+      for (const Pattern pat : {Pattern::fill_then_drain, Pattern::one_then_pull, Pattern::pull_driven}) {
+        CAPTURE(window);
+        CAPTURE(min_chunk);
+        CAPTURE(static_cast<int>(pat));
+        const Streamed st = stream(prog, o, pat, min_chunk);
+        check_equal(batch, st);
+        if (window == 64) CHECK(st.counts.chunks >= 4);  // the program really went through in pieces
+        if (min_chunk == 1 && pat == Pattern::pull_driven) CHECK(st.counts.chunks >= 10);
+      }
   }
 }
 
@@ -253,6 +259,45 @@ TEST_CASE("smoother: bad blocks are refused with the field named, nothing added;
   CHECK(s.next(sb) == Status::need_blocks);
   o.window = 4;
   CHECK_THROWS_WITH_AS(Smoother{o}, doctest::Contains("window"), std::invalid_argument);
+  o.window = 8;
+  CHECK_THROWS_WITH_AS(Smoother(o, 0), doctest::Contains("min_chunk"), std::invalid_argument);
+  // a moved first start needs a first block that is a line
+  CHECK_THROWS_WITH_AS(smooth(prog, o, prog[0].start), doctest::Contains("blocks[0].kind"), std::invalid_argument);
+}
+
+TEST_CASE("smoother: output starts at the first cut block after min_chunk blocks, not at a full buffer") {
+  const auto prog = synthetic();
+  // the cut blocks: non-zero length and no micro-segment (SmoothOptions defaults: lines up to 4 mm are)
+  std::vector<std::size_t> cuts;
+  for (std::size_t c = 1; c < prog.size(); ++c)
+    if (prog[c].length() > 1e-9 && !(prog[c].kind == MotionKind::line && prog[c].length() <= 4.0)) cuts.push_back(c);
+  SmoothOptions o;  // window 4096: the buffer holds the whole program
+  for (const int min_chunk : {1, 20, 100}) {
+    CAPTURE(min_chunk);
+    Smoother s(o, min_chunk);
+    SmoothedBlock sb;
+    std::size_t pushed = 0;
+    Status st;
+    while ((st = s.next(sb)) == Status::need_blocks) {
+      REQUIRE(pushed < prog.size());
+      REQUIRE(s.push(prog[pushed++]) == Status::ok);
+    }
+    REQUIRE(st == Status::ok);
+    // the first chunk ended at a cut block c >= min_chunk, pushed last: the first such one unless
+    // its cut was refused (then a later one)
+    std::size_t first = 0;
+    for (const std::size_t c : cuts)
+      if (c >= static_cast<std::size_t>(min_chunk)) {
+        first = c;
+        break;
+      }
+    REQUIRE(first > 0);
+    CHECK(pushed >= first + 1);
+    CHECK(std::find(cuts.begin(), cuts.end(), pushed - 1) != cuts.end());
+    CHECK(pushed <= first + 60);
+    CHECK(sb.source_first == 0);
+    CHECK(s.counts().chunks == 1);
+  }
 }
 
 TEST_CASE("smoother: 3D_Chips streamed equals batch; tiny window stays within tolerance") {
@@ -261,16 +306,20 @@ TEST_CASE("smoother: 3D_Chips streamed equals batch; tiny window stays within to
     MESSAGE("shared data absent (NETSHAPE_SHARED_DATA): skipped");
     return;
   }
-  for (const int window : {160, 1000}) {
+  for (const int window : {160, 1000, 4096}) {
     SmoothOptions o;
     o.window = window;
     const SmoothResult batch = smooth(prog, o);
-    for (const Pattern pat : {Pattern::fill_then_drain, Pattern::pull_driven}) {
-      CAPTURE(window);
-      const Streamed st = stream(prog, o, pat);
-      check_equal(batch, st);
-      if (window == 160) CHECK(st.counts.chunks > 10);
-    }
+    for (const int min_chunk : {1, Smoother::default_min_chunk})
+      for (const Pattern pat : {Pattern::fill_then_drain, Pattern::pull_driven}) {
+        CAPTURE(window);
+        CAPTURE(min_chunk);
+        const Streamed st = stream(prog, o, pat, min_chunk);
+        check_equal(batch, st);
+        // pulled block by block, the default window too goes through in chunks (3D_Chips has a long
+        // line every 20-140 blocks)
+        if (window == 160 || pat == Pattern::pull_driven) CHECK(st.counts.chunks > 10);
+      }
   }
   SmoothOptions o;
   o.window = 16;

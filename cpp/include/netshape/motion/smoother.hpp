@@ -19,17 +19,23 @@
 ///       else if (have_block) smoother.push(block); else smoother.finish();
 ///     }
 ///
-/// How it cuts. The smoother holds at most `capacity()` = 2·window + 2 program blocks. When the buffer
-/// is full (or after finish()), it calls smooth() on a chunk that ends at a *cut block* c: a block of
-/// non-zero length that is no micro-segment (a rapid, an arc, or a line longer than max_segment).
-/// Nothing smooth() does reaches across such a block, except on a line c: the run before c may
-/// borrow c's first part (a lead), and the vertex before c may be rounded. So the chunk's output is
-/// handed out up to, not including, c's own block; c stays in the buffer, with its start moved to
-/// where that output ended, and heads the next chunk. A cut is accepted when c's start did not move,
-/// or when it moved by a lead (the block before c is a micro-segment, c moved by exactly
-/// min(lead_length, length/2)) and c stays longer than both max_segment and 2·lead_length, so the next
-/// chunk lends from it exactly as the whole program would. The last such block in the buffer is
-/// tried first, at most four of them.
+/// How it cuts. The smoother holds at most `capacity()` = 2·window + 2 program blocks. It calls smooth()
+/// on a chunk that ends at a *cut block* c: a block of non-zero length that is no micro-segment (a
+/// rapid, an arc, or a line longer than max_segment). Nothing smooth() does reaches across such a
+/// block, except on a line c: the run before c may borrow c's first part (a lead), and the vertex
+/// before c may be rounded. So the chunk's output is handed out up to, not including, c's own block;
+/// c stays in the buffer as programmed and heads the next chunk, whose output of c starts where the
+/// chunk before ended.
+/// A cut is accepted when c's start did not move, or when it moved by a lead (the block before c is a
+/// micro-segment, c moved by exactly min(lead_length, length/2)) and c stays longer than both
+/// max_segment and 2·lead_length, so the next chunk lends from it exactly as the whole program would.
+///
+/// When it cuts. Eagerly: next() tries a cut as soon as a cut block arrives with at least `min_chunk`
+/// blocks before it (default 64), so output starts after the first stretch of micro-segments, not
+/// after a full buffer, and a Smoother thread can feed a Planner thread while it reads on. Nothing in
+/// a chunk depends on the blocks after its cut block, so the output does not depend on when it cuts.
+/// A refused cut costs one more smooth() of the chunk; after four refusals the smoother waits for a
+/// full buffer, where it tries the last four cut blocks it holds, newest first.
 ///
 /// Equal to batch: the blocks handed out equal smooth(program) (same kinds, end points to rounding,
 /// same source indices) and so do the counters, as long as every cut is clean — i.e. every stretch of
@@ -79,8 +85,13 @@ struct SmoothCounts {
 
 class Smoother {
  public:
-  /// Validates the options (throws std::invalid_argument naming the field) and allocates the buffer.
-  explicit Smoother(const SmoothOptions& options);
+  /// Validates the options and `min_chunk` (>= 1: the fewest blocks before a cut block that is tried
+  /// before the buffer is full; 1 gives the least latency, larger values fewer smooth() calls; throws
+  /// std::invalid_argument naming the field) and allocates the buffer.
+  explicit Smoother(const SmoothOptions& options, int min_chunk = default_min_chunk);
+
+  /// Default `min_chunk` [blocks].
+  static constexpr int default_min_chunk = 64;
 
   /// Append a program block: ok, buffer_full (call next() first), or invalid_input (see
   /// last_error(); nothing was added).
@@ -107,19 +118,26 @@ class Smoother {
 
  private:
   void smooth_chunk(bool finishing);              // smooths the next chunk into result_; may throw
+  void smooth_front(std::size_t blocks);          // smooth buf_[0, blocks) into result_
+  bool eager_cut();                               // try the cut blocks pushed since the last look
   bool try_cut(std::size_t c);                    // smooth buf_[0..c]; true if c is a clean cut
   void forced_cut();                              // smooth up to the sharpest vertex of the buffer
   void take(std::size_t blocks, std::size_t out_blocks);  // hand out result_[0, out_blocks)
 
   SmoothOptions options_;
   int capacity_ = 0;
-  std::vector<toolpath::Block> buf_;    // program blocks [base_, base_ + size); buf_[0] may have a moved start
+  int min_chunk_ = default_min_chunk;
+  std::vector<toolpath::Block> buf_;    // program blocks [base_, base_ + size), as pushed
   std::vector<toolpath::Block> chunk_;  // the chunk passed to smooth()
   SmoothResult result_;                 // output of the chunk being handed out
   std::size_t out_pos_ = 0, out_end_ = 0;  // result_ blocks [out_pos_, out_end_) are still to hand out
   long base_ = 0;                       // program index of buf_[0]; of result_'s block 0 while handing out
   long out_base_ = 0;
   long pushed_ = 0;
+  std::size_t scanned_ = 0;             // buf_[0, scanned_) were looked at for an eager cut
+  int eager_refused_ = 0;               // eager cuts refused since the last chunk was taken
+  bool front_moved_ = false;            // buf_[0]'s first part was handed out: its output starts at front_start_
+  Vec3 front_start_ = Vec3::Zero();
   bool finished_ = false, done_ = false;
   SmoothCounts counts_;
   std::string error_;

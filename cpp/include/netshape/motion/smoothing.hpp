@@ -80,6 +80,14 @@ struct SmoothResult {
 /// bad options or blocks.
 SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOptions& options);
 
+/// smooth() of a program whose first block, a line, was partly used by what came before it (the run
+/// before it borrowed its first part as a lead, as when the streaming Smoother cuts a program in
+/// chunks): that block's output starts at `first_start`, a point on it. Everything else reads the
+/// block as programmed, so a chunk cut at such a line gives the bits of smooth() on the whole program.
+/// Throws std::invalid_argument also when the first block is no line.
+SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOptions& options,
+                    const Vec3& first_start);
+
 /// Largest distance of the points to the program [mm]: point k is measured against the program
 /// blocks [first[k] − 1, last[k] + 1] (its source range widened by one block on each side).
 double deviation_to_program(const std::vector<toolpath::Block>& program, const Points3& points,
