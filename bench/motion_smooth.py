@@ -11,7 +11,8 @@
    sampling, in C++: smooth() + Planner less smooth_path(); best of three CPU times);
 4. the same through the streaming Smoother -> Planner against smooth() + Planner (C++ loops, one block
    at a time, best of three wall-clock and CPU times), in one thread and with the Smoother in a second
-   thread (the pipeline of a controller), with the buffer of the default window and of window 200;
+   thread (the pipeline of a controller), with the buffer of the default window and of window 200, and
+   the blocks pushed before the first smoothed block comes out;
 5. with a jerk limit (10^5 mm/s³ per axis) on 3D_Chips at ε = 0.01 mm: "blend" against "smooth", with the
    largest third finite difference of the samples.
 
@@ -109,6 +110,11 @@ def section_stream(repeat):
             label = f"streamed, {threads} thread{'s' if threads > 1 else ' '}" if streamed else "batch            "
             print(f"  window {window:5d} {label}: {n / wall:8.0f} blocks/s wall, {n / cpu:8.0f} CPU"
                   f"  (cycle {t_cycle:.6f} s)")
+    # start-up latency: program blocks pushed before the first smoothed block comes out
+    firsts = {mc: nm.smooth_path_streamed(arr, 0.01, min_chunk=mc)[3]["first_output_after_blocks"]
+              for mc in (1, 64, 2 * 4096 + 1)}
+    print(f"  first smoothed block after {firsts[64]} blocks pushed (min_chunk 64; {firsts[1]} with 1, "
+          f"{firsts[2 * 4096 + 1]} cutting only a full buffer)")
 
 
 def section_jerk():
