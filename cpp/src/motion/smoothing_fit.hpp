@@ -511,20 +511,24 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
       if (!changed[static_cast<std::size_t>(span[q])]) continue;
       Sample& s = samples[q];
       // foot point by Newton steps on (s(u) − p)·s'(u) = 0, kept only where it brings the curve closer
-      double u = s.u;
+      // (at most two steps, the second only after a step of at least 1e-9; one evaluation per pass, so
+      // that the compiler inlines the one call)
+      double u = s.u, du = 0, r_old = 0;
+      int k = span[q], k_old = k;
       V2 c0, c1, c2;
-      int k = span[q];
-      sp.eval(u, k, c0, c1, c2);
-      const int k_old = k;
-      const double r_old = (c0 - s.p).norm();
-      for (int it = 0; it < 2; ++it) {
+      for (int it = 0;; ++it) {  // it: the steps taken so far
+        sp.eval(u, k, c0, c1, c2);
+        if (it == 0) {
+          k_old = k;
+          r_old = (c0 - s.p).norm();
+        } else if (it == 2 || std::abs(du) < 1e-9) {
+          break;
+        }
         const V2 r = c0 - s.p;
         const double fp = c1.squaredNorm() + r.dot(c2);
         if (!(fp > 0)) break;
-        const double du = std::clamp(-r.dot(c1) / fp, -0.25 * mean, 0.25 * mean);
+        du = std::clamp(-r.dot(c1) / fp, -0.25 * mean, 0.25 * mean);
         u = std::clamp(u + du, 0.0, L);
-        sp.eval(u, k, c0, c1, c2);
-        if (std::abs(du) < 1e-9) break;
       }
       double res = (c0 - s.p).norm();
       if (res <= r_old) {
