@@ -41,9 +41,19 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
 }
 
 SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOptions& opt, const Vec3& first_start) {
-  NETSHAPE_CHECK(!program.empty() && program.front().kind == toolpath::MotionKind::line, "blocks[0].kind",
-                 program.empty() ? "none" : "not line", "must be a line when its start is moved (first_start)");
+  // the first block is kept whole (no run takes it in), so its output block is the one that starts later
+  NETSHAPE_CHECK(!program.empty(), "blocks", "empty", "must hold the line that first_start lies on");
+  const toolpath::Block& b = program.front();
+  const double len = b.length();
+  NETSHAPE_CHECK(b.kind == toolpath::MotionKind::line && len > opt.max_segment, "blocks[0].kind",
+                 b.kind == toolpath::MotionKind::line ? "line of " + std::to_string(len) + " mm" : "not line",
+                 "must be a line longer than max_segment when first_start is given");
   NETSHAPE_CHECK(first_start.allFinite(), "first_start", "non-finite", "must be a point on blocks[0]");
+  const Vec3 d = (b.end - b.start) / len;
+  const double t = (first_start - b.start).dot(d), off = (first_start - b.start - t * d).norm();
+  NETSHAPE_CHECK(off <= 1e-9 * (1.0 + len) && t >= -1e-9 * (1.0 + len) && t < len, "first_start",
+                 "off blocks[0] by " + std::to_string(off) + " mm at " + std::to_string(t) + " mm along it",
+                 "must be a point on blocks[0] before its end");
   return smooth_program(program, opt, &first_start);
 }
 

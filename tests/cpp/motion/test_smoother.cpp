@@ -261,8 +261,19 @@ TEST_CASE("smoother: bad blocks are refused with the field named, nothing added;
   CHECK_THROWS_WITH_AS(Smoother{o}, doctest::Contains("window"), std::invalid_argument);
   o.window = 8;
   CHECK_THROWS_WITH_AS(Smoother(o, 0), doctest::Contains("min_chunk"), std::invalid_argument);
-  // a moved first start needs a first block that is a line
+  // a moved first start needs a first block that is a line no run takes in, and a point on it
   CHECK_THROWS_WITH_AS(smooth(prog, o, prog[0].start), doctest::Contains("blocks[0].kind"), std::invalid_argument);
+  const std::vector<Block> from_line(prog.begin() + 2, prog.end());  // starts with the 12 mm line
+  REQUIRE(from_line[0].length() > o.max_segment);
+  const std::vector<Block> from_micro(prog.begin() + 3, prog.end());  // a micro-segment first
+  CHECK_THROWS_WITH_AS(smooth(from_micro, o, from_micro[0].start), doctest::Contains("longer than max_segment"),
+                       std::invalid_argument);
+  CHECK_THROWS_WITH_AS(smooth(from_line, o, from_line[0].start + Vec3(0, 0.001, 0)),
+                       doctest::Contains("first_start"), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(smooth(from_line, o, from_line[0].end), doctest::Contains("first_start"), std::invalid_argument);
+  const SmoothResult later = smooth(from_line, o, from_line[0].start + Vec3(3, 0, 0));
+  CHECK((later.blocks[0].start - Vec3(3, 0, 0)).norm() == 0.0);
+  CHECK(later.blocks[0].end == smooth(from_line, o).blocks[0].end);
 }
 
 TEST_CASE("smoother: output starts at the first cut block after min_chunk blocks, not at a full buffer") {

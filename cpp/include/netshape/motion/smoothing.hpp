@@ -84,7 +84,8 @@ SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOpt
 /// before it borrowed its first part as a lead, as when the streaming Smoother cuts a program in
 /// chunks): that block's output starts at `first_start`, a point on it. Everything else reads the
 /// block as programmed, so a chunk cut at such a line gives the bits of smooth() on the whole program.
-/// Throws std::invalid_argument also when the first block is no line.
+/// Throws std::invalid_argument also when the first block is no line longer than max_segment (a block
+/// no run takes in) or `first_start` is not on it.
 SmoothResult smooth(const std::vector<toolpath::Block>& program, const SmoothOptions& options,
                     const Vec3& first_start);
 
