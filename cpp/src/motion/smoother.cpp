@@ -148,7 +148,8 @@ bool Smoother::try_cut(std::size_t c) {
   if (own.start != prog.start) {
     // moved: only a lead of the run before c (the block before c is a micro-segment, the start moved
     // by min(lead_length, length/2)); a rounded vertex before c (moved by the arc's tangent length)
-    // is not a clean cut. What is left of c must stay a lead block of the same size in the next chunk.
+    // is not a clean cut. The next chunk reads c as programmed with its output starting at own.start
+    // (smooth_front()), as smooth() of the whole program does, however little of c is left.
     const double L = options_.lead_length, len = prog.length();
     if (prog.kind != toolpath::MotionKind::line || !micro_line(buf_[c - 1], options_)) return false;
     const double moved = (own.start - prog.start).norm(), lent = std::min(L, 0.5 * len);
@@ -158,8 +159,6 @@ bool Smoother::try_cut(std::size_t c) {
     const toolpath::Block& b0 = buf_[c - 1];
     const Vec3 d0 = (b0.end - b0.start) / b0.length();
     if ((prog.start - moved * d0 - before.start).norm() <= 1e-9) return false;
-    const double rest = own.length();
-    if (!(rest > options_.max_segment && rest >= 2.0 * L)) return false;
   } else if (r.source_last[m - 2] >= cl) {
     return false;  // a block before c reaches into c without moving it (a lead of zero length)
   }

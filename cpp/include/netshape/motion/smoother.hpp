@@ -27,8 +27,7 @@
 /// c stays in the buffer as programmed and heads the next chunk, whose output of c starts where the
 /// chunk before ended.
 /// A cut is accepted when c's start did not move, or when it moved by a lead (the block before c is a
-/// micro-segment, c moved by exactly min(lead_length, length/2)) and c stays longer than both
-/// max_segment and 2·lead_length, so the next chunk lends from it exactly as the whole program would.
+/// micro-segment, c moved by exactly min(lead_length, length/2)).
 ///
 /// When it cuts. Eagerly: next() tries a cut as soon as a cut block arrives with at least `min_chunk`
 /// blocks before it (default 64), so output starts after the first stretch of micro-segments, not
@@ -37,8 +36,8 @@
 /// A refused cut costs one more smooth() of the chunk; after four refusals the smoother waits for a
 /// full buffer, where it tries the last four cut blocks it holds, newest first.
 ///
-/// Equal to batch: the blocks handed out equal smooth(program) (same kinds, end points to rounding,
-/// same source indices) and so do the counters, as long as every cut is clean — i.e. every stretch of
+/// Equal to batch: the blocks handed out equal smooth(program) bit for bit (kinds, coordinates, source
+/// indices) and so do the counters, as long as every cut is clean — i.e. every stretch of
 /// micro-segments between two cut blocks fits in the buffer (at most 2·window blocks, which includes
 /// every run smooth() fits in one piece). Otherwise (`forced_cuts()` > 0) the buffer is cut at its
 /// sharpest vertex in the second half: the curve ends at that vertex there and a new one starts, like
