@@ -162,10 +162,13 @@ bool Smoother::try_cut(std::size_t c) {
   } else if (r.source_last[m - 2] >= cl) {
     return false;  // a block before c reaches into c without moving it (a lead of zero length)
   }
+  // c stays in the buffer as programmed, its output starting where this chunk's ended (read before
+  // take(), which shifts the buffer under `prog`)
+  const bool moved = own.start != prog.start;
+  const Vec3 start = own.start;
   take(c, m - 1);
-  // c stays in the buffer as programmed, its output starting where this chunk's ended
-  front_moved_ = own.start != prog.start;
-  front_start_ = own.start;
+  front_moved_ = moved;
+  front_start_ = start;
   return true;
 }
 

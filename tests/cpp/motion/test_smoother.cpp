@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <functional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -81,12 +82,55 @@ std::vector<Block> synthetic() {
   return b.blocks;
 }
 
+// A random program: runs of 3-150 micro-segments along curves with wobble (0.05-1.55 mm steps), long
+// lines (some just over max_segment, some turning), 5 um blocks, quarter arcs, rapid lifts and
+// plunges, and sharp turns inside runs.
+std::vector<Block> random_program(std::mt19937& g) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Builder b;
+  b.rapid({0, 0, 5});
+  b.rapid({0, 0, 0});
+  double a = 0;
+  auto heading = [&a] { return Vec3(std::cos(a), std::sin(a), 0); };
+  const int stretches = 20 + static_cast<int>(g() % 40);
+  for (int k = 0; k < stretches; ++k) {
+    const double r = u(g);
+    if (r < 0.45) {
+      const int n = 3 + static_cast<int>(g() % 150);
+      const double step = 0.05 + 1.5 * u(g), bend = (u(g) - 0.5) * 0.6, wobble = 0.3 * u(g);
+      for (int q = 0; q < n; ++q) {
+        a += bend * step + wobble * (u(g) - 0.5);
+        b.line(b.p + step * heading());
+      }
+    } else if (r < 0.75) {
+      if (u(g) < 0.5) a += 3.0 * (u(g) - 0.5);
+      const double len = u(g) < 0.3 ? 4.001 + 0.5 * u(g) : 4.0 + 20.0 * u(g) * u(g);
+      b.line(b.p + len * heading());
+    } else if (r < 0.83) {
+      b.line(b.p + 0.005 * Vec3(std::cos(a + 1), std::sin(a + 1), 0));
+    } else if (r < 0.9) {
+      const Vec3 c = b.p + 5.0 * Vec3(-std::sin(a), std::cos(a), 0), rel = b.p - c;
+      b.arc(c + Vec3(-rel.y(), rel.x(), 0), c, false);
+      a += 0.5 * pi;
+    } else if (r < 0.95) {
+      b.rapid(b.p + Vec3(0, 0, 3));
+      b.rapid(b.p + Vec3(5 * u(g), 5 * u(g), 0));
+      b.line(b.p + Vec3(0, 0, -3));
+    } else {
+      a += 2.5 * (u(g) - 0.5);
+    }
+  }
+  return b.blocks;
+}
+
 struct Streamed {
   std::vector<SmoothedBlock> out;
   SmoothCounts counts;
 };
 
-enum class Pattern { fill_then_drain, one_then_pull, pull_driven };
+// fill_then_drain: push until the buffer is full, then take all out; one_then_pull: push one, take all
+// out; bursts: push seven, take all out; pull_driven: next() first, push one when it needs blocks
+enum class Pattern { fill_then_drain, one_then_pull, bursts, pull_driven };
 
 Streamed stream(const std::vector<Block>& prog, const SmoothOptions& o, Pattern pat,
                 int min_chunk = Smoother::default_min_chunk) {
@@ -117,7 +161,8 @@ Streamed stream(const std::vector<Block>& prog, const SmoothOptions& o, Pattern 
       const Status st = s.push(prog[i]);
       if (st == Status::ok) {
         ++i;
-        if (pat == Pattern::one_then_pull) REQUIRE(drain() == Status::need_blocks);
+        if (pat == Pattern::one_then_pull || (pat == Pattern::bursts && i % 7 == 0))
+          REQUIRE(drain() == Status::need_blocks);
       } else {
         REQUIRE(st == Status::buffer_full);
         REQUIRE(s.free_blocks() == 0);
@@ -201,7 +246,7 @@ TEST_CASE("smoother: streamed output equals smooth() on a synthetic program, eve
     CHECK(batch.corners_rounded >= 1);
     // min_chunk 1: a cut at every cut block; 1 << 20: only when the buffer is full
     for (const int min_chunk : {1, 20, Smoother::default_min_chunk, 1 << 20})
-      for (const Pattern pat : {Pattern::fill_then_drain, Pattern::one_then_pull, Pattern::pull_driven}) {
+      for (const Pattern pat : {Pattern::fill_then_drain, Pattern::one_then_pull, Pattern::bursts, Pattern::pull_driven}) {
         CAPTURE(window);
         CAPTURE(min_chunk);
         CAPTURE(static_cast<int>(pat));
@@ -211,6 +256,29 @@ TEST_CASE("smoother: streamed output equals smooth() on a synthetic program, eve
         if (min_chunk == 1 && pat == Pattern::pull_driven) CHECK(st.counts.chunks >= 10);
       }
   }
+}
+
+TEST_CASE("smoother: random programs, cut at every cut block or in bursts, equal smooth() bit for bit") {
+  int compared = 0;
+  for (unsigned seed = 0; seed < 40; ++seed) {
+    std::mt19937 g(seed);
+    const auto prog = random_program(g);
+    SmoothOptions o;
+    o.window = seed % 3 == 0 ? 200 : 4096;
+    o.tolerance = seed % 2 ? 0.01 : 0.05;
+    const int min_chunk = seed % 4 == 0 ? 1 : seed % 4 == 1 ? 5 : seed % 4 == 2 ? 64 : 1000;
+    CAPTURE(seed);
+    const SmoothResult batch = smooth(prog, o);
+    const Streamed st = stream(prog, o, seed % 2 ? Pattern::pull_driven : Pattern::bursts, min_chunk);
+    if (st.counts.forced_cuts > 0) {  // a stretch longer than the buffer: within tolerance, not batch
+      CHECK(deviation(prog, st.out) <= o.fit_tolerance() + 1e-9);
+      CHECK(max_gap(st.out) <= 1e-9);
+      continue;
+    }
+    check_equal(batch, st);
+    ++compared;
+  }
+  CHECK(compared >= 30);
 }
 
 TEST_CASE("smoother: runs longer than the buffer are cut at a vertex and stay within tolerance") {
