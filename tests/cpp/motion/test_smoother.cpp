@@ -246,7 +246,8 @@ TEST_CASE("smoother: streamed output equals smooth() on a synthetic program, eve
     CHECK(batch.corners_rounded >= 1);
     // min_chunk 1: a cut at every cut block; 1 << 20: only when the buffer is full
     for (const int min_chunk : {1, 20, Smoother::default_min_chunk, 1 << 20})
-      for (const Pattern pat : {Pattern::fill_then_drain, Pattern::one_then_pull, Pattern::bursts, Pattern::pull_driven}) {
+      for (const Pattern pat :
+           {Pattern::fill_then_drain, Pattern::one_then_pull, Pattern::bursts, Pattern::pull_driven}) {
         CAPTURE(window);
         CAPTURE(min_chunk);
         CAPTURE(static_cast<int>(pat));
