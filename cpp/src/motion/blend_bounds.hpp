@@ -151,16 +151,22 @@ struct BlendBounds {
         e = std::max(e, st[c][r]);
         f = std::max(f, sk[c][r]);
       }
-      tx = std::min(1.0, tx + 0.25 * e + 1e-12);
-      tn = std::max(-1.0, tn - 0.25 * e - 1e-12);
-      kx = kx * (kx > 0 ? 1.0 + 1e-9 : 1.0 - 1e-9) + 0.25 * f;
-      kn = kn * (kn < 0 ? 1.0 + 1e-9 : 1.0 - 1e-9) - 0.25 * f;
-      double U[2], K[2];
-      ramp_terms(tx, tn, kx, kn, Uabs[c], Kabs[c], U, K);
-      for (int d = 0; d < 2; ++d) {
-        Ua[d][c] = U[d];
-        Ka[d][c] = K[d];
-      }
+      ramps_from(c, tx, tn, kx, kn, e, f, Uabs, Kabs, Ua, Ka);
+    }
+  }
+  // ramps() of axis c from the extremes over the intervals: of u_c (tx, tn), of κn_c (kx, kn) and the
+  // largest second differences e, f
+  static void ramps_from(int c, double tx, double tn, double kx, double kn, double e, double f, const Vec3& Uabs,
+                         const Vec3& Kabs, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) noexcept {
+    tx = std::min(1.0, tx + 0.25 * e + 1e-12);
+    tn = std::max(-1.0, tn - 0.25 * e - 1e-12);
+    kx = kx * (kx > 0 ? 1.0 + 1e-9 : 1.0 - 1e-9) + 0.25 * f;
+    kn = kn * (kn < 0 ? 1.0 + 1e-9 : 1.0 - 1e-9) - 0.25 * f;
+    double U[2], K[2];
+    ramp_terms(tx, tn, kx, kn, Uabs[c], Kabs[c], U, K);
+    for (int d = 0; d < 2; ++d) {
+      Ua[d][c] = U[d];
+      Ka[d][c] = K[d];
     }
   }
   // bounds over the table intervals [r0, r1)
@@ -173,9 +179,46 @@ struct BlendBounds {
         e = std::max(e, du[c][r]);
         f = std::max(f, dk[c][r]);
       }
-      U[c] = std::min(1.0, std::max(0.0, a) + 0.25 * std::max(0.0, e) + 1e-12);
-      K[c] = std::max(0.0, b) * (1.0 + 1e-9) + 0.25 * std::max(0.0, f);
+      bounds_from(c, a, b, e, f, U, K);
     }
+  }
+  // bounds() of axis c from the raw maxima over the intervals (a: |u_c|, b: |κn_c|, e, f: their second
+  // differences)
+  static void bounds_from(int c, double a, double b, double e, double f, Vec3& U, Vec3& K) noexcept {
+    U[c] = std::min(1.0, std::max(0.0, a) + 0.25 * std::max(0.0, e) + 1e-12);
+    K[c] = std::max(0.0, b) * (1.0 + 1e-9) + 0.25 * std::max(0.0, f);
+  }
+  // bounds(0, 16, U, K) and ramps(0, 16, U, K, Ua, Ka): the whole blend. With SSE2 the folds over the
+  // intervals run two rows at a time (lane 0 one row, lane 1 another), each lane in the order of the
+  // intervals with std::max / std::min's operand order (max_ab, min_ab): the same values as the loops.
+  void whole(Vec3& U, Vec3& K, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) const noexcept {
+#if defined(__SSE2__)
+    // the left fold of rows a (lane 0) and b (lane 1) over the 16 intervals with op(acc, x)
+    const auto fold = [](const double* a, const double* b, const auto& op) {
+      const __m128d a0 = _mm_loadu_pd(a), b0 = _mm_loadu_pd(b);
+      __m128d acc = op(_mm_unpacklo_pd(a0, b0), _mm_unpackhi_pd(a0, b0));
+      for (int r = 2; r < 16; r += 2) {
+        const __m128d ar = _mm_loadu_pd(a + r), br = _mm_loadu_pd(b + r);
+        acc = op(op(acc, _mm_unpacklo_pd(ar, br)), _mm_unpackhi_pd(ar, br));
+      }
+      return acc;
+    };
+    const auto mx = [](__m128d acc, __m128d x) { return max_ab(acc, x); };
+    const auto mn = [](__m128d acc, __m128d x) { return min_ab(acc, x); };
+    const auto lane0 = [](__m128d v) { return _mm_cvtsd_f64(v); };
+    const auto lane1 = [](__m128d v) { return _mm_cvtsd_f64(_mm_unpackhi_pd(v, v)); };
+    for (int c = 0; c < 3; ++c) {
+      const __m128d ab = fold(mu[c], mk[c], mx), ef = fold(du[c], dk[c], mx);
+      bounds_from(c, lane0(ab), lane1(ab), lane0(ef), lane1(ef), U, K);
+    }
+    for (int c = 0; c < 3; ++c) {
+      const __m128d x = fold(tmax[c], kmax[c], mx), n = fold(tmin[c], kmin[c], mn), ef = fold(st[c], sk[c], mx);
+      ramps_from(c, lane0(x), lane0(n), lane1(x), lane1(n), lane0(ef), lane1(ef), U, K, Ua, Ka);
+    }
+#else
+    bounds(0, 16, U, K);
+    ramps(0, 16, U, K, Ua, Ka);
+#endif
   }
   // bounds() and ramps() over each single table interval, for all 16 at once; single() then reads
   // them. With SSE2 two intervals per step: the same operations element by element (std::min(a, b)

@@ -42,8 +42,7 @@ void PlannerState::init_cubic_node(Node& n, const toolpath::Block& b, const Cubi
   CubicTable& ct = cubic_table(source);
   ct.bounds.fill(T, Kv);
   for (std::size_t i = 0; i < 17; ++i) ct.curvature[i] = Kv[i].norm();
-  ct.bounds.bounds(0, 16, n.tangent_bound, n.curvature_bound);
-  ct.bounds.ramps(0, 16, n.tangent_bound, n.curvature_bound, n.ramp_tangent, n.ramp_curvature);
+  ct.bounds.whole(n.tangent_bound, n.curvature_bound, n.ramp_tangent, n.ramp_curvature);
   n.geometry = Geometry::in_node;
 }
 
