@@ -23,6 +23,25 @@ int interval_at(const std::array<double, 17>& table, double s) {
   const auto it = std::upper_bound(table.begin(), table.end(), s);
   return std::clamp(static_cast<int>(it - table.begin()) - 1, 0, 15);
 }
+
+// piece_curvature() over each single table interval r (nodes r, r + 1) for all 16 at once: with SSE2
+// two intervals per step, the same operations element by element (std::max(a, b) is max_ab(a, b),
+// std::abs clears the sign bit; the quotient only where the table rises, else the rate stays 0)
+void single_curvatures(const double (&k)[17], const std::array<double, 17>& table, double (&kmax)[16],
+                       double (&rate)[16]) noexcept {
+#if defined(__SSE2__)
+  const __m128d zero = _mm_setzero_pd(), sign = _mm_set1_pd(-0.0);
+  for (int r = 0; r < 16; r += 2) {
+    const __m128d k0 = _mm_loadu_pd(k + r), k1 = _mm_loadu_pd(k + r + 1);
+    const __m128d t0 = _mm_loadu_pd(table.data() + r), t1 = _mm_loadu_pd(table.data() + r + 1);
+    _mm_storeu_pd(kmax + r, max_ab(max_ab(zero, k0), k1));
+    const __m128d q = _mm_div_pd(_mm_andnot_pd(sign, _mm_sub_pd(k1, k0)), _mm_sub_pd(t1, t0));
+    _mm_storeu_pd(rate + r, pick(_mm_cmpgt_pd(t1, t0), max_ab(zero, q), zero));
+  }
+#else
+  for (int r = 0; r < 16; ++r) piece_curvature(k, table, r, r + 1, kmax[r], rate[r]);
+#endif
+}
 }  // namespace
 
 const char* PlannerState::cubic_error(const toolpath::Block& b, const CubicControls& c) noexcept {
@@ -180,25 +199,37 @@ void PlannerState::fill_cubic_record(Node& whole, const PieceBase& base, const d
   r.cursor = 0;
   constexpr int P = CubicRecord::pieces;
   double Ub[3][P], Kb[3][P];  // the unsigned bounds per axis
+  double one_kmax[16], one_rate[16];  // step 1: piece_curvature() of each single table interval
+  if (step == 1) single_curvatures(ct.curvature, g.table, one_kmax, one_rate);
   for (int k = 0; k < m; ++k) {
     int i0, i1;
     intervals(k, i0, i1);
-    Vec3 U, K, Ua[2], Ka[2];
     if (step == 1 && i1 == i0 + 1) {
-      tab.single(i0, U, K, Ua, Ka);
+      // a single table interval: its terms from singles() (BlendBounds::single()) straight into the record
+      const auto q = static_cast<std::size_t>(i0);
+      for (int i = 0; i < 3; ++i) {
+        Ub[i][k] = tab.one_u[i][q];
+        Kb[i][k] = tab.one_k[i][q];
+        r.ramp_u[0][i][k] = r.ramp_u[1][i][k] = tab.one_ua[i][q];
+        r.ramp_k[0][i][k] = tab.one_ka[0][i][q];
+        r.ramp_k[1][i][k] = tab.one_ka[1][i][q];
+      }
+      r.curvature[k] = one_kmax[q];
+      r.curvature_rate[k] = one_rate[q];
     } else {
+      Vec3 U, K, Ua[2], Ka[2];
       tab.bounds(i0, i1, U, K);
       tab.ramps(i0, i1, U, K, Ua, Ka);
-    }
-    for (int i = 0; i < 3; ++i) {
-      Ub[i][k] = U[i];
-      Kb[i][k] = K[i];
-      for (int d = 0; d < 2; ++d) {
-        r.ramp_u[d][i][k] = Ua[d][i];
-        r.ramp_k[d][i][k] = Ka[d][i];
+      for (int i = 0; i < 3; ++i) {
+        Ub[i][k] = U[i];
+        Kb[i][k] = K[i];
+        for (int d = 0; d < 2; ++d) {
+          r.ramp_u[d][i][k] = Ua[d][i];
+          r.ramp_k[d][i][k] = Ka[d][i];
+        }
       }
+      piece_curvature(ct.curvature, g.table, i0, i1, r.curvature[k], r.curvature_rate[k]);
     }
-    piece_curvature(ct.curvature, g.table, i0, i1, r.curvature[k], r.curvature_rate[k]);
     r.trim_start[k] = cuts[k];
     r.trim_end[k] = L - cuts[k + 1];
     r.len[k] = L - r.trim_start[k] - r.trim_end[k];  // (Segment::length(); ≥ 0: rounding is monotone)
