@@ -93,6 +93,8 @@ struct Batch<1> {
   static NETSHAPE_SIMD_INLINE M ge(D a, D b) { return a >= b; }
   static NETSHAPE_SIMD_INLINE M ne(D a, D b) { return a != b; }
   static NETSHAPE_SIMD_INLINE M land(M a, M b) { return a && b; }
+  static NETSHAPE_SIMD_INLINE M lor(M a, M b) { return a || b; }
+  static NETSHAPE_SIMD_INLINE M lnot(M a) { return !a; }
   static NETSHAPE_SIMD_INLINE bool any(M m) { return m; }
   static NETSHAPE_SIMD_INLINE D blend(M m, D a, D b) { return m ? b : a; }
   static NETSHAPE_SIMD_INLINE int count(M m) { return m ? 1 : 0; }
@@ -148,6 +150,8 @@ struct Batch<2> {
   static NETSHAPE_SIMD_INLINE M ge(D a, D b) { return a >= b; }
   static NETSHAPE_SIMD_INLINE M ne(D a, D b) { return a != b; }
   static NETSHAPE_SIMD_INLINE M land(M a, M b) { return a & b; }
+  static NETSHAPE_SIMD_INLINE M lor(M a, M b) { return a | b; }
+  static NETSHAPE_SIMD_INLINE M lnot(M a) { return ~a; }
   static NETSHAPE_SIMD_INLINE bool any(M m) { return (m[0] | m[1]) != 0; }
   static NETSHAPE_SIMD_INLINE D blend(M m, D a, D b) { return m ? b : a; }
   static NETSHAPE_SIMD_INLINE int count(M m) { return (m[0] != 0) + (m[1] != 0); }
@@ -194,6 +198,8 @@ struct Batch<4> {
   static NETSHAPE_SIMD_INLINE M ge(D a, D b) { return _mm256_cmp_pd(a, b, _CMP_GE_OQ); }
   static NETSHAPE_SIMD_INLINE M ne(D a, D b) { return _mm256_cmp_pd(a, b, _CMP_NEQ_UQ); }
   static NETSHAPE_SIMD_INLINE M land(M a, M b) { return _mm256_and_pd(a, b); }
+  static NETSHAPE_SIMD_INLINE M lor(M a, M b) { return _mm256_or_pd(a, b); }
+  static NETSHAPE_SIMD_INLINE M lnot(M a) { return _mm256_xor_pd(a, _mm256_castsi256_pd(_mm256_set1_epi64x(-1))); }
   static NETSHAPE_SIMD_INLINE bool any(M m) { return _mm256_movemask_pd(m) != 0; }
   static NETSHAPE_SIMD_INLINE D blend(M m, D a, D b) { return _mm256_blendv_pd(a, b, m); }
   static NETSHAPE_SIMD_INLINE int count(M m) {
@@ -244,6 +250,8 @@ struct Batch<8> {
   static NETSHAPE_SIMD_INLINE M ge(D a, D b) { return _mm512_cmp_pd_mask(a, b, _CMP_GE_OQ); }
   static NETSHAPE_SIMD_INLINE M ne(D a, D b) { return _mm512_cmp_pd_mask(a, b, _CMP_NEQ_UQ); }
   static NETSHAPE_SIMD_INLINE M land(M a, M b) { return M(a & b); }
+  static NETSHAPE_SIMD_INLINE M lor(M a, M b) { return M(a | b); }
+  static NETSHAPE_SIMD_INLINE M lnot(M a) { return M(~a & 0xFF); }
   static NETSHAPE_SIMD_INLINE bool any(M m) { return m != 0; }
   static NETSHAPE_SIMD_INLINE D blend(M m, D a, D b) { return _mm512_mask_blend_pd(m, a, b); }
   static NETSHAPE_SIMD_INLINE int count(M m) { return __builtin_popcount(m); }

@@ -44,6 +44,13 @@ void single_curvatures(const double (&k)[17], const std::array<double, 17>& tabl
 }
 }  // namespace
 
+const CubicRecordKernels& cubic_record_kernels_plain() { return baseline::cubic_record_kernel_table; }
+
+const CubicRecordKernels& cubic_record_kernels() {
+  static const CubicRecordKernels& chosen = NETSHAPE_SIMD_SELECT(detail, cubic_record_kernel_table);
+  return chosen;
+}
+
 const char* PlannerState::cubic_error(const toolpath::Block& b, const CubicControls& c) noexcept {
   if (b.kind == toolpath::MotionKind::arc) return "cubic block: kind must be line (the chord P0 -> P3), got arc";
   if (b.kind == toolpath::MotionKind::rapid) return "cubic block: kind must be line (the chord P0 -> P3), got rapid";

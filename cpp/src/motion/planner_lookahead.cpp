@@ -5,10 +5,6 @@
 
 #include "planner_state.hpp"
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 namespace netshape::motion::detail {
 
 inline double PlannerState::reach_squared(const PassRecord& n, double w0) const noexcept {
@@ -202,11 +198,8 @@ void PlannerState::freeze_record_node(Node& n, double vs, double ve, double t_en
 // The pieces of a cubic-record node one after the other, as freeze_next() freezes nodes: each piece's
 // end speed is the smaller of the next piece's backward speed (of the next node: wt) and what it
 // reaches from its start speed (a sequential chain); then every piece's profile, axis_box_profile()
-// without windows. With SSE2 two pieces per step: the same operations element by element (std::min(a,
-// b) is _mm_min_pd(b, a), std::max(a, b) is _mm_max_pd(b, a), including ties and signed zeros; the
-// branches of min_ratio() and make_trapezoid() as masks, min_ratio's fast path being its loop's result
-// when every denominator is > 0). A piece's length is ≥ 0, so the windows' min(0, length) are 0 and the
-// ramps get the whole length.
+// without windows, in the cubic-record kernel (all pieces at once, the same operations element by
+// element).
 void PlannerState::freeze_cubic_record(Node& n, CubicRecord& r, double vs, double wt) noexcept {
   const int np = r.np;
   double v = vs;
@@ -219,101 +212,7 @@ void PlannerState::freeze_cubic_record(Node& n, CubicRecord& r, double vs, doubl
     v = std::sqrt(std::min(w_end, reach));
     r.ve[k] = v;
   }
-#if defined(__SSE2__)
-  if (np % 2) {  // the odd last lane repeats the last piece (its length, cap and ramp terms already do:
-                 // fill_cubic_record)
-    r.vs[np] = r.vs[np - 1];
-    r.ve[np] = r.ve[np - 1];
-  }
-  const __m128d zero = _mm_setzero_pd(), two = _mm_set1_pd(2.0), half = _mm_set1_pd(0.5), one = _mm_set1_pd(1.0),
-                inf2 = _mm_set1_pd(inf);
-  const double amin = limits_.acceleration.minCoeff();
-  const __m128d floor_a = _mm_set1_pd(1e-6 * amin), amin2 = _mm_set1_pd(amin);
-  const __m128d A[3] = {_mm_set1_pd(limits_.acceleration[0]), _mm_set1_pd(limits_.acceleration[1]),
-                        _mm_set1_pd(limits_.acceleration[2])};
-  // one step of min_ratio()'s loop: the fraction num/den replaces the best nb/db (has: one was taken)
-  const auto ratio_step = [&](__m128d num, __m128d den, __m128d& nb, __m128d& db, __m128d& has) {
-    const __m128d better = _mm_cmplt_pd(_mm_mul_pd(num, db), _mm_mul_pd(nb, den));
-    const __m128d take = _mm_and_pd(_mm_cmpgt_pd(den, zero), _mm_or_pd(better, _mm_cmpeq_pd(has, zero)));
-    nb = pick(take, num, nb);
-    db = pick(take, den, db);
-    has = _mm_or_pd(has, take);
-  };
-  for (int k = 0; k < np; k += 2) {
-    const auto at = [k](const double* row) { return _mm_loadu_pd(row + k); };
-    const __m128d vs_ = at(r.vs), ve_ = at(r.ve), len = at(r.len);
-    const __m128d vs2 = _mm_mul_pd(vs_, vs_), ve2 = _mm_mul_pd(ve_, ve_);
-    const __m128d S = _mm_add_pd(vs2, ve2), wlow = min_ab(vs2, ve2);
-    const __m128d lr2 = _mm_mul_pd(two, len);
-    // axis_box_profile(): the peak squared speed (the terms Ke = max(K, 0), Ae = A − min(K, 0)·wlow
-    // are found again for the acceleration below)
-    __m128d wp = _mm_mul_pd(at(r.v_max), at(r.v_max));
-    for (int d = 0; d < 2; ++d) {
-      __m128d nb = zero, db = one, has = zero;
-      for (int i = 0; i < 3; ++i) {
-        const __m128d kk = at(r.ramp_k[d][i]), U = at(r.ramp_u[d][i]);
-        const __m128d Ae = _mm_sub_pd(A[i], _mm_mul_pd(min_ab(kk, zero), wlow));
-        ratio_step(_mm_add_pd(_mm_mul_pd(U, S), _mm_mul_pd(lr2, Ae)),
-                   _mm_add_pd(_mm_mul_pd(two, U), _mm_mul_pd(lr2, max_ab(kk, zero))), nb, db, has);
-      }
-      wp = min_ab(wp, pick(has, _mm_div_pd(nb, db), inf2));
-    }
-    wp = max_ab(wp, max_ab(vs2, ve2));
-    __m128d a = inf2;
-    for (int d = 0; d < 2; ++d) {
-      __m128d nb = zero, db = one, has = zero;
-      for (int i = 0; i < 3; ++i) {
-        const __m128d kk = at(r.ramp_k[d][i]), U = at(r.ramp_u[d][i]);
-        const __m128d Ae = _mm_sub_pd(A[i], _mm_mul_pd(min_ab(kk, zero), wlow));
-        ratio_step(_mm_sub_pd(Ae, _mm_mul_pd(max_ab(kk, zero), wp)), U, nb, db, has);
-      }
-      const __m128d ad = pick(has, _mm_div_pd(nb, db), inf2);
-      a = d == 0 ? ad : min_ab(a, ad);
-    }
-    a = pick(_mm_cmpgt_pd(a, floor_a), a, floor_a);
-    a = pick(_mm_cmpeq_pd(a, inf2), amin2, a);
-    // make_trapezoid() without windows, cruise cap sqrt(wp)
-    const __m128d vlow = max_ab(vs_, ve_);
-    __m128d vp = _mm_sqrt_pd(max_ab(zero, _mm_div_pd(_mm_add_pd(_mm_mul_pd(_mm_mul_pd(two, a), len), S), two)));
-    vp = max_ab(vlow, min_ab(vp, max_ab(_mm_sqrt_pd(wp), vlow)));
-    const __m128d need = _mm_sub_pd(_mm_mul_pd(_mm_mul_pd(two, vp), vp), S);
-    const __m128d raise = _mm_and_pd(_mm_cmpgt_pd(len, zero), _mm_cmpgt_pd(need, _mm_mul_pd(lr2, a)));
-    a = pick(raise, _mm_div_pd(need, lr2), a);
-    const __m128d ia = _mm_div_pd(one, a);
-    const __m128d t1 = _mm_mul_pd(_mm_sub_pd(vp, vs_), ia), d1 = _mm_mul_pd(_mm_mul_pd(half, _mm_add_pd(vs_, vp)), t1);
-    const __m128d t3 = _mm_mul_pd(_mm_sub_pd(vp, ve_), ia), d3 = _mm_mul_pd(_mm_mul_pd(half, _mm_add_pd(vp, ve_)), t3);
-    __m128d d2 = max_ab(zero, _mm_sub_pd(_mm_sub_pd(len, d1), d3));
-    const __m128d moving = _mm_cmpgt_pd(vp, zero);
-    __m128d d2m = _mm_add_pd(d2, _mm_sub_pd(len, _mm_add_pd(_mm_add_pd(d1, d2), d3)));
-    d2m = pick(_mm_cmplt_pd(d2m, zero), zero, d2m);
-    d2 = pick(moving, d2m, d2);
-    const __m128d t2 = pick(moving, _mm_div_pd(d2, vp), zero);
-    _mm_storeu_pd(r.vp + k, vp);
-    _mm_storeu_pd(r.acc + k, a);
-    _mm_storeu_pd(r.t1 + k, t1);
-    _mm_storeu_pd(r.t2 + k, t2);
-    _mm_storeu_pd(r.t3 + k, t3);
-    _mm_storeu_pd(r.d1 + k, d1);
-    _mm_storeu_pd(r.d2 + k, d2);
-    _mm_storeu_pd(r.d3 + k, d3);
-    _mm_storeu_pd(r.dur + k, _mm_add_pd(_mm_add_pd(t1, t2), t3));
-  }
-#else
-  for (int k = 0; k < np; ++k) {
-    Vec3 Ua[2], Ka[2];
-    r.ramps(k, Ua, Ka);
-    const Profile p = axis_box_profile(r.len[k], r.vs[k], r.ve[k], r.v_max[k], Ua, Ka, 0.0, 0.0);
-    r.vp[k] = p.vp;
-    r.acc[k] = p.a;
-    r.t1[k] = p.t[1];
-    r.t2[k] = p.t[2];
-    r.t3[k] = p.t[3];
-    r.d1[k] = p.d[1];
-    r.d2[k] = p.d[2];
-    r.d3[k] = p.d[3];
-    r.dur[k] = p.duration;
-  }
-#endif
+  cubic_record_kernels_->freeze(r, limits_.acceleration.data(), limits_.acceleration.minCoeff());
   double t = t_frozen_end_;
   for (int k = 0; k < np; ++k) {
     r.t0[k] = t;

@@ -1,0 +1,66 @@
+#pragma once
+/// \file cubic_record.hpp
+/// Internal: the record of the pieces of a cubic block (the planner's cubic-record nodes) and the array
+/// work on it in kernels (kernels/cubic_record.cpp) compiled once per instruction set (docs/simd.md),
+/// one lane per piece. No copy contracts to FMA, so every instruction set gives the same bits. Only the
+/// record (plain doubles) and plain doubles cross between the kernels and the rest of the library.
+
+#include "core/dispatch.hpp"
+#include "line_blend.hpp"
+#include "netshape/core/types.hpp"
+
+namespace netshape::motion::detail {
+
+/// The pieces of a cubic block held by one ring node (Geometry::cubic_record; only without jerk
+/// limits), kept once per block by the planner. Per piece: its trims of the whole cubic and length,
+/// largest curvature and |dκ/ds| (the output segment's), speed cap, squared junction limit, the reach
+/// coefficients of both directions (PassRecord's alpha, beta, alpha_down, beta_down), the backward
+/// squared speed at its start, the per-axis ramp terms (Node::ramp_tangent, ramp_curvature) and, once
+/// frozen, its trapezoid (speeds, acceleration, phase times and distances; no windows) and start time.
+/// Every field is an array over the pieces ([axis][piece], [direction][axis][piece]); the passes, the
+/// freeze and the output run over them as over nodes of their own, with the same arithmetic.
+struct CubicRecord {
+  static constexpr int pieces = 16;
+  int np = 0;      ///< pieces in use (1..pieces)
+  int cursor = 0;  ///< next piece to hand out (next_segment) or the piece being sampled (next)
+  double trim_start[pieces] = {}, trim_end[pieces] = {}, len[pieces] = {};  ///< [mm]
+  double curvature[pieces] = {}, curvature_rate[pieces] = {};             ///< [1/mm], [1/mm²]
+  double v_max[pieces] = {};                                              ///< [mm/s]
+  double w_junction[pieces] = {}, w_backward[pieces] = {};                ///< [mm²/s²]
+  double alpha[3][pieces] = {}, beta[3][pieces] = {}, alpha_down[3][pieces] = {}, beta_down[3][pieces] = {};
+  double ramp_u[2][3][pieces] = {}, ramp_k[2][3][pieces] = {};
+  // frozen: speed-up, cruise, slow-down
+  double vs[pieces] = {}, ve[pieces] = {}, vp[pieces] = {}, acc[pieces] = {};
+  double t1[pieces] = {}, t2[pieces] = {}, t3[pieces] = {};
+  double d1[pieces] = {}, d2[pieces] = {}, d3[pieces] = {};
+  double dur[pieces] = {}, t0[pieces] = {};
+  /// The frozen profile of piece k.
+  void profile(int k, Profile& p) const noexcept { frozen_profile(*this, k, p); }
+  /// The ramp terms of piece k as a Node holds them (Node::ramp_tangent, Node::ramp_curvature).
+  void ramps(int k, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) const noexcept {
+    for (int d = 0; d < 2; ++d)
+      for (int i = 0; i < 3; ++i) {
+        Ua[d][i] = ramp_u[d][i][k];
+        Ka[d][i] = ramp_k[d][i][k];
+      }
+  }
+};
+
+/// The kernels of one instruction set.
+struct CubicRecordKernels {
+  /// The trapezoids of pieces [0, r.np) of r from their start and end speeds r.vs, r.ve (set), length,
+  /// cap and ramp terms: PlannerState::axis_box_profile() without windows (peak squared speed and one
+  /// tangential acceleration from the axis box, then the trapezoid) into r.vp, acc, t1..t3, d1..d3, dur.
+  /// A: the per-axis acceleration limits (3), amin their smallest. Lanes past r.np (up to the next
+  /// multiple of the lane count, at most CubicRecord::pieces) are computed from whatever they hold and
+  /// written; nothing reads them.
+  void (*freeze)(CubicRecord& r, const double* A, double amin);
+  const char* isa;  ///< "baseline", "avx2" or "avx512"
+};
+NETSHAPE_SIMD_DECLARE(CubicRecordKernels, cubic_record_kernel_table)
+/// The kernels of the instruction set chosen for this process (core/dispatch.hpp, NETSHAPE_ISA).
+const CubicRecordKernels& cubic_record_kernels();
+/// The baseline kernels (tests compare them with the chosen ones).
+const CubicRecordKernels& cubic_record_kernels_plain();
+
+}  // namespace netshape::motion::detail

@@ -1,0 +1,111 @@
+// The planner's cubic-record kernels (cubic_record.hpp): the array work over the pieces of a cubic
+// block, one lane per piece, as wide as the instruction set being compiled (simd::native_width),
+// compiled once per instruction set by netshape_add_kernels. Only the record and plain doubles cross
+// between the kernels and the rest of the library, and the entry points are flattened, so nothing is
+// left out of line for the linker to share with baseline code.
+//
+// The operations are the scalar ones element by element: std::max(a, b) is B::max(b, a) and
+// std::min(a, b) is B::min(b, a) (B::max(a, b) is a > b ? a : b), including ties and signed zeros.
+#include "core/simd.hpp"  // first: it wraps the intrinsic headers (see there)
+
+#include <limits>
+
+#include "motion/cubic_record.hpp"
+
+namespace netshape::motion::detail::NETSHAPE_KERNEL_ISA {
+namespace {
+
+using B = simd::Batch<simd::native_width>;
+using D = B::D;
+using M = B::M;
+constexpr int W = simd::native_width;
+static_assert(CubicRecord::pieces % W == 0, "whole packets over the record's arrays");
+
+// One step of min_ratio()'s loop (planner_state.hpp): the fraction num/den replaces the best nb/db
+// where den > 0 and either none was taken yet (has false) or num·db < nb·den.
+NETSHAPE_SIMD_INLINE void ratio_step(D num, D den, D& nb, D& db, M& has) {
+  const M better = B::lt(B::mul(num, db), B::mul(nb, den));
+  const M take = B::land(B::gt(den, B::set(0.0)), B::lor(better, B::lnot(has)));
+  nb = B::blend(take, nb, num);
+  db = B::blend(take, db, den);
+  has = B::lor(has, take);
+}
+
+// PlannerState::axis_box_profile() without windows (a piece's length is ≥ 0: the ramps get all of it),
+// then detail::make_trapezoid() with the cruise cap sqrt(wp); min_ratio()'s branches as masks, its fast
+// path being its loop's result when every denominator is > 0.
+__attribute__((flatten)) void freeze(CubicRecord& r, const double* A, double amin) {
+  const D zero = B::set(0.0), two = B::set(2.0), half = B::set(0.5), one = B::set(1.0), inf = B::set(std::numeric_limits<double>::infinity());
+  const D floor_a = B::set(1e-6 * amin), amin_ = B::set(amin);
+  const D Ai[3] = {B::set(A[0]), B::set(A[1]), B::set(A[2])};
+  for (int k = 0; k < r.np; k += W) {
+    const auto at = [k](const double* row) NETSHAPE_SIMD_LAMBDA { return B::loadu(row + k); };
+    const D vs = at(r.vs), ve = at(r.ve), len = at(r.len);
+    const D vs2 = B::mul(vs, vs), ve2 = B::mul(ve, ve);
+    const D S = B::add(vs2, ve2), wlow = B::min(ve2, vs2);
+    const D lr2 = B::mul(two, len);
+    // the peak squared speed: min(v_max², the two directions' min_ratio of (U·S + 2L·Ae)/(2U + 2L·Ke)),
+    // Ke = max(K, 0), Ae = A − min(K, 0)·wlow
+    const D vmax = at(r.v_max);
+    D wp = B::mul(vmax, vmax);
+    for (int d = 0; d < 2; ++d) {
+      D nb = zero, db = one;
+      M has = B::lt(one, zero);  // none
+      for (int i = 0; i < 3; ++i) {
+        const D kk = at(r.ramp_k[d][i]), U = at(r.ramp_u[d][i]);
+        const D Ae = B::sub(Ai[i], B::mul(B::min(zero, kk), wlow));
+        ratio_step(B::add(B::mul(U, S), B::mul(lr2, Ae)), B::add(B::mul(two, U), B::mul(lr2, B::max(zero, kk))), nb,
+                   db, has);
+      }
+      wp = B::min(B::blend(has, inf, B::div(nb, db)), wp);
+    }
+    wp = B::max(B::max(ve2, vs2), wp);
+    // the tangential acceleration: the smaller of the two directions' min_ratio of (Ae − Ke·wp)/U
+    D a = inf;
+    for (int d = 0; d < 2; ++d) {
+      D nb = zero, db = one;
+      M has = B::lt(one, zero);
+      for (int i = 0; i < 3; ++i) {
+        const D kk = at(r.ramp_k[d][i]), U = at(r.ramp_u[d][i]);
+        const D Ae = B::sub(Ai[i], B::mul(B::min(zero, kk), wlow));
+        ratio_step(B::sub(Ae, B::mul(B::max(zero, kk), wp)), U, nb, db, has);
+      }
+      const D ad = B::blend(has, inf, B::div(nb, db));
+      a = d == 0 ? ad : B::min(ad, a);
+    }
+    a = B::blend(B::gt(a, floor_a), floor_a, a);  // (a NaN becomes the floor: a is a number below)
+    a = B::blend(B::ge(a, inf), a, amin_);
+    // make_trapezoid() without windows
+    const D vlow = B::max(ve, vs);
+    D vp = B::sqrt(B::max(B::div(B::add(B::mul(B::mul(two, a), len), S), two), zero));
+    vp = B::max(B::min(B::max(vlow, B::sqrt(wp)), vp), vlow);
+    const D need = B::sub(B::mul(B::mul(two, vp), vp), S);
+    const M raise = B::land(B::gt(len, zero), B::gt(need, B::mul(lr2, a)));
+    a = B::blend(raise, a, B::div(need, lr2));
+    const D ia = B::div(one, a);
+    const D t1 = B::mul(B::sub(vp, vs), ia), d1 = B::mul(B::mul(half, B::add(vs, vp)), t1);
+    const D t3 = B::mul(B::sub(vp, ve), ia), d3 = B::mul(B::mul(half, B::add(vp, ve)), t3);
+    D d2 = B::max(B::sub(B::sub(len, d1), d3), zero);
+    const M moving = B::gt(vp, zero);
+    D d2m = B::add(d2, B::sub(len, B::add(B::add(d1, d2), d3)));
+    d2m = B::blend(B::lt(d2m, zero), d2m, zero);
+    d2 = B::blend(moving, d2, d2m);
+    const D t2 = B::blend(moving, zero, B::div(d2, vp));
+    B::storeu(r.vp + k, vp);
+    B::storeu(r.acc + k, a);
+    B::storeu(r.t1 + k, t1);
+    B::storeu(r.t2 + k, t2);
+    B::storeu(r.t3 + k, t3);
+    B::storeu(r.d1 + k, d1);
+    B::storeu(r.d2 + k, d2);
+    B::storeu(r.d3 + k, d3);
+    B::storeu(r.dur + k, B::add(B::add(t1, t2), t3));
+  }
+}
+
+}  // namespace
+
+extern const CubicRecordKernels cubic_record_kernel_table;
+const CubicRecordKernels cubic_record_kernel_table{&freeze, NETSHAPE_KERNEL_ISA_NAME};
+
+}  // namespace netshape::motion::detail::NETSHAPE_KERNEL_ISA
