@@ -29,6 +29,7 @@ struct CubicRecord {
   double w_junction[pieces] = {}, w_backward[pieces] = {};                ///< [mm²/s²]
   double alpha[3][pieces] = {}, beta[3][pieces] = {}, alpha_down[3][pieces] = {}, beta_down[3][pieces] = {};
   double ramp_u[2][3][pieces] = {}, ramp_k[2][3][pieces] = {};
+  double u_abs[3][pieces] = {}, k_abs[3][pieces] = {};  ///< unsigned bounds (Node::tangent_bound, curvature_bound)
   // frozen: speed-up, cruise, slow-down
   double vs[pieces] = {}, ve[pieces] = {}, vp[pieces] = {}, acc[pieces] = {};
   double t1[pieces] = {}, t2[pieces] = {}, t3[pieces] = {};
@@ -55,6 +56,13 @@ struct CubicRecordKernels {
   /// multiple of the lane count, at most CubicRecord::pieces) are computed from whatever they hold and
   /// written; nothing reads them.
   void (*freeze)(CubicRecord& r, const double* A, double amin);
+  /// The speed caps and reach coefficients of pieces [0, r.np) from their lengths, unsigned bounds and
+  /// ramp terms: set_limits()'s axis box (|u_i|·v ≤ V_i, K_i·v² ≤ A_i, the feed cap) into r.v_max and
+  /// box_reach_both() into r.alpha, beta, alpha_down, beta_down. Returns the pieces (bit k for piece k)
+  /// where a denominator of box_reach_both() is ≤ 0: their coefficients are to be set by
+  /// set_box_reach() instead. V, A: per-axis velocity and acceleration limits (3). Lanes past r.np as
+  /// for freeze.
+  unsigned (*caps_reach)(CubicRecord& r, double feed_cap, const double* V, const double* A);
   const char* isa;  ///< "baseline", "avx2" or "avx512"
 };
 NETSHAPE_SIMD_DECLARE(CubicRecordKernels, cubic_record_kernel_table)

@@ -185,9 +185,9 @@ void PlannerState::split_cubic_block() noexcept {
 // The pieces of the cubic block in node `whole` (its cuts, m pieces, table step as split_cubic_block())
 // into the cubic record of its block, with what finish_piece(), set_limits() and update_pass() give a
 // piece node of a curved block without jerk limits or windows; `whole` becomes the record's node. The
-// bounds per piece as there; the caps and reach coefficients of all pieces at once: with SSE2 two pieces
-// per step, the same operations element by element (as BlendBounds::singles(); box_reach_both()'s
-// where each of its denominators is > 0, else set_box_reach() for that piece alone).
+// bounds per piece as there; the caps and reach coefficients of all pieces at once in the cubic-record
+// kernel (box_reach_both()'s where each of its denominators is > 0, else set_box_reach() for that piece
+// alone).
 template <class Intervals>
 void PlannerState::fill_cubic_record(Node& whole, const PieceBase& base, const double* cuts, int m, int step,
                                      double amin, const Intervals& intervals) noexcept {
@@ -204,8 +204,6 @@ void PlannerState::fill_cubic_record(Node& whole, const PieceBase& base, const d
   store.trim_start = store.trim_end = 0.0;  // (next() samples a piece at its offset on the whole cubic)
   r.np = m;
   r.cursor = 0;
-  constexpr int P = CubicRecord::pieces;
-  double Ub[3][P], Kb[3][P];  // the unsigned bounds per axis
   double one_kmax[16], one_rate[16];  // step 1: piece_curvature() of each single table interval
   if (step == 1) single_curvatures(ct.curvature, g.table, one_kmax, one_rate);
   for (int k = 0; k < m; ++k) {
@@ -215,8 +213,8 @@ void PlannerState::fill_cubic_record(Node& whole, const PieceBase& base, const d
       // a single table interval: its terms from singles() (BlendBounds::single()) straight into the record
       const auto q = static_cast<std::size_t>(i0);
       for (int i = 0; i < 3; ++i) {
-        Ub[i][k] = tab.one_u[i][q];
-        Kb[i][k] = tab.one_k[i][q];
+        r.u_abs[i][k] = tab.one_u[i][q];
+        r.k_abs[i][k] = tab.one_k[i][q];
         r.ramp_u[0][i][k] = r.ramp_u[1][i][k] = tab.one_ua[i][q];
         r.ramp_k[0][i][k] = tab.one_ka[0][i][q];
         r.ramp_k[1][i][k] = tab.one_ka[1][i][q];
@@ -228,8 +226,8 @@ void PlannerState::fill_cubic_record(Node& whole, const PieceBase& base, const d
       tab.bounds(i0, i1, U, K);
       tab.ramps(i0, i1, U, K, Ua, Ka);
       for (int i = 0; i < 3; ++i) {
-        Ub[i][k] = U[i];
-        Kb[i][k] = K[i];
+        r.u_abs[i][k] = U[i];
+        r.k_abs[i][k] = K[i];
         for (int d = 0; d < 2; ++d) {
           r.ramp_u[d][i][k] = Ua[d][i];
           r.ramp_k[d][i][k] = Ka[d][i];
@@ -255,66 +253,10 @@ void PlannerState::fill_cubic_record(Node& whole, const PieceBase& base, const d
       r.beta_down[i][k] = x.beta_down[i];
     }
   };
-#if defined(__SSE2__)
-  if (m % 2) {  // the odd last lane repeats the last piece
-    r.len[m] = r.len[m - 1];
-    for (int i = 0; i < 3; ++i) {
-      Ub[i][m] = Ub[i][m - 1];
-      Kb[i][m] = Kb[i][m - 1];
-      for (int d = 0; d < 2; ++d) {
-        r.ramp_u[d][i][m] = r.ramp_u[d][i][m - 1];
-        r.ramp_k[d][i][m] = r.ramp_k[d][i][m - 1];
-      }
-    }
-  }
-  const __m128d zero = _mm_setzero_pd(), one = _mm_set1_pd(1.0), two = _mm_set1_pd(2.0), inf2 = _mm_set1_pd(inf);
-  for (int k = 0; k < m; k += 2) {
-    __m128d v = _mm_set1_pd(base.feed_cap), wk = inf2;
-    for (int i = 0; i < 3; ++i) {
-      const __m128d U = _mm_loadu_pd(Ub[i] + k), K = _mm_loadu_pd(Kb[i] + k);
-      v = pick(_mm_cmpgt_pd(U, zero), min_ab(v, _mm_div_pd(_mm_set1_pd(limits_.velocity[i]), U)), v);
-      wk = pick(_mm_cmpgt_pd(K, zero), min_ab(wk, _mm_div_pd(_mm_set1_pd(limits_.acceleration[i]), K)), wk);
-    }
-    v = pick(_mm_cmplt_pd(wk, inf2), min_ab(v, _mm_sqrt_pd(wk)), v);
-    _mm_storeu_pd(r.v_max + k, v);
-    // box_reach_both(): den = U + 2L·max(K, 0), an = U − 2L·min(K, 0) per direction and axis
-    const __m128d L2 = _mm_mul_pd(two, max_ab(zero, _mm_loadu_pd(r.len + k)));
-    __m128d ok = _mm_cmpeq_pd(zero, zero);
-    for (int d = 0; d < 2; ++d) {
-      __m128d den[3], an[3];
-      for (int i = 0; i < 3; ++i) {
-        const __m128d u = _mm_loadu_pd(r.ramp_u[d][i] + k), kk = _mm_loadu_pd(r.ramp_k[d][i] + k);
-        den[i] = _mm_add_pd(u, _mm_mul_pd(L2, max_ab(kk, zero)));
-        an[i] = _mm_sub_pd(u, _mm_mul_pd(L2, min_ab(kk, zero)));
-        ok = _mm_and_pd(ok, _mm_cmpgt_pd(den[i], zero));
-      }
-      const __m128d d01 = _mm_mul_pd(den[0], den[1]), rr = _mm_div_pd(one, _mm_mul_pd(d01, den[2]));
-      const __m128d rd[3] = {_mm_mul_pd(_mm_mul_pd(den[1], den[2]), rr), _mm_mul_pd(_mm_mul_pd(den[0], den[2]), rr),
-                             _mm_mul_pd(d01, rr)};
-      double(&al)[3][P] = d == 0 ? r.alpha : r.alpha_down;
-      double(&be)[3][P] = d == 0 ? r.beta : r.beta_down;
-      for (int i = 0; i < 3; ++i) {
-        _mm_storeu_pd(al[i] + k, _mm_mul_pd(an[i], rd[i]));
-        _mm_storeu_pd(be[i] + k, _mm_mul_pd(_mm_mul_pd(L2, _mm_set1_pd(limits_.acceleration[i])), rd[i]));
-      }
-    }
-    const int good = _mm_movemask_pd(ok);
-    if (!(good & 1)) scalar_reach(k);
-    if (!(good & 2) && k + 1 < m) scalar_reach(k + 1);
-  }
-#else
-  for (int k = 0; k < m; ++k) {
-    // the per-axis box |u_i|·v ≤ V_i, K_i·v² ≤ A_i (set_limits)
-    double v = base.feed_cap, wk = inf;
-    for (int i = 0; i < 3; ++i) {
-      if (Ub[i][k] > 0) v = std::min(v, limits_.velocity[i] / Ub[i][k]);
-      if (Kb[i][k] > 0) wk = std::min(wk, limits_.acceleration[i] / Kb[i][k]);
-    }
-    if (wk < inf) v = std::min(v, std::sqrt(wk));
-    r.v_max[k] = v;
-    scalar_reach(k);
-  }
-#endif
+  // the caps and reach coefficients of all pieces at once (the cubic-record kernel)
+  unsigned bad = cubic_record_kernels_->caps_reach(r, base.feed_cap, limits_.velocity.data(), limits_.acceleration.data());
+  for (int k = 0; bad != 0; ++k, bad >>= 1)
+    if (bad & 1u) scalar_reach(k);
   // junction limits: the block's corner at the first piece, the cap before at the others (finish_piece)
   for (int k = 0; k < m; ++k) {
     const double vj = std::min(k == 0 ? base.v_corner : r.v_max[k - 1], r.v_max[k]);

@@ -103,9 +103,53 @@ __attribute__((flatten)) void freeze(CubicRecord& r, const double* A, double ami
   }
 }
 
+// set_limits() of an axis-box piece and box_reach_both() (planner_push.cpp): den = U + 2L·max(K, 0),
+// an = U − 2L·min(K, 0) per direction and axis, the three reciprocals from one division.
+__attribute__((flatten)) unsigned caps_reach(CubicRecord& r, double feed_cap, const double* V, const double* A) {
+  const D zero = B::set(0.0), one = B::set(1.0), two = B::set(2.0), inf = B::set(std::numeric_limits<double>::infinity());
+  unsigned bad = 0;
+  for (int k = 0; k < r.np; k += W) {
+    const auto at = [k](const double* row) NETSHAPE_SIMD_LAMBDA { return B::loadu(row + k); };
+    D v = B::set(feed_cap), wk = inf;
+    for (int i = 0; i < 3; ++i) {
+      const D U = at(r.u_abs[i]), K = at(r.k_abs[i]);
+      v = B::blend(B::gt(U, zero), v, B::min(B::div(B::set(V[i]), U), v));
+      wk = B::blend(B::gt(K, zero), wk, B::min(B::div(B::set(A[i]), K), wk));
+    }
+    v = B::blend(B::lt(wk, inf), v, B::min(B::sqrt(wk), v));
+    B::storeu(r.v_max + k, v);
+    const D L2 = B::mul(two, B::max(at(r.len), zero));
+    M ok = B::lt(zero, one);  // all
+    for (int d = 0; d < 2; ++d) {
+      D den[3], an[3];
+      for (int i = 0; i < 3; ++i) {
+        const D u = at(r.ramp_u[d][i]), kk = at(r.ramp_k[d][i]);
+        den[i] = B::add(u, B::mul(L2, B::max(zero, kk)));
+        an[i] = B::sub(u, B::mul(L2, B::min(zero, kk)));
+        ok = B::land(ok, B::gt(den[i], zero));
+      }
+      const D d01 = B::mul(den[0], den[1]), rr = B::div(one, B::mul(d01, den[2]));
+      const D rd[3] = {B::mul(B::mul(den[1], den[2]), rr), B::mul(B::mul(den[0], den[2]), rr), B::mul(d01, rr)};
+      double(&al)[3][CubicRecord::pieces] = d == 0 ? r.alpha : r.alpha_down;
+      double(&be)[3][CubicRecord::pieces] = d == 0 ? r.beta : r.beta_down;
+      for (int i = 0; i < 3; ++i) {
+        B::storeu(al[i] + k, B::mul(an[i], rd[i]));
+        B::storeu(be[i] + k, B::mul(B::mul(L2, B::set(A[i])), rd[i]));
+      }
+    }
+    if (B::count(ok) < W) {
+      alignas(64) double flag[W];
+      B::storeu(flag, B::blend(ok, one, zero));
+      for (int j = 0; j < W && k + j < r.np; ++j)
+        if (flag[j] == 0.0) bad |= 1u << (k + j);
+    }
+  }
+  return bad;
+}
+
 }  // namespace
 
 extern const CubicRecordKernels cubic_record_kernel_table;
-const CubicRecordKernels cubic_record_kernel_table{&freeze, NETSHAPE_KERNEL_ISA_NAME};
+const CubicRecordKernels cubic_record_kernel_table{&freeze, &caps_reach, NETSHAPE_KERNEL_ISA_NAME};
 
 }  // namespace netshape::motion::detail::NETSHAPE_KERNEL_ISA
