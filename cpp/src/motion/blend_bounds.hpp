@@ -94,7 +94,8 @@ struct BlendBounds {
   double mu[3][16], mk[3][16], du[3][16], dk[3][16];  // raw maxima per table interval
   double tmax[3][16], tmin[3][16], kmax[3][16], kmin[3][16];  // signed extremes per interval
   double st[3][16], sk[3][16];  // largest second difference of the signed values per interval
-  // singles(): bounds() and ramps() of each table interval alone, [axis][interval]
+  // bounds() and ramps() of each table interval alone, [axis][interval] (the cubic-record kernel
+  // CubicRecordKernels::singles fills them)
   double one_u[3][16], one_k[3][16], one_ua[3][16], one_ka[2][3][16];
   void fill(const std::array<Vec3, 17>& T, const std::array<Vec3, 17>& Kv) noexcept {
     // per axis as arrays (Eigen vectorises them; abs, max and min are exact, and the second
@@ -220,56 +221,7 @@ struct BlendBounds {
     ramps(0, 16, U, K, Ua, Ka);
 #endif
   }
-  // bounds() and ramps() over each single table interval, for all 16 at once; single() then reads
-  // them. With SSE2 two intervals per step: the same operations element by element (std::min(a, b)
-  // is _mm_min_pd(b, a) and std::max(a, b) is _mm_max_pd(b, a), including ties and signed zeros;
-  // negation flips the sign bit), ramp_terms' four cases as masks; ramp_terms gives both directions
-  // the same U. Without SSE2, bounds() and ramps() per interval.
-  void singles() noexcept {
-#if defined(__SSE2__)
-    const __m128d zero = _mm_setzero_pd(), one = _mm_set1_pd(1.0), minus_one = _mm_set1_pd(-1.0),
-                  quarter = _mm_set1_pd(0.25), eps = _mm_set1_pd(1e-12), grow = _mm_set1_pd(1.0 + 1e-9),
-                  shrink = _mm_set1_pd(1.0 - 1e-9), sign = _mm_set1_pd(-0.0);
-    for (int c = 0; c < 3; ++c)
-      for (int r = 0; r < 16; r += 2) {
-        const auto at = [r](const double* row) { return _mm_loadu_pd(row + r); };
-        // bounds(r, r + 1)
-        const __m128d U = min_ab(one, _mm_add_pd(_mm_add_pd(max_ab(zero, at(mu[c])), _mm_mul_pd(quarter, max_ab(zero, at(du[c])))), eps));
-        const __m128d K = _mm_add_pd(_mm_mul_pd(max_ab(zero, at(mk[c])), grow), _mm_mul_pd(quarter, max_ab(zero, at(dk[c]))));
-        // ramps(r, r + 1): the signed ranges with their margins, then ramp_terms
-        const __m128d e = at(st[c]), f = at(sk[c]), kx0 = at(kmax[c]), kn0 = at(kmin[c]);
-        const __m128d tx = min_ab(one, _mm_add_pd(_mm_add_pd(at(tmax[c]), _mm_mul_pd(quarter, e)), eps));
-        const __m128d tn = max_ab(minus_one, _mm_sub_pd(_mm_sub_pd(at(tmin[c]), _mm_mul_pd(quarter, e)), eps));
-        const __m128d kx = _mm_add_pd(_mm_mul_pd(kx0, pick(_mm_cmpgt_pd(kx0, zero), grow, shrink)), _mm_mul_pd(quarter, f));
-        const __m128d kn = _mm_sub_pd(_mm_mul_pd(kn0, pick(_mm_cmplt_pd(kn0, zero), grow, shrink)), _mm_mul_pd(quarter, f));
-        const __m128d mtn = _mm_xor_pd(tn, sign), mkn = _mm_xor_pd(kn, sign);
-        const __m128d up = _mm_cmpgt_pd(tx, zero), down = _mm_cmpgt_pd(mtn, zero);
-        const __m128d u = pick(up, pick(down, max_ab(tx, mtn), tx), pick(down, mtn, zero));
-        const __m128d kb = max_ab(kx, mkn);
-        const __m128d k0 = pick(up, pick(down, kb, kx), pick(down, mkn, zero));
-        const __m128d k1 = pick(up, pick(down, kb, mkn), pick(down, kx, zero));
-        _mm_storeu_pd(one_u[c] + r, U);
-        _mm_storeu_pd(one_k[c] + r, K);
-        _mm_storeu_pd(one_ua[c] + r, min_ab(u, U));
-        _mm_storeu_pd(one_ka[0][c] + r, min_ab(k0, K));
-        _mm_storeu_pd(one_ka[1][c] + r, min_ab(k1, K));
-      }
-#else
-    for (int r = 0; r < 16; ++r) {
-      Vec3 U, K, Ua[2], Ka[2];
-      bounds(r, r + 1, U, K);
-      ramps(r, r + 1, U, K, Ua, Ka);
-      for (int c = 0; c < 3; ++c) {
-        one_u[c][r] = U[c];
-        one_k[c][r] = K[c];
-        one_ua[c][r] = Ua[0][c];
-        one_ka[0][c][r] = Ka[0][c];
-        one_ka[1][c][r] = Ka[1][c];
-      }
-    }
-#endif
-  }
-  // bounds(r, r + 1, U, K) and ramps(r, r + 1, U, K, Ua, Ka) after singles()
+  // bounds(r, r + 1, U, K) and ramps(r, r + 1, U, K, Ua, Ka) once the single-interval terms are filled
   void single(int r, Vec3& U, Vec3& K, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) const noexcept {
     for (int c = 0; c < 3; ++c) {
       U[c] = one_u[c][r];

@@ -5,6 +5,7 @@
 /// one lane per piece. No copy contracts to FMA, so every instruction set gives the same bits. Only the
 /// record (plain doubles) and plain doubles cross between the kernels and the rest of the library.
 
+#include "blend_bounds.hpp"
 #include "core/dispatch.hpp"
 #include "line_blend.hpp"
 #include "netshape/core/types.hpp"
@@ -63,6 +64,9 @@ struct CubicRecordKernels {
   /// set_box_reach() instead. V, A: per-axis velocity and acceleration limits (3). Lanes past r.np as
   /// for freeze.
   unsigned (*caps_reach)(CubicRecord& r, double feed_cap, const double* V, const double* A);
+  /// BlendBounds::bounds() and ramps() over each single table interval, for all 16 at once, into t's
+  /// one_u, one_k, one_ua, one_ka (BlendBounds::single() reads them).
+  void (*singles)(BlendBounds& t);
   const char* isa;  ///< "baseline", "avx2" or "avx512"
 };
 NETSHAPE_SIMD_DECLARE(CubicRecordKernels, cubic_record_kernel_table)

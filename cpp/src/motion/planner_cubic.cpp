@@ -125,7 +125,7 @@ void PlannerState::split_cubic_block() noexcept {
   cuts[nc++] = b;
   const int m = nc - 1;
   const AxisMinima minima = axis_minima(g);  // the same axes move on every piece
-  if (step == 1) tab.singles();  // the pieces are single table intervals (but at trimmed ends)
+  if (step == 1) cubic_record_kernels_->singles(tab);  // the pieces are single table intervals (but at trimmed ends)
   // the intervals [i0, i1) that hold piece k, [cuts[k], cuts[k + 1]]: i0 is the interval holding its
   // start (interval_at), i1 the first table node at or past its end. A cut on table node i, where the
   // table (non-decreasing) rises on both sides of it, gives them without a search: interval_at(table[i])

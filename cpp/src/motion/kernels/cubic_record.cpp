@@ -10,6 +10,7 @@
 
 #include <limits>
 
+#include "motion/blend_bounds.hpp"
 #include "motion/cubic_record.hpp"
 
 namespace netshape::motion::detail::NETSHAPE_KERNEL_ISA {
@@ -147,9 +148,40 @@ __attribute__((flatten)) unsigned caps_reach(CubicRecord& r, double feed_cap, co
   return bad;
 }
 
+// BlendBounds::bounds() and ramps() of each single table interval (ramp_terms()' four cases as masks;
+// both directions get the same U; negation flips the sign bit).
+__attribute__((flatten)) void singles(BlendBounds& t) {
+  const D zero = B::set(0.0), one = B::set(1.0), minus_one = B::set(-1.0), quarter = B::set(0.25),
+          eps = B::set(1e-12), grow = B::set(1.0 + 1e-9), shrink = B::set(1.0 - 1e-9);
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 16; r += W) {
+      const auto at = [r](const double* row) NETSHAPE_SIMD_LAMBDA { return B::loadu(row + r); };
+      // bounds(r, r + 1)
+      const D U = B::min(B::add(B::add(B::max(at(t.mu[c]), zero), B::mul(quarter, B::max(at(t.du[c]), zero))), eps), one);
+      const D K = B::add(B::mul(B::max(at(t.mk[c]), zero), grow), B::mul(quarter, B::max(at(t.dk[c]), zero)));
+      // ramps(r, r + 1): the signed ranges with their margins, then ramp_terms()
+      const D e = at(t.st[c]), f = at(t.sk[c]), kx0 = at(t.kmax[c]), kn0 = at(t.kmin[c]);
+      const D tx = B::min(B::add(B::add(at(t.tmax[c]), B::mul(quarter, e)), eps), one);
+      const D tn = B::max(B::sub(B::sub(at(t.tmin[c]), B::mul(quarter, e)), eps), minus_one);
+      const D kx = B::add(B::mul(kx0, B::blend(B::gt(kx0, zero), shrink, grow)), B::mul(quarter, f));
+      const D kn = B::sub(B::mul(kn0, B::blend(B::lt(kn0, zero), shrink, grow)), B::mul(quarter, f));
+      const D mtn = -tn, mkn = -kn;
+      const M up = B::gt(tx, zero), down = B::gt(mtn, zero);
+      const D u = B::blend(up, B::blend(down, zero, mtn), B::blend(down, tx, B::max(mtn, tx)));
+      const D kb = B::max(mkn, kx);
+      const D k0 = B::blend(up, B::blend(down, zero, mkn), B::blend(down, kx, kb));
+      const D k1 = B::blend(up, B::blend(down, zero, kx), B::blend(down, mkn, kb));
+      B::storeu(t.one_u[c] + r, U);
+      B::storeu(t.one_k[c] + r, K);
+      B::storeu(t.one_ua[c] + r, B::min(U, u));
+      B::storeu(t.one_ka[0][c] + r, B::min(K, k0));
+      B::storeu(t.one_ka[1][c] + r, B::min(K, k1));
+    }
+}
+
 }  // namespace
 
 extern const CubicRecordKernels cubic_record_kernel_table;
-const CubicRecordKernels cubic_record_kernel_table{&freeze, &caps_reach, NETSHAPE_KERNEL_ISA_NAME};
+const CubicRecordKernels cubic_record_kernel_table{&freeze, &caps_reach, &singles, NETSHAPE_KERNEL_ISA_NAME};
 
 }  // namespace netshape::motion::detail::NETSHAPE_KERNEL_ISA
