@@ -83,6 +83,8 @@ struct Batch<1> {
   static NETSHAPE_SIMD_INLINE D mul(D a, D b) { return a * b; }
   static NETSHAPE_SIMD_INLINE D div(D a, D b) { return a / b; }
   static NETSHAPE_SIMD_INLINE D sqrt(D a) { return std::sqrt(a); }
+  /// |a|: the sign bit cleared
+  static NETSHAPE_SIMD_INLINE D abs(D a) { return std::fabs(a); }
   static NETSHAPE_SIMD_INLINE D floor(D a) { return std::floor(a); }
   static NETSHAPE_SIMD_INLINE D ceil(D a) { return std::ceil(a); }
   static NETSHAPE_SIMD_INLINE D max(D a, D b) { return a > b ? a : b; }
@@ -140,6 +142,13 @@ struct Batch<2> {
     return D{std::sqrt(a[0]), std::sqrt(a[1])};
 #endif
   }
+  static NETSHAPE_SIMD_INLINE D abs(D a) {
+#if defined(__SSE2__)
+    return _mm_andnot_pd(_mm_set1_pd(-0.0), a);
+#else
+    return D{std::fabs(a[0]), std::fabs(a[1])};
+#endif
+  }
   static NETSHAPE_SIMD_INLINE D floor(D a) { return D{std::floor(a[0]), std::floor(a[1])}; }
   static NETSHAPE_SIMD_INLINE D ceil(D a) { return D{std::ceil(a[0]), std::ceil(a[1])}; }
   static NETSHAPE_SIMD_INLINE D max(D a, D b) { return a > b ? a : b; }
@@ -188,6 +197,7 @@ struct Batch<4> {
   static NETSHAPE_SIMD_INLINE D mul(D a, D b) { return _mm256_mul_pd(a, b); }
   static NETSHAPE_SIMD_INLINE D div(D a, D b) { return _mm256_div_pd(a, b); }
   static NETSHAPE_SIMD_INLINE D sqrt(D a) { return _mm256_sqrt_pd(a); }
+  static NETSHAPE_SIMD_INLINE D abs(D a) { return _mm256_andnot_pd(_mm256_set1_pd(-0.0), a); }
   static NETSHAPE_SIMD_INLINE D floor(D a) { return _mm256_floor_pd(a); }
   static NETSHAPE_SIMD_INLINE D ceil(D a) { return _mm256_ceil_pd(a); }
   static NETSHAPE_SIMD_INLINE D max(D a, D b) { return _mm256_max_pd(a, b); }  // a > b ? a : b
@@ -240,6 +250,7 @@ struct Batch<8> {
   static NETSHAPE_SIMD_INLINE D mul(D a, D b) { return _mm512_mul_pd(a, b); }
   static NETSHAPE_SIMD_INLINE D div(D a, D b) { return _mm512_div_pd(a, b); }
   static NETSHAPE_SIMD_INLINE D sqrt(D a) { return _mm512_sqrt_pd(a); }
+  static NETSHAPE_SIMD_INLINE D abs(D a) { return _mm512_abs_pd(a); }
   static NETSHAPE_SIMD_INLINE D floor(D a) { return _mm512_roundscale_pd(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC); }
   static NETSHAPE_SIMD_INLINE D ceil(D a) { return _mm512_roundscale_pd(a, _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC); }
   static NETSHAPE_SIMD_INLINE D max(D a, D b) { return _mm512_max_pd(a, b); }  // a > b ? a : b

@@ -88,7 +88,9 @@ inline void ramp_terms(double tx, double tn, double kx, double kn, double Uabs, 
 //
 // Signed: per table interval the largest and smallest u_i and κn_i at its two nodes, widened by the
 // same kind of margin from the second differences of the signed values. ramps() turns them into the
-// per-axis terms of the axis box for each direction of a speed change (see there).
+// per-axis terms of the axis box for each direction of a speed change (see there). The rows per
+// interval are filled from the node values by the cubic-record kernel CubicRecordKernels::fill
+// (kernels/cubic_record.cpp).
 struct BlendBounds {
   // per axis c and table interval r (axis-major, so the loops over the nodes run on contiguous rows)
   double mu[3][16], mk[3][16], du[3][16], dk[3][16];  // raw maxima per table interval
@@ -97,40 +99,6 @@ struct BlendBounds {
   // bounds() and ramps() of each table interval alone, [axis][interval] (the cubic-record kernel
   // CubicRecordKernels::singles fills them)
   double one_u[3][16], one_k[3][16], one_ua[3][16], one_ka[2][3][16];
-  void fill(const std::array<Vec3, 17>& T, const std::array<Vec3, 17>& Kv) noexcept {
-    // per axis as arrays (Eigen vectorises them; abs, max and min are exact, and the second
-    // differences keep the scalar order (a − 2b) + c): the signed node values u_c, κn_c, their
-    // absolute values, and the absolute second differences of all four (0 at the two end nodes)
-    using Nodes = Eigen::Array<double, 17, 1>;
-    using Intervals = Eigen::Array<double, 16, 1>;
-    const auto second = [](const Nodes& x) {
-      Nodes d;
-      d[0] = d[16] = 0.0;
-      d.segment<15>(1) = (x.head<15>() - 2.0 * x.segment<15>(1) + x.tail<15>()).abs();
-      return d;
-    };
-    const auto upper = [](const Nodes& x, double* out) {
-      Eigen::Map<Intervals>{out} = x.head<16>().max(x.tail<16>());
-    };
-    for (int c = 0; c < 3; ++c) {
-      Nodes ts, ks;
-      for (std::size_t i = 0; i < 17; ++i) {
-        ts[static_cast<Eigen::Index>(i)] = T[i][c];
-        ks[static_cast<Eigen::Index>(i)] = Kv[i][c];
-      }
-      const Nodes t = ts.abs(), k = ks.abs();
-      upper(t, mu[c]);
-      upper(k, mk[c]);
-      upper(second(t), du[c]);
-      upper(second(k), dk[c]);
-      upper(ts, tmax[c]);
-      Eigen::Map<Intervals>{tmin[c]} = ts.head<16>().min(ts.tail<16>());
-      upper(ks, kmax[c]);
-      Eigen::Map<Intervals>{kmin[c]} = ks.head<16>().min(ks.tail<16>());
-      upper(second(ts), st[c]);
-      upper(second(ks), sk[c]);
-    }
-  }
   // Per-axis terms over the table intervals [r0, r1) for a speed change along the path: dir 0 speeding
   // up (path acceleration a ≥ 0), dir 1 slowing down. On the piece u_i·a + κn_i·v² lies in [−A_i, A_i]
   // when |κn_i|·v² ≤ A_i (the speed cap from bounds()) and Uₐ_i·|a| + Kₐ_i·v² ≤ A_i: of the two sides

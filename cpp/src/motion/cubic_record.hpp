@@ -67,6 +67,9 @@ struct CubicRecordKernels {
   /// BlendBounds::bounds() and ramps() over each single table interval, for all 16 at once, into t's
   /// one_u, one_k, one_ua, one_ka (BlendBounds::single() reads them).
   void (*singles)(BlendBounds& t);
+  /// BlendBounds::fill(): t's per-interval rows from the unit tangents T and curvature vectors Kv at the
+  /// 17 table nodes (each 17 Vec3, as 51 doubles).
+  void (*fill)(BlendBounds& t, const double* T, const double* Kv);
   const char* isa;  ///< "baseline", "avx2" or "avx512"
 };
 NETSHAPE_SIMD_DECLARE(CubicRecordKernels, cubic_record_kernel_table)

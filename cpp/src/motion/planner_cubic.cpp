@@ -66,7 +66,7 @@ void PlannerState::init_cubic_node(Node& n, const toolpath::Block& b, const Cubi
   n.segment = Segment::blend(b.start, c.c1, c.c2, b.end, source, &T, &Kv);
   n.segment.block = b;  // the chord (kind line) with the block's feed and line number
   CubicTable& ct = cubic_table(source);
-  ct.bounds.fill(T, Kv);
+  cubic_record_kernels_->fill(ct.bounds, T[0].data(), Kv[0].data());
   for (std::size_t i = 0; i < 17; ++i) ct.curvature[i] = Kv[i].norm();
   ct.bounds.whole(n.tangent_bound, n.curvature_bound, n.ramp_tangent, n.ramp_curvature);
   n.geometry = Geometry::in_node;

@@ -140,7 +140,7 @@ __attribute__((flatten)) unsigned caps_reach(CubicRecord& r, double feed_cap, co
     }
     if (B::count(ok) < W) {
       alignas(64) double flag[W];
-      B::storeu(flag, B::blend(ok, one, zero));
+      B::storeu(flag, B::blend(ok, zero, one));  // 1 where ok
       for (int j = 0; j < W && k + j < r.np; ++j)
         if (flag[j] == 0.0) bad |= 1u << (k + j);
     }
@@ -179,9 +179,49 @@ __attribute__((flatten)) void singles(BlendBounds& t) {
     }
 }
 
+// BlendBounds' per-interval rows of one axis from its node values x (17, padded): the raw maxima of
+// |x| and of its absolute second differences |(x[i−1] − 2·x[i]) + x[i+1]| (0 at the two end nodes),
+// the signed extremes of x and the maxima of its own second differences; std::max(x[r], x[r + 1]) is
+// B::max(x[r + 1], x[r]), std::min(x[r], x[r + 1]) is B::min(x[r + 1], x[r]).
+constexpr int node_lanes = 32;  // 17 nodes, room for whole packets reading up to node 16 + W + 1
+NETSHAPE_SIMD_INLINE void axis_rows(const double* x, double* amax, double* a2max, double* hi, double* lo, double* s2max) {
+  alignas(64) double a[node_lanes], da[node_lanes], dx[node_lanes];
+  const D two = B::set(2.0);
+  for (int i = 0; i < 24; i += W) B::storeu(a + i, B::abs(B::loadu(x + i)));
+  for (int i = 1; i < 17; i += W) {
+    const auto second = [i, two](const double* v) NETSHAPE_SIMD_LAMBDA {
+      return B::abs(B::add(B::sub(B::loadu(v + i - 1), B::mul(two, B::loadu(v + i))), B::loadu(v + i + 1)));
+    };
+    B::storeu(da + i, second(a));
+    B::storeu(dx + i, second(x));
+  }
+  da[0] = da[16] = dx[0] = dx[16] = 0.0;
+  for (int r = 0; r < 16; r += W) {
+    const auto upper = [r](const double* v) NETSHAPE_SIMD_LAMBDA { return B::max(B::loadu(v + r + 1), B::loadu(v + r)); };
+    B::storeu(amax + r, upper(a));
+    B::storeu(a2max + r, upper(da));
+    B::storeu(hi + r, upper(x));
+    B::storeu(lo + r, B::min(B::loadu(x + r + 1), B::loadu(x + r)));
+    B::storeu(s2max + r, upper(dx));
+  }
+}
+
+// BlendBounds' rows from the unit tangents T and curvature vectors Kv at the 17 table nodes.
+__attribute__((flatten)) void fill(BlendBounds& t, const double* T, const double* Kv) {
+  for (int c = 0; c < 3; ++c) {
+    alignas(64) double ts[node_lanes] = {}, ks[node_lanes] = {};
+    for (int i = 0; i < 17; ++i) {
+      ts[i] = T[3 * i + c];
+      ks[i] = Kv[3 * i + c];
+    }
+    axis_rows(ts, t.mu[c], t.du[c], t.tmax[c], t.tmin[c], t.st[c]);
+    axis_rows(ks, t.mk[c], t.dk[c], t.kmax[c], t.kmin[c], t.sk[c]);
+  }
+}
+
 }  // namespace
 
 extern const CubicRecordKernels cubic_record_kernel_table;
-const CubicRecordKernels cubic_record_kernel_table{&freeze, &caps_reach, &singles, NETSHAPE_KERNEL_ISA_NAME};
+const CubicRecordKernels cubic_record_kernel_table{&freeze, &caps_reach, &singles, &fill, NETSHAPE_KERNEL_ISA_NAME};
 
 }  // namespace netshape::motion::detail::NETSHAPE_KERNEL_ISA
