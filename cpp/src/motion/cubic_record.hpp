@@ -28,6 +28,11 @@ struct CubicRecord {
   double curvature[pieces] = {}, curvature_rate[pieces] = {};             ///< [1/mm], [1/mm²]
   double v_max[pieces] = {};                                              ///< [mm/s]
   double w_junction[pieces] = {}, w_backward[pieces] = {};                ///< [mm²/s²]
+  /// The axes whose slowing-down term can bind on some piece, first `live_down` of live_down_axis: an
+  /// axis with alpha_down ≥ 0 and beta_down ≥ w_junction on every piece never falls below the junction
+  /// limit, so the backward step's minimum is the same without it (set_live_axes())
+  int live_down = 3;
+  int live_down_axis[3] = {0, 1, 2};
   double alpha[3][pieces] = {}, beta[3][pieces] = {}, alpha_down[3][pieces] = {}, beta_down[3][pieces] = {};
   double ramp_u[2][3][pieces] = {}, ramp_k[2][3][pieces] = {};
   double u_abs[3][pieces] = {}, k_abs[3][pieces] = {};  ///< unsigned bounds (Node::tangent_bound, curvature_bound)
@@ -36,6 +41,15 @@ struct CubicRecord {
   double t1[pieces] = {}, t2[pieces] = {}, t3[pieces] = {};
   double d1[pieces] = {}, d2[pieces] = {}, d3[pieces] = {};
   double dur[pieces] = {}, t0[pieces] = {};
+  /// live_down and live_down_axis from the pieces' coefficients and junction limits.
+  void set_live_axes() noexcept {
+    live_down = 0;
+    for (int i = 0; i < 3; ++i) {
+      bool binds = false;
+      for (int k = 0; k < np; ++k) binds = binds || !(alpha_down[i][k] >= 0.0 && beta_down[i][k] >= w_junction[k]);
+      if (binds) live_down_axis[live_down++] = i;
+    }
+  }
   /// The frozen profile of piece k.
   void profile(int k, Profile& p) const noexcept { frozen_profile(*this, k, p); }
   /// The ramp terms of piece k as a Node holds them (Node::ramp_tangent, Node::ramp_curvature).

@@ -264,6 +264,7 @@ void PlannerState::fill_cubic_record(Node& whole, const PieceBase& base, const d
     r.w_junction[k] = vj * vj;
     r.w_backward[k] = 0.0;
   }
+  r.set_live_axes();
   // the node: the whole cubic with its trims (push() and the blend rule read its curve at the end),
   // the first piece's junction and the last piece's cap (the junction after it reads v_max)
   whole.geometry = Geometry::cubic_record;

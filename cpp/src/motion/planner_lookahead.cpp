@@ -24,6 +24,36 @@ inline double reach_back_squared(const PassRecord& n, double w_next) noexcept {
 }
 
 namespace {
+// The backward steps over the pieces of a cubic record from the last to the first (the step of a node
+// without jerk limits, the only mode with cubic records), w the squared speed after the record on
+// entry and before it on return, with the N axes of r.live_down_axis (the others never bind: the
+// minimum is the same, and so are its bits, the values being ≥ 0). With stop_if_same as back_steps.
+template <bool stop_if_same, int N>
+inline void cubic_back_steps(CubicRecord& r, double& w) noexcept {
+  const double* al[3] = {nullptr, nullptr, nullptr};
+  const double* be[3] = {nullptr, nullptr, nullptr};
+  for (int j = 0; j < N; ++j) {
+    al[j] = r.alpha_down[r.live_down_axis[j]];
+    be[j] = r.beta_down[r.live_down_axis[j]];
+  }
+  for (int p = r.np - 1; p >= 0; --p) {
+    if constexpr (N == 3) {
+      w = min_of(min_of(r.w_junction[p], al[0][p] * w + be[0][p]), min_of(al[1][p] * w + be[1][p], al[2][p] * w + be[2][p]));
+    } else if constexpr (N == 2) {
+      w = min_of(min_of(r.w_junction[p], al[0][p] * w + be[0][p]), al[1][p] * w + be[1][p]);
+    } else if constexpr (N == 1) {
+      w = min_of(r.w_junction[p], al[0][p] * w + be[0][p]);
+    } else {
+      w = r.w_junction[p];
+    }
+    if (stop_if_same && w == r.w_backward[p]) {  // as for the line-blend pieces (back_steps)
+      w = r.w_backward[0];
+      return;
+    }
+    r.w_backward[p] = w;
+  }
+}
+
 // Backward-pass steps over the nodes k = hi, hi − 1, ..., lo (ring records rec, slot k & mask):
 // w_next becomes each node's new squared speed, min(junction limit, reach(node, w_next)); a line-blend
 // or cubic-record node runs over its pieces (line_blends, cubics). With stop_if_same the steps stop at
@@ -52,15 +82,11 @@ inline bool back_steps(PassRecord* rec, std::size_t mask, LineBlendRecord* line_
       // a cubic-record node: its pieces from the last to the first, each as a node of its own
       CubicRecord& r = cubics[static_cast<std::size_t>(n.cubic)];
       w = w_next;
-      for (int p = r.np - 1; p >= 0; --p) {
-        // the step of a node without jerk limits (the only mode with cubic records)
-        w = min_of(min_of(r.w_junction[p], r.alpha_down[0][p] * w + r.beta_down[0][p]),
-                   min_of(r.alpha_down[1][p] * w + r.beta_down[1][p], r.alpha_down[2][p] * w + r.beta_down[2][p]));
-        if (stop_if_same && w == r.w_backward[p]) {  // as for the line-blend pieces above
-          w = r.w_backward[0];
-          break;
-        }
-        r.w_backward[p] = w;
+      switch (r.live_down) {
+        case 3: cubic_back_steps<stop_if_same, 3>(r, w); break;
+        case 2: cubic_back_steps<stop_if_same, 2>(r, w); break;
+        case 1: cubic_back_steps<stop_if_same, 1>(r, w); break;
+        default: cubic_back_steps<stop_if_same, 0>(r, w); break;
       }
     } else {
       w = reach(n, w_next);
