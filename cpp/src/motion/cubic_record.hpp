@@ -15,11 +15,11 @@ namespace netshape::motion::detail {
 /// The pieces of a cubic block held by one ring node (Geometry::cubic_record; only without jerk
 /// limits), kept once per block by the planner. Per piece: its trims of the whole cubic and length,
 /// largest curvature and |dκ/ds| (the output segment's), speed cap, squared junction limit, the reach
-/// coefficients of both directions (PassRecord's alpha, beta, alpha_down, beta_down), the backward
-/// squared speed at its start, the per-axis ramp terms (Node::ramp_tangent, ramp_curvature) and, once
-/// frozen, its trapezoid (speeds, acceleration, phase times and distances; no windows) and start time.
-/// Every field is an array over the pieces ([axis][piece], [direction][axis][piece]); the passes, the
-/// freeze and the output run over them as over nodes of their own, with the same arithmetic.
+/// coefficients of both directions (PassRecord's alpha, beta, alpha_down, beta_down), the per-axis ramp
+/// terms (Node::ramp_tangent, ramp_curvature) and, once frozen, its trapezoid (speeds, acceleration,
+/// phase times and distances; no windows) and start time. Every field but w_after and the live axes is
+/// an array over the pieces ([axis][piece], [direction][axis][piece]); the passes, the freeze and the
+/// output run over them as over nodes of their own, with the same arithmetic.
 struct CubicRecord {
   static constexpr int pieces = 16;
   int np = 0;      ///< pieces in use (1..pieces)
@@ -27,7 +27,11 @@ struct CubicRecord {
   double trim_start[pieces] = {}, trim_end[pieces] = {}, len[pieces] = {};  ///< [mm]
   double curvature[pieces] = {}, curvature_rate[pieces] = {};             ///< [1/mm], [1/mm²]
   double v_max[pieces] = {};                                              ///< [mm/s]
-  double w_junction[pieces] = {}, w_backward[pieces] = {};                ///< [mm²/s²]
+  double w_junction[pieces] = {};  ///< [mm²/s²]
+  /// The squared speed after the last piece the backward pass last carried into the record [mm²/s²]
+  /// (−1 before the first pass); the pieces' backward speeds are its chain of backward steps, found
+  /// again where they are needed (the freeze) rather than stored by every pass
+  double w_after = -1.0;
   /// The axes whose slowing-down term can bind on some piece, first `live_down` of live_down_axis: an
   /// axis with alpha_down ≥ 0 and beta_down ≥ w_junction on every piece never falls below the junction
   /// limit, so the backward step's minimum is the same without it (set_live_axes())

@@ -262,8 +262,8 @@ void PlannerState::fill_cubic_record(Node& whole, const PieceBase& base, const d
     const double vj = std::min(k == 0 ? base.v_corner : r.v_max[k - 1], r.v_max[k]);
     if (k == 0) whole.v_junction = vj;
     r.w_junction[k] = vj * vj;
-    r.w_backward[k] = 0.0;
   }
+  r.w_after = -1.0;
   r.set_live_axes();
   // the node: the whole cubic with its trims (push() and the blend rule read its curve at the end),
   // the first piece's junction and the last piece's cap (the junction after it reads v_max)

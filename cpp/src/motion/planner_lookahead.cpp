@@ -25,11 +25,12 @@ inline double reach_back_squared(const PassRecord& n, double w_next) noexcept {
 
 namespace {
 // The backward steps over the pieces of a cubic record from the last to the first (the step of a node
-// without jerk limits, the only mode with cubic records), w the squared speed after the record on
-// entry and before it on return, with the N axes of r.live_down_axis (the others never bind: the
-// minimum is the same, and so are its bits, the values being ≥ 0). With stop_if_same as back_steps.
-template <bool stop_if_same, int N>
-inline void cubic_back_steps(CubicRecord& r, double& w) noexcept {
+// without jerk limits, the only mode with cubic records) from w, the squared speed after the record;
+// returns the squared speed before it, with each piece's into wb[p] when `store`. Only the N axes of
+// r.live_down_axis (the others never bind: the minimum is the same, and so are its bits, the values
+// being ≥ 0).
+template <int N, bool store>
+inline double cubic_chain(const CubicRecord& r, double w, double* wb) noexcept {
   const double* al[3] = {nullptr, nullptr, nullptr};
   const double* be[3] = {nullptr, nullptr, nullptr};
   for (int j = 0; j < N; ++j) {
@@ -46,11 +47,17 @@ inline void cubic_back_steps(CubicRecord& r, double& w) noexcept {
     } else {
       w = r.w_junction[p];
     }
-    if (stop_if_same && w == r.w_backward[p]) {  // as for the line-blend pieces (back_steps)
-      w = r.w_backward[0];
-      return;
-    }
-    r.w_backward[p] = w;
+    if constexpr (store) wb[p] = w;
+  }
+  return w;
+}
+template <bool store>
+inline double cubic_chain(const CubicRecord& r, double w, double* wb) noexcept {
+  switch (r.live_down) {
+    case 3: return cubic_chain<3, store>(r, w, wb);
+    case 2: return cubic_chain<2, store>(r, w, wb);
+    case 1: return cubic_chain<1, store>(r, w, wb);
+    default: return cubic_chain<0, store>(r, w, wb);
   }
 }
 
@@ -79,15 +86,12 @@ inline bool back_steps(PassRecord* rec, std::size_t mask, LineBlendRecord* line_
         r.w_backward[p] = w;
       }
     } else if (n.cubic >= 0) {
-      // a cubic-record node: its pieces from the last to the first, each as a node of its own
+      // a cubic-record node: its pieces from the last to the first, each as a node of its own; what
+      // it carries back depends on what comes after it alone
       CubicRecord& r = cubics[static_cast<std::size_t>(n.cubic)];
-      w = w_next;
-      switch (r.live_down) {
-        case 3: cubic_back_steps<stop_if_same, 3>(r, w); break;
-        case 2: cubic_back_steps<stop_if_same, 2>(r, w); break;
-        case 1: cubic_back_steps<stop_if_same, 1>(r, w); break;
-        default: cubic_back_steps<stop_if_same, 0>(r, w); break;
-      }
+      if (stop_if_same && w_next == r.w_after) return false;  // nothing changes here or further back
+      r.w_after = w_next;
+      w = cubic_chain<false>(r, w_next, nullptr);
     } else {
       w = reach(n, w_next);
     }
@@ -228,9 +232,11 @@ void PlannerState::freeze_record_node(Node& n, double vs, double ve, double t_en
 // element).
 void PlannerState::freeze_cubic_record(Node& n, CubicRecord& r, double vs, double wt) noexcept {
   const int np = r.np;
+  double wb[CubicRecord::pieces];  // the pieces' backward squared speeds, as the backward pass found them
+  cubic_chain<true>(r, r.w_after, wb);
   double v = vs;
   for (int k = 0; k < np; ++k) {
-    const double w_end = k + 1 < np ? r.w_backward[k + 1] : wt;
+    const double w_end = k + 1 < np ? wb[k + 1] : wt;
     const double w0 = v * v;  // reach_squared() without jerk limits
     const double reach = std::min({r.alpha[0][k] * w0 + r.beta[0][k], r.alpha[1][k] * w0 + r.beta[1][k],
                                    r.alpha[2][k] * w0 + r.beta[2][k]});
