@@ -88,6 +88,11 @@ struct CubicRecordKernels {
   /// BlendBounds::fill(): t's per-interval rows from the unit tangents T and curvature vectors Kv at the
   /// 17 table nodes (each 17 Vec3, as 51 doubles).
   void (*fill)(BlendBounds& t, const double* T, const double* Kv);
+  /// For the cubic Bézier with control points P (P0..P3, 12 doubles): Segment::blend()'s arc-length
+  /// table (17) and the curvature at the table nodes (k_at, 17; what finish_blend() reads), and t's rows
+  /// as fill() gives them from the node frames. Returns false, with nothing written, for a Bézier
+  /// symmetric about u = 1/2 (a blend between two lines; Segment::blend() handles it).
+  bool (*cubic_node)(const double* P, double* table, double* k_at, BlendBounds& t);
   const char* isa;  ///< "baseline", "avx2" or "avx512"
 };
 NETSHAPE_SIMD_DECLARE(CubicRecordKernels, cubic_record_kernel_table)

@@ -62,12 +62,22 @@ const char* PlannerState::cubic_error(const toolpath::Block& b, const CubicContr
 
 void PlannerState::init_cubic_node(Node& n, const toolpath::Block& b, const CubicControls& c, long source) noexcept {
   n = Node{};
-  std::array<Vec3, 17> T, Kv;
-  n.segment = Segment::blend(b.start, c.c1, c.c2, b.end, source, &T, &Kv);
-  n.segment.block = b;  // the chord (kind line) with the block's feed and line number
   CubicTable& ct = cubic_table(source);
-  cubic_record_kernels_->fill(ct.bounds, T[0].data(), Kv[0].data());
-  for (std::size_t i = 0; i < 17; ++i) ct.curvature[i] = Kv[i].norm();
+  Segment& s = n.segment;
+  // Segment::blend(b.start, c.c1, c.c2, b.end, source) with its node frames straight into the table's
+  // bounds (the cubic-record kernel); symmetric Béziers through Segment::blend itself
+  s.kind = SegmentKind::blend;
+  s.ctrl = {b.start, c.c1, c.c2, b.end};
+  s.source = source;
+  if (cubic_record_kernels_->cubic_node(s.ctrl[0].data(), s.table.data(), ct.curvature, ct.bounds)) {
+    finish_blend(s, ct.curvature);
+  } else {
+    std::array<Vec3, 17> T, Kv;
+    s = Segment::blend(b.start, c.c1, c.c2, b.end, source, &T, &Kv);
+    cubic_record_kernels_->fill(ct.bounds, T[0].data(), Kv[0].data());
+    for (std::size_t i = 0; i < 17; ++i) ct.curvature[i] = Kv[i].norm();
+  }
+  s.block = b;  // the chord (kind line) with the block's feed and line number
   ct.bounds.whole(n.tangent_bound, n.curvature_bound, n.ramp_tangent, n.ramp_curvature);
   n.geometry = Geometry::in_node;
 }

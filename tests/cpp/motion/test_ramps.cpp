@@ -164,6 +164,51 @@ TEST_CASE("the cubic-record kernel's BlendBounds rows and BlendBounds::whole are
   }
 }
 
+TEST_CASE("the cubic-record kernel's cubic_node gives Segment::blend's table and curvatures and the rows, bit for bit") {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> U01(-1.0, 1.0);
+  int symmetric = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    // random cubics (some planar, some with P1 = P2 or a straight part, some symmetric blends)
+    const Vec3 p0(10 * U01(rng), 10 * U01(rng), 10 * U01(rng));
+    const double z = trial % 3 == 0 ? 0.0 : 0.4, scale = trial % 4 == 0 ? 1e-3 : 1.0;
+    const Vec3 p1 = p0 + scale * Vec3(1.0 + 0.5 * U01(rng), 0.6 * U01(rng), z * U01(rng));
+    Vec3 p2 = trial % 5 == 0 ? Vec3(p1 + (p1 - p0)) : Vec3(p1 + scale * Vec3(0.8 * U01(rng), 1.0 + 0.5 * U01(rng), z * U01(rng)));
+    Vec3 p3 = p2 + scale * Vec3(0.6 * U01(rng) - 0.5, 0.5 * U01(rng) + 0.5, z * U01(rng));
+    if (trial % 7 == 0) {  // a blend between two lines: P1 = P2, |P1 − P0| = |P3 − P2|
+      p2 = p1;
+      p3 = p1 + (p1 - p0).norm() * Vec3(0.0, 1.0, 0.0);
+    }
+    std::array<Vec3, 17> T, Kv;
+    const Segment g = Segment::blend(p0, p1, p2, p3, 0, &T, &Kv);
+    BlendBounds a, b;
+    reference_fill(b, T, Kv);
+    const std::array<Vec3, 4> P{p0, p1, p2, p3};
+    std::array<double, 17> table{};
+    double k_at[17];
+    if (!cubic_record_kernels().cubic_node(P[0].data(), table.data(), k_at, a)) {
+      ++symmetric;
+      continue;
+    }
+    CHECK(std::memcmp(table.data(), g.table.data(), sizeof table) == 0);
+    for (std::size_t i = 0; i < 17; ++i) {
+      const double k = Kv[i].norm();
+      CHECK(std::memcmp(&k_at[i], &k, sizeof k) == 0);
+    }
+    CHECK(std::memcmp(a.mu, b.mu, sizeof a.mu) == 0);
+    CHECK(std::memcmp(a.mk, b.mk, sizeof a.mk) == 0);
+    CHECK(std::memcmp(a.du, b.du, sizeof a.du) == 0);
+    CHECK(std::memcmp(a.dk, b.dk, sizeof a.dk) == 0);
+    CHECK(std::memcmp(a.tmax, b.tmax, sizeof a.tmax) == 0);
+    CHECK(std::memcmp(a.tmin, b.tmin, sizeof a.tmin) == 0);
+    CHECK(std::memcmp(a.kmax, b.kmax, sizeof a.kmax) == 0);
+    CHECK(std::memcmp(a.kmin, b.kmin, sizeof a.kmin) == 0);
+    CHECK(std::memcmp(a.st, b.st, sizeof a.st) == 0);
+    CHECK(std::memcmp(a.sk, b.sk, sizeof a.sk) == 0);
+  }
+  CHECK(symmetric >= 40);  // the blends between two lines are left to Segment::blend
+}
+
 TEST_CASE("the cubic-record kernel's singles give bounds() and ramps() of every single interval, bit for bit") {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> U01(-1.0, 1.0);

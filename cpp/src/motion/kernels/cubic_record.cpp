@@ -8,6 +8,7 @@
 // std::min(a, b) is B::min(b, a) (B::max(a, b) is a > b ? a : b), including ties and signed zeros.
 #include "core/simd.hpp"  // first: it wraps the intrinsic headers (see there)
 
+#include <cmath>
 #include <limits>
 
 #include "motion/blend_bounds.hpp"
@@ -219,9 +220,77 @@ __attribute__((flatten)) void fill(BlendBounds& t, const double* T, const double
   }
 }
 
+// Segment::blend()'s arc-length table and node frames (segment.cpp) and then fill() for a cubic block:
+// the hodograph B'(u) = c0 + c1·u + c2·u², the table by 3-point Gauss-Legendre per interval of
+// |B'| = sqrt(max(0, q0 + u·(q1 + u·(q2 + u·(q3 + u·q4))))) (intervals in the lanes), the unit tangent,
+// curvature vector and curvature at the nodes u = i/16 (nodes in the lanes); Eigen's Vector3d sums
+// (squaredNorm, dot) add as (x + y) + z. Returns false, with nothing written, for a Bézier symmetric
+// about u = 1/2 (Segment::blend mirrors its second half; the caller takes that path).
+__attribute__((flatten)) bool cubic_node(const double* P, double* table, double* k_at, BlendBounds& t) {
+  double d0[3], d1[3], d2[3], c0[3], c1[3], c2[3];
+  for (int c = 0; c < 3; ++c) {
+    d0[c] = P[3 + c] - P[c];
+    d1[c] = P[6 + c] - P[3 + c];
+    d2[c] = P[9 + c] - P[6 + c];
+    c0[c] = 3.0 * d0[c];
+    c1[c] = 6.0 * (d1[c] - d0[c]);
+    c2[c] = 3.0 * (d0[c] - 2.0 * d1[c] + d2[c]);
+  }
+  const auto dot = [](const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  const double n0 = dot(d0, d0);
+  if (dot(d1, d1) <= 1e-20 * n0 && std::abs(n0 - dot(d2, d2)) <= 1e-12 * n0) return false;
+  const D zero = B::set(0.0), iota = B::iota(), sixteenth = B::set(16.0);
+  // the table: |B'|² as a quartic, three nodes per interval
+  const D q0 = B::set(dot(c0, c0)), q1 = B::set(2.0 * dot(c0, c1)), q2 = B::set(dot(c1, c1) + 2.0 * dot(c0, c2)),
+          q3 = B::set(2.0 * dot(c1, c2)), q4 = B::set(dot(c2, c2));
+  const auto speed = [&](D u) NETSHAPE_SIMD_LAMBDA {
+    return B::sqrt(B::max(B::add(q0, B::mul(u, B::add(q1, B::mul(u, B::add(q2, B::mul(u, B::add(q3, B::mul(u, q4)))))))), zero));
+  };
+  constexpr double gx = 0.7745966692414834, w0 = 8.0 / 9.0, w1 = 5.0 / 9.0, h = 0.5 / 16.0;
+  alignas(64) double piece[16];
+  for (int i = 0; i < 16; i += W) {
+    const D m = B::div(B::add(B::add(iota, B::set(i)), B::set(0.5)), sixteenth);
+    const D hg = B::set(h * gx);
+    B::storeu(piece + i, B::mul(B::set(h), B::add(B::mul(B::set(w0), speed(m)),
+                                                 B::mul(B::set(w1), B::add(speed(B::sub(m, hg)), speed(B::add(m, hg)))))));
+  }
+  table[0] = 0;
+  for (int i = 1; i <= 16; ++i) table[i] = table[i - 1] + piece[i - 1];
+  // the node frames, per axis as rows over the nodes (padded: the lanes past node 16 are not read)
+  alignas(64) double ts[3][node_lanes] = {}, ks[3][node_lanes] = {}, kk[node_lanes];
+  for (int i = 0; i < 17; i += W) {
+    const D u = B::div(B::add(iota, B::set(i)), sixteenth), u2 = B::mul(B::set(2.0), u);
+    D v1[3], v2[3];
+    for (int c = 0; c < 3; ++c) {
+      v1[c] = B::add(B::set(c0[c]), B::mul(u, B::add(B::set(c1[c]), B::mul(u, B::set(c2[c])))));
+      v2[c] = B::add(B::set(c1[c]), B::mul(u2, B::set(c2[c])));
+    }
+    const auto dot3 = [](const D* a, const D* b) NETSHAPE_SIMD_LAMBDA {
+      return B::add(B::add(B::mul(a[0], b[0]), B::mul(a[1], b[1])), B::mul(a[2], b[2]));
+    };
+    const D sp2 = dot3(v1, v1);
+    const M moving = B::gt(sp2, zero);
+    const D isp = B::div(B::set(1.0), B::sqrt(sp2)), isp2 = B::mul(isp, isp);
+    const D along = B::mul(dot3(v2, v1), isp2);
+    D kv[3];
+    for (int c = 0; c < 3; ++c) {
+      kv[c] = B::mul(B::sub(v2[c], B::mul(along, v1[c])), isp2);
+      B::storeu(ts[c] + i, B::blend(moving, zero, B::mul(v1[c], isp)));
+      B::storeu(ks[c] + i, B::blend(moving, zero, kv[c]));
+    }
+    B::storeu(kk + i, B::blend(moving, zero, B::sqrt(dot3(kv, kv))));
+  }
+  for (int i = 0; i < 17; ++i) k_at[i] = kk[i];
+  for (int c = 0; c < 3; ++c) {
+    axis_rows(ts[c], t.mu[c], t.du[c], t.tmax[c], t.tmin[c], t.st[c]);
+    axis_rows(ks[c], t.mk[c], t.dk[c], t.kmax[c], t.kmin[c], t.sk[c]);
+  }
+  return true;
+}
+
 }  // namespace
 
 extern const CubicRecordKernels cubic_record_kernel_table;
-const CubicRecordKernels cubic_record_kernel_table{&freeze, &caps_reach, &singles, &fill, NETSHAPE_KERNEL_ISA_NAME};
+const CubicRecordKernels cubic_record_kernel_table{&freeze, &caps_reach, &singles, &fill, &cubic_node, NETSHAPE_KERNEL_ISA_NAME};
 
 }  // namespace netshape::motion::detail::NETSHAPE_KERNEL_ISA
