@@ -85,6 +85,11 @@ struct CubicRecordKernels {
   /// BlendBounds::bounds() and ramps() over each single table interval, for all 16 at once, into t's
   /// one_u, one_k, one_ua, one_ka (BlendBounds::single() reads them).
   void (*singles)(BlendBounds& t);
+  /// Pieces [0, r.np) of r on the single table intervals r0, r0 + 1, ... (r0 + r.np ≤ 16): their
+  /// bounds and ramp terms as singles() gives them (u_abs, k_abs, ramp_u, ramp_k) and piece_curvature()
+  /// over their two nodes (curvature, curvature_rate) from the curvature k_at and arc length `table` at
+  /// the 17 table nodes, straight into the record.
+  void (*record_singles)(const BlendBounds& t, const double* k_at, const double* table, int r0, CubicRecord& r);
   /// BlendBounds::fill(): t's per-interval rows from the unit tangents T and curvature vectors Kv at the
   /// 17 table nodes (each 17 Vec3, as 51 doubles).
   void (*fill)(BlendBounds& t, const double* T, const double* Kv);

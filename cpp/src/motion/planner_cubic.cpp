@@ -11,10 +11,6 @@
 #include "planner_geometry.hpp"
 #include "planner_state.hpp"
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 namespace netshape::motion::detail {
 
 namespace {
@@ -22,25 +18,6 @@ namespace {
 int interval_at(const std::array<double, 17>& table, double s) {
   const auto it = std::upper_bound(table.begin(), table.end(), s);
   return std::clamp(static_cast<int>(it - table.begin()) - 1, 0, 15);
-}
-
-// piece_curvature() over each single table interval r (nodes r, r + 1) for all 16 at once: with SSE2
-// two intervals per step, the same operations element by element (std::max(a, b) is max_ab(a, b),
-// std::abs clears the sign bit; the quotient only where the table rises, else the rate stays 0)
-void single_curvatures(const double (&k)[17], const std::array<double, 17>& table, double (&kmax)[16],
-                       double (&rate)[16]) noexcept {
-#if defined(__SSE2__)
-  const __m128d zero = _mm_setzero_pd(), sign = _mm_set1_pd(-0.0);
-  for (int r = 0; r < 16; r += 2) {
-    const __m128d k0 = _mm_loadu_pd(k + r), k1 = _mm_loadu_pd(k + r + 1);
-    const __m128d t0 = _mm_loadu_pd(table.data() + r), t1 = _mm_loadu_pd(table.data() + r + 1);
-    _mm_storeu_pd(kmax + r, max_ab(max_ab(zero, k0), k1));
-    const __m128d q = _mm_div_pd(_mm_andnot_pd(sign, _mm_sub_pd(k1, k0)), _mm_sub_pd(t1, t0));
-    _mm_storeu_pd(rate + r, pick(_mm_cmpgt_pd(t1, t0), max_ab(zero, q), zero));
-  }
-#else
-  for (int r = 0; r < 16; ++r) piece_curvature(k, table, r, r + 1, kmax[r], rate[r]);
-#endif
 }
 }  // namespace
 
@@ -135,7 +112,9 @@ void PlannerState::split_cubic_block() noexcept {
   cuts[nc++] = b;
   const int m = nc - 1;
   const AxisMinima minima = axis_minima(g);  // the same axes move on every piece
-  if (step == 1) cubic_record_kernels_->singles(tab);  // the pieces are single table intervals (but at trimmed ends)
+  // the pieces are single table intervals (but at trimmed ends); the cubic record takes them from the
+  // kernel itself (fill_cubic_record)
+  if (step == 1 && !cubic_records_used()) cubic_record_kernels_->singles(tab);
   // the intervals [i0, i1) that hold piece k, [cuts[k], cuts[k + 1]]: i0 is the interval holding its
   // start (interval_at), i1 the first table node at or past its end. A cut on table node i, where the
   // table (non-decreasing) rises on both sides of it, gives them without a search: interval_at(table[i])
@@ -214,24 +193,22 @@ void PlannerState::fill_cubic_record(Node& whole, const PieceBase& base, const d
   store.trim_start = store.trim_end = 0.0;  // (next() samples a piece at its offset on the whole cubic)
   r.np = m;
   r.cursor = 0;
-  double one_kmax[16], one_rate[16];  // step 1: piece_curvature() of each single table interval
-  if (step == 1) single_curvatures(ct.curvature, g.table, one_kmax, one_rate);
+  // step 1: the pieces after the first lie on consecutive table intervals (but for flat stretches of the
+  // table); all of them on the intervals from r0 on come from the kernel, the others (a trimmed first or
+  // last piece over more than one interval) are overwritten below
+  int r0 = -1;
+  if (step == 1 && m >= 2) {
+    int i0, i1;
+    intervals(1, i0, i1);
+    if (i0 >= 1 && i0 - 1 + m <= 16) {
+      r0 = i0 - 1;
+      cubic_record_kernels_->record_singles(tab, ct.curvature, g.table.data(), r0, r);
+    }
+  }
   for (int k = 0; k < m; ++k) {
     int i0, i1;
     intervals(k, i0, i1);
-    if (step == 1 && i1 == i0 + 1) {
-      // a single table interval: its terms from singles() (BlendBounds::single()) straight into the record
-      const auto q = static_cast<std::size_t>(i0);
-      for (int i = 0; i < 3; ++i) {
-        r.u_abs[i][k] = tab.one_u[i][q];
-        r.k_abs[i][k] = tab.one_k[i][q];
-        r.ramp_u[0][i][k] = r.ramp_u[1][i][k] = tab.one_ua[i][q];
-        r.ramp_k[0][i][k] = tab.one_ka[0][i][q];
-        r.ramp_k[1][i][k] = tab.one_ka[1][i][q];
-      }
-      r.curvature[k] = one_kmax[q];
-      r.curvature_rate[k] = one_rate[q];
-    } else {
+    if (!(r0 >= 0 && i0 == r0 + k && i1 == i0 + 1)) {
       Vec3 U, K, Ua[2], Ka[2];
       tab.bounds(i0, i1, U, K);
       tab.ramps(i0, i1, U, K, Ua, Ka);

@@ -209,6 +209,45 @@ TEST_CASE("the cubic-record kernel's cubic_node gives Segment::blend's table and
   CHECK(symmetric >= 40);  // the blends between two lines are left to Segment::blend
 }
 
+TEST_CASE("the cubic-record kernel's record_singles gives each piece bounds(), ramps() and piece_curvature(), bit for bit") {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> U01(-1.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vec3 p0(0, 0, 0);
+    const double z = trial % 3 == 0 ? 0.0 : 0.4;
+    const Vec3 p1 = p0 + Vec3(1.0 + 0.5 * U01(rng), 0.6 * U01(rng), z * U01(rng));
+    const Vec3 p2 = trial % 5 == 0 ? Vec3(2.0 * p1) : Vec3(p1 + Vec3(0.8 * U01(rng), 1.0 + 0.5 * U01(rng), z * U01(rng)));
+    const Vec3 p3 = p2 + Vec3(0.6 * U01(rng) - 0.5, 0.5 * U01(rng) + 0.5, z * U01(rng));
+    std::array<Vec3, 17> T, Kv;
+    const Segment g = Segment::blend(p0, p1, p2, p3, 0, &T, &Kv);
+    BlendBounds tab;
+    cubic_record_kernels().fill(tab, T[0].data(), Kv[0].data());
+    double k_at[17];
+    for (std::size_t i = 0; i < 17; ++i) k_at[i] = Kv[i].norm();
+    CubicRecord r;
+    r.np = 1 + trial % 16;
+    const int r0 = (trial / 16) % (17 - r.np);
+    cubic_record_kernels().record_singles(tab, k_at, g.table.data(), r0, r);
+    for (int k = 0; k < r.np; ++k) {
+      Vec3 U, K, Ua[2], Ka[2];
+      tab.bounds(r0 + k, r0 + k + 1, U, K);
+      tab.ramps(r0 + k, r0 + k + 1, U, K, Ua, Ka);
+      double kmax, rate;
+      piece_curvature(k_at, g.table, r0 + k, r0 + k + 1, kmax, rate);
+      for (int c = 0; c < 3; ++c) {
+        CHECK(std::memcmp(&r.u_abs[c][k], &U[c], sizeof(double)) == 0);
+        CHECK(std::memcmp(&r.k_abs[c][k], &K[c], sizeof(double)) == 0);
+        for (int d = 0; d < 2; ++d) {
+          CHECK(std::memcmp(&r.ramp_u[d][c][k], &Ua[d][c], sizeof(double)) == 0);
+          CHECK(std::memcmp(&r.ramp_k[d][c][k], &Ka[d][c], sizeof(double)) == 0);
+        }
+      }
+      CHECK(std::memcmp(&r.curvature[k], &kmax, sizeof(double)) == 0);
+      CHECK(std::memcmp(&r.curvature_rate[k], &rate, sizeof(double)) == 0);
+    }
+  }
+}
+
 TEST_CASE("the cubic-record kernel's singles give bounds() and ramps() of every single interval, bit for bit") {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> U01(-1.0, 1.0);

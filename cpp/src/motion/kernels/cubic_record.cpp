@@ -149,35 +149,77 @@ __attribute__((flatten)) unsigned caps_reach(CubicRecord& r, double feed_cap, co
   return bad;
 }
 
-// BlendBounds::bounds() and ramps() of each single table interval (ramp_terms()' four cases as masks;
-// both directions get the same U; negation flips the sign bit).
-__attribute__((flatten)) void singles(BlendBounds& t) {
+// BlendBounds::bounds() and ramps() of single table intervals of axis c, the lanes' intervals from r
+// (lanes outside v read as 0; full: all lanes valid): U, K, the one Ua of both directions, Ka of each
+// (ramp_terms()' four cases as masks; negation flips the sign bit).
+struct SingleTerms {
+  D U, K, ua, ka0, ka1;
+};
+NETSHAPE_SIMD_INLINE SingleTerms single_terms(const BlendBounds& t, int c, int r, M v, bool full) {
   const D zero = B::set(0.0), one = B::set(1.0), minus_one = B::set(-1.0), quarter = B::set(0.25),
           eps = B::set(1e-12), grow = B::set(1.0 + 1e-9), shrink = B::set(1.0 - 1e-9);
+  const auto at = [r, v, full](const double* row) NETSHAPE_SIMD_LAMBDA { return B::load(row + r, v, full); };
+  SingleTerms s;
+  // bounds(r, r + 1)
+  s.U = B::min(B::add(B::add(B::max(at(t.mu[c]), zero), B::mul(quarter, B::max(at(t.du[c]), zero))), eps), one);
+  s.K = B::add(B::mul(B::max(at(t.mk[c]), zero), grow), B::mul(quarter, B::max(at(t.dk[c]), zero)));
+  // ramps(r, r + 1): the signed ranges with their margins, then ramp_terms()
+  const D e = at(t.st[c]), f = at(t.sk[c]), kx0 = at(t.kmax[c]), kn0 = at(t.kmin[c]);
+  const D tx = B::min(B::add(B::add(at(t.tmax[c]), B::mul(quarter, e)), eps), one);
+  const D tn = B::max(B::sub(B::sub(at(t.tmin[c]), B::mul(quarter, e)), eps), minus_one);
+  const D kx = B::add(B::mul(kx0, B::blend(B::gt(kx0, zero), shrink, grow)), B::mul(quarter, f));
+  const D kn = B::sub(B::mul(kn0, B::blend(B::lt(kn0, zero), shrink, grow)), B::mul(quarter, f));
+  const D mtn = -tn, mkn = -kn;
+  const M up = B::gt(tx, zero), down = B::gt(mtn, zero);
+  const D u = B::blend(up, B::blend(down, zero, mtn), B::blend(down, tx, B::max(mtn, tx)));
+  const D kb = B::max(mkn, kx);
+  const D k0 = B::blend(up, B::blend(down, zero, mkn), B::blend(down, kx, kb));
+  const D k1 = B::blend(up, B::blend(down, zero, kx), B::blend(down, mkn, kb));
+  s.ua = B::min(s.U, u);
+  s.ka0 = B::min(s.K, k0);
+  s.ka1 = B::min(s.K, k1);
+  return s;
+}
+
+// single_terms() of all 16 intervals into t's one_* rows.
+__attribute__((flatten)) void singles(BlendBounds& t) {
+  const M all = B::valid(W);
   for (int c = 0; c < 3; ++c)
     for (int r = 0; r < 16; r += W) {
-      const auto at = [r](const double* row) NETSHAPE_SIMD_LAMBDA { return B::loadu(row + r); };
-      // bounds(r, r + 1)
-      const D U = B::min(B::add(B::add(B::max(at(t.mu[c]), zero), B::mul(quarter, B::max(at(t.du[c]), zero))), eps), one);
-      const D K = B::add(B::mul(B::max(at(t.mk[c]), zero), grow), B::mul(quarter, B::max(at(t.dk[c]), zero)));
-      // ramps(r, r + 1): the signed ranges with their margins, then ramp_terms()
-      const D e = at(t.st[c]), f = at(t.sk[c]), kx0 = at(t.kmax[c]), kn0 = at(t.kmin[c]);
-      const D tx = B::min(B::add(B::add(at(t.tmax[c]), B::mul(quarter, e)), eps), one);
-      const D tn = B::max(B::sub(B::sub(at(t.tmin[c]), B::mul(quarter, e)), eps), minus_one);
-      const D kx = B::add(B::mul(kx0, B::blend(B::gt(kx0, zero), shrink, grow)), B::mul(quarter, f));
-      const D kn = B::sub(B::mul(kn0, B::blend(B::lt(kn0, zero), shrink, grow)), B::mul(quarter, f));
-      const D mtn = -tn, mkn = -kn;
-      const M up = B::gt(tx, zero), down = B::gt(mtn, zero);
-      const D u = B::blend(up, B::blend(down, zero, mtn), B::blend(down, tx, B::max(mtn, tx)));
-      const D kb = B::max(mkn, kx);
-      const D k0 = B::blend(up, B::blend(down, zero, mkn), B::blend(down, kx, kb));
-      const D k1 = B::blend(up, B::blend(down, zero, kx), B::blend(down, mkn, kb));
-      B::storeu(t.one_u[c] + r, U);
-      B::storeu(t.one_k[c] + r, K);
-      B::storeu(t.one_ua[c] + r, B::min(U, u));
-      B::storeu(t.one_ka[0][c] + r, B::min(K, k0));
-      B::storeu(t.one_ka[1][c] + r, B::min(K, k1));
+      const SingleTerms s = single_terms(t, c, r, all, true);
+      B::storeu(t.one_u[c] + r, s.U);
+      B::storeu(t.one_k[c] + r, s.K);
+      B::storeu(t.one_ua[c] + r, s.ua);
+      B::storeu(t.one_ka[0][c] + r, s.ka0);
+      B::storeu(t.one_ka[1][c] + r, s.ka1);
     }
+}
+
+// Piece k of r (k < r.np) on table interval r0 + k: its bounds and ramp terms (single_terms()) and its
+// largest curvature and |dκ/ds| (piece_curvature() over nodes r0 + k, r0 + k + 1: std::abs clears the
+// sign bit; the quotient only where the table rises, else the rate stays 0) straight into the record.
+__attribute__((flatten)) void record_singles(const BlendBounds& t, const double* k_at, const double* table, int r0,
+                                             CubicRecord& r) {
+  const D zero = B::set(0.0);
+  for (int k = 0; k < r.np; k += W) {
+    const M v = B::valid(r.np - k);
+    const bool full = r.np - k >= W;
+    const int q = r0 + k;
+    for (int c = 0; c < 3; ++c) {
+      const SingleTerms s = single_terms(t, c, q, v, full);
+      B::storeu(r.u_abs[c] + k, s.U);
+      B::storeu(r.k_abs[c] + k, s.K);
+      B::storeu(r.ramp_u[0][c] + k, s.ua);
+      B::storeu(r.ramp_u[1][c] + k, s.ua);
+      B::storeu(r.ramp_k[0][c] + k, s.ka0);
+      B::storeu(r.ramp_k[1][c] + k, s.ka1);
+    }
+    const D k0 = B::load(k_at + q, v, full), k1 = B::load(k_at + q + 1, v, full);
+    const D t0 = B::load(table + q, v, full), t1 = B::load(table + q + 1, v, full);
+    B::storeu(r.curvature + k, B::max(k1, B::max(k0, zero)));
+    const D rate = B::max(B::div(B::abs(B::sub(k1, k0)), B::sub(t1, t0)), zero);
+    B::storeu(r.curvature_rate + k, B::blend(B::gt(t1, t0), zero, rate));
+  }
 }
 
 // BlendBounds' per-interval rows of one axis from its node values x (17, padded): the raw maxima of
@@ -291,6 +333,6 @@ __attribute__((flatten)) bool cubic_node(const double* P, double* table, double*
 }  // namespace
 
 extern const CubicRecordKernels cubic_record_kernel_table;
-const CubicRecordKernels cubic_record_kernel_table{&freeze, &caps_reach, &singles, &fill, &cubic_node, NETSHAPE_KERNEL_ISA_NAME};
+const CubicRecordKernels cubic_record_kernel_table{&freeze, &caps_reach, &singles, &record_singles, &fill, &cubic_node, NETSHAPE_KERNEL_ISA_NAME};
 
 }  // namespace netshape::motion::detail::NETSHAPE_KERNEL_ISA
