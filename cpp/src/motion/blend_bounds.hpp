@@ -157,6 +157,13 @@ struct BlendBounds {
     U[c] = std::min(1.0, std::max(0.0, a) + 0.25 * std::max(0.0, e) + 1e-12);
     K[c] = std::max(0.0, b) * (1.0 + 1e-9) + 0.25 * std::max(0.0, f);
   }
+  // bounds(0, 16, U, K) and ramps(0, 16, U, K, Ua, Ka) from the folds of the rows over all intervals,
+  // per axis c as CubicRecordKernels::cubic_node gives them (f[c]: mu, du, tmax, tmin, st, mk, dk, kmax,
+  // kmin, sk).
+  static void whole_from(const double (&f)[3][10], Vec3& U, Vec3& K, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) noexcept {
+    for (int c = 0; c < 3; ++c) bounds_from(c, f[c][0], f[c][5], f[c][1], f[c][6], U, K);
+    for (int c = 0; c < 3; ++c) ramps_from(c, f[c][2], f[c][3], f[c][7], f[c][8], f[c][4], f[c][9], U, K, Ua, Ka);
+  }
   // bounds(0, 16, U, K) and ramps(0, 16, U, K, Ua, Ka): the whole blend. With SSE2 the folds over the
   // intervals run two rows at a time (lane 0 one row, lane 1 another), each lane in the order of the
   // intervals with std::max / std::min's operand order (max_ab, min_ab): the same values as the loops.

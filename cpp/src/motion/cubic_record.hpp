@@ -94,10 +94,12 @@ struct CubicRecordKernels {
   /// 17 table nodes (each 17 Vec3, as 51 doubles).
   void (*fill)(BlendBounds& t, const double* T, const double* Kv);
   /// For the cubic Bézier with control points P (P0..P3, 12 doubles): Segment::blend()'s arc-length
-  /// table (17) and the curvature at the table nodes (k_at, 17; what finish_blend() reads), and t's rows
-  /// as fill() gives them from the node frames. Returns false, with nothing written, for a Bézier
-  /// symmetric about u = 1/2 (a blend between two lines; Segment::blend() handles it).
-  bool (*cubic_node)(const double* P, double* table, double* k_at, BlendBounds& t);
+  /// table (17) and the curvature at the table nodes (k_at, 17; what finish_blend() reads), t's rows as
+  /// fill() gives them from the node frames, and per axis c the left folds over all 16 intervals that
+  /// BlendBounds::whole() takes (whole[c]: mu, du, tmax, tmin, st, then mk, dk, kmax, kmin, sk; max,
+  /// the tmin and kmin rows min). Returns false, with nothing written, for a Bézier symmetric about
+  /// u = 1/2 (a blend between two lines; Segment::blend() handles it).
+  bool (*cubic_node)(const double* P, double* table, double* k_at, BlendBounds& t, double (*whole)[10]);
   const char* isa;  ///< "baseline", "avx2" or "avx512"
 };
 NETSHAPE_SIMD_DECLARE(CubicRecordKernels, cubic_record_kernel_table)

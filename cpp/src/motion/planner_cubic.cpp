@@ -46,16 +46,18 @@ void PlannerState::init_cubic_node(Node& n, const toolpath::Block& b, const Cubi
   s.kind = SegmentKind::blend;
   s.ctrl = {b.start, c.c1, c.c2, b.end};
   s.source = source;
-  if (cubic_record_kernels_->cubic_node(s.ctrl[0].data(), s.table.data(), ct.curvature, ct.bounds)) {
+  double folds[3][10];
+  if (cubic_record_kernels_->cubic_node(s.ctrl[0].data(), s.table.data(), ct.curvature, ct.bounds, folds)) {
     finish_blend(s, ct.curvature);
+    BlendBounds::whole_from(folds, n.tangent_bound, n.curvature_bound, n.ramp_tangent, n.ramp_curvature);
   } else {
     std::array<Vec3, 17> T, Kv;
     s = Segment::blend(b.start, c.c1, c.c2, b.end, source, &T, &Kv);
     cubic_record_kernels_->fill(ct.bounds, T[0].data(), Kv[0].data());
     for (std::size_t i = 0; i < 17; ++i) ct.curvature[i] = Kv[i].norm();
+    ct.bounds.whole(n.tangent_bound, n.curvature_bound, n.ramp_tangent, n.ramp_curvature);
   }
   s.block = b;  // the chord (kind line) with the block's feed and line number
-  ct.bounds.whole(n.tangent_bound, n.curvature_bound, n.ramp_tangent, n.ramp_curvature);
   n.geometry = Geometry::in_node;
 }
 

@@ -186,7 +186,8 @@ TEST_CASE("the cubic-record kernel's cubic_node gives Segment::blend's table and
     const std::array<Vec3, 4> P{p0, p1, p2, p3};
     std::array<double, 17> table{};
     double k_at[17];
-    if (!cubic_record_kernels().cubic_node(P[0].data(), table.data(), k_at, a)) {
+    double folds[3][10];
+    if (!cubic_record_kernels().cubic_node(P[0].data(), table.data(), k_at, a, folds)) {
       ++symmetric;
       continue;
     }
@@ -205,6 +206,16 @@ TEST_CASE("the cubic-record kernel's cubic_node gives Segment::blend's table and
     CHECK(std::memcmp(a.kmin, b.kmin, sizeof a.kmin) == 0);
     CHECK(std::memcmp(a.st, b.st, sizeof a.st) == 0);
     CHECK(std::memcmp(a.sk, b.sk, sizeof a.sk) == 0);
+    Vec3 U, K, Ua[2], Ka[2], U1, K1, Ua1[2], Ka1[2];
+    b.bounds(0, 16, U, K);
+    b.ramps(0, 16, U, K, Ua, Ka);
+    BlendBounds::whole_from(folds, U1, K1, Ua1, Ka1);
+    CHECK(std::memcmp(U.data(), U1.data(), sizeof(double) * 3) == 0);
+    CHECK(std::memcmp(K.data(), K1.data(), sizeof(double) * 3) == 0);
+    for (int d = 0; d < 2; ++d) {
+      CHECK(std::memcmp(Ua[d].data(), Ua1[d].data(), sizeof(double) * 3) == 0);
+      CHECK(std::memcmp(Ka[d].data(), Ka1[d].data(), sizeof(double) * 3) == 0);
+    }
   }
   CHECK(symmetric >= 40);  // the blends between two lines are left to Segment::blend
 }

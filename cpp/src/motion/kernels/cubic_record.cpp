@@ -8,6 +8,7 @@
 // std::min(a, b) is B::min(b, a) (B::max(a, b) is a > b ? a : b), including ties and signed zeros.
 #include "core/simd.hpp"  // first: it wraps the intrinsic headers (see there)
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -227,9 +228,34 @@ __attribute__((flatten)) void record_singles(const BlendBounds& t, const double*
 // the signed extremes of x and the maxima of its own second differences; std::max(x[r], x[r + 1]) is
 // B::max(x[r + 1], x[r]), std::min(x[r], x[r + 1]) is B::min(x[r + 1], x[r]).
 constexpr int node_lanes = 32;  // 17 nodes, room for whole packets reading up to node 16 + W + 1
-NETSHAPE_SIMD_INLINE void axis_rows(const double* x, double* amax, double* a2max, double* hi, double* lo, double* s2max) {
+// The lanes of v folded left to right with std::max (std::min).
+NETSHAPE_SIMD_INLINE double lanes_max(D v) {
+  alignas(64) double l[W];
+  B::storeu(l, v);
+  double m = l[0];
+  for (int j = 1; j < W; ++j) m = std::max(m, l[j]);
+  return m;
+}
+NETSHAPE_SIMD_INLINE double lanes_min(D v) {
+  alignas(64) double l[W];
+  B::storeu(l, v);
+  double m = l[0];
+  for (int j = 1; j < W; ++j) m = std::min(m, l[j]);
+  return m;
+}
+
+// With `folds`, also the left folds of the five rows over the 16 intervals (std::max, the lo row
+// std::min) into folds[0..4], in the row order above. A fold over packets (lane j over the intervals
+// j, j + W, ...) and then over the lanes finds the same value; its bits are the left fold's when every
+// element equal to the result has the same bits: always for the rows of absolute values (≥ +0; all node
+// values finite, so no NaN), and for the signed rows when the result is not zero. When both signed
+// extremes are ±0 every element is, and the left fold keeps the first; else (a non-finite node value,
+// one signed extreme ±0) the left fold itself.
+template <bool folds>
+NETSHAPE_SIMD_INLINE void axis_rows(const double* x, double* amax, double* a2max, double* hi, double* lo, double* s2max,
+                                    double* fold) {
   alignas(64) double a[node_lanes], da[node_lanes], dx[node_lanes];
-  const D two = B::set(2.0);
+  const D two = B::set(2.0), zero = B::set(0.0);
   for (int i = 0; i < 24; i += W) B::storeu(a + i, B::abs(B::loadu(x + i)));
   for (int i = 1; i < 17; i += W) {
     const auto second = [i, two](const double* v) NETSHAPE_SIMD_LAMBDA {
@@ -239,13 +265,52 @@ NETSHAPE_SIMD_INLINE void axis_rows(const double* x, double* amax, double* a2max
     B::storeu(dx + i, second(x));
   }
   da[0] = da[16] = dx[0] = dx[16] = 0.0;
+  D f[5];
   for (int r = 0; r < 16; r += W) {
     const auto upper = [r](const double* v) NETSHAPE_SIMD_LAMBDA { return B::max(B::loadu(v + r + 1), B::loadu(v + r)); };
-    B::storeu(amax + r, upper(a));
-    B::storeu(a2max + r, upper(da));
-    B::storeu(hi + r, upper(x));
-    B::storeu(lo + r, B::min(B::loadu(x + r + 1), B::loadu(x + r)));
-    B::storeu(s2max + r, upper(dx));
+    const D o[5] = {upper(a), upper(da), upper(x), B::min(B::loadu(x + r + 1), B::loadu(x + r)), upper(dx)};
+    B::storeu(amax + r, o[0]);
+    B::storeu(a2max + r, o[1]);
+    B::storeu(hi + r, o[2]);
+    B::storeu(lo + r, o[3]);
+    B::storeu(s2max + r, o[4]);
+    if constexpr (folds) {
+      for (int q = 0; q < 5; ++q) f[q] = r == 0 ? o[q] : q == 3 ? B::min(o[q], f[q]) : B::max(o[q], f[q]);
+    }
+  }
+  if constexpr (folds) {
+    M bad = B::lt(zero, zero);  // a node value that is not finite (x − x is NaN)
+    for (int i = 0; i < 17; i += W) {
+      const D v = B::loadu(x + i);
+      bad = B::lor(bad, B::ne(B::sub(v, v), zero));
+    }
+    const auto ordered = [](const double* row, bool is_min) NETSHAPE_SIMD_LAMBDA {
+      double v = row[0];
+      for (int r = 1; r < 16; ++r) v = is_min ? std::min(v, row[r]) : std::max(v, row[r]);
+      return v;
+    };
+    if (B::any(bad)) {
+      fold[0] = ordered(amax, false);
+      fold[1] = ordered(a2max, false);
+      fold[2] = ordered(hi, false);
+      fold[3] = ordered(lo, true);
+      fold[4] = ordered(s2max, false);
+      return;
+    }
+    fold[0] = lanes_max(f[0]);
+    fold[1] = lanes_max(f[1]);
+    fold[4] = lanes_max(f[4]);
+    double vh = lanes_max(f[2]), vl = lanes_min(f[3]);
+    if (vh == 0.0 && vl == 0.0) {
+      // every node value is ±0: no element is above (below) the first, which the left fold keeps
+      vh = hi[0];
+      vl = lo[0];
+    } else {
+      if (vh == 0.0) vh = ordered(hi, false);
+      if (vl == 0.0) vl = ordered(lo, true);
+    }
+    fold[2] = vh;
+    fold[3] = vl;
   }
 }
 
@@ -257,8 +322,8 @@ __attribute__((flatten)) void fill(BlendBounds& t, const double* T, const double
       ts[i] = T[3 * i + c];
       ks[i] = Kv[3 * i + c];
     }
-    axis_rows(ts, t.mu[c], t.du[c], t.tmax[c], t.tmin[c], t.st[c]);
-    axis_rows(ks, t.mk[c], t.dk[c], t.kmax[c], t.kmin[c], t.sk[c]);
+    axis_rows<false>(ts, t.mu[c], t.du[c], t.tmax[c], t.tmin[c], t.st[c], nullptr);
+    axis_rows<false>(ks, t.mk[c], t.dk[c], t.kmax[c], t.kmin[c], t.sk[c], nullptr);
   }
 }
 
@@ -268,7 +333,8 @@ __attribute__((flatten)) void fill(BlendBounds& t, const double* T, const double
 // curvature vector and curvature at the nodes u = i/16 (nodes in the lanes); Eigen's Vector3d sums
 // (squaredNorm, dot) add as (x + y) + z. Returns false, with nothing written, for a Bézier symmetric
 // about u = 1/2 (Segment::blend mirrors its second half; the caller takes that path).
-__attribute__((flatten)) bool cubic_node(const double* P, double* table, double* k_at, BlendBounds& t) {
+__attribute__((flatten)) bool cubic_node(const double* P, double* table, double* k_at, BlendBounds& t,
+                                         double (*whole)[10]) {
   double d0[3], d1[3], d2[3], c0[3], c1[3], c2[3];
   for (int c = 0; c < 3; ++c) {
     d0[c] = P[3 + c] - P[c];
@@ -324,8 +390,8 @@ __attribute__((flatten)) bool cubic_node(const double* P, double* table, double*
   }
   for (int i = 0; i < 17; ++i) k_at[i] = kk[i];
   for (int c = 0; c < 3; ++c) {
-    axis_rows(ts[c], t.mu[c], t.du[c], t.tmax[c], t.tmin[c], t.st[c]);
-    axis_rows(ks[c], t.mk[c], t.dk[c], t.kmax[c], t.kmin[c], t.sk[c]);
+    axis_rows<true>(ts[c], t.mu[c], t.du[c], t.tmax[c], t.tmin[c], t.st[c], whole[c]);
+    axis_rows<true>(ks[c], t.mk[c], t.dk[c], t.kmax[c], t.kmin[c], t.sk[c], whole[c] + 5);
   }
   return true;
 }
