@@ -34,7 +34,7 @@ struct CubicRecord {
   double w_after = -1.0;
   /// The axes whose slowing-down term can bind on some piece, first `live_down` of live_down_axis: an
   /// axis with alpha_down ≥ 0 and beta_down ≥ w_junction on every piece never falls below the junction
-  /// limit, so the backward step's minimum is the same without it (set_live_axes())
+  /// limit, so the backward step's minimum is the same without it (CubicRecordKernels::junctions)
   int live_down = 3;
   int live_down_axis[3] = {0, 1, 2};
   double alpha[3][pieces] = {}, beta[3][pieces] = {}, alpha_down[3][pieces] = {}, beta_down[3][pieces] = {};
@@ -45,15 +45,6 @@ struct CubicRecord {
   double t1[pieces] = {}, t2[pieces] = {}, t3[pieces] = {};
   double d1[pieces] = {}, d2[pieces] = {}, d3[pieces] = {};
   double dur[pieces] = {}, t0[pieces] = {};
-  /// live_down and live_down_axis from the pieces' coefficients and junction limits.
-  void set_live_axes() noexcept {
-    live_down = 0;
-    for (int i = 0; i < 3; ++i) {
-      bool binds = false;
-      for (int k = 0; k < np; ++k) binds = binds || !(alpha_down[i][k] >= 0.0 && beta_down[i][k] >= w_junction[k]);
-      if (binds) live_down_axis[live_down++] = i;
-    }
-  }
   /// The frozen profile of piece k.
   void profile(int k, Profile& p) const noexcept { frozen_profile(*this, k, p); }
   /// The ramp terms of piece k as a Node holds them (Node::ramp_tangent, Node::ramp_curvature).
@@ -82,6 +73,10 @@ struct CubicRecordKernels {
   /// set_box_reach() instead. V, A: per-axis velocity and acceleration limits (3). Lanes past r.np as
   /// for freeze.
   unsigned (*caps_reach)(CubicRecord& r, double feed_cap, const double* V, const double* A);
+  /// The junction limits of pieces [0, r.np) (the first piece: min(v_corner, its cap)², the others:
+  /// min(the cap before, its cap)²) into r.w_junction, then r.live_down and live_down_axis (after
+  /// caps_reach and any set_box_reach()).
+  void (*junctions)(CubicRecord& r, double v_corner);
   /// BlendBounds::bounds() and ramps() over each single table interval, for all 16 at once, into t's
   /// one_u, one_k, one_ua, one_ka (BlendBounds::single() reads them).
   void (*singles)(BlendBounds& t);

@@ -247,13 +247,9 @@ void PlannerState::fill_cubic_record(Node& whole, const PieceBase& base, const d
   for (int k = 0; bad != 0; ++k, bad >>= 1)
     if (bad & 1u) scalar_reach(k);
   // junction limits: the block's corner at the first piece, the cap before at the others (finish_piece)
-  for (int k = 0; k < m; ++k) {
-    const double vj = std::min(k == 0 ? base.v_corner : r.v_max[k - 1], r.v_max[k]);
-    if (k == 0) whole.v_junction = vj;
-    r.w_junction[k] = vj * vj;
-  }
+  whole.v_junction = std::min(base.v_corner, r.v_max[0]);
+  cubic_record_kernels_->junctions(r, base.v_corner);
   r.w_after = -1.0;
-  r.set_live_axes();
   // the node: the whole cubic with its trims (push() and the blend rule read its curve at the end),
   // the first piece's junction and the last piece's cap (the junction after it reads v_max)
   whole.geometry = Geometry::cubic_record;

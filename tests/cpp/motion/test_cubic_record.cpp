@@ -2,6 +2,7 @@
 // instruction set gives the same bits as the baseline one on every piece of a record.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <random>
 #include <string>
@@ -57,6 +58,28 @@ TEST_CASE("cubic-record kernels: the chosen instruction set gives the same bits 
       CHECK(same(x.alpha_down[i], y.alpha_down[i], np));
       CHECK(same(x.beta_down[i], y.beta_down[i], np));
     }
+    // junction limits and the axes that can bind in the backward step, against their definition
+    const double v_corner = 300 * uni(rng);
+    best.junctions(x, v_corner);
+    plain.junctions(y, v_corner);
+    CHECK(same(x.w_junction, y.w_junction, np));
+    REQUIRE(x.live_down == y.live_down);
+    int live = 0;
+    for (int i = 0; i < 3; ++i) {
+      bool binds = false;
+      for (int k = 0; k < np; ++k) {
+        const double vj = std::min(k == 0 ? v_corner : x.v_max[k - 1], x.v_max[k]);
+        CHECK(x.w_junction[k] == vj * vj);
+        binds = binds || !(x.alpha_down[i][k] >= 0.0 && x.beta_down[i][k] >= x.w_junction[k]);
+      }
+      if (binds) {
+        REQUIRE(live < x.live_down);
+        CHECK(x.live_down_axis[live] == i);
+        CHECK(y.live_down_axis[live] == i);
+        ++live;
+      }
+    }
+    CHECK(live == x.live_down);
     best.freeze(x, A, 1500.0);
     plain.freeze(y, A, 1500.0);
     for (const auto row : {&CubicRecord::vp, &CubicRecord::acc, &CubicRecord::t1, &CubicRecord::t2, &CubicRecord::t3,

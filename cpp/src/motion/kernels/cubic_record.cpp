@@ -150,6 +150,30 @@ __attribute__((flatten)) unsigned caps_reach(CubicRecord& r, double feed_cap, co
   return bad;
 }
 
+// The junction limits (the block's corner before the first piece, the cap of the piece before at the
+// others: w = min(v_before, v_max)², std::min's operand order) and the live axes of the backward step
+// (CubicRecord::set_live_axes(): the axes i where alpha_down < 0 or beta_down < w_junction on some piece).
+__attribute__((flatten)) void junctions(CubicRecord& r, double v_corner) {
+  alignas(64) double before[CubicRecord::pieces + W];
+  before[0] = v_corner;
+  for (int k = 0; k + 1 < r.np; ++k) before[k + 1] = r.v_max[k];
+  const D zero = B::set(0.0);
+  M binds[3] = {B::lt(zero, zero), B::lt(zero, zero), B::lt(zero, zero)};
+  for (int k = 0; k < r.np; k += W) {
+    const M v = B::valid(r.np - k);
+    const D vj = B::min(B::loadu(r.v_max + k), B::loadu(before + k));
+    const D wj = B::mul(vj, vj);
+    B::storeu(r.w_junction + k, wj);
+    for (int i = 0; i < 3; ++i) {
+      const M holds = B::land(B::ge(B::loadu(r.alpha_down[i] + k), zero), B::ge(B::loadu(r.beta_down[i] + k), wj));
+      binds[i] = B::lor(binds[i], B::land(v, B::lnot(holds)));
+    }
+  }
+  r.live_down = 0;
+  for (int i = 0; i < 3; ++i)
+    if (B::any(binds[i])) r.live_down_axis[r.live_down++] = i;
+}
+
 // BlendBounds::bounds() and ramps() of single table intervals of axis c, the lanes' intervals from r
 // (lanes outside v read as 0; full: all lanes valid): U, K, the one Ua of both directions, Ka of each
 // (ramp_terms()' four cases as masks; negation flips the sign bit).
@@ -399,6 +423,6 @@ __attribute__((flatten)) bool cubic_node(const double* P, double* table, double*
 }  // namespace
 
 extern const CubicRecordKernels cubic_record_kernel_table;
-const CubicRecordKernels cubic_record_kernel_table{&freeze, &caps_reach, &singles, &record_singles, &fill, &cubic_node, NETSHAPE_KERNEL_ISA_NAME};
+const CubicRecordKernels cubic_record_kernel_table{&freeze, &caps_reach, &junctions, &singles, &record_singles, &fill, &cubic_node, NETSHAPE_KERNEL_ISA_NAME};
 
 }  // namespace netshape::motion::detail::NETSHAPE_KERNEL_ISA
