@@ -92,9 +92,12 @@ struct CubicRecordKernels {
   /// table (17) and the curvature at the table nodes (k_at, 17; what finish_blend() reads), t's rows as
   /// fill() gives them from the node frames, and per axis c the left folds over all 16 intervals that
   /// BlendBounds::whole() takes (whole[c]: mu, du, tmax, tmin, st, then mk, dk, kmax, kmin, sk; max,
-  /// the tmin and kmin rows min). Returns false, with nothing written, for a Bézier symmetric about
+  /// the tmin and kmin rows min), and what finish_blend() sets from k_at and the table: the largest
+  /// curvature and |dκ/ds| into finish[0], finish[1] (finish[0] = −1 where a value is not finite: the
+  /// caller runs finish_blend()). Returns false, with nothing written, for a Bézier symmetric about
   /// u = 1/2 (a blend between two lines; Segment::blend() handles it).
-  bool (*cubic_node)(const double* P, double* table, double* k_at, BlendBounds& t, double (*whole)[10]);
+  bool (*cubic_node)(const double* P, double* table, double* k_at, BlendBounds& t, double (*whole)[10],
+                     double* finish);
   const char* isa;  ///< "baseline", "avx2" or "avx512"
 };
 NETSHAPE_SIMD_DECLARE(CubicRecordKernels, cubic_record_kernel_table)

@@ -46,9 +46,15 @@ void PlannerState::init_cubic_node(Node& n, const toolpath::Block& b, const Cubi
   s.kind = SegmentKind::blend;
   s.ctrl = {b.start, c.c1, c.c2, b.end};
   s.source = source;
-  double folds[3][10];
-  if (cubic_record_kernels_->cubic_node(s.ctrl[0].data(), s.table.data(), ct.curvature, ct.bounds, folds)) {
-    finish_blend(s, ct.curvature);
+  double folds[3][10], finish[2];
+  if (cubic_record_kernels_->cubic_node(s.ctrl[0].data(), s.table.data(), ct.curvature, ct.bounds, folds, finish)) {
+    if (finish[0] >= 0) {
+      s.curvature = finish[0];
+      s.curvature_rate = finish[1];
+      s.full_length = s.table[16];
+    } else {
+      finish_blend(s, ct.curvature);
+    }
     BlendBounds::whole_from(folds, n.tangent_bound, n.curvature_bound, n.ramp_tangent, n.ramp_curvature);
   } else {
     std::array<Vec3, 17> T, Kv;

@@ -186,12 +186,15 @@ TEST_CASE("the cubic-record kernel's cubic_node gives Segment::blend's table and
     const std::array<Vec3, 4> P{p0, p1, p2, p3};
     std::array<double, 17> table{};
     double k_at[17];
-    double folds[3][10];
-    if (!cubic_record_kernels().cubic_node(P[0].data(), table.data(), k_at, a, folds)) {
+    double folds[3][10], finish[2];
+    if (!cubic_record_kernels().cubic_node(P[0].data(), table.data(), k_at, a, folds, finish)) {
       ++symmetric;
       continue;
     }
     CHECK(std::memcmp(table.data(), g.table.data(), sizeof table) == 0);
+    REQUIRE(finish[0] >= 0);
+    CHECK(std::memcmp(&finish[0], &g.curvature, sizeof(double)) == 0);
+    CHECK(std::memcmp(&finish[1], &g.curvature_rate, sizeof(double)) == 0);
     for (std::size_t i = 0; i < 17; ++i) {
       const double k = Kv[i].norm();
       CHECK(std::memcmp(&k_at[i], &k, sizeof k) == 0);

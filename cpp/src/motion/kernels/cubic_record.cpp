@@ -358,7 +358,7 @@ __attribute__((flatten)) void fill(BlendBounds& t, const double* T, const double
 // (squaredNorm, dot) add as (x + y) + z. Returns false, with nothing written, for a Bézier symmetric
 // about u = 1/2 (Segment::blend mirrors its second half; the caller takes that path).
 __attribute__((flatten)) bool cubic_node(const double* P, double* table, double* k_at, BlendBounds& t,
-                                         double (*whole)[10]) {
+                                         double (*whole)[10], double* finish) {
   double d0[3], d1[3], d2[3], c0[3], c1[3], c2[3];
   for (int c = 0; c < 3; ++c) {
     d0[c] = P[3 + c] - P[c];
@@ -413,6 +413,29 @@ __attribute__((flatten)) bool cubic_node(const double* P, double* table, double*
     B::storeu(kk + i, B::blend(moving, zero, B::sqrt(dot3(kv, kv))));
   }
   for (int i = 0; i < 17; ++i) k_at[i] = kk[i];
+  // finish_blend(): the largest curvature and |Δκ|/Δs between neighbouring nodes (0 where the table
+  // does not rise); the values are ≥ +0, so with every input finite the largest has one bit pattern
+  // whatever the order of the comparisons
+  {
+    M bad = B::lt(zero, zero);
+    D kmax = zero, rate = zero;
+    for (int i = 0; i < 16; i += W) {
+      const D k0 = B::loadu(kk + i), k1 = B::loadu(kk + i + 1);
+      const D t0 = B::loadu(table + i), t1 = B::loadu(table + i + 1);
+      const D ds = B::sub(t1, t0), rises = B::blend(B::gt(ds, zero), B::set(1.0), ds);
+      const M up = B::gt(ds, zero);
+      rate = B::max(B::blend(up, zero, B::div(B::abs(B::sub(k1, k0)), rises)), rate);
+      kmax = B::max(k0, kmax);
+      bad = B::lor(bad, B::lor(B::ne(B::sub(k0, k0), zero), B::ne(B::sub(t0, t0), zero)));
+    }
+    const double k16 = kk[16], t16 = table[16];
+    if (B::any(bad) || !std::isfinite(k16) || !std::isfinite(t16)) {
+      finish[0] = -1.0;  // the caller runs finish_blend() itself
+    } else {
+      finish[0] = std::max(lanes_max(kmax), k16);
+      finish[1] = lanes_max(rate);
+    }
+  }
   for (int c = 0; c < 3; ++c) {
     axis_rows<true>(ts[c], t.mu[c], t.du[c], t.tmax[c], t.tmin[c], t.st[c], whole[c]);
     axis_rows<true>(ks[c], t.mk[c], t.dk[c], t.kmax[c], t.kmin[c], t.sk[c], whole[c] + 5);
