@@ -64,6 +64,7 @@ void PlannerState::init_cubic_node(Node& n, const toolpath::Block& b, const Cubi
     ct.bounds.whole(n.tangent_bound, n.curvature_bound, n.ramp_tangent, n.ramp_curvature);
   }
   s.block = b;  // the chord (kind line) with the block's feed and line number
+  ct.minima = axis_minima(s);
   n.geometry = Geometry::in_node;
 }
 
@@ -119,7 +120,7 @@ void PlannerState::split_cubic_block() noexcept {
   node_at[nc] = -1;
   cuts[nc++] = b;
   const int m = nc - 1;
-  const AxisMinima minima = axis_minima(g);  // the same axes move on every piece
+  const AxisMinima& minima = ct.minima;  // the same axes move on every piece
   // the pieces are single table intervals (but at trimmed ends); the cubic record takes them from the
   // kernel itself (fill_cubic_record)
   if (step == 1 && !cubic_records_used()) cubic_record_kernels_->singles(tab);

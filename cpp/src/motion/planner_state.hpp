@@ -185,6 +185,7 @@ struct PassRecord {
 struct CubicTable {
   BlendBounds bounds;
   double curvature[17] = {};
+  AxisMinima minima;  ///< axis_minima() of the cubic (its pieces have the same)
 };
 
 /// The planner's state and operations. Planner's streaming calls run the operations of the same
