@@ -37,6 +37,9 @@ inline double cubic_chain(const CubicRecord& r, double w, double* wb) noexcept {
     al[j] = r.alpha_down[r.live_down_axis[j]];
     be[j] = r.beta_down[r.live_down_axis[j]];
   }
+#if defined(__GNUC__)
+#pragma GCC unroll 4  // (a step is ~8 instructions: the loop's own 3 are a third of it)
+#endif
   for (int p = r.np - 1; p >= 0; --p) {
     if constexpr (N == 3) {
       w = min_of(min_of(r.w_junction[p], al[0][p] * w + be[0][p]), min_of(al[1][p] * w + be[1][p], al[2][p] * w + be[2][p]));
