@@ -151,8 +151,14 @@ struct Batch<2> {
   }
   static NETSHAPE_SIMD_INLINE D floor(D a) { return D{std::floor(a[0]), std::floor(a[1])}; }
   static NETSHAPE_SIMD_INLINE D ceil(D a) { return D{std::ceil(a[0]), std::ceil(a[1])}; }
+#if defined(__SSE2__)
+  // maxpd / minpd are exactly a > b ? a : b / a < b ? a : b (GCC does not always see that in the ternary)
+  static NETSHAPE_SIMD_INLINE D max(D a, D b) { return _mm_max_pd(a, b); }
+  static NETSHAPE_SIMD_INLINE D min(D a, D b) { return _mm_min_pd(a, b); }
+#else
   static NETSHAPE_SIMD_INLINE D max(D a, D b) { return a > b ? a : b; }
   static NETSHAPE_SIMD_INLINE D min(D a, D b) { return a < b ? a : b; }
+#endif
   static NETSHAPE_SIMD_INLINE M lt(D a, D b) { return a < b; }
   static NETSHAPE_SIMD_INLINE M le(D a, D b) { return a <= b; }
   static NETSHAPE_SIMD_INLINE M gt(D a, D b) { return a > b; }
