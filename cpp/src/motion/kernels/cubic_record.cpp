@@ -251,7 +251,9 @@ __attribute__((flatten)) void record_singles(const BlendBounds& t, const double*
 // |x| and of its absolute second differences |(x[i−1] − 2·x[i]) + x[i+1]| (0 at the two end nodes),
 // the signed extremes of x and the maxima of its own second differences; std::max(x[r], x[r + 1]) is
 // B::max(x[r + 1], x[r]), std::min(x[r], x[r + 1]) is B::min(x[r + 1], x[r]).
-constexpr int node_lanes = 32;  // 17 nodes, room for whole packets reading up to node 16 + W + 1
+// 17 nodes and room for whole packets: the rows are read up to node 16 + W − 1 (axis_rows() needs x set
+// that far) and written up to 16 + W + 1
+constexpr int node_lanes = 32;
 // The lanes of v folded left to right with std::max (std::min).
 NETSHAPE_SIMD_INLINE double lanes_max(D v) {
   alignas(64) double l[W];
@@ -280,7 +282,7 @@ NETSHAPE_SIMD_INLINE void axis_rows(const double* x, double* amax, double* a2max
                                     double* fold) {
   alignas(64) double a[node_lanes], da[node_lanes], dx[node_lanes];
   const D two = B::set(2.0), zero = B::set(0.0);
-  for (int i = 0; i < 24; i += W) B::storeu(a + i, B::abs(B::loadu(x + i)));
+  for (int i = 0; i < 17; i += W) B::storeu(a + i, B::abs(B::loadu(x + i)));
   for (int i = 1; i < 17; i += W) {
     const auto second = [i, two](const double* v) NETSHAPE_SIMD_LAMBDA {
       return B::abs(B::add(B::sub(B::loadu(v + i - 1), B::mul(two, B::loadu(v + i))), B::loadu(v + i + 1)));
@@ -389,7 +391,7 @@ __attribute__((flatten)) bool cubic_node(const double* P, double* table, double*
   table[0] = 0;
   for (int i = 1; i <= 16; ++i) table[i] = table[i - 1] + piece[i - 1];
   // the node frames, per axis as rows over the nodes (padded: the lanes past node 16 are not read)
-  alignas(64) double ts[3][node_lanes] = {}, ks[3][node_lanes] = {}, kk[node_lanes];
+  alignas(64) double ts[3][node_lanes], ks[3][node_lanes], kk[node_lanes];  // (set up to node 16 + W − 1 below)
   for (int i = 0; i < 17; i += W) {
     const D u = B::div(B::add(iota, B::set(i)), sixteenth), u2 = B::mul(B::set(2.0), u);
     D v1[3], v2[3];
