@@ -241,8 +241,8 @@ void PlannerState::freeze_cubic_record(Node& n, CubicRecord& r, double vs, doubl
   for (int k = 0; k < np; ++k) {
     const double w_end = k + 1 < np ? wb[k + 1] : wt;
     const double w0 = v * v;  // reach_squared() without jerk limits
-    const double reach = std::min({r.alpha[0][k] * w0 + r.beta[0][k], r.alpha[1][k] * w0 + r.beta[1][k],
-                                   r.alpha[2][k] * w0 + r.beta[2][k]});
+    const double reach = min_of(min_of(r.alpha[0][k] * w0 + r.beta[0][k], r.alpha[1][k] * w0 + r.beta[1][k]),
+                                r.alpha[2][k] * w0 + r.beta[2][k]);  // (std::min of the three)
     r.vs[k] = v;
     v = std::sqrt(std::min(w_end, reach));
     r.ve[k] = v;
