@@ -83,6 +83,8 @@ struct Batch<1> {
   static NETSHAPE_SIMD_INLINE D mul(D a, D b) { return a * b; }
   static NETSHAPE_SIMD_INLINE D div(D a, D b) { return a / b; }
   static NETSHAPE_SIMD_INLINE D sqrt(D a) { return std::sqrt(a); }
+  /// |a|: the sign bit cleared
+  static NETSHAPE_SIMD_INLINE D abs(D a) { return std::fabs(a); }
   static NETSHAPE_SIMD_INLINE D floor(D a) { return std::floor(a); }
   static NETSHAPE_SIMD_INLINE D ceil(D a) { return std::ceil(a); }
   static NETSHAPE_SIMD_INLINE D max(D a, D b) { return a > b ? a : b; }
@@ -93,6 +95,8 @@ struct Batch<1> {
   static NETSHAPE_SIMD_INLINE M ge(D a, D b) { return a >= b; }
   static NETSHAPE_SIMD_INLINE M ne(D a, D b) { return a != b; }
   static NETSHAPE_SIMD_INLINE M land(M a, M b) { return a && b; }
+  static NETSHAPE_SIMD_INLINE M lor(M a, M b) { return a || b; }
+  static NETSHAPE_SIMD_INLINE M lnot(M a) { return !a; }
   static NETSHAPE_SIMD_INLINE bool any(M m) { return m; }
   static NETSHAPE_SIMD_INLINE D blend(M m, D a, D b) { return m ? b : a; }
   static NETSHAPE_SIMD_INLINE int count(M m) { return m ? 1 : 0; }
@@ -138,16 +142,31 @@ struct Batch<2> {
     return D{std::sqrt(a[0]), std::sqrt(a[1])};
 #endif
   }
+  static NETSHAPE_SIMD_INLINE D abs(D a) {
+#if defined(__SSE2__)
+    return _mm_andnot_pd(_mm_set1_pd(-0.0), a);
+#else
+    return D{std::fabs(a[0]), std::fabs(a[1])};
+#endif
+  }
   static NETSHAPE_SIMD_INLINE D floor(D a) { return D{std::floor(a[0]), std::floor(a[1])}; }
   static NETSHAPE_SIMD_INLINE D ceil(D a) { return D{std::ceil(a[0]), std::ceil(a[1])}; }
+#if defined(__SSE2__)
+  // maxpd / minpd are exactly a > b ? a : b / a < b ? a : b (GCC does not always see that in the ternary)
+  static NETSHAPE_SIMD_INLINE D max(D a, D b) { return _mm_max_pd(a, b); }
+  static NETSHAPE_SIMD_INLINE D min(D a, D b) { return _mm_min_pd(a, b); }
+#else
   static NETSHAPE_SIMD_INLINE D max(D a, D b) { return a > b ? a : b; }
   static NETSHAPE_SIMD_INLINE D min(D a, D b) { return a < b ? a : b; }
+#endif
   static NETSHAPE_SIMD_INLINE M lt(D a, D b) { return a < b; }
   static NETSHAPE_SIMD_INLINE M le(D a, D b) { return a <= b; }
   static NETSHAPE_SIMD_INLINE M gt(D a, D b) { return a > b; }
   static NETSHAPE_SIMD_INLINE M ge(D a, D b) { return a >= b; }
   static NETSHAPE_SIMD_INLINE M ne(D a, D b) { return a != b; }
   static NETSHAPE_SIMD_INLINE M land(M a, M b) { return a & b; }
+  static NETSHAPE_SIMD_INLINE M lor(M a, M b) { return a | b; }
+  static NETSHAPE_SIMD_INLINE M lnot(M a) { return ~a; }
   static NETSHAPE_SIMD_INLINE bool any(M m) { return (m[0] | m[1]) != 0; }
   static NETSHAPE_SIMD_INLINE D blend(M m, D a, D b) { return m ? b : a; }
   static NETSHAPE_SIMD_INLINE int count(M m) { return (m[0] != 0) + (m[1] != 0); }
@@ -184,6 +203,7 @@ struct Batch<4> {
   static NETSHAPE_SIMD_INLINE D mul(D a, D b) { return _mm256_mul_pd(a, b); }
   static NETSHAPE_SIMD_INLINE D div(D a, D b) { return _mm256_div_pd(a, b); }
   static NETSHAPE_SIMD_INLINE D sqrt(D a) { return _mm256_sqrt_pd(a); }
+  static NETSHAPE_SIMD_INLINE D abs(D a) { return _mm256_andnot_pd(_mm256_set1_pd(-0.0), a); }
   static NETSHAPE_SIMD_INLINE D floor(D a) { return _mm256_floor_pd(a); }
   static NETSHAPE_SIMD_INLINE D ceil(D a) { return _mm256_ceil_pd(a); }
   static NETSHAPE_SIMD_INLINE D max(D a, D b) { return _mm256_max_pd(a, b); }  // a > b ? a : b
@@ -194,6 +214,8 @@ struct Batch<4> {
   static NETSHAPE_SIMD_INLINE M ge(D a, D b) { return _mm256_cmp_pd(a, b, _CMP_GE_OQ); }
   static NETSHAPE_SIMD_INLINE M ne(D a, D b) { return _mm256_cmp_pd(a, b, _CMP_NEQ_UQ); }
   static NETSHAPE_SIMD_INLINE M land(M a, M b) { return _mm256_and_pd(a, b); }
+  static NETSHAPE_SIMD_INLINE M lor(M a, M b) { return _mm256_or_pd(a, b); }
+  static NETSHAPE_SIMD_INLINE M lnot(M a) { return _mm256_xor_pd(a, _mm256_castsi256_pd(_mm256_set1_epi64x(-1))); }
   static NETSHAPE_SIMD_INLINE bool any(M m) { return _mm256_movemask_pd(m) != 0; }
   static NETSHAPE_SIMD_INLINE D blend(M m, D a, D b) { return _mm256_blendv_pd(a, b, m); }
   static NETSHAPE_SIMD_INLINE int count(M m) {
@@ -234,6 +256,7 @@ struct Batch<8> {
   static NETSHAPE_SIMD_INLINE D mul(D a, D b) { return _mm512_mul_pd(a, b); }
   static NETSHAPE_SIMD_INLINE D div(D a, D b) { return _mm512_div_pd(a, b); }
   static NETSHAPE_SIMD_INLINE D sqrt(D a) { return _mm512_sqrt_pd(a); }
+  static NETSHAPE_SIMD_INLINE D abs(D a) { return _mm512_abs_pd(a); }
   static NETSHAPE_SIMD_INLINE D floor(D a) { return _mm512_roundscale_pd(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC); }
   static NETSHAPE_SIMD_INLINE D ceil(D a) { return _mm512_roundscale_pd(a, _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC); }
   static NETSHAPE_SIMD_INLINE D max(D a, D b) { return _mm512_max_pd(a, b); }  // a > b ? a : b
@@ -244,6 +267,8 @@ struct Batch<8> {
   static NETSHAPE_SIMD_INLINE M ge(D a, D b) { return _mm512_cmp_pd_mask(a, b, _CMP_GE_OQ); }
   static NETSHAPE_SIMD_INLINE M ne(D a, D b) { return _mm512_cmp_pd_mask(a, b, _CMP_NEQ_UQ); }
   static NETSHAPE_SIMD_INLINE M land(M a, M b) { return M(a & b); }
+  static NETSHAPE_SIMD_INLINE M lor(M a, M b) { return M(a | b); }
+  static NETSHAPE_SIMD_INLINE M lnot(M a) { return M(~a & 0xFF); }
   static NETSHAPE_SIMD_INLINE bool any(M m) { return m != 0; }
   static NETSHAPE_SIMD_INLINE D blend(M m, D a, D b) { return _mm512_mask_blend_pd(m, a, b); }
   static NETSHAPE_SIMD_INLINE int count(M m) { return __builtin_popcount(m); }

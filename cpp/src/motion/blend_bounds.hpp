@@ -88,48 +88,17 @@ inline void ramp_terms(double tx, double tn, double kx, double kn, double Uabs, 
 //
 // Signed: per table interval the largest and smallest u_i and κn_i at its two nodes, widened by the
 // same kind of margin from the second differences of the signed values. ramps() turns them into the
-// per-axis terms of the axis box for each direction of a speed change (see there).
+// per-axis terms of the axis box for each direction of a speed change (see there). The rows per
+// interval are filled from the node values by the cubic-record kernel CubicRecordKernels::fill
+// (kernels/cubic_record.cpp).
 struct BlendBounds {
   // per axis c and table interval r (axis-major, so the loops over the nodes run on contiguous rows)
   double mu[3][16], mk[3][16], du[3][16], dk[3][16];  // raw maxima per table interval
   double tmax[3][16], tmin[3][16], kmax[3][16], kmin[3][16];  // signed extremes per interval
   double st[3][16], sk[3][16];  // largest second difference of the signed values per interval
-  // singles(): bounds() and ramps() of each table interval alone, [axis][interval]
+  // bounds() and ramps() of each table interval alone, [axis][interval] (the cubic-record kernel
+  // CubicRecordKernels::singles fills them)
   double one_u[3][16], one_k[3][16], one_ua[3][16], one_ka[2][3][16];
-  void fill(const std::array<Vec3, 17>& T, const std::array<Vec3, 17>& Kv) noexcept {
-    // per axis as arrays (Eigen vectorises them; abs, max and min are exact, and the second
-    // differences keep the scalar order (a − 2b) + c): the signed node values u_c, κn_c, their
-    // absolute values, and the absolute second differences of all four (0 at the two end nodes)
-    using Nodes = Eigen::Array<double, 17, 1>;
-    using Intervals = Eigen::Array<double, 16, 1>;
-    const auto second = [](const Nodes& x) {
-      Nodes d;
-      d[0] = d[16] = 0.0;
-      d.segment<15>(1) = (x.head<15>() - 2.0 * x.segment<15>(1) + x.tail<15>()).abs();
-      return d;
-    };
-    const auto upper = [](const Nodes& x, double* out) {
-      Eigen::Map<Intervals>{out} = x.head<16>().max(x.tail<16>());
-    };
-    for (int c = 0; c < 3; ++c) {
-      Nodes ts, ks;
-      for (std::size_t i = 0; i < 17; ++i) {
-        ts[static_cast<Eigen::Index>(i)] = T[i][c];
-        ks[static_cast<Eigen::Index>(i)] = Kv[i][c];
-      }
-      const Nodes t = ts.abs(), k = ks.abs();
-      upper(t, mu[c]);
-      upper(k, mk[c]);
-      upper(second(t), du[c]);
-      upper(second(k), dk[c]);
-      upper(ts, tmax[c]);
-      Eigen::Map<Intervals>{tmin[c]} = ts.head<16>().min(ts.tail<16>());
-      upper(ks, kmax[c]);
-      Eigen::Map<Intervals>{kmin[c]} = ks.head<16>().min(ks.tail<16>());
-      upper(second(ts), st[c]);
-      upper(second(ks), sk[c]);
-    }
-  }
   // Per-axis terms over the table intervals [r0, r1) for a speed change along the path: dir 0 speeding
   // up (path acceleration a ≥ 0), dir 1 slowing down. On the piece u_i·a + κn_i·v² lies in [−A_i, A_i]
   // when |κn_i|·v² ≤ A_i (the speed cap from bounds()) and Uₐ_i·|a| + Kₐ_i·v² ≤ A_i: of the two sides
@@ -151,16 +120,22 @@ struct BlendBounds {
         e = std::max(e, st[c][r]);
         f = std::max(f, sk[c][r]);
       }
-      tx = std::min(1.0, tx + 0.25 * e + 1e-12);
-      tn = std::max(-1.0, tn - 0.25 * e - 1e-12);
-      kx = kx * (kx > 0 ? 1.0 + 1e-9 : 1.0 - 1e-9) + 0.25 * f;
-      kn = kn * (kn < 0 ? 1.0 + 1e-9 : 1.0 - 1e-9) - 0.25 * f;
-      double U[2], K[2];
-      ramp_terms(tx, tn, kx, kn, Uabs[c], Kabs[c], U, K);
-      for (int d = 0; d < 2; ++d) {
-        Ua[d][c] = U[d];
-        Ka[d][c] = K[d];
-      }
+      ramps_from(c, tx, tn, kx, kn, e, f, Uabs, Kabs, Ua, Ka);
+    }
+  }
+  // ramps() of axis c from the extremes over the intervals: of u_c (tx, tn), of κn_c (kx, kn) and the
+  // largest second differences e, f
+  static void ramps_from(int c, double tx, double tn, double kx, double kn, double e, double f, const Vec3& Uabs,
+                         const Vec3& Kabs, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) noexcept {
+    tx = std::min(1.0, tx + 0.25 * e + 1e-12);
+    tn = std::max(-1.0, tn - 0.25 * e - 1e-12);
+    kx = kx * (kx > 0 ? 1.0 + 1e-9 : 1.0 - 1e-9) + 0.25 * f;
+    kn = kn * (kn < 0 ? 1.0 + 1e-9 : 1.0 - 1e-9) - 0.25 * f;
+    double U[2], K[2];
+    ramp_terms(tx, tn, kx, kn, Uabs[c], Kabs[c], U, K);
+    for (int d = 0; d < 2; ++d) {
+      Ua[d][c] = U[d];
+      Ka[d][c] = K[d];
     }
   }
   // bounds over the table intervals [r0, r1)
@@ -173,60 +148,55 @@ struct BlendBounds {
         e = std::max(e, du[c][r]);
         f = std::max(f, dk[c][r]);
       }
-      U[c] = std::min(1.0, std::max(0.0, a) + 0.25 * std::max(0.0, e) + 1e-12);
-      K[c] = std::max(0.0, b) * (1.0 + 1e-9) + 0.25 * std::max(0.0, f);
+      bounds_from(c, a, b, e, f, U, K);
     }
   }
-  // bounds() and ramps() over each single table interval, for all 16 at once; single() then reads
-  // them. With SSE2 two intervals per step: the same operations element by element (std::min(a, b)
-  // is _mm_min_pd(b, a) and std::max(a, b) is _mm_max_pd(b, a), including ties and signed zeros;
-  // negation flips the sign bit), ramp_terms' four cases as masks; ramp_terms gives both directions
-  // the same U. Without SSE2, bounds() and ramps() per interval.
-  void singles() noexcept {
+  // bounds() of axis c from the raw maxima over the intervals (a: |u_c|, b: |κn_c|, e, f: their second
+  // differences)
+  static void bounds_from(int c, double a, double b, double e, double f, Vec3& U, Vec3& K) noexcept {
+    U[c] = std::min(1.0, std::max(0.0, a) + 0.25 * std::max(0.0, e) + 1e-12);
+    K[c] = std::max(0.0, b) * (1.0 + 1e-9) + 0.25 * std::max(0.0, f);
+  }
+  // bounds(0, 16, U, K) and ramps(0, 16, U, K, Ua, Ka) from the folds of the rows over all intervals,
+  // per axis c as CubicRecordKernels::cubic_node gives them (f[c]: mu, du, tmax, tmin, st, mk, dk, kmax,
+  // kmin, sk).
+  static void whole_from(const double (&f)[3][10], Vec3& U, Vec3& K, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) noexcept {
+    for (int c = 0; c < 3; ++c) bounds_from(c, f[c][0], f[c][5], f[c][1], f[c][6], U, K);
+    for (int c = 0; c < 3; ++c) ramps_from(c, f[c][2], f[c][3], f[c][7], f[c][8], f[c][4], f[c][9], U, K, Ua, Ka);
+  }
+  // bounds(0, 16, U, K) and ramps(0, 16, U, K, Ua, Ka): the whole blend. With SSE2 the folds over the
+  // intervals run two rows at a time (lane 0 one row, lane 1 another), each lane in the order of the
+  // intervals with std::max / std::min's operand order (max_ab, min_ab): the same values as the loops.
+  void whole(Vec3& U, Vec3& K, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) const noexcept {
 #if defined(__SSE2__)
-    const __m128d zero = _mm_setzero_pd(), one = _mm_set1_pd(1.0), minus_one = _mm_set1_pd(-1.0),
-                  quarter = _mm_set1_pd(0.25), eps = _mm_set1_pd(1e-12), grow = _mm_set1_pd(1.0 + 1e-9),
-                  shrink = _mm_set1_pd(1.0 - 1e-9), sign = _mm_set1_pd(-0.0);
-    for (int c = 0; c < 3; ++c)
-      for (int r = 0; r < 16; r += 2) {
-        const auto at = [r](const double* row) { return _mm_loadu_pd(row + r); };
-        // bounds(r, r + 1)
-        const __m128d U = min_ab(one, _mm_add_pd(_mm_add_pd(max_ab(zero, at(mu[c])), _mm_mul_pd(quarter, max_ab(zero, at(du[c])))), eps));
-        const __m128d K = _mm_add_pd(_mm_mul_pd(max_ab(zero, at(mk[c])), grow), _mm_mul_pd(quarter, max_ab(zero, at(dk[c]))));
-        // ramps(r, r + 1): the signed ranges with their margins, then ramp_terms
-        const __m128d e = at(st[c]), f = at(sk[c]), kx0 = at(kmax[c]), kn0 = at(kmin[c]);
-        const __m128d tx = min_ab(one, _mm_add_pd(_mm_add_pd(at(tmax[c]), _mm_mul_pd(quarter, e)), eps));
-        const __m128d tn = max_ab(minus_one, _mm_sub_pd(_mm_sub_pd(at(tmin[c]), _mm_mul_pd(quarter, e)), eps));
-        const __m128d kx = _mm_add_pd(_mm_mul_pd(kx0, pick(_mm_cmpgt_pd(kx0, zero), grow, shrink)), _mm_mul_pd(quarter, f));
-        const __m128d kn = _mm_sub_pd(_mm_mul_pd(kn0, pick(_mm_cmplt_pd(kn0, zero), grow, shrink)), _mm_mul_pd(quarter, f));
-        const __m128d mtn = _mm_xor_pd(tn, sign), mkn = _mm_xor_pd(kn, sign);
-        const __m128d up = _mm_cmpgt_pd(tx, zero), down = _mm_cmpgt_pd(mtn, zero);
-        const __m128d u = pick(up, pick(down, max_ab(tx, mtn), tx), pick(down, mtn, zero));
-        const __m128d kb = max_ab(kx, mkn);
-        const __m128d k0 = pick(up, pick(down, kb, kx), pick(down, mkn, zero));
-        const __m128d k1 = pick(up, pick(down, kb, mkn), pick(down, kx, zero));
-        _mm_storeu_pd(one_u[c] + r, U);
-        _mm_storeu_pd(one_k[c] + r, K);
-        _mm_storeu_pd(one_ua[c] + r, min_ab(u, U));
-        _mm_storeu_pd(one_ka[0][c] + r, min_ab(k0, K));
-        _mm_storeu_pd(one_ka[1][c] + r, min_ab(k1, K));
+    // the left fold of rows a (lane 0) and b (lane 1) over the 16 intervals with op(acc, x)
+    const auto fold = [](const double* a, const double* b, const auto& op) {
+      const __m128d a0 = _mm_loadu_pd(a), b0 = _mm_loadu_pd(b);
+      __m128d acc = op(_mm_unpacklo_pd(a0, b0), _mm_unpackhi_pd(a0, b0));
+      for (int r = 2; r < 16; r += 2) {
+        const __m128d ar = _mm_loadu_pd(a + r), br = _mm_loadu_pd(b + r);
+        acc = op(op(acc, _mm_unpacklo_pd(ar, br)), _mm_unpackhi_pd(ar, br));
       }
-#else
-    for (int r = 0; r < 16; ++r) {
-      Vec3 U, K, Ua[2], Ka[2];
-      bounds(r, r + 1, U, K);
-      ramps(r, r + 1, U, K, Ua, Ka);
-      for (int c = 0; c < 3; ++c) {
-        one_u[c][r] = U[c];
-        one_k[c][r] = K[c];
-        one_ua[c][r] = Ua[0][c];
-        one_ka[0][c][r] = Ka[0][c];
-        one_ka[1][c][r] = Ka[1][c];
-      }
+      return acc;
+    };
+    const auto mx = [](__m128d acc, __m128d x) { return max_ab(acc, x); };
+    const auto mn = [](__m128d acc, __m128d x) { return min_ab(acc, x); };
+    const auto lane0 = [](__m128d v) { return _mm_cvtsd_f64(v); };
+    const auto lane1 = [](__m128d v) { return _mm_cvtsd_f64(_mm_unpackhi_pd(v, v)); };
+    for (int c = 0; c < 3; ++c) {
+      const __m128d ab = fold(mu[c], mk[c], mx), ef = fold(du[c], dk[c], mx);
+      bounds_from(c, lane0(ab), lane1(ab), lane0(ef), lane1(ef), U, K);
     }
+    for (int c = 0; c < 3; ++c) {
+      const __m128d x = fold(tmax[c], kmax[c], mx), n = fold(tmin[c], kmin[c], mn), ef = fold(st[c], sk[c], mx);
+      ramps_from(c, lane0(x), lane0(n), lane1(x), lane1(n), lane0(ef), lane1(ef), U, K, Ua, Ka);
+    }
+#else
+    bounds(0, 16, U, K);
+    ramps(0, 16, U, K, Ua, Ka);
 #endif
   }
-  // bounds(r, r + 1, U, K) and ramps(r, r + 1, U, K, Ua, Ka) after singles()
+  // bounds(r, r + 1, U, K) and ramps(r, r + 1, U, K, Ua, Ka) once the single-interval terms are filled
   void single(int r, Vec3& U, Vec3& K, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) const noexcept {
     for (int c = 0; c < 3; ++c) {
       U[c] = one_u[c][r];

@@ -60,6 +60,7 @@ PlannerState::PlannerState(const AxisLimits& limits, const PlanOptions& options)
   acceleration2_ << limits_.acceleration.array(), limits_.acceleration.array();
   line_blend_kernels_ = &line_blend_kernels();
   line_blend_tables_ = &line_blend_tables();
+  cubic_record_kernels_ = &cubic_record_kernels();
   // power-of-two sizes (see ring_slot()): the ring holds one push's nodes plus 12 per block of
   // look-ahead, rounded up
   const auto pow2 = [](long n) {

@@ -79,7 +79,7 @@ void PlannerState::append_corner_blend(long first, Node& nn, const Vec3& u1, con
   Segment& whole = blend_geometry(source);
   whole = Segment::blend(bl[0], bl[1], bl[2], bl[3], psource, &T, &Kv);
   BlendBounds tab;
-  tab.fill(T, Kv);
+  cubic_record_kernels_->fill(tab, T[0].data(), Kv[0].data());
   // piece boundaries at table nodes
   const int* cut = jerk_mode ? cuts_jerk : cuts_general;
   int np = jerk_mode ? n_cuts_jerk : n_cuts_general;

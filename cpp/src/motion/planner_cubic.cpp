@@ -11,10 +11,6 @@
 #include "planner_geometry.hpp"
 #include "planner_state.hpp"
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 namespace netshape::motion::detail {
 
 namespace {
@@ -24,6 +20,13 @@ int interval_at(const std::array<double, 17>& table, double s) {
   return std::clamp(static_cast<int>(it - table.begin()) - 1, 0, 15);
 }
 }  // namespace
+
+const CubicRecordKernels& cubic_record_kernels_plain() { return baseline::cubic_record_kernel_table; }
+
+const CubicRecordKernels& cubic_record_kernels() {
+  static const CubicRecordKernels& chosen = NETSHAPE_SIMD_SELECT(detail, cubic_record_kernel_table);
+  return chosen;
+}
 
 const char* PlannerState::cubic_error(const toolpath::Block& b, const CubicControls& c) noexcept {
   if (b.kind == toolpath::MotionKind::arc) return "cubic block: kind must be line (the chord P0 -> P3), got arc";
@@ -36,14 +39,32 @@ const char* PlannerState::cubic_error(const toolpath::Block& b, const CubicContr
 
 void PlannerState::init_cubic_node(Node& n, const toolpath::Block& b, const CubicControls& c, long source) noexcept {
   n = Node{};
-  std::array<Vec3, 17> T, Kv;
-  n.segment = Segment::blend(b.start, c.c1, c.c2, b.end, source, &T, &Kv);
-  n.segment.block = b;  // the chord (kind line) with the block's feed and line number
   CubicTable& ct = cubic_table(source);
-  ct.bounds.fill(T, Kv);
-  for (std::size_t i = 0; i < 17; ++i) ct.curvature[i] = Kv[i].norm();
-  ct.bounds.bounds(0, 16, n.tangent_bound, n.curvature_bound);
-  ct.bounds.ramps(0, 16, n.tangent_bound, n.curvature_bound, n.ramp_tangent, n.ramp_curvature);
+  Segment& s = n.segment;
+  // Segment::blend(b.start, c.c1, c.c2, b.end, source) with its node frames straight into the table's
+  // bounds (the cubic-record kernel); symmetric Béziers through Segment::blend itself
+  s.kind = SegmentKind::blend;
+  s.ctrl = {b.start, c.c1, c.c2, b.end};
+  s.source = source;
+  double folds[3][10], finish[2];
+  if (cubic_record_kernels_->cubic_node(s.ctrl[0].data(), s.table.data(), ct.curvature, ct.bounds, folds, finish)) {
+    if (finish[0] >= 0) {
+      s.curvature = finish[0];
+      s.curvature_rate = finish[1];
+      s.full_length = s.table[16];
+    } else {
+      finish_blend(s, ct.curvature);
+    }
+    BlendBounds::whole_from(folds, n.tangent_bound, n.curvature_bound, n.ramp_tangent, n.ramp_curvature);
+  } else {
+    std::array<Vec3, 17> T, Kv;
+    s = Segment::blend(b.start, c.c1, c.c2, b.end, source, &T, &Kv);
+    cubic_record_kernels_->fill(ct.bounds, T[0].data(), Kv[0].data());
+    for (std::size_t i = 0; i < 17; ++i) ct.curvature[i] = Kv[i].norm();
+    ct.bounds.whole(n.tangent_bound, n.curvature_bound, n.ramp_tangent, n.ramp_curvature);
+  }
+  s.block = b;  // the chord (kind line) with the block's feed and line number
+  ct.minima = axis_minima(s);
   n.geometry = Geometry::in_node;
 }
 
@@ -99,8 +120,10 @@ void PlannerState::split_cubic_block() noexcept {
   node_at[nc] = -1;
   cuts[nc++] = b;
   const int m = nc - 1;
-  const AxisMinima minima = axis_minima(g);  // the same axes move on every piece
-  if (step == 1) tab.singles();  // the pieces are single table intervals (but at trimmed ends)
+  const AxisMinima& minima = ct.minima;  // the same axes move on every piece
+  // the pieces are single table intervals (but at trimmed ends); the cubic record takes them from the
+  // kernel itself (fill_cubic_record)
+  if (step == 1 && !cubic_records_used()) cubic_record_kernels_->singles(tab);
   // the intervals [i0, i1) that hold piece k, [cuts[k], cuts[k + 1]]: i0 is the interval holding its
   // start (interval_at), i1 the first table node at or past its end. A cut on table node i, where the
   // table (non-decreasing) rises on both sides of it, gives them without a search: interval_at(table[i])
@@ -160,9 +183,9 @@ void PlannerState::split_cubic_block() noexcept {
 // The pieces of the cubic block in node `whole` (its cuts, m pieces, table step as split_cubic_block())
 // into the cubic record of its block, with what finish_piece(), set_limits() and update_pass() give a
 // piece node of a curved block without jerk limits or windows; `whole` becomes the record's node. The
-// bounds per piece as there; the caps and reach coefficients of all pieces at once: with SSE2 two pieces
-// per step, the same operations element by element (as BlendBounds::singles(); box_reach_both()'s
-// where each of its denominators is > 0, else set_box_reach() for that piece alone).
+// bounds per piece as there; the caps and reach coefficients of all pieces at once in the cubic-record
+// kernel (box_reach_both()'s where each of its denominators is > 0, else set_box_reach() for that piece
+// alone).
 template <class Intervals>
 void PlannerState::fill_cubic_record(Node& whole, const PieceBase& base, const double* cuts, int m, int step,
                                      double amin, const Intervals& intervals) noexcept {
@@ -179,27 +202,35 @@ void PlannerState::fill_cubic_record(Node& whole, const PieceBase& base, const d
   store.trim_start = store.trim_end = 0.0;  // (next() samples a piece at its offset on the whole cubic)
   r.np = m;
   r.cursor = 0;
-  constexpr int P = CubicRecord::pieces;
-  double Ub[3][P], Kb[3][P];  // the unsigned bounds per axis
+  // step 1: the pieces after the first lie on consecutive table intervals (but for flat stretches of the
+  // table); all of them on the intervals from r0 on come from the kernel, the others (a trimmed first or
+  // last piece over more than one interval) are overwritten below
+  int r0 = -1;
+  if (step == 1 && m >= 2) {
+    int i0, i1;
+    intervals(1, i0, i1);
+    if (i0 >= 1 && i0 - 1 + m <= 16) {
+      r0 = i0 - 1;
+      cubic_record_kernels_->record_singles(tab, ct.curvature, g.table.data(), r0, r);
+    }
+  }
   for (int k = 0; k < m; ++k) {
     int i0, i1;
     intervals(k, i0, i1);
-    Vec3 U, K, Ua[2], Ka[2];
-    if (step == 1 && i1 == i0 + 1) {
-      tab.single(i0, U, K, Ua, Ka);
-    } else {
+    if (!(r0 >= 0 && i0 == r0 + k && i1 == i0 + 1)) {
+      Vec3 U, K, Ua[2], Ka[2];
       tab.bounds(i0, i1, U, K);
       tab.ramps(i0, i1, U, K, Ua, Ka);
-    }
-    for (int i = 0; i < 3; ++i) {
-      Ub[i][k] = U[i];
-      Kb[i][k] = K[i];
-      for (int d = 0; d < 2; ++d) {
-        r.ramp_u[d][i][k] = Ua[d][i];
-        r.ramp_k[d][i][k] = Ka[d][i];
+      for (int i = 0; i < 3; ++i) {
+        r.u_abs[i][k] = U[i];
+        r.k_abs[i][k] = K[i];
+        for (int d = 0; d < 2; ++d) {
+          r.ramp_u[d][i][k] = Ua[d][i];
+          r.ramp_k[d][i][k] = Ka[d][i];
+        }
       }
+      piece_curvature(ct.curvature, g.table, i0, i1, r.curvature[k], r.curvature_rate[k]);
     }
-    piece_curvature(ct.curvature, g.table, i0, i1, r.curvature[k], r.curvature_rate[k]);
     r.trim_start[k] = cuts[k];
     r.trim_end[k] = L - cuts[k + 1];
     r.len[k] = L - r.trim_start[k] - r.trim_end[k];  // (Segment::length(); ≥ 0: rounding is monotone)
@@ -218,73 +249,14 @@ void PlannerState::fill_cubic_record(Node& whole, const PieceBase& base, const d
       r.beta_down[i][k] = x.beta_down[i];
     }
   };
-#if defined(__SSE2__)
-  if (m % 2) {  // the odd last lane repeats the last piece
-    r.len[m] = r.len[m - 1];
-    for (int i = 0; i < 3; ++i) {
-      Ub[i][m] = Ub[i][m - 1];
-      Kb[i][m] = Kb[i][m - 1];
-      for (int d = 0; d < 2; ++d) {
-        r.ramp_u[d][i][m] = r.ramp_u[d][i][m - 1];
-        r.ramp_k[d][i][m] = r.ramp_k[d][i][m - 1];
-      }
-    }
-  }
-  const __m128d zero = _mm_setzero_pd(), one = _mm_set1_pd(1.0), two = _mm_set1_pd(2.0), inf2 = _mm_set1_pd(inf);
-  for (int k = 0; k < m; k += 2) {
-    __m128d v = _mm_set1_pd(base.feed_cap), wk = inf2;
-    for (int i = 0; i < 3; ++i) {
-      const __m128d U = _mm_loadu_pd(Ub[i] + k), K = _mm_loadu_pd(Kb[i] + k);
-      v = pick(_mm_cmpgt_pd(U, zero), min_ab(v, _mm_div_pd(_mm_set1_pd(limits_.velocity[i]), U)), v);
-      wk = pick(_mm_cmpgt_pd(K, zero), min_ab(wk, _mm_div_pd(_mm_set1_pd(limits_.acceleration[i]), K)), wk);
-    }
-    v = pick(_mm_cmplt_pd(wk, inf2), min_ab(v, _mm_sqrt_pd(wk)), v);
-    _mm_storeu_pd(r.v_max + k, v);
-    // box_reach_both(): den = U + 2L·max(K, 0), an = U − 2L·min(K, 0) per direction and axis
-    const __m128d L2 = _mm_mul_pd(two, max_ab(zero, _mm_loadu_pd(r.len + k)));
-    __m128d ok = _mm_cmpeq_pd(zero, zero);
-    for (int d = 0; d < 2; ++d) {
-      __m128d den[3], an[3];
-      for (int i = 0; i < 3; ++i) {
-        const __m128d u = _mm_loadu_pd(r.ramp_u[d][i] + k), kk = _mm_loadu_pd(r.ramp_k[d][i] + k);
-        den[i] = _mm_add_pd(u, _mm_mul_pd(L2, max_ab(kk, zero)));
-        an[i] = _mm_sub_pd(u, _mm_mul_pd(L2, min_ab(kk, zero)));
-        ok = _mm_and_pd(ok, _mm_cmpgt_pd(den[i], zero));
-      }
-      const __m128d d01 = _mm_mul_pd(den[0], den[1]), rr = _mm_div_pd(one, _mm_mul_pd(d01, den[2]));
-      const __m128d rd[3] = {_mm_mul_pd(_mm_mul_pd(den[1], den[2]), rr), _mm_mul_pd(_mm_mul_pd(den[0], den[2]), rr),
-                             _mm_mul_pd(d01, rr)};
-      double(&al)[3][P] = d == 0 ? r.alpha : r.alpha_down;
-      double(&be)[3][P] = d == 0 ? r.beta : r.beta_down;
-      for (int i = 0; i < 3; ++i) {
-        _mm_storeu_pd(al[i] + k, _mm_mul_pd(an[i], rd[i]));
-        _mm_storeu_pd(be[i] + k, _mm_mul_pd(_mm_mul_pd(L2, _mm_set1_pd(limits_.acceleration[i])), rd[i]));
-      }
-    }
-    const int good = _mm_movemask_pd(ok);
-    if (!(good & 1)) scalar_reach(k);
-    if (!(good & 2) && k + 1 < m) scalar_reach(k + 1);
-  }
-#else
-  for (int k = 0; k < m; ++k) {
-    // the per-axis box |u_i|·v ≤ V_i, K_i·v² ≤ A_i (set_limits)
-    double v = base.feed_cap, wk = inf;
-    for (int i = 0; i < 3; ++i) {
-      if (Ub[i][k] > 0) v = std::min(v, limits_.velocity[i] / Ub[i][k]);
-      if (Kb[i][k] > 0) wk = std::min(wk, limits_.acceleration[i] / Kb[i][k]);
-    }
-    if (wk < inf) v = std::min(v, std::sqrt(wk));
-    r.v_max[k] = v;
-    scalar_reach(k);
-  }
-#endif
+  // the caps and reach coefficients of all pieces at once (the cubic-record kernel)
+  unsigned bad = cubic_record_kernels_->caps_reach(r, base.feed_cap, limits_.velocity.data(), limits_.acceleration.data());
+  for (int k = 0; bad != 0; ++k, bad >>= 1)
+    if (bad & 1u) scalar_reach(k);
   // junction limits: the block's corner at the first piece, the cap before at the others (finish_piece)
-  for (int k = 0; k < m; ++k) {
-    const double vj = std::min(k == 0 ? base.v_corner : r.v_max[k - 1], r.v_max[k]);
-    if (k == 0) whole.v_junction = vj;
-    r.w_junction[k] = vj * vj;
-    r.w_backward[k] = 0.0;
-  }
+  whole.v_junction = std::min(base.v_corner, r.v_max[0]);
+  cubic_record_kernels_->junctions(r, base.v_corner);
+  r.w_after = -1.0;
   // the node: the whole cubic with its trims (push() and the blend rule read its curve at the end),
   // the first piece's junction and the last piece's cap (the junction after it reads v_max)
   whole.geometry = Geometry::cubic_record;

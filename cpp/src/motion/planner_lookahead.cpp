@@ -5,10 +5,6 @@
 
 #include "planner_state.hpp"
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 namespace netshape::motion::detail {
 
 inline double PlannerState::reach_squared(const PassRecord& n, double w0) const noexcept {
@@ -28,6 +24,46 @@ inline double reach_back_squared(const PassRecord& n, double w_next) noexcept {
 }
 
 namespace {
+// The backward steps over the pieces of a cubic record from the last to the first (the step of a node
+// without jerk limits, the only mode with cubic records) from w, the squared speed after the record;
+// returns the squared speed before it, with each piece's into wb[p] when `store`. Only the N axes of
+// r.live_down_axis (the others never bind: the minimum is the same, and so are its bits, the values
+// being ≥ 0).
+template <int N, bool store>
+inline double cubic_chain(const CubicRecord& r, double w, double* wb) noexcept {
+  const double* al[3] = {nullptr, nullptr, nullptr};
+  const double* be[3] = {nullptr, nullptr, nullptr};
+  for (int j = 0; j < N; ++j) {
+    al[j] = r.alpha_down[r.live_down_axis[j]];
+    be[j] = r.beta_down[r.live_down_axis[j]];
+  }
+#if defined(__GNUC__)
+#pragma GCC unroll 4  // (a step is ~8 instructions: the loop's own 3 are a third of it)
+#endif
+  for (int p = r.np - 1; p >= 0; --p) {
+    if constexpr (N == 3) {
+      w = min_of(min_of(r.w_junction[p], al[0][p] * w + be[0][p]), min_of(al[1][p] * w + be[1][p], al[2][p] * w + be[2][p]));
+    } else if constexpr (N == 2) {
+      w = min_of(min_of(r.w_junction[p], al[0][p] * w + be[0][p]), al[1][p] * w + be[1][p]);
+    } else if constexpr (N == 1) {
+      w = min_of(r.w_junction[p], al[0][p] * w + be[0][p]);
+    } else {
+      w = r.w_junction[p];
+    }
+    if constexpr (store) wb[p] = w;
+  }
+  return w;
+}
+template <bool store>
+inline double cubic_chain(const CubicRecord& r, double w, double* wb) noexcept {
+  switch (r.live_down) {
+    case 3: return cubic_chain<3, store>(r, w, wb);
+    case 2: return cubic_chain<2, store>(r, w, wb);
+    case 1: return cubic_chain<1, store>(r, w, wb);
+    default: return cubic_chain<0, store>(r, w, wb);
+  }
+}
+
 // Backward-pass steps over the nodes k = hi, hi − 1, ..., lo (ring records rec, slot k & mask):
 // w_next becomes each node's new squared speed, min(junction limit, reach(node, w_next)); a line-blend
 // or cubic-record node runs over its pieces (line_blends, cubics). With stop_if_same the steps stop at
@@ -53,19 +89,12 @@ inline bool back_steps(PassRecord* rec, std::size_t mask, LineBlendRecord* line_
         r.w_backward[p] = w;
       }
     } else if (n.cubic >= 0) {
-      // a cubic-record node: its pieces from the last to the first, each as a node of its own
+      // a cubic-record node: its pieces from the last to the first, each as a node of its own; what
+      // it carries back depends on what comes after it alone
       CubicRecord& r = cubics[static_cast<std::size_t>(n.cubic)];
-      w = w_next;
-      for (int p = r.np - 1; p >= 0; --p) {
-        // the step of a node without jerk limits (the only mode with cubic records)
-        w = min_of(min_of(r.w_junction[p], r.alpha_down[0][p] * w + r.beta_down[0][p]),
-                   min_of(r.alpha_down[1][p] * w + r.beta_down[1][p], r.alpha_down[2][p] * w + r.beta_down[2][p]));
-        if (stop_if_same && w == r.w_backward[p]) {  // as for the line-blend pieces above
-          w = r.w_backward[0];
-          break;
-        }
-        r.w_backward[p] = w;
-      }
+      if (stop_if_same && w_next == r.w_after) return false;  // nothing changes here or further back
+      r.w_after = w_next;
+      w = cubic_chain<false>(r, w_next, nullptr);
     } else {
       w = reach(n, w_next);
     }
@@ -202,118 +231,23 @@ void PlannerState::freeze_record_node(Node& n, double vs, double ve, double t_en
 // The pieces of a cubic-record node one after the other, as freeze_next() freezes nodes: each piece's
 // end speed is the smaller of the next piece's backward speed (of the next node: wt) and what it
 // reaches from its start speed (a sequential chain); then every piece's profile, axis_box_profile()
-// without windows. With SSE2 two pieces per step: the same operations element by element (std::min(a,
-// b) is _mm_min_pd(b, a), std::max(a, b) is _mm_max_pd(b, a), including ties and signed zeros; the
-// branches of min_ratio() and make_trapezoid() as masks, min_ratio's fast path being its loop's result
-// when every denominator is > 0). A piece's length is ≥ 0, so the windows' min(0, length) are 0 and the
-// ramps get the whole length.
+// without windows, in the cubic-record kernel (all pieces at once, the same operations element by
+// element).
 void PlannerState::freeze_cubic_record(Node& n, CubicRecord& r, double vs, double wt) noexcept {
   const int np = r.np;
+  double wb[CubicRecord::pieces];  // the pieces' backward squared speeds, as the backward pass found them
+  cubic_chain<true>(r, r.w_after, wb);
   double v = vs;
   for (int k = 0; k < np; ++k) {
-    const double w_end = k + 1 < np ? r.w_backward[k + 1] : wt;
+    const double w_end = k + 1 < np ? wb[k + 1] : wt;
     const double w0 = v * v;  // reach_squared() without jerk limits
-    const double reach = std::min({r.alpha[0][k] * w0 + r.beta[0][k], r.alpha[1][k] * w0 + r.beta[1][k],
-                                   r.alpha[2][k] * w0 + r.beta[2][k]});
+    const double reach = min_of(min_of(r.alpha[0][k] * w0 + r.beta[0][k], r.alpha[1][k] * w0 + r.beta[1][k]),
+                                r.alpha[2][k] * w0 + r.beta[2][k]);  // (std::min of the three)
     r.vs[k] = v;
     v = std::sqrt(std::min(w_end, reach));
     r.ve[k] = v;
   }
-#if defined(__SSE2__)
-  if (np % 2) {  // the odd last lane repeats the last piece (its length, cap and ramp terms already do:
-                 // fill_cubic_record)
-    r.vs[np] = r.vs[np - 1];
-    r.ve[np] = r.ve[np - 1];
-  }
-  const __m128d zero = _mm_setzero_pd(), two = _mm_set1_pd(2.0), half = _mm_set1_pd(0.5), one = _mm_set1_pd(1.0),
-                inf2 = _mm_set1_pd(inf);
-  const double amin = limits_.acceleration.minCoeff();
-  const __m128d floor_a = _mm_set1_pd(1e-6 * amin), amin2 = _mm_set1_pd(amin);
-  const __m128d A[3] = {_mm_set1_pd(limits_.acceleration[0]), _mm_set1_pd(limits_.acceleration[1]),
-                        _mm_set1_pd(limits_.acceleration[2])};
-  // one step of min_ratio()'s loop: the fraction num/den replaces the best nb/db (has: one was taken)
-  const auto ratio_step = [&](__m128d num, __m128d den, __m128d& nb, __m128d& db, __m128d& has) {
-    const __m128d better = _mm_cmplt_pd(_mm_mul_pd(num, db), _mm_mul_pd(nb, den));
-    const __m128d take = _mm_and_pd(_mm_cmpgt_pd(den, zero), _mm_or_pd(better, _mm_cmpeq_pd(has, zero)));
-    nb = pick(take, num, nb);
-    db = pick(take, den, db);
-    has = _mm_or_pd(has, take);
-  };
-  for (int k = 0; k < np; k += 2) {
-    const auto at = [k](const double* row) { return _mm_loadu_pd(row + k); };
-    const __m128d vs_ = at(r.vs), ve_ = at(r.ve), len = at(r.len);
-    const __m128d vs2 = _mm_mul_pd(vs_, vs_), ve2 = _mm_mul_pd(ve_, ve_);
-    const __m128d S = _mm_add_pd(vs2, ve2), wlow = min_ab(vs2, ve2);
-    const __m128d lr2 = _mm_mul_pd(two, len);
-    // axis_box_profile(): the peak squared speed (the terms Ke = max(K, 0), Ae = A − min(K, 0)·wlow
-    // are found again for the acceleration below)
-    __m128d wp = _mm_mul_pd(at(r.v_max), at(r.v_max));
-    for (int d = 0; d < 2; ++d) {
-      __m128d nb = zero, db = one, has = zero;
-      for (int i = 0; i < 3; ++i) {
-        const __m128d kk = at(r.ramp_k[d][i]), U = at(r.ramp_u[d][i]);
-        const __m128d Ae = _mm_sub_pd(A[i], _mm_mul_pd(min_ab(kk, zero), wlow));
-        ratio_step(_mm_add_pd(_mm_mul_pd(U, S), _mm_mul_pd(lr2, Ae)),
-                   _mm_add_pd(_mm_mul_pd(two, U), _mm_mul_pd(lr2, max_ab(kk, zero))), nb, db, has);
-      }
-      wp = min_ab(wp, pick(has, _mm_div_pd(nb, db), inf2));
-    }
-    wp = max_ab(wp, max_ab(vs2, ve2));
-    __m128d a = inf2;
-    for (int d = 0; d < 2; ++d) {
-      __m128d nb = zero, db = one, has = zero;
-      for (int i = 0; i < 3; ++i) {
-        const __m128d kk = at(r.ramp_k[d][i]), U = at(r.ramp_u[d][i]);
-        const __m128d Ae = _mm_sub_pd(A[i], _mm_mul_pd(min_ab(kk, zero), wlow));
-        ratio_step(_mm_sub_pd(Ae, _mm_mul_pd(max_ab(kk, zero), wp)), U, nb, db, has);
-      }
-      const __m128d ad = pick(has, _mm_div_pd(nb, db), inf2);
-      a = d == 0 ? ad : min_ab(a, ad);
-    }
-    a = pick(_mm_cmpgt_pd(a, floor_a), a, floor_a);
-    a = pick(_mm_cmpeq_pd(a, inf2), amin2, a);
-    // make_trapezoid() without windows, cruise cap sqrt(wp)
-    const __m128d vlow = max_ab(vs_, ve_);
-    __m128d vp = _mm_sqrt_pd(max_ab(zero, _mm_div_pd(_mm_add_pd(_mm_mul_pd(_mm_mul_pd(two, a), len), S), two)));
-    vp = max_ab(vlow, min_ab(vp, max_ab(_mm_sqrt_pd(wp), vlow)));
-    const __m128d need = _mm_sub_pd(_mm_mul_pd(_mm_mul_pd(two, vp), vp), S);
-    const __m128d raise = _mm_and_pd(_mm_cmpgt_pd(len, zero), _mm_cmpgt_pd(need, _mm_mul_pd(lr2, a)));
-    a = pick(raise, _mm_div_pd(need, lr2), a);
-    const __m128d ia = _mm_div_pd(one, a);
-    const __m128d t1 = _mm_mul_pd(_mm_sub_pd(vp, vs_), ia), d1 = _mm_mul_pd(_mm_mul_pd(half, _mm_add_pd(vs_, vp)), t1);
-    const __m128d t3 = _mm_mul_pd(_mm_sub_pd(vp, ve_), ia), d3 = _mm_mul_pd(_mm_mul_pd(half, _mm_add_pd(vp, ve_)), t3);
-    __m128d d2 = max_ab(zero, _mm_sub_pd(_mm_sub_pd(len, d1), d3));
-    const __m128d moving = _mm_cmpgt_pd(vp, zero);
-    __m128d d2m = _mm_add_pd(d2, _mm_sub_pd(len, _mm_add_pd(_mm_add_pd(d1, d2), d3)));
-    d2m = pick(_mm_cmplt_pd(d2m, zero), zero, d2m);
-    d2 = pick(moving, d2m, d2);
-    const __m128d t2 = pick(moving, _mm_div_pd(d2, vp), zero);
-    _mm_storeu_pd(r.vp + k, vp);
-    _mm_storeu_pd(r.acc + k, a);
-    _mm_storeu_pd(r.t1 + k, t1);
-    _mm_storeu_pd(r.t2 + k, t2);
-    _mm_storeu_pd(r.t3 + k, t3);
-    _mm_storeu_pd(r.d1 + k, d1);
-    _mm_storeu_pd(r.d2 + k, d2);
-    _mm_storeu_pd(r.d3 + k, d3);
-    _mm_storeu_pd(r.dur + k, _mm_add_pd(_mm_add_pd(t1, t2), t3));
-  }
-#else
-  for (int k = 0; k < np; ++k) {
-    Vec3 Ua[2], Ka[2];
-    r.ramps(k, Ua, Ka);
-    const Profile p = axis_box_profile(r.len[k], r.vs[k], r.ve[k], r.v_max[k], Ua, Ka, 0.0, 0.0);
-    r.vp[k] = p.vp;
-    r.acc[k] = p.a;
-    r.t1[k] = p.t[1];
-    r.t2[k] = p.t[2];
-    r.t3[k] = p.t[3];
-    r.d1[k] = p.d[1];
-    r.d2[k] = p.d[2];
-    r.d3[k] = p.d[3];
-    r.dur[k] = p.duration;
-  }
-#endif
+  cubic_record_kernels_->freeze(r, limits_.acceleration.data(), limits_.acceleration.minCoeff());
   double t = t_frozen_end_;
   for (int k = 0; k < np; ++k) {
     r.t0[k] = t;

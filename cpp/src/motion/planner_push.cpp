@@ -104,7 +104,7 @@ Status PlannerState::push(const toolpath::Block& b, const CubicControls* cubic) 
   nn.block = source;
   nn.feed_cap = (rapid || b.feed <= 0) ? inf : b.feed;
   nn.v_max = nn.feed_cap;
-  set_limits(nn, arc || cubic ? nullptr : &dir);
+  set_limits(nn, arc || cubic ? nullptr : &dir, cubic ? &cubic_table(source).minima : nullptr);
   const double first_piece = arc     ? nn.segment.full_length / arc_piece_count(nn.segment)
                              : cubic ? nn.segment.full_length / cubic_piece_count()
                                      : nn.segment.full_length;

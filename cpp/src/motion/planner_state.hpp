@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "blend_bounds.hpp"
+#include "cubic_record.hpp"
 #include "line_blend.hpp"
 #include "planner_geometry.hpp"
 #include "netshape/motion/cubic.hpp"
@@ -179,46 +180,12 @@ struct PassRecord {
   double alpha[3] = {1, 0, 0}, beta[3] = {0, 0, 0};
 };
 
-/// The pieces of a cubic block held by one ring node (Geometry::cubic_record; only without jerk
-/// limits), kept once per block by the planner. Per piece: its trims of the whole cubic and length,
-/// largest curvature and |dκ/ds| (the output segment's), speed cap, squared junction limit, the reach
-/// coefficients of both directions (PassRecord's alpha, beta, alpha_down, beta_down), the backward
-/// squared speed at its start, the per-axis ramp terms (Node::ramp_tangent, ramp_curvature) and, once
-/// frozen, its trapezoid (speeds, acceleration, phase times and distances; no windows) and start time.
-/// Every field is an array over the pieces ([axis][piece], [direction][axis][piece]); the passes, the
-/// freeze and the output run over them as over nodes of their own, with the same arithmetic.
-struct CubicRecord {
-  static constexpr int pieces = 16;
-  int np = 0;      ///< pieces in use (1..pieces)
-  int cursor = 0;  ///< next piece to hand out (next_segment) or the piece being sampled (next)
-  double trim_start[pieces] = {}, trim_end[pieces] = {}, len[pieces] = {};  ///< [mm]
-  double curvature[pieces] = {}, curvature_rate[pieces] = {};             ///< [1/mm], [1/mm²]
-  double v_max[pieces] = {};                                              ///< [mm/s]
-  double w_junction[pieces] = {}, w_backward[pieces] = {};                ///< [mm²/s²]
-  double alpha[3][pieces] = {}, beta[3][pieces] = {}, alpha_down[3][pieces] = {}, beta_down[3][pieces] = {};
-  double ramp_u[2][3][pieces] = {}, ramp_k[2][3][pieces] = {};
-  // frozen: speed-up, cruise, slow-down
-  double vs[pieces] = {}, ve[pieces] = {}, vp[pieces] = {}, acc[pieces] = {};
-  double t1[pieces] = {}, t2[pieces] = {}, t3[pieces] = {};
-  double d1[pieces] = {}, d2[pieces] = {}, d3[pieces] = {};
-  double dur[pieces] = {}, t0[pieces] = {};
-  /// The frozen profile of piece k.
-  void profile(int k, Profile& p) const noexcept { frozen_profile(*this, k, p); }
-  /// The ramp terms of piece k as a Node holds them (Node::ramp_tangent, Node::ramp_curvature).
-  void ramps(int k, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) const noexcept {
-    for (int d = 0; d < 2; ++d)
-      for (int i = 0; i < 3; ++i) {
-        Ua[d][i] = ramp_u[d][i][k];
-        Ka[d][i] = ramp_k[d][i][k];
-      }
-  }
-};
-
 /// What init_cubic_node() finds on a cubic block's arc-length table and split_cubic_block() cuts it
 /// with: the per-interval bounds and the curvature |κ| at the 17 table nodes.
 struct CubicTable {
   BlendBounds bounds;
   double curvature[17] = {};
+  AxisMinima minima;  ///< axis_minima() of the cubic (its pieces have the same)
 };
 
 /// The planner's state and operations. Planner's streaming calls run the operations of the same
@@ -358,6 +325,8 @@ class PlannerState {
   // the array work of blends between two lines, for the best instruction set the CPU has
   const LineBlendKernels* line_blend_kernels_ = nullptr;
   const LineBlendTables* line_blend_tables_ = nullptr;
+  // the array work of cubic records, likewise
+  const CubicRecordKernels* cubic_record_kernels_ = nullptr;
 
   // tables of the last two cubic blocks pushed, by the parity of their source: the block whose end is
   // not known yet (held whole) and the one push() is building

@@ -7,9 +7,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <random>
+#include <string>
 
 #include "motion/blend_bounds.hpp"
+#include "motion/cubic_record.hpp"
 #include "motion/planner_geometry.hpp"
 #include "netshape/motion.hpp"
 
@@ -65,7 +68,7 @@ TEST_CASE("ramp terms of cubic pieces keep every axis within its limit (random c
     std::array<Vec3, 17> T, Kv;
     const Segment g = Segment::blend(p0, p1, p2, p3, 0, &T, &Kv);
     BlendBounds tab;
-    tab.fill(T, Kv);
+    cubic_record_kernels().fill(tab, T[0].data(), Kv[0].data());
     for (const auto& [r0, r1] : {std::pair{0, 16}, std::pair{0, 1}, std::pair{3, 7}, std::pair{8, 12}, std::pair{15, 16},
                                  std::pair{5, 6}}) {
       Vec3 U, K, Ua[2], Ka[2];
@@ -90,7 +93,176 @@ TEST_CASE("ramp terms of cubic pieces keep every axis within its limit (random c
   CHECK(tighter > pieces / 2);
 }
 
-TEST_CASE("BlendBounds::singles gives bounds() and ramps() of every single interval, bit for bit") {
+namespace {
+// BlendBounds' rows as defined (the kernel computes them a packet at a time): per axis and table
+// interval r the maxima over its two nodes of |x| and of the absolute second differences
+// |(x[i−1] − 2·x[i]) + x[i+1]| of |x| (0 at the end nodes), the largest and smallest x and the largest
+// second difference of x, for x the unit tangent's and the curvature vector's component
+void reference_fill(BlendBounds& t, const std::array<Vec3, 17>& T, const std::array<Vec3, 17>& Kv) {
+  const auto rows = [](const double (&x)[17], double* amax, double* a2max, double* hi, double* lo, double* s2max) {
+    double a[17], da[17] = {}, dx[17] = {};
+    for (int i = 0; i < 17; ++i) a[i] = std::abs(x[i]);
+    for (int i = 1; i < 16; ++i) {
+      da[i] = std::abs(a[i - 1] - 2.0 * a[i] + a[i + 1]);
+      dx[i] = std::abs(x[i - 1] - 2.0 * x[i] + x[i + 1]);
+    }
+    for (int r = 0; r < 16; ++r) {
+      amax[r] = std::max(a[r], a[r + 1]);
+      a2max[r] = std::max(da[r], da[r + 1]);
+      hi[r] = std::max(x[r], x[r + 1]);
+      lo[r] = std::min(x[r], x[r + 1]);
+      s2max[r] = std::max(dx[r], dx[r + 1]);
+    }
+  };
+  for (int c = 0; c < 3; ++c) {
+    double ts[17], ks[17];
+    for (std::size_t i = 0; i < 17; ++i) {
+      ts[i] = T[i][c];
+      ks[i] = Kv[i][c];
+    }
+    rows(ts, t.mu[c], t.du[c], t.tmax[c], t.tmin[c], t.st[c]);
+    rows(ks, t.mk[c], t.dk[c], t.kmax[c], t.kmin[c], t.sk[c]);
+  }
+}
+}  // namespace
+
+TEST_CASE("the cubic-record kernel's BlendBounds rows and BlendBounds::whole are as defined, bit for bit") {
+  MESSAGE("cubic-record kernels in use: " << std::string(cubic_record_kernels().isa));
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> U01(-1.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vec3 p0(0, 0, 0);
+    const double z = trial % 3 == 0 ? 0.0 : 0.4;
+    const Vec3 p1 = p0 + Vec3(1.0 + 0.5 * U01(rng), 0.6 * U01(rng), z * U01(rng));
+    const Vec3 p2 = trial % 5 == 0 ? Vec3(2.0 * p1) : Vec3(p1 + Vec3(0.8 * U01(rng), 1.0 + 0.5 * U01(rng), z * U01(rng)));
+    const Vec3 p3 = p2 + Vec3(0.6 * U01(rng) - 0.5, 0.5 * U01(rng) + 0.5, z * U01(rng));
+    std::array<Vec3, 17> T, Kv;
+    Segment::blend(p0, p1, p2, p3, 0, &T, &Kv);
+    BlendBounds a, b;
+    cubic_record_kernels().fill(a, T[0].data(), Kv[0].data());
+    reference_fill(b, T, Kv);
+    CHECK(std::memcmp(a.mu, b.mu, sizeof a.mu) == 0);
+    CHECK(std::memcmp(a.mk, b.mk, sizeof a.mk) == 0);
+    CHECK(std::memcmp(a.du, b.du, sizeof a.du) == 0);
+    CHECK(std::memcmp(a.dk, b.dk, sizeof a.dk) == 0);
+    CHECK(std::memcmp(a.tmax, b.tmax, sizeof a.tmax) == 0);
+    CHECK(std::memcmp(a.tmin, b.tmin, sizeof a.tmin) == 0);
+    CHECK(std::memcmp(a.kmax, b.kmax, sizeof a.kmax) == 0);
+    CHECK(std::memcmp(a.kmin, b.kmin, sizeof a.kmin) == 0);
+    CHECK(std::memcmp(a.st, b.st, sizeof a.st) == 0);
+    CHECK(std::memcmp(a.sk, b.sk, sizeof a.sk) == 0);
+    Vec3 U, K, Ua[2], Ka[2], U1, K1, Ua1[2], Ka1[2];
+    a.bounds(0, 16, U, K);
+    a.ramps(0, 16, U, K, Ua, Ka);
+    a.whole(U1, K1, Ua1, Ka1);
+    CHECK(std::memcmp(U.data(), U1.data(), sizeof(double) * 3) == 0);
+    CHECK(std::memcmp(K.data(), K1.data(), sizeof(double) * 3) == 0);
+    for (int d = 0; d < 2; ++d) {
+      CHECK(std::memcmp(Ua[d].data(), Ua1[d].data(), sizeof(double) * 3) == 0);
+      CHECK(std::memcmp(Ka[d].data(), Ka1[d].data(), sizeof(double) * 3) == 0);
+    }
+  }
+}
+
+TEST_CASE("the cubic-record kernel's cubic_node gives Segment::blend's table and curvatures and the rows, bit for bit") {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> U01(-1.0, 1.0);
+  int symmetric = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    // random cubics (some planar, some with P1 = P2 or a straight part, some symmetric blends)
+    const Vec3 p0(10 * U01(rng), 10 * U01(rng), 10 * U01(rng));
+    const double z = trial % 3 == 0 ? 0.0 : 0.4, scale = trial % 4 == 0 ? 1e-3 : 1.0;
+    const Vec3 p1 = p0 + scale * Vec3(1.0 + 0.5 * U01(rng), 0.6 * U01(rng), z * U01(rng));
+    Vec3 p2 = trial % 5 == 0 ? Vec3(p1 + (p1 - p0)) : Vec3(p1 + scale * Vec3(0.8 * U01(rng), 1.0 + 0.5 * U01(rng), z * U01(rng)));
+    Vec3 p3 = p2 + scale * Vec3(0.6 * U01(rng) - 0.5, 0.5 * U01(rng) + 0.5, z * U01(rng));
+    if (trial % 7 == 0) {  // a blend between two lines: P1 = P2, |P1 − P0| = |P3 − P2|
+      p2 = p1;
+      p3 = p1 + (p1 - p0).norm() * Vec3(0.0, 1.0, 0.0);
+    }
+    std::array<Vec3, 17> T, Kv;
+    const Segment g = Segment::blend(p0, p1, p2, p3, 0, &T, &Kv);
+    BlendBounds a, b;
+    reference_fill(b, T, Kv);
+    const std::array<Vec3, 4> P{p0, p1, p2, p3};
+    std::array<double, 17> table{};
+    double k_at[17];
+    double folds[3][10], finish[2];
+    if (!cubic_record_kernels().cubic_node(P[0].data(), table.data(), k_at, a, folds, finish)) {
+      ++symmetric;
+      continue;
+    }
+    CHECK(std::memcmp(table.data(), g.table.data(), sizeof table) == 0);
+    REQUIRE(finish[0] >= 0);
+    CHECK(std::memcmp(&finish[0], &g.curvature, sizeof(double)) == 0);
+    CHECK(std::memcmp(&finish[1], &g.curvature_rate, sizeof(double)) == 0);
+    for (std::size_t i = 0; i < 17; ++i) {
+      const double k = Kv[i].norm();
+      CHECK(std::memcmp(&k_at[i], &k, sizeof k) == 0);
+    }
+    CHECK(std::memcmp(a.mu, b.mu, sizeof a.mu) == 0);
+    CHECK(std::memcmp(a.mk, b.mk, sizeof a.mk) == 0);
+    CHECK(std::memcmp(a.du, b.du, sizeof a.du) == 0);
+    CHECK(std::memcmp(a.dk, b.dk, sizeof a.dk) == 0);
+    CHECK(std::memcmp(a.tmax, b.tmax, sizeof a.tmax) == 0);
+    CHECK(std::memcmp(a.tmin, b.tmin, sizeof a.tmin) == 0);
+    CHECK(std::memcmp(a.kmax, b.kmax, sizeof a.kmax) == 0);
+    CHECK(std::memcmp(a.kmin, b.kmin, sizeof a.kmin) == 0);
+    CHECK(std::memcmp(a.st, b.st, sizeof a.st) == 0);
+    CHECK(std::memcmp(a.sk, b.sk, sizeof a.sk) == 0);
+    Vec3 U, K, Ua[2], Ka[2], U1, K1, Ua1[2], Ka1[2];
+    b.bounds(0, 16, U, K);
+    b.ramps(0, 16, U, K, Ua, Ka);
+    BlendBounds::whole_from(folds, U1, K1, Ua1, Ka1);
+    CHECK(std::memcmp(U.data(), U1.data(), sizeof(double) * 3) == 0);
+    CHECK(std::memcmp(K.data(), K1.data(), sizeof(double) * 3) == 0);
+    for (int d = 0; d < 2; ++d) {
+      CHECK(std::memcmp(Ua[d].data(), Ua1[d].data(), sizeof(double) * 3) == 0);
+      CHECK(std::memcmp(Ka[d].data(), Ka1[d].data(), sizeof(double) * 3) == 0);
+    }
+  }
+  CHECK(symmetric >= 40);  // the blends between two lines are left to Segment::blend
+}
+
+TEST_CASE("the cubic-record kernel's record_singles gives each piece bounds(), ramps() and piece_curvature(), bit for bit") {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> U01(-1.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vec3 p0(0, 0, 0);
+    const double z = trial % 3 == 0 ? 0.0 : 0.4;
+    const Vec3 p1 = p0 + Vec3(1.0 + 0.5 * U01(rng), 0.6 * U01(rng), z * U01(rng));
+    const Vec3 p2 = trial % 5 == 0 ? Vec3(2.0 * p1) : Vec3(p1 + Vec3(0.8 * U01(rng), 1.0 + 0.5 * U01(rng), z * U01(rng)));
+    const Vec3 p3 = p2 + Vec3(0.6 * U01(rng) - 0.5, 0.5 * U01(rng) + 0.5, z * U01(rng));
+    std::array<Vec3, 17> T, Kv;
+    const Segment g = Segment::blend(p0, p1, p2, p3, 0, &T, &Kv);
+    BlendBounds tab;
+    cubic_record_kernels().fill(tab, T[0].data(), Kv[0].data());
+    double k_at[17];
+    for (std::size_t i = 0; i < 17; ++i) k_at[i] = Kv[i].norm();
+    CubicRecord r;
+    r.np = 1 + trial % 16;
+    const int r0 = (trial / 16) % (17 - r.np);
+    cubic_record_kernels().record_singles(tab, k_at, g.table.data(), r0, r);
+    for (int k = 0; k < r.np; ++k) {
+      Vec3 U, K, Ua[2], Ka[2];
+      tab.bounds(r0 + k, r0 + k + 1, U, K);
+      tab.ramps(r0 + k, r0 + k + 1, U, K, Ua, Ka);
+      double kmax, rate;
+      piece_curvature(k_at, g.table, r0 + k, r0 + k + 1, kmax, rate);
+      for (int c = 0; c < 3; ++c) {
+        CHECK(std::memcmp(&r.u_abs[c][k], &U[c], sizeof(double)) == 0);
+        CHECK(std::memcmp(&r.k_abs[c][k], &K[c], sizeof(double)) == 0);
+        for (int d = 0; d < 2; ++d) {
+          CHECK(std::memcmp(&r.ramp_u[d][c][k], &Ua[d][c], sizeof(double)) == 0);
+          CHECK(std::memcmp(&r.ramp_k[d][c][k], &Ka[d][c], sizeof(double)) == 0);
+        }
+      }
+      CHECK(std::memcmp(&r.curvature[k], &kmax, sizeof(double)) == 0);
+      CHECK(std::memcmp(&r.curvature_rate[k], &rate, sizeof(double)) == 0);
+    }
+  }
+}
+
+TEST_CASE("the cubic-record kernel's singles give bounds() and ramps() of every single interval, bit for bit") {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> U01(-1.0, 1.0);
   for (int trial = 0; trial < 200; ++trial) {
@@ -103,8 +275,8 @@ TEST_CASE("BlendBounds::singles gives bounds() and ramps() of every single inter
     std::array<Vec3, 17> T, Kv;
     Segment::blend(p0, p1, p2, p3, 0, &T, &Kv);
     BlendBounds tab;
-    tab.fill(T, Kv);
-    tab.singles();
+    cubic_record_kernels().fill(tab, T[0].data(), Kv[0].data());
+    cubic_record_kernels().singles(tab);
     for (int r = 0; r < 16; ++r) {
       Vec3 U, K, Ua[2], Ka[2], U1, K1, Ua1[2], Ka1[2];
       tab.bounds(r, r + 1, U, K);
