@@ -124,6 +124,43 @@ void reference_fill(BlendBounds& t, const std::array<Vec3, 17>& T, const std::ar
     rows(ks, t.mk[c], t.dk[c], t.kmax[c], t.kmin[c], t.sk[c]);
   }
 }
+
+// The node frames (unit tangent, curvature vector) of a random cubic from the origin: planar when
+// trial % 3 == 0 (an axis whose terms are all zero), with a straight part when trial % 5 == 0.
+void random_cubic_frames(std::mt19937& rng, int trial, std::array<Vec3, 17>& T, std::array<Vec3, 17>& Kv) {
+  std::uniform_real_distribution<double> U01(-1.0, 1.0);
+  const Vec3 p0(0, 0, 0);
+  const double z = trial % 3 == 0 ? 0.0 : 0.4;
+  const Vec3 p1 = p0 + Vec3(1.0 + 0.5 * U01(rng), 0.6 * U01(rng), z * U01(rng));
+  const Vec3 p2 = trial % 5 == 0 ? Vec3(2.0 * p1) : Vec3(p1 + Vec3(0.8 * U01(rng), 1.0 + 0.5 * U01(rng), z * U01(rng)));
+  const Vec3 p3 = p2 + Vec3(0.6 * U01(rng) - 0.5, 0.5 * U01(rng) + 0.5, z * U01(rng));
+  Segment::blend(p0, p1, p2, p3, 0, &T, &Kv);
+}
+
+// every per-interval row of a and b the same bits
+void check_same_rows(const BlendBounds& a, const BlendBounds& b) {
+  CHECK(std::memcmp(a.mu, b.mu, sizeof a.mu) == 0);
+  CHECK(std::memcmp(a.mk, b.mk, sizeof a.mk) == 0);
+  CHECK(std::memcmp(a.du, b.du, sizeof a.du) == 0);
+  CHECK(std::memcmp(a.dk, b.dk, sizeof a.dk) == 0);
+  CHECK(std::memcmp(a.tmax, b.tmax, sizeof a.tmax) == 0);
+  CHECK(std::memcmp(a.tmin, b.tmin, sizeof a.tmin) == 0);
+  CHECK(std::memcmp(a.kmax, b.kmax, sizeof a.kmax) == 0);
+  CHECK(std::memcmp(a.kmin, b.kmin, sizeof a.kmin) == 0);
+  CHECK(std::memcmp(a.st, b.st, sizeof a.st) == 0);
+  CHECK(std::memcmp(a.sk, b.sk, sizeof a.sk) == 0);
+}
+
+// bounds U, K and ramp terms Ua, Ka of two computations the same bits
+void check_same_terms(const Vec3& U, const Vec3& K, const Vec3 (&Ua)[2], const Vec3 (&Ka)[2], const Vec3& U1,
+                      const Vec3& K1, const Vec3 (&Ua1)[2], const Vec3 (&Ka1)[2]) {
+  CHECK(std::memcmp(U.data(), U1.data(), sizeof(double) * 3) == 0);
+  CHECK(std::memcmp(K.data(), K1.data(), sizeof(double) * 3) == 0);
+  for (int d = 0; d < 2; ++d) {
+    CHECK(std::memcmp(Ua[d].data(), Ua1[d].data(), sizeof(double) * 3) == 0);
+    CHECK(std::memcmp(Ka[d].data(), Ka1[d].data(), sizeof(double) * 3) == 0);
+  }
+}
 }  // namespace
 
 TEST_CASE("the cubic-record kernel's BlendBounds rows and BlendBounds::whole are as defined, bit for bit") {
@@ -131,36 +168,17 @@ TEST_CASE("the cubic-record kernel's BlendBounds rows and BlendBounds::whole are
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> U01(-1.0, 1.0);
   for (int trial = 0; trial < 200; ++trial) {
-    const Vec3 p0(0, 0, 0);
-    const double z = trial % 3 == 0 ? 0.0 : 0.4;
-    const Vec3 p1 = p0 + Vec3(1.0 + 0.5 * U01(rng), 0.6 * U01(rng), z * U01(rng));
-    const Vec3 p2 = trial % 5 == 0 ? Vec3(2.0 * p1) : Vec3(p1 + Vec3(0.8 * U01(rng), 1.0 + 0.5 * U01(rng), z * U01(rng)));
-    const Vec3 p3 = p2 + Vec3(0.6 * U01(rng) - 0.5, 0.5 * U01(rng) + 0.5, z * U01(rng));
     std::array<Vec3, 17> T, Kv;
-    Segment::blend(p0, p1, p2, p3, 0, &T, &Kv);
+    random_cubic_frames(rng, trial, T, Kv);
     BlendBounds a, b;
     cubic_record_kernels().fill(a, T[0].data(), Kv[0].data());
     reference_fill(b, T, Kv);
-    CHECK(std::memcmp(a.mu, b.mu, sizeof a.mu) == 0);
-    CHECK(std::memcmp(a.mk, b.mk, sizeof a.mk) == 0);
-    CHECK(std::memcmp(a.du, b.du, sizeof a.du) == 0);
-    CHECK(std::memcmp(a.dk, b.dk, sizeof a.dk) == 0);
-    CHECK(std::memcmp(a.tmax, b.tmax, sizeof a.tmax) == 0);
-    CHECK(std::memcmp(a.tmin, b.tmin, sizeof a.tmin) == 0);
-    CHECK(std::memcmp(a.kmax, b.kmax, sizeof a.kmax) == 0);
-    CHECK(std::memcmp(a.kmin, b.kmin, sizeof a.kmin) == 0);
-    CHECK(std::memcmp(a.st, b.st, sizeof a.st) == 0);
-    CHECK(std::memcmp(a.sk, b.sk, sizeof a.sk) == 0);
+    check_same_rows(a, b);
     Vec3 U, K, Ua[2], Ka[2], U1, K1, Ua1[2], Ka1[2];
     a.bounds(0, 16, U, K);
     a.ramps(0, 16, U, K, Ua, Ka);
     a.whole(U1, K1, Ua1, Ka1);
-    CHECK(std::memcmp(U.data(), U1.data(), sizeof(double) * 3) == 0);
-    CHECK(std::memcmp(K.data(), K1.data(), sizeof(double) * 3) == 0);
-    for (int d = 0; d < 2; ++d) {
-      CHECK(std::memcmp(Ua[d].data(), Ua1[d].data(), sizeof(double) * 3) == 0);
-      CHECK(std::memcmp(Ka[d].data(), Ka1[d].data(), sizeof(double) * 3) == 0);
-    }
+    check_same_terms(U, K, Ua, Ka, U1, K1, Ua1, Ka1);
   }
 }
 
@@ -199,26 +217,12 @@ TEST_CASE("the cubic-record kernel's cubic_node gives Segment::blend's table and
       const double k = Kv[i].norm();
       CHECK(std::memcmp(&k_at[i], &k, sizeof k) == 0);
     }
-    CHECK(std::memcmp(a.mu, b.mu, sizeof a.mu) == 0);
-    CHECK(std::memcmp(a.mk, b.mk, sizeof a.mk) == 0);
-    CHECK(std::memcmp(a.du, b.du, sizeof a.du) == 0);
-    CHECK(std::memcmp(a.dk, b.dk, sizeof a.dk) == 0);
-    CHECK(std::memcmp(a.tmax, b.tmax, sizeof a.tmax) == 0);
-    CHECK(std::memcmp(a.tmin, b.tmin, sizeof a.tmin) == 0);
-    CHECK(std::memcmp(a.kmax, b.kmax, sizeof a.kmax) == 0);
-    CHECK(std::memcmp(a.kmin, b.kmin, sizeof a.kmin) == 0);
-    CHECK(std::memcmp(a.st, b.st, sizeof a.st) == 0);
-    CHECK(std::memcmp(a.sk, b.sk, sizeof a.sk) == 0);
+    check_same_rows(a, b);
     Vec3 U, K, Ua[2], Ka[2], U1, K1, Ua1[2], Ka1[2];
     b.bounds(0, 16, U, K);
     b.ramps(0, 16, U, K, Ua, Ka);
     BlendBounds::whole_from(folds, U1, K1, Ua1, Ka1);
-    CHECK(std::memcmp(U.data(), U1.data(), sizeof(double) * 3) == 0);
-    CHECK(std::memcmp(K.data(), K1.data(), sizeof(double) * 3) == 0);
-    for (int d = 0; d < 2; ++d) {
-      CHECK(std::memcmp(Ua[d].data(), Ua1[d].data(), sizeof(double) * 3) == 0);
-      CHECK(std::memcmp(Ka[d].data(), Ka1[d].data(), sizeof(double) * 3) == 0);
-    }
+    check_same_terms(U, K, Ua, Ka, U1, K1, Ua1, Ka1);
   }
   CHECK(symmetric >= 40);  // the blends between two lines are left to Segment::blend
 }
@@ -267,13 +271,8 @@ TEST_CASE("the cubic-record kernel's singles give bounds() and ramps() of every 
   std::uniform_real_distribution<double> U01(-1.0, 1.0);
   for (int trial = 0; trial < 200; ++trial) {
     // random cubics, some planar (an axis whose terms are all zero) and some with a straight part
-    const Vec3 p0(0, 0, 0);
-    const double z = trial % 3 == 0 ? 0.0 : 0.4;
-    const Vec3 p1 = p0 + Vec3(1.0 + 0.5 * U01(rng), 0.6 * U01(rng), z * U01(rng));
-    const Vec3 p2 = trial % 5 == 0 ? Vec3(2.0 * p1) : Vec3(p1 + Vec3(0.8 * U01(rng), 1.0 + 0.5 * U01(rng), z * U01(rng)));
-    const Vec3 p3 = p2 + Vec3(0.6 * U01(rng) - 0.5, 0.5 * U01(rng) + 0.5, z * U01(rng));
     std::array<Vec3, 17> T, Kv;
-    Segment::blend(p0, p1, p2, p3, 0, &T, &Kv);
+    random_cubic_frames(rng, trial, T, Kv);
     BlendBounds tab;
     cubic_record_kernels().fill(tab, T[0].data(), Kv[0].data());
     cubic_record_kernels().singles(tab);
