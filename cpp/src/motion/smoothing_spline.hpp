@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "netshape/core/types.hpp"
+#include "smoothing_kernels.hpp"
 
 namespace netshape::motion {
 namespace {
@@ -138,44 +139,19 @@ struct Spline {
   // Built by the Cox–de Boor recursion on polynomials in x = u − t[k]:
   //   N_{i,p} = (u − t_i)/(t_{i+p} − t_i) · N_{i,p−1} + (t_{i+p+1} − u)/(t_{i+p+1} − t_{i+1}) · N_{i+1,p−1}
   // (a term with a zero denominator is zero), starting from N_{k,0} = 1 on span k.
-  // pb of the spans k0..k1 (clipped to 3..m − 1); pb holds m entries
+  // pb of the spans k0..k1 (clipped to 3..m − 1); pb holds m entries. The spans are independent: the
+  // smoothing kernel does them several at a time, each with the operations of the recursion above in
+  // its order: per degree p = 1..3 and r = 0..p, with a0, a1, b0, b1 = t_i, t_{i+p}, t_{i+1}, t_{i+p+1}
+  // relative to t[k] and n = N_{·, p−1}, M[r][j] += f·(n[j−1] − a0·n[j]) with f = 1/(a1 − a0) where
+  // a1 > a0 (n[−1] = 0, the j = 0 term f·(−a0·n[0])), then M[r][j] += f·(b1·n'[j] − n'[j−1]) with
+  // n' = N_{i+1, p−1}, f = 1/(b1 − b0) where b1 > b0 (the j = 0 term f·(b1·n'[0])), M starting at zero.
   void power_basis(int k0, int k1) {
     const int m = static_cast<int>(P.size());
-    for (int k = std::max(k0, 3); k <= std::min(k1, m - 1); ++k) {
-      pb[static_cast<std::size_t>(k)] = {};
-      const double tk = t[static_cast<std::size_t>(k)];
-      if (!(t[static_cast<std::size_t>(k + 1)] > tk)) continue;
-      double d[8];  // d[q] = t[k − 3 + q] − t[k]
-      for (int q = 0; q < 8; ++q) d[q] = t[static_cast<std::size_t>(k - 3 + q)] - tk;
-      double N[4][4] = {{1, 0, 0, 0}};  // N[r][j]: coefficient of x^j in N_{k−p+r, p}
-      for (int p = 1; p <= 3; ++p) {
-        double M[4][4] = {};
-        for (int r = 0; r <= p; ++r) {
-          // with i = k − p + r: t_i = d[3 − p + r], t_{i+1} = d[4 − p + r], t_{i+p} = d[3 + r], t_{i+p+1} = d[4 + r]
-          const double a0 = d[3 - p + r], a1 = d[3 + r], b0 = d[4 - p + r], b1 = d[4 + r];
-          if (r >= 1 && a1 > a0) {  // (x − a0)/(a1 − a0) · N_{i,p−1}, which is N[r − 1]
-            const double f = 1.0 / (a1 - a0);
-            const double* n = N[r - 1];
-            M[r][0] += f * (-a0 * n[0]);
-            M[r][1] += f * (n[0] - a0 * n[1]);
-            M[r][2] += f * (n[1] - a0 * n[2]);
-            M[r][3] += f * (n[2] - a0 * n[3]);
-          }
-          if (r < p && b1 > b0) {  // (b1 − x)/(b1 − b0) · N_{i+1,p−1}, which is N[r]
-            const double f = 1.0 / (b1 - b0);
-            const double* n = N[r];
-            M[r][0] += f * (b1 * n[0]);
-            M[r][1] += f * (b1 * n[1] - n[0]);
-            M[r][2] += f * (b1 * n[2] - n[1]);
-            M[r][3] += f * (b1 * n[3] - n[2]);
-          }
-        }
-        std::copy(&M[0][0], &M[0][0] + 16, &N[0][0]);
-      }
-      auto& b = pb[static_cast<std::size_t>(k)];
-      for (std::size_t j = 0; j < 4; ++j)
-        for (std::size_t r = 0; r < 4; ++r) b[4 * j + r] = N[r][j];
-    }
+    k0 = std::max(k0, 3);
+    k1 = std::min(k1, m - 1);
+    if (k0 > k1) return;
+    static const detail::SmoothingKernels& kernels = detail::smoothing_kernels();
+    kernels.power_basis(t.data(), k0, k1, pb.data()->data());
   }
   // pw of the spans k0..k1 (clipped to 3..m − 1) from pb and P; the spans a control point i reaches
   // are i..i + 3, so after P[lo..hi] change, prepare(lo, hi + 3) brings pw up to date

@@ -1,0 +1,81 @@
+// The smoothing stage's spline kernels (smoothing_kernels.hpp): one lane per knot span, as wide as the
+// instruction set being compiled (simd::native_width), compiled once per instruction set by
+// netshape_add_kernels. Only plain doubles cross between the kernels and the rest of the library.
+//
+// Each lane does the operations of the scalar definition in its order; its branches are masks, a value
+// a branch would not have changed is kept by a blend (not by adding zero, which turns −0 into +0).
+#include "core/simd.hpp"  // first: it wraps the intrinsic headers (see there)
+
+#include "motion/smoothing_kernels.hpp"
+
+namespace netshape::motion::detail::NETSHAPE_KERNEL_ISA {
+namespace {
+
+using B = simd::Batch<simd::native_width>;
+using D = B::D;
+using M = B::M;
+constexpr int W = simd::native_width;
+
+// −a, exactly (the sign flipped, also for ±0)
+NETSHAPE_SIMD_INLINE D neg(D a) { return B::sub(B::set(-0.0), a); }
+
+// Spline::power_basis() for spans k0..k1, W spans per step: lane l of a step is span k + l. The knot
+// differences d[q] = t[k − 3 + q] − t[k] of W consecutive spans are W consecutive knots each.
+__attribute__((flatten)) void power_basis(const double* t, int k0, int k1, double* pb) {
+  const D zero = B::set(0.0), one = B::set(1.0);
+  for (int k = k0; k <= k1; k += W) {
+    const int n = k1 - k + 1;  // spans left
+    const bool full = n >= W;
+    const M v = B::valid(n);
+    const D tk = B::load(t + k, v, full);
+    const M live = B::gt(B::load(t + k + 1, v, full), tk);
+    D d[8];
+    for (int q = 0; q < 8; ++q) d[q] = B::sub(B::load(t + k - 3 + q, v, full), tk);
+    D N[4][4];  // N[r][j]: coefficient of x^j in N_{k−p+r, p}
+    for (int r = 0; r < 4; ++r)
+      for (int j = 0; j < 4; ++j) N[r][j] = zero;
+    N[0][0] = one;
+    for (int p = 1; p <= 3; ++p) {
+      D Mx[4][4];
+      for (int r = 0; r < 4; ++r)
+        for (int j = 0; j < 4; ++j) Mx[r][j] = zero;
+      for (int r = 0; r <= p; ++r) {
+        const D a0 = d[3 - p + r], a1 = d[3 + r], b0 = d[4 - p + r], b1 = d[4 + r];
+        if (r >= 1) {  // (x − a0)/(a1 − a0) · N[r − 1] where a1 > a0
+          const M on = B::gt(a1, a0);
+          const D f = B::div(one, B::sub(a1, a0));
+          const D* nn = N[r - 1];
+          const D add[4] = {B::mul(f, B::mul(neg(a0), nn[0])), B::mul(f, B::sub(nn[0], B::mul(a0, nn[1]))),
+                            B::mul(f, B::sub(nn[1], B::mul(a0, nn[2]))), B::mul(f, B::sub(nn[2], B::mul(a0, nn[3])))};
+          for (int j = 0; j < 4; ++j) Mx[r][j] = B::blend(on, Mx[r][j], B::add(Mx[r][j], add[j]));
+        }
+        if (r < p) {  // (b1 − x)/(b1 − b0) · N[r] where b1 > b0
+          const M on = B::gt(b1, b0);
+          const D f = B::div(one, B::sub(b1, b0));
+          const D* nn = N[r];
+          const D add[4] = {B::mul(f, B::mul(b1, nn[0])), B::mul(f, B::sub(B::mul(b1, nn[1]), nn[0])),
+                            B::mul(f, B::sub(B::mul(b1, nn[2]), nn[1])), B::mul(f, B::sub(B::mul(b1, nn[3]), nn[2]))};
+          for (int j = 0; j < 4; ++j) Mx[r][j] = B::blend(on, Mx[r][j], B::add(Mx[r][j], add[j]));
+        }
+      }
+      for (int r = 0; r < 4; ++r)
+        for (int j = 0; j < 4; ++j) N[r][j] = Mx[r][j];
+    }
+    // pb[k + l][4·j + r] = N[r][j] in lane l, 0 for an empty span
+    alignas(64) double out[16][W];
+    for (int j = 0; j < 4; ++j)
+      for (int r = 0; r < 4; ++r) B::storeu(out[4 * j + r], B::blend(live, zero, N[r][j]));
+    const int lanes = full ? W : n;
+    for (int l = 0; l < lanes; ++l) {
+      double* b = pb + 16 * static_cast<long>(k + l);
+      for (int e = 0; e < 16; ++e) b[e] = out[e][l];
+    }
+  }
+}
+
+}  // namespace
+
+extern const SmoothingKernels smoothing_kernel_table;
+const SmoothingKernels smoothing_kernel_table{&power_basis, NETSHAPE_KERNEL_ISA_NAME};
+
+}  // namespace netshape::motion::detail::NETSHAPE_KERNEL_ISA

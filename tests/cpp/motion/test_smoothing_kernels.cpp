@@ -1,0 +1,93 @@
+// netshape::motion smoothing kernels (src/motion/smoothing_kernels.hpp): every copy gives the bits of the
+// scalar definition, and the copy of the chosen instruction set the same bits as the baseline one.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "motion/smoothing_kernels.hpp"
+
+using namespace netshape::motion;
+
+namespace {
+// The definition: the power form of the basis on span k by the Cox–de Boor recursion on polynomials in
+// x = u − t[k] (Spline::power_basis(), one span at a time).
+void power_basis_span(const double* t, int k, double* b) {
+  std::fill(b, b + 16, 0.0);
+  const double tk = t[k];
+  if (!(t[k + 1] > tk)) return;
+  double d[8];
+  for (int q = 0; q < 8; ++q) d[q] = t[k - 3 + q] - tk;
+  double N[4][4] = {{1, 0, 0, 0}};
+  for (int p = 1; p <= 3; ++p) {
+    double M[4][4] = {};
+    for (int r = 0; r <= p; ++r) {
+      const double a0 = d[3 - p + r], a1 = d[3 + r], b0 = d[4 - p + r], b1 = d[4 + r];
+      if (r >= 1 && a1 > a0) {
+        const double f = 1.0 / (a1 - a0);
+        const double* n = N[r - 1];
+        M[r][0] += f * (-a0 * n[0]);
+        M[r][1] += f * (n[0] - a0 * n[1]);
+        M[r][2] += f * (n[1] - a0 * n[2]);
+        M[r][3] += f * (n[2] - a0 * n[3]);
+      }
+      if (r < p && b1 > b0) {
+        const double f = 1.0 / (b1 - b0);
+        const double* n = N[r];
+        M[r][0] += f * (b1 * n[0]);
+        M[r][1] += f * (b1 * n[1] - n[0]);
+        M[r][2] += f * (b1 * n[2] - n[1]);
+        M[r][3] += f * (b1 * n[3] - n[2]);
+      }
+    }
+    std::copy(&M[0][0], &M[0][0] + 16, &N[0][0]);
+  }
+  for (int j = 0; j < 4; ++j)
+    for (int r = 0; r < 4; ++r) b[4 * j + r] = N[r][j];
+}
+
+bool same(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(double) * a.size()) == 0;
+}
+}  // namespace
+
+TEST_CASE("smoothing kernels: power_basis gives the definition's bits in every copy") {
+  const auto& best = detail::smoothing_kernels();
+  const auto& plain = detail::smoothing_kernels_plain();
+  MESSAGE("smoothing kernels in use: " << std::string(best.isa));
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  int empty_spans = 0, tails = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    // a clamped knot vector: 4 equal at each end, interior knots with repeats and near-repeats
+    const int inner = static_cast<int>(uni(rng) * 30);
+    std::vector<double> t(4, 0.0);
+    double u = 0;
+    for (int i = 0; i < inner; ++i) {
+      const double c = uni(rng);
+      u += c < 0.15 ? 0.0 : c < 0.25 ? 1e-12 * uni(rng) : (trial % 3 == 0 ? 1.0 : 3.0 * uni(rng));
+      t.push_back(u);
+    }
+    const double L = u + 0.5 + uni(rng);
+    t.insert(t.end(), 4, L);
+    const int m = static_cast<int>(t.size()) - 4;  // control points; spans 3..m − 1
+    const int k0 = 3 + static_cast<int>(uni(rng) * (m - 3));
+    const int k1 = k0 + static_cast<int>(uni(rng) * (m - k0));
+    tails += (k1 - k0 + 1) % 4 != 0;
+    // the definition on k0..k1, a marker elsewhere (the kernels write k0..k1 only)
+    std::vector<double> want(16 * static_cast<std::size_t>(m), 7.0), x = want, y = want;
+    for (int k = k0; k <= k1; ++k) {
+      power_basis_span(t.data(), k, want.data() + 16 * k);
+      empty_spans += !(t[static_cast<std::size_t>(k) + 1] > t[static_cast<std::size_t>(k)]);
+    }
+    plain.power_basis(t.data(), k0, k1, x.data());
+    best.power_basis(t.data(), k0, k1, y.data());
+    CHECK(same(x, want));
+    CHECK(same(y, want));
+  }
+  CHECK(empty_spans > 50);
+  CHECK(tails > 100);
+}
