@@ -10,6 +10,12 @@
 
 namespace netshape::motion::detail {
 
+/// Segments prepared for distance queries, as rows: segment q starts at (ax[q], ay[q]), runs along
+/// (dx[q], dy[q]) = end − start and has il2[q] = 1/|d|² (0 for a point).
+struct SegRows {
+  const double *ax, *ay, *dx, *dy, *il2;
+};
+
 /// The kernels of one instruction set.
 struct SmoothingKernels {
   /// The power form of the cubic B-spline basis on the knot spans k0..k1 (3 ≤ k0, k1 + 4 < the number
@@ -18,6 +24,16 @@ struct SmoothingKernels {
   /// (Spline::power_basis() states it); all 16 zero for an empty span (t[k + 1] ≤ t[k]). Reads
   /// t[k0 − 3..k1 + 4], writes pb[16·k0..16·k1 + 15] only.
   void (*power_basis)(const double* t, int k0, int k1, double* pb);
+  /// The squared distances of the points p0 = (p[0], p[1]) and p1 = (p[2], p[3]) to the segments lo..hi
+  /// of s into D0[0..hi − lo] and D1[0..hi − lo], one lane per segment: for a point p and segment q,
+  /// with r = p − a, t = clamp((r_x·d_x + r_y·d_y)·il2, 0, 1) (std::clamp's order: t < 0 gives 0, else
+  /// 1 < t gives 1) and e = r − t·d, e_x·e_x + e_y·e_y. Then their minima over the window, each starting
+  /// from 1e300 (an empty window's): mins[0] = min over q of max(D0, D1) (std::max), mins[1] = min D0,
+  /// mins[2] = min D1, and where sag is not null mins[3] = min over q of √max(D0, D1) + sag[q] and
+  /// mins[4] = min sag[q]. The values are ≥ +0 (sag too), so a minimum is the same bits in any order.
+  /// Reads and writes nothing outside these ranges.
+  void (*pair_window)(const double* p, const SegRows& s, long lo, long hi, const double* sag, double* D0,
+                      double* D1, double* mins);
   const char* isa;  ///< "baseline", "avx2" or "avx512"
 };
 NETSHAPE_SIMD_DECLARE(SmoothingKernels, smoothing_kernel_table)

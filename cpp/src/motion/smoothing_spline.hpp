@@ -39,11 +39,33 @@ double dist2(const V2& p, const Seg& s) {
   return (r - t * s.d).squaredNorm();
 }
 
-// Squared distances of p to the segments lo..hi into D[0..hi − lo]; where prev holds the same point's
-// distances to the segments plo..phi, they are taken from there instead of computed again.
-void dist2_window(const V2& p, const Seg* segs, long lo, long hi, double* D, const double* prev = nullptr,
-                  long plo = 0, long phi = -1) {
-  for (long q = lo; q <= hi; ++q) D[q - lo] = prev && q >= plo && q <= phi ? prev[q - plo] : dist2(p, segs[q]);
+// Segments as rows (detail::SegRows) for the smoothing kernel's distance windows: the same values as
+// make_seg() gives, one array per field.
+struct SegTable {
+  std::vector<double> ax, ay, dx, dy, il2;
+  void assign(const std::vector<Seg>& segs) {
+    const std::size_t n = segs.size();
+    for (auto* v : {&ax, &ay, &dx, &dy, &il2}) v->resize(n);
+    for (std::size_t q = 0; q < n; ++q) {
+      ax[q] = segs[q].a.x();
+      ay[q] = segs[q].a.y();
+      dx[q] = segs[q].d.x();
+      dy[q] = segs[q].d.y();
+      il2[q] = segs[q].il2;
+    }
+  }
+  detail::SegRows rows() const { return {ax.data(), ay.data(), dx.data(), dy.data(), il2.data()}; }
+};
+
+// The squared distances of p0 and p1 to the segments lo..hi of s (dist2() of each) into D0, D1
+// [0..hi − lo] and their minima over the window (SmoothingKernels::pair_window says which; sag: per
+// segment, or null), several segments per step in the smoothing kernel.
+void pair_window(const V2& p0, const V2& p1, const SegTable& s, long lo, long hi, const double* sag, double* D0,
+                 double* D1, double* mins) {
+  static const detail::SmoothingKernels& kernels = detail::smoothing_kernels();
+  const double p[4] = {p0.x(), p0.y(), p1.x(), p1.y()};
+  const detail::SegRows rows = s.rows();
+  kernels.pair_window(p, rows, lo, hi, sag, D0, D1, mins);
 }
 
 // Direction of the bisector at the vertex between consecutive segments s0 and s1: u1 − u0 for their unit

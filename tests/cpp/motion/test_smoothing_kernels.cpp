@@ -91,3 +91,75 @@ TEST_CASE("smoothing kernels: power_basis gives the definition's bits in every c
   CHECK(empty_spans > 50);
   CHECK(tails > 100);
 }
+
+namespace {
+// The definition: dist2() of point (x, y) to segment q (smoothing_spline.hpp), then the minima over
+// the window as the chain check's bounds fold them, one segment after the other.
+double dist2_def(double x, double y, const detail::SegRows& s, long q) {
+  const double rx = x - s.ax[q], ry = y - s.ay[q];
+  const double t = std::clamp((rx * s.dx[q] + ry * s.dy[q]) * s.il2[q], 0.0, 1.0);
+  const double ex = rx - t * s.dx[q], ey = ry - t * s.dy[q];
+  return ex * ex + ey * ey;
+}
+}  // namespace
+
+TEST_CASE("smoothing kernels: pair_window gives the definition's bits in every copy") {
+  const auto& best = detail::smoothing_kernels();
+  const auto& plain = detail::smoothing_kernels_plain();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  int points = 0, clamped = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    // a chain of segments, some of them points (il2 = 0)
+    const long n = 1 + static_cast<long>(40 * (0.5 + 0.5 * uni(rng)));
+    std::vector<double> ax, ay, dx, dy, il2, sag;
+    double x = 0, y = 0;
+    for (long q = 0; q < n; ++q) {
+      const bool point = uni(rng) > 0.8;
+      const double ex = point ? 0.0 : uni(rng), ey = point ? 0.0 : uni(rng);
+      const double l2 = ex * ex + ey * ey;
+      ax.push_back(x);
+      ay.push_back(y);
+      dx.push_back(ex);
+      dy.push_back(ey);
+      il2.push_back(l2 > 0 ? 1.0 / l2 : 0.0);
+      sag.push_back(trial % 5 == 0 ? 0.0 : 0.01 * (1.0 + uni(rng)));
+      points += point;
+      x += ex;
+      y += ey;
+    }
+    const detail::SegRows s{ax.data(), ay.data(), dx.data(), dy.data(), il2.data()};
+    const long lo = static_cast<long>((n - 1) * (0.5 + 0.5 * uni(rng)));
+    const long hi = lo + static_cast<long>((n - 1 - lo) * (0.5 + 0.5 * uni(rng)));
+    const double p[4] = {x * (0.5 + 0.5 * uni(rng)) + uni(rng), y * (0.5 + 0.5 * uni(rng)) + uni(rng), uni(rng) * 3, uni(rng) * 3};
+    const std::size_t len = static_cast<std::size_t>(hi - lo + 1);
+    // the definition
+    std::vector<double> W0(len + 9, 5.0), W1 = W0;
+    double want[5] = {1e300, 1e300, 1e300, 1e300, 1e300};
+    for (long q = lo; q <= hi; ++q) {
+      const auto i = static_cast<std::size_t>(q - lo);
+      W0[i] = dist2_def(p[0], p[1], s, q);
+      W1[i] = dist2_def(p[2], p[3], s, q);
+      const double c = (p[0] - ax[q]) * dx[q] + (p[1] - ay[q]) * dy[q];
+      clamped += il2[q] > 0 && (c < 0 || c * il2[q] > 1);
+      want[0] = std::min(want[0], std::max(W0[i], W1[i]));
+      want[1] = std::min(want[1], W0[i]);
+      want[2] = std::min(want[2], W1[i]);
+      want[3] = std::min(want[3], std::sqrt(std::max(W0[i], W1[i])) + sag[static_cast<std::size_t>(q)]);
+      want[4] = std::min(want[4], sag[static_cast<std::size_t>(q)]);
+    }
+    for (const auto* k : {&plain, &best}) {
+      for (const bool with_sag : {false, true}) {
+        std::vector<double> D0(len + 9, 5.0), D1 = D0;  // 5.0 past hi: nothing is written there
+        double mins[5] = {-1, -1, -1, -1, -1};
+        k->pair_window(p, s, lo, hi, with_sag ? sag.data() : nullptr, D0.data(), D1.data(), mins);
+        CHECK(same(D0, W0));
+        CHECK(same(D1, W1));
+        CHECK(std::memcmp(mins, want, sizeof(double) * (with_sag ? 5 : 3)) == 0);
+        if (!with_sag) CHECK(mins[3] == -1);
+      }
+    }
+  }
+  CHECK(points > 100);
+  CHECK(clamped > 100);
+}

@@ -73,9 +73,64 @@ __attribute__((flatten)) void power_basis(const double* t, int k0, int k1, doubl
   }
 }
 
+// The smallest lane of a, folded with std::min's semantics (a NaN lane is skipped).
+NETSHAPE_SIMD_INLINE double lanes_min(D a, double m) {
+  alignas(64) double l[W];
+  B::storeu(l, a);
+  for (int i = 0; i < W; ++i) m = l[i] < m ? l[i] : m;
+  return m;
+}
+
+// dist2() of one point (x, y) to the W segments of a step
+NETSHAPE_SIMD_INLINE D dist2(D x, D y, D ax, D ay, D dx, D dy, D il2) {
+  const D zero = B::set(0.0), one = B::set(1.0);
+  const D rx = B::sub(x, ax), ry = B::sub(y, ay);
+  const D c = B::mul(B::add(B::mul(rx, dx), B::mul(ry, dy)), il2);
+  const D t = B::blend(B::lt(c, zero), B::blend(B::lt(one, c), c, one), zero);
+  const D ex = B::sub(rx, B::mul(t, dx)), ey = B::sub(ry, B::mul(t, dy));
+  return B::add(B::mul(ex, ex), B::mul(ey, ey));
+}
+
+// Two points against W segments per step, lanes past hi masked (they keep the minima at 1e300).
+// std::min(m, v) is B::min(v, m) and std::max(a, b) is B::max(b, a).
+__attribute__((flatten)) void pair_window(const double* p, const SegRows& s, long lo, long hi, const double* sag,
+                                          double* D0, double* D1, double* mins) {
+  const D big = B::set(1e300);
+  const D x0 = B::set(p[0]), y0 = B::set(p[1]), x1 = B::set(p[2]), y1 = B::set(p[3]);
+  D best2 = big, m0 = big, m1 = big, best = big, smin = big;
+  for (long q = lo; q <= hi; q += W) {
+    const long n = hi - q + 1;
+    const bool full = n >= W;
+    const M v = B::valid(static_cast<int>(full ? W : n));
+    const D ax = B::load(s.ax + q, v, full), ay = B::load(s.ay + q, v, full);
+    const D dx = B::load(s.dx + q, v, full), dy = B::load(s.dy + q, v, full), il2 = B::load(s.il2 + q, v, full);
+    const D d0 = dist2(x0, y0, ax, ay, dx, dy, il2), d1 = dist2(x1, y1, ax, ay, dx, dy, il2);
+    B::store(D0 + (q - lo), d0, v, full);
+    B::store(D1 + (q - lo), d1, v, full);
+    const D mx = B::max(d1, d0);
+    // a lane past hi offers 1e300, which leaves every minimum as it is
+    const auto in = [v, big](D a) NETSHAPE_SIMD_LAMBDA { return B::blend(v, big, a); };
+    best2 = B::min(in(mx), best2);
+    m0 = B::min(in(d0), m0);
+    m1 = B::min(in(d1), m1);
+    if (sag != nullptr) {
+      const D sg = B::load(sag + q, v, full);
+      best = B::min(in(B::add(B::sqrt(mx), sg)), best);
+      smin = B::min(in(sg), smin);
+    }
+  }
+  mins[0] = lanes_min(best2, 1e300);
+  mins[1] = lanes_min(m0, 1e300);
+  mins[2] = lanes_min(m1, 1e300);
+  if (sag != nullptr) {
+    mins[3] = lanes_min(best, 1e300);
+    mins[4] = lanes_min(smin, 1e300);
+  }
+}
+
 }  // namespace
 
 extern const SmoothingKernels smoothing_kernel_table;
-const SmoothingKernels smoothing_kernel_table{&power_basis, NETSHAPE_KERNEL_ISA_NAME};
+const SmoothingKernels smoothing_kernel_table{&power_basis, &pair_window, NETSHAPE_KERNEL_ISA_NAME};
 
 }  // namespace netshape::motion::detail::NETSHAPE_KERNEL_ISA
