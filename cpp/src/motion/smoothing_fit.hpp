@@ -450,6 +450,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   ParamMap amap;
   std::vector<double> bad, add;
   FitWork work;
+  FootWork foot;
   CheckCache cache;  // the bounds of the last check, per knot span and per polyline segment
   cache.span_bound.assign(sp.P.size(), -1.0);
   cache.seg_bound.assign(n - 1, -1.0);
@@ -481,38 +482,22 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
     std::fill(raised.begin(), raised.end(), 0);
     bool over = false;
     add.clear();
+    // A sample on a span the solve left alone keeps its foot point and residual (within the target).
+    // The others move to their foot points by Newton steps on (s(u) − p)·s'(u) = 0, kept only where
+    // they bring the curve closer (at most two steps, the second only after a step of at least 1e-9;
+    // SmoothingKernels::foot_points, several samples at a time), in the order of the samples.
+    foot.clear();
     for (std::size_t q = 0; q < samples.size(); ++q) {
-      // a sample on a span the solve left alone keeps its foot point and residual (within the target)
       if (!changed[static_cast<std::size_t>(span[q])]) continue;
+      foot.push(q, samples[q], span[q]);
+    }
+    foot.run(sp, L, mean);
+    for (std::size_t i = 0; i < foot.q.size(); ++i) {
+      const std::size_t q = foot.q[i];
       Sample& s = samples[q];
-      // foot point by Newton steps on (s(u) − p)·s'(u) = 0, kept only where it brings the curve closer
-      // (at most two steps, the second only after a step of at least 1e-9; one evaluation per pass, so
-      // that the compiler inlines the one call)
-      double u = s.u, du = 0, r_old = 0;
-      int k = span[q], k_old = k;
-      V2 c0, c1, c2;
-      for (int it = 0;; ++it) {  // it: the steps taken so far
-        sp.eval(u, k, c0, c1, c2);
-        if (it == 0) {
-          k_old = k;
-          r_old = (c0 - s.p).norm();
-        } else if (it == 2 || std::abs(du) < 1e-9) {
-          break;
-        }
-        const V2 r = c0 - s.p;
-        const double fp = c1.squaredNorm() + r.dot(c2);
-        if (!(fp > 0)) break;
-        du = std::clamp(-r.dot(c1) / fp, -0.25 * mean, 0.25 * mean);
-        u = std::clamp(u + du, 0.0, L);
-      }
-      double res = (c0 - s.p).norm();
-      if (res <= r_old) {
-        s.u = u;
-        span[q] = k;
-      } else {
-        res = r_old;
-        span[q] = k_old;
-      }
+      s.u = foot.u[i];
+      span[q] = foot.k[i];
+      const double res = foot.res[i];
       if (res > target) {
         const double g = res / target;
         s.w *= std::clamp(1.2 * g * g, 1.2, 100.0);

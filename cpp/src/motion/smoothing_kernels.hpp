@@ -16,6 +16,17 @@ struct SegRows {
   const double *ax, *ay, *dx, *dy, *il2;
 };
 
+/// A clamped cubic B-spline in the plane in power form (Spline::pw): knots t[0..m + 3], and per knot
+/// span k the 8 doubles pw[8·k..8·k + 7] = c0, c1, c2, c3 (x, y each) of s(u) = c0 + c1·x + c2·x² +
+/// c3·x³, x = u − t[k]; parameter u ∈ [0, L]; mean: the run's mean segment length (a Newton step is at
+/// most mean/4).
+struct FootSpline {
+  const double* t;
+  const double* pw;
+  int m;
+  double L, mean;
+};
+
 /// The kernels of one instruction set.
 struct SmoothingKernels {
   /// The power form of the cubic B-spline basis on the knot spans k0..k1 (3 ≤ k0, k1 + 4 < the number
@@ -34,6 +45,16 @@ struct SmoothingKernels {
   /// Reads and writes nothing outside these ranges.
   void (*pair_window)(const double* p, const SegRows& s, long lo, long hi, const double* sag, double* D0,
                       double* D1, double* mins);
+  /// The foot points of the points (px[i], py[i]), i < n, on the spline sp, one lane per point, as
+  /// fit_run() takes them: from the parameter u[i] in span k[i] (a span to search from; Spline::eval
+  /// finds u's span, span_near()), Newton steps on (s(u) − p)·s'(u) = 0 — with r = s(u) − p and
+  /// fp = |s'|² + r·s'', du = clamp(−(r·s')/fp, −mean/4, mean/4) where fp > 0, u = clamp(u + du, 0, L)
+  /// — at most two, the second only after a step with |du| ≥ 1e-9, one evaluation after each. Where
+  /// the distance at the last evaluation is ≤ the first one, u[i], k[i] become its parameter and span
+  /// and res[i] that distance; elsewhere u[i] stays, k[i] becomes the first evaluation's span and
+  /// res[i] its distance. Distances are √(r_x·r_x + r_y·r_y).
+  void (*foot_points)(const FootSpline& sp, int n, double* u, int* k, const double* px, const double* py,
+                      double* res);
   const char* isa;  ///< "baseline", "avx2" or "avx512"
 };
 NETSHAPE_SIMD_DECLARE(SmoothingKernels, smoothing_kernel_table)

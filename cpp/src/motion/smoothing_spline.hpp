@@ -298,6 +298,34 @@ struct Sample {
   double a;  // arc length of p along the polyline
 };
 
+// The samples whose foot points a round moves (their indices q) and, per sample, the parameter u and
+// span k (in: the sample's, out: its foot point's) and the residual res, for SmoothingKernels::foot_points.
+struct FootWork {
+  std::vector<std::size_t> q;
+  std::vector<double> u, px, py, res;
+  std::vector<int> k;
+  void clear() {
+    q.clear();
+    u.clear();
+    px.clear();
+    py.clear();
+    k.clear();
+  }
+  void push(std::size_t i, const Sample& s, int span) {
+    q.push_back(i);
+    u.push_back(s.u);
+    px.push_back(s.p.x());
+    py.push_back(s.p.y());
+    k.push_back(span);
+  }
+  void run(const Spline& sp, double L, double mean) {
+    static const detail::SmoothingKernels& kernels = detail::smoothing_kernels();
+    res.resize(q.size());
+    const detail::FootSpline f{sp.t.data(), sp.pw.data()->data()->data(), static_cast<int>(sp.P.size()), L, mean};
+    kernels.foot_points(f, static_cast<int>(q.size()), u.data(), k.data(), px.data(), py.data(), res.data());
+  }
+};
+
 // Monotone map from the spline parameter to arc length along the polyline, piecewise linear through the
 // samples' (foot point parameter, arc length) pairs. The smoothed curve is shorter than the polyline
 // where it cuts across wiggles, so its parameter drifts from the polyline's arc length along a run;

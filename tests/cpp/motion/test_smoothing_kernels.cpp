@@ -163,3 +163,116 @@ TEST_CASE("smoothing kernels: pair_window gives the definition's bits in every c
   CHECK(points > 100);
   CHECK(clamped > 100);
 }
+
+namespace {
+// The definition: Spline::span_near() and Spline::eval() on the power form, and fit_run()'s Newton
+// steps to a point's foot, one point at a time.
+int span_near_def(const std::vector<double>& t, int m, double u, int k) {
+  if (u >= t[static_cast<std::size_t>(m)]) return m - 1;
+  k = std::clamp(k, 3, m - 1);
+  for (int step = 0; step < 4; ++step) {
+    if (u < t[static_cast<std::size_t>(k)]) {
+      if (k == 3) return 3;
+      --k;
+    } else if (u >= t[static_cast<std::size_t>(k + 1)]) {
+      ++k;
+    } else {
+      return k;
+    }
+  }
+  return static_cast<int>(std::upper_bound(t.begin() + 3, t.begin() + m + 1, u) - t.begin()) - 1;
+}
+
+struct FootDef {
+  double u;
+  int k;
+  double res;
+};
+
+FootDef foot_def(const std::vector<double>& t, const std::vector<double>& pw, int m, double L, double mean, double u,
+                 int k, double px, double py) {
+  double du = 0, r_old = 0, s0[2] = {}, s1[2] = {}, s2[2] = {};
+  int k_old = k;
+  for (int it = 0;; ++it) {
+    k = span_near_def(t, m, u, k);
+    const double* c = pw.data() + 8 * k;
+    const double x = u - t[static_cast<std::size_t>(k)];
+    for (int d = 0; d < 2; ++d) {
+      s0[d] = c[d] + x * (c[2 + d] + x * (c[4 + d] + x * c[6 + d]));
+      s1[d] = c[2 + d] + x * (2.0 * c[4 + d] + x * (3.0 * c[6 + d]));
+      s2[d] = 2.0 * c[4 + d] + (6.0 * x) * c[6 + d];
+    }
+    const double rx = s0[0] - px, ry = s0[1] - py;
+    if (it == 0) {
+      k_old = k;
+      r_old = std::sqrt(rx * rx + ry * ry);
+    } else if (it == 2 || std::abs(du) < 1e-9) {
+      break;
+    }
+    const double fp = (s1[0] * s1[0] + s1[1] * s1[1]) + (rx * s2[0] + ry * s2[1]);
+    if (!(fp > 0)) break;
+    du = std::clamp(-(rx * s1[0] + ry * s1[1]) / fp, -0.25 * mean, 0.25 * mean);
+    u = std::clamp(u + du, 0.0, L);
+  }
+  const double rx = s0[0] - px, ry = s0[1] - py;
+  const double res = std::sqrt(rx * rx + ry * ry);
+  if (res <= r_old) return {u, k, res};
+  return {-1.0, k_old, r_old};  // u unchanged
+}
+}  // namespace
+
+TEST_CASE("smoothing kernels: foot_points gives the definition's bits in every copy") {
+  const auto& best = detail::smoothing_kernels();
+  const auto& plain = detail::smoothing_kernels_plain();
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  int moved = 0, kept = 0, span_changes = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    // clamped knots with some empty spans, and a random cubic on each span (continuity does not matter)
+    const int inner = 3 + static_cast<int>(uni(rng) * 20);
+    std::vector<double> t(4, 0.0);
+    double u = 0;
+    for (int i = 0; i < inner; ++i) {
+      u += uni(rng) < 0.1 ? 0.0 : 0.2 + uni(rng);
+      t.push_back(u);
+    }
+    const double L = u + 0.2 + uni(rng);
+    t.insert(t.end(), 4, L);
+    const int m = static_cast<int>(t.size()) - 4;
+    std::vector<double> pw(8 * static_cast<std::size_t>(m), 0.0);
+    for (int k = 3; k < m; ++k)
+      for (int j = 0; j < 8; ++j) pw[static_cast<std::size_t>(8 * k + j)] = (j < 2 ? t[static_cast<std::size_t>(k)] : 0.0) + (uni(rng) - 0.5) * (j < 4 ? 1.0 : 0.3);
+    const double mean = 0.2 + uni(rng);
+    const int n = 1 + static_cast<int>(uni(rng) * 40);
+    std::vector<double> u0, px, py;
+    std::vector<int> k0;
+    for (int i = 0; i < n; ++i) {
+      u0.push_back(uni(rng) * L);
+      k0.push_back(3 + static_cast<int>(uni(rng) * (m - 3)));  // any span to start the search from
+      px.push_back(u0.back() + (uni(rng) - 0.5) * (i % 7 == 0 ? 20.0 : 0.5));
+      py.push_back((uni(rng) - 0.5) * (i % 7 == 0 ? 20.0 : 0.5));
+    }
+    const detail::FootSpline f{t.data(), pw.data(), m, L, mean};
+    for (const auto* kern : {&plain, &best}) {
+      std::vector<double> uu = u0, res(static_cast<std::size_t>(n), -7.0);
+      std::vector<int> kk = k0;
+      kern->foot_points(f, n, uu.data(), kk.data(), px.data(), py.data(), res.data());
+      for (int i = 0; i < n; ++i) {
+        const auto ui = static_cast<std::size_t>(i);
+        FootDef want = foot_def(t, pw, m, L, mean, u0[ui], k0[ui], px[ui], py[ui]);
+        if (want.u < 0) want.u = u0[ui];
+        CHECK(std::memcmp(&uu[ui], &want.u, sizeof(double)) == 0);
+        CHECK(kk[ui] == want.k);
+        CHECK(std::memcmp(&res[ui], &want.res, sizeof(double)) == 0);
+        if (kern == &plain) {
+          moved += uu[ui] != u0[ui];
+          kept += uu[ui] == u0[ui];
+          span_changes += kk[ui] != k0[ui];
+        }
+      }
+    }
+  }
+  CHECK(moved > 200);
+  CHECK(kept > 20);
+  CHECK(span_changes > 200);
+}

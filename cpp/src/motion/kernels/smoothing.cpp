@@ -128,9 +128,146 @@ __attribute__((flatten)) void pair_window(const double* p, const SegRows& s, lon
   }
 }
 
+// Spline::span_near(): u's knot span (t[k] ≤ u < t[k + 1], the last one for u ≥ t[m]), searched from
+// span k first, then by bisection as std::upper_bound over t[3..m] does it (the first knot above u).
+NETSHAPE_SIMD_INLINE int span_of(const FootSpline& sp, double u, int k) {
+  const double* t = sp.t;
+  const int m = sp.m;
+  if (u >= t[m]) return m - 1;
+  k = k < 3 ? 3 : (m - 1 < k ? m - 1 : k);
+  for (int step = 0; step < 4; ++step) {
+    if (u < t[k]) {
+      if (k == 3) return 3;
+      --k;
+    } else if (u >= t[k + 1]) {
+      ++k;
+    } else {
+      return k;
+    }
+  }
+  int first = 3, count = m - 2;  // [t + 3, t + m + 1)
+  while (count > 0) {
+    const int half = count / 2;
+    if (!(u < t[first + half])) {
+      first += half + 1;
+      count -= half + 1;
+    } else {
+      count = half;
+    }
+  }
+  return first - 1;
+}
+
+// Lane l of m as a bool.
+NETSHAPE_SIMD_INLINE void lanes_of(M m, bool* out) {
+  alignas(64) double l[W];
+  B::storeu(l, B::blend(m, B::set(0.0), B::set(1.0)));
+  for (int i = 0; i < W; ++i) out[i] = l[i] != 0.0;
+}
+
+// fit_run()'s foot-point Newton steps, W points per step. The span search and the fetch of a span's
+// coefficients are per lane; the evaluations and steps are Spline::eval()'s and fit_run()'s operations
+// lane by lane, a lane that has stopped keeping its values by blends.
+__attribute__((flatten)) void foot_points(const FootSpline& sp, int n, double* u, int* k, const double* px,
+                                          const double* py, double* res) {
+  const D zero = B::set(0.0), two = B::set(2.0), three = B::set(3.0), six = B::set(6.0);
+  const D L = B::set(sp.L), step_hi = B::set(0.25 * sp.mean), step_lo = B::set(-0.25 * sp.mean), tiny = B::set(1e-9);
+  // std::clamp(v, lo, hi): v < lo gives lo, else hi < v gives hi, else v
+  const auto clamp = [](D v, D lo, D hi) NETSHAPE_SIMD_LAMBDA { return B::blend(B::lt(v, lo), B::blend(B::lt(hi, v), v, hi), lo); };
+  for (int i0 = 0; i0 < n; i0 += W) {
+    const int nl = n - i0 < W ? n - i0 : W;
+    const bool full = nl == W;
+    const M v = B::valid(nl);
+    alignas(64) double U[W], C[8][W], T[W];
+    int K[W], K0[W];
+    bool act[W];
+    for (int l = 0; l < W; ++l) {
+      U[l] = l < nl ? u[i0 + l] : 0.0;
+      K[l] = l < nl ? k[i0 + l] : 3;
+      act[l] = true;
+    }
+    const D x0 = B::load(px + i0, v, full), y0 = B::load(py + i0, v, full);
+    D s0x, s0y, s1x, s1y, s2x, s2y;
+    // Spline::eval() at U in the lanes marked in act: span search, coefficients (fetched again only
+    // where the span changed: C and T hold the lane's span's after the first evaluation), then the
+    // polynomials
+    bool fetched = false;
+    const auto eval = [&]() NETSHAPE_SIMD_LAMBDA {
+      for (int l = 0; l < W; ++l) {
+        if (!act[l]) continue;
+        const int kn = span_of(sp, U[l], K[l]);
+        if (fetched && kn == K[l]) continue;
+        K[l] = kn;
+        const double* c = sp.pw + 8 * static_cast<long>(kn);
+        for (int j = 0; j < 8; ++j) C[j][l] = c[j];
+        T[l] = sp.t[kn];
+      }
+      fetched = true;
+      const D x = B::sub(B::loadu(U), B::loadu(T));
+      const D c0x = B::loadu(C[0]), c0y = B::loadu(C[1]), c1x = B::loadu(C[2]), c1y = B::loadu(C[3]);
+      const D c2x = B::loadu(C[4]), c2y = B::loadu(C[5]), c3x = B::loadu(C[6]), c3y = B::loadu(C[7]);
+      s0x = B::add(c0x, B::mul(x, B::add(c1x, B::mul(x, B::add(c2x, B::mul(x, c3x))))));
+      s0y = B::add(c0y, B::mul(x, B::add(c1y, B::mul(x, B::add(c2y, B::mul(x, c3y))))));
+      s1x = B::add(c1x, B::mul(x, B::add(B::mul(two, c2x), B::mul(x, B::mul(three, c3x)))));
+      s1y = B::add(c1y, B::mul(x, B::add(B::mul(two, c2y), B::mul(x, B::mul(three, c3y)))));
+      const D x6 = B::mul(six, x);
+      s2x = B::add(B::mul(two, c2x), B::mul(x6, c3x));
+      s2y = B::add(B::mul(two, c2y), B::mul(x6, c3y));
+    };
+    // the Newton step from the last evaluation: where fp > 0 (ok), the new parameter into un
+    const auto newton = [&](M& ok, D& du, D& un) NETSHAPE_SIMD_LAMBDA {
+      const D rx = B::sub(s0x, x0), ry = B::sub(s0y, y0);
+      const D fp = B::add(B::add(B::mul(s1x, s1x), B::mul(s1y, s1y)), B::add(B::mul(rx, s2x), B::mul(ry, s2y)));
+      ok = B::gt(fp, zero);
+      const D dot = B::add(B::mul(rx, s1x), B::mul(ry, s1y));
+      du = clamp(B::div(B::sub(B::set(-0.0), dot), fp), step_lo, step_hi);
+      un = clamp(B::add(B::loadu(U), du), zero, L);
+    };
+    const D u_in = B::loadu(U);
+    eval();
+    for (int l = 0; l < W; ++l) K0[l] = K[l];
+    const auto dist = [&](D ax, D ay) NETSHAPE_SIMD_LAMBDA {
+      const D rx = B::sub(ax, x0), ry = B::sub(ay, y0);
+      return B::sqrt(B::add(B::mul(rx, rx), B::mul(ry, ry)));
+    };
+    const D r_old = dist(s0x, s0y);
+    M ok;
+    D du, un;
+    newton(ok, du, un);
+    // the second evaluation where the first step was taken
+    B::storeu(U, B::blend(ok, u_in, un));
+    lanes_of(ok, act);
+    D fx = s0x, fy = s0y;  // the last evaluation's point per lane
+    if (B::any(ok)) {
+      eval();
+      fx = B::blend(ok, fx, s0x);
+      fy = B::blend(ok, fy, s0y);
+      M ok1;
+      D du1, un1;
+      newton(ok1, du1, un1);
+      // a second step only after a first one of at least 1e-9, and where fp > 0
+      ok1 = B::land(B::land(ok, B::lnot(B::lt(B::abs(du), tiny))), ok1);
+      if (B::any(ok1)) {
+        B::storeu(U, B::blend(ok1, B::loadu(U), un1));
+        lanes_of(ok1, act);
+        eval();
+        fx = B::blend(ok1, fx, s0x);
+        fy = B::blend(ok1, fy, s0y);
+      }
+    }
+    const D r = dist(fx, fy);
+    const M keep = B::le(r, r_old);
+    B::store(u + i0, B::blend(keep, u_in, B::loadu(U)), v, full);
+    B::store(res + i0, B::blend(keep, r_old, r), v, full);
+    bool kept[W];
+    lanes_of(keep, kept);
+    for (int l = 0; l < nl; ++l) k[i0 + l] = kept[l] ? K[l] : K0[l];
+  }
+}
+
 }  // namespace
 
 extern const SmoothingKernels smoothing_kernel_table;
-const SmoothingKernels smoothing_kernel_table{&power_basis, &pair_window, NETSHAPE_KERNEL_ISA_NAME};
+const SmoothingKernels smoothing_kernel_table{&power_basis, &pair_window, &foot_points, NETSHAPE_KERNEL_ISA_NAME};
 
 }  // namespace netshape::motion::detail::NETSHAPE_KERNEL_ISA
