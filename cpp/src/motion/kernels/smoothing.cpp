@@ -178,32 +178,38 @@ __attribute__((flatten)) void foot_points(const FootSpline& sp, int n, double* u
     const int nl = n - i0 < W ? n - i0 : W;
     const bool full = nl == W;
     const M v = B::valid(nl);
-    alignas(64) double U[W], C[8][W], T[W];
+    alignas(64) double U[W], C[8][W], T[W], T1[W];
     int K[W], K0[W];
-    bool act[W];
     for (int l = 0; l < W; ++l) {
       U[l] = l < nl ? u[i0 + l] : 0.0;
       K[l] = l < nl ? k[i0 + l] : 3;
-      act[l] = true;
     }
     const D x0 = B::load(px + i0, v, full), y0 = B::load(py + i0, v, full);
     D s0x, s0y, s1x, s1y, s2x, s2y;
-    // Spline::eval() at U in the lanes marked in act: span search, coefficients (fetched again only
-    // where the span changed: C and T hold the lane's span's after the first evaluation), then the
-    // polynomials
+    // Spline::eval() at U in the lanes of `want`: span search, coefficients, then the polynomials.
+    // After the first evaluation C, T and T1 hold each lane's span's coefficients and knots t[K],
+    // t[K + 1]; a lane whose U is still in its span [t[K], t[K + 1]) is where span_near() would find it
+    // at its first look, and the others search and fetch one at a time.
     bool fetched = false;
-    const auto eval = [&]() NETSHAPE_SIMD_LAMBDA {
-      for (int l = 0; l < W; ++l) {
-        if (!act[l]) continue;
-        const int kn = span_of(sp, U[l], K[l]);
-        if (fetched && kn == K[l]) continue;
-        K[l] = kn;
-        const double* c = sp.pw + 8 * static_cast<long>(kn);
-        for (int j = 0; j < 8; ++j) C[j][l] = c[j];
-        T[l] = sp.t[kn];
+    const auto eval = [&](M want) NETSHAPE_SIMD_LAMBDA {
+      const D Uv = B::loadu(U);
+      const M need = fetched ? B::land(want, B::lnot(B::land(B::ge(Uv, B::loadu(T)), B::lt(Uv, B::loadu(T1))))) : want;
+      if (B::any(need)) {
+        bool search[W];
+        lanes_of(need, search);
+        for (int l = 0; l < W; ++l) {
+          if (!search[l]) continue;
+          const int kn = span_of(sp, U[l], K[l]);
+          if (fetched && kn == K[l]) continue;
+          K[l] = kn;
+          const double* c = sp.pw + 8 * static_cast<long>(kn);
+          for (int j = 0; j < 8; ++j) C[j][l] = c[j];
+          T[l] = sp.t[kn];
+          T1[l] = sp.t[kn + 1];
+        }
       }
       fetched = true;
-      const D x = B::sub(B::loadu(U), B::loadu(T));
+      const D x = B::sub(Uv, B::loadu(T));
       const D c0x = B::loadu(C[0]), c0y = B::loadu(C[1]), c1x = B::loadu(C[2]), c1y = B::loadu(C[3]);
       const D c2x = B::loadu(C[4]), c2y = B::loadu(C[5]), c3x = B::loadu(C[6]), c3y = B::loadu(C[7]);
       s0x = B::add(c0x, B::mul(x, B::add(c1x, B::mul(x, B::add(c2x, B::mul(x, c3x))))));
@@ -224,7 +230,7 @@ __attribute__((flatten)) void foot_points(const FootSpline& sp, int n, double* u
       un = clamp(B::add(B::loadu(U), du), zero, L);
     };
     const D u_in = B::loadu(U);
-    eval();
+    eval(B::valid(W));
     for (int l = 0; l < W; ++l) K0[l] = K[l];
     const auto dist = [&](D ax, D ay) NETSHAPE_SIMD_LAMBDA {
       const D rx = B::sub(ax, x0), ry = B::sub(ay, y0);
@@ -236,10 +242,9 @@ __attribute__((flatten)) void foot_points(const FootSpline& sp, int n, double* u
     newton(ok, du, un);
     // the second evaluation where the first step was taken
     B::storeu(U, B::blend(ok, u_in, un));
-    lanes_of(ok, act);
     D fx = s0x, fy = s0y;  // the last evaluation's point per lane
     if (B::any(ok)) {
-      eval();
+      eval(ok);
       fx = B::blend(ok, fx, s0x);
       fy = B::blend(ok, fy, s0y);
       M ok1;
@@ -249,8 +254,7 @@ __attribute__((flatten)) void foot_points(const FootSpline& sp, int n, double* u
       ok1 = B::land(B::land(ok, B::lnot(B::lt(B::abs(du), tiny))), ok1);
       if (B::any(ok1)) {
         B::storeu(U, B::blend(ok1, B::loadu(U), un1));
-        lanes_of(ok1, act);
-        eval();
+        eval(ok1);
         fx = B::blend(ok1, fx, s0x);
         fy = B::blend(ok1, fy, s0y);
       }
