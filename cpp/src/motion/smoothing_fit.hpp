@@ -56,14 +56,15 @@ struct CheckCache {
   std::vector<char> todo;
   std::vector<std::pair<double, double>> fresh;
   std::vector<Seg> cseg;
-  SegTable crows;  // cseg as rows
+  SegTable crows;  // cseg and cw as rows
+  RunWork run;
 };
 
 // In a check with the cache, the chords of a knot span whose bound is valid and the polyline segments
 // whose chords all lie in such spans keep their bounds.
-bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector<Seg>& segs, const SegTable& srows,
-                 const std::vector<V2>& wseg, const std::vector<double>& cum, const ParamMap& amap, double eps,
-                 double mean, CheckCache& cache, RunFit& out, std::vector<double>& bad) {
+bool chain_check(const Spline& sp, const std::vector<V2>& pts, const SegTable& srows, const std::vector<double>& cum,
+                 const ParamMap& amap, double eps, double mean, CheckCache& cache, RunFit& out,
+                 std::vector<double>& bad) {
   const std::size_t n = pts.size();
   const double sag_share = 0.03 * eps;
   bad.clear();
@@ -119,7 +120,6 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   // chord's middle through the parameter map); squared distances, one root at the end (the root is
   // increasing, so min and max commute with it)
   const long ns = static_cast<long>(n) - 1;
-  auto sq = [](double d2, long) { return d2; };
   double D0[7], D1[7];
   auto window = [&](long s, long& lo, long& hi) {
     lo = std::max(0L, s - 3);
@@ -137,7 +137,7 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     const double b = std::sqrt(best2) + sag;
     lost = std::sqrt(std::max(m0, m1)) > eps;
     if (b <= eps || lost) return b;  // one segment will do, or nothing will
-    return std::min(b, std::sqrt(run_bound(c0, c1, segs.data(), wseg.data(), lo, hi, D0, D1, sq)) + sag);
+    return std::min(b, std::sqrt(run_bound(c0, c1, srows, lo, hi, D0, D1, nullptr, cache.run)) + sag);
   };
   struct Job {
     double u0, u1, sag;
@@ -208,9 +208,8 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   cseg.clear();
   cw.clear();
   for (long q = 0; q < nch; ++q) cseg.push_back(make_seg(cp[static_cast<std::size_t>(q)], cp[static_cast<std::size_t>(q) + 1]));
-  crows.assign(cseg);
   for (long q = 0; q + 1 < nch; ++q) cw.push_back(bisector(cseg[static_cast<std::size_t>(q)], cseg[static_cast<std::size_t>(q) + 1]));
-  auto chord_val = [&](double d2, long q) { return std::sqrt(d2) + csag[static_cast<std::size_t>(q)]; };
+  crows.assign(cseg, cw);
   // the chords whose arc length along the polyline (through the parameter map) lies within ±w of the
   // piece's arc lengths [ua, ub], and two more each side; a chord outside the window can only make the
   // bound larger, never smaller
@@ -236,7 +235,7 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     const double m0 = mins[1], m1 = mins[2], smin = mins[4];
     ends = std::sqrt(std::max(m0, m1)) + smin;
     if (best > eps && ends <= eps)
-      best = std::min(best, run_bound(q0, q1, cseg.data(), cw.data(), lo, hi, Q0.data(), Q1.data(), chord_val));
+      best = std::min(best, run_bound(q0, q1, crows, lo, hi, Q0.data(), Q1.data(), csag.data(), cache.run));
     return best;
   };
   struct Part {
@@ -374,9 +373,9 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   std::vector<Seg> segs;  // the polyline's segments and the bisectors at its interior vertices
   std::vector<V2> wseg;
   for (std::size_t i = 0; i + 1 < n; ++i) segs.push_back(make_seg(pts[i], pts[i + 1]));
-  SegTable srows;  // segs as rows
-  srows.assign(segs);
   for (std::size_t i = 0; i + 1 < segs.size(); ++i) wseg.push_back(bisector(segs[i], segs[i + 1]));
+  SegTable srows;  // segs and wseg as rows
+  srows.assign(segs, wseg);
   const double eps = opt.fit_tolerance();
   const int spans = std::max(3, static_cast<int>(std::ceil(L / (opt.knot_spacing * mean))));
   const double dk = L / spans;
@@ -510,7 +509,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
     }
     if (!over) {
       amap.build(samples, L);
-      if (!chain_check(sp, pts, segs, srows, wseg, cum, amap, eps, mean, cache, out, bad)) return false;
+      if (!chain_check(sp, pts, srows, cum, amap, eps, mean, cache, out, bad)) return false;
       if (bad.empty()) return true;
       std::sort(bad.begin(), bad.end());
       for (std::size_t q = 0; q < samples.size(); ++q) {

@@ -11,9 +11,11 @@
 namespace netshape::motion::detail {
 
 /// Segments prepared for distance queries, as rows: segment q starts at (ax[q], ay[q]), runs along
-/// (dx[q], dy[q]) = end − start and has il2[q] = 1/|d|² (0 for a point).
+/// (dx[q], dy[q]) = end − start and has il2[q] = 1/|d|² (0 for a point). For a chain (segment q + 1
+/// starts where q ends), (wx[q], wy[q]) is the bisector direction at the vertex between q and q + 1.
 struct SegRows {
   const double *ax, *ay, *dx, *dy, *il2;
+  const double *wx, *wy;
 };
 
 /// A clamped cubic B-spline in the plane in power form (Spline::pw): knots t[0..m + 3], and per knot
@@ -45,6 +47,16 @@ struct SmoothingKernels {
   /// Reads and writes nothing outside these ranges.
   void (*pair_window)(const double* p, const SegRows& s, long lo, long hi, const double* sag, double* D0,
                       double* D1, double* mins);
+  /// The parts of run_bound() (smoothing_spline.hpp) for the segment [c0, c1] (c = c0x, c0y, c1x, c1y)
+  /// against the chain s[lo..hi], one lane per segment or vertex, each value val(d2, q) = d2, or
+  /// √d2 + sag[q] where sag is not null: V0[i], V1[i] = val(D0[i], q), val(D1[i], q) for q = lo + i ≤ hi
+  /// (D0, D1: the squared distances of c0, c1 to segment q); and for each vertex q = lo + i < hi, the
+  /// point x where [c0, c1] crosses its bisector — with e = c1 − c0, τ = cross(s.a[q + 1] − c0, w[q]) /
+  /// cross(e, w[q]), set to 0 unless τ ≥ 0 (NaN too), then to 1 unless τ ≤ 1, x = c0 + τ·e,
+  /// cross(a, b) = a_x·b_y − a_y·b_x — VN[i] = val(dist2(x, q), q) and VX[i] = val(dist2(x, q + 1),
+  /// q + 1), dist2 as in pair_window. Writes V0, V1 [0..hi − lo], VN, VX [0..hi − lo − 1] only.
+  void (*run_parts)(const double* c, const SegRows& s, long lo, long hi, const double* sag, const double* D0,
+                    const double* D1, double* V0, double* V1, double* VN, double* VX);
   /// The foot points of the points (px[i], py[i]), i < n, on the spline sp, one lane per point, as
   /// fit_run() takes them: from the parameter u[i] in span k[i] (a span to search from; Spline::eval
   /// finds u's span, span_near()), Newton steps on (s(u) − p)·s'(u) = 0 — with r = s(u) − p and

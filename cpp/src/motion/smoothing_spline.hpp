@@ -39,11 +39,21 @@ double dist2(const V2& p, const Seg& s) {
   return (r - t * s.d).squaredNorm();
 }
 
-// Segments as rows (detail::SegRows) for the smoothing kernel's distance windows: the same values as
-// make_seg() gives, one array per field.
+// Direction of the bisector at the vertex between consecutive segments s0 and s1: u1 − u0 for their unit
+// directions u0, u1 (points on the line through the vertex with this direction are equally far from
+// both segments), the normal of s0 where they run straight on, any direction for a point segment.
+V2 bisector(const Seg& s0, const Seg& s1) {
+  const V2 u0 = s0.d * std::sqrt(s0.il2), u1 = s1.d * std::sqrt(s1.il2);
+  const V2 w = u1 - u0;
+  if (w.squaredNorm() > 0) return w;
+  return u0.squaredNorm() > 0 ? perp(u0) : V2(1.0, 0.0);
+}
+
+// A chain of segments as rows (detail::SegRows) for the smoothing kernels: the values make_seg()
+// gives, one array per field, and the bisectors w[q] (bisector(seg[q], seg[q + 1])) at its vertices.
 struct SegTable {
-  std::vector<double> ax, ay, dx, dy, il2;
-  void assign(const std::vector<Seg>& segs) {
+  std::vector<double> ax, ay, dx, dy, il2, wx, wy;
+  void assign(const std::vector<Seg>& segs, const std::vector<V2>& w) {
     const std::size_t n = segs.size();
     for (auto* v : {&ax, &ay, &dx, &dy, &il2}) v->resize(n);
     for (std::size_t q = 0; q < n; ++q) {
@@ -53,8 +63,16 @@ struct SegTable {
       dy[q] = segs[q].d.y();
       il2[q] = segs[q].il2;
     }
+    wx.resize(w.size());
+    wy.resize(w.size());
+    for (std::size_t q = 0; q < w.size(); ++q) {
+      wx[q] = w[q].x();
+      wy[q] = w[q].y();
+    }
   }
-  detail::SegRows rows() const { return {ax.data(), ay.data(), dx.data(), dy.data(), il2.data()}; }
+  detail::SegRows rows() const {
+    return {ax.data(), ay.data(), dx.data(), dy.data(), il2.data(), wx.data(), wy.data()};
+  }
 };
 
 // The squared distances of p0 and p1 to the segments lo..hi of s (dist2() of each) into D0, D1
@@ -68,50 +86,45 @@ void pair_window(const V2& p0, const V2& p1, const SegTable& s, long lo, long hi
   kernels.pair_window(p, rows, lo, hi, sag, D0, D1, mins);
 }
 
-// Direction of the bisector at the vertex between consecutive segments s0 and s1: u1 − u0 for their unit
-// directions u0, u1 (points on the line through the vertex with this direction are equally far from
-// both segments), the normal of s0 where they run straight on, any direction for a point segment.
-V2 bisector(const Seg& s0, const Seg& s1) {
-  const V2 u0 = s0.d * std::sqrt(s0.il2), u1 = s1.d * std::sqrt(s1.il2);
-  const V2 w = u1 - u0;
-  if (w.squaredNorm() > 0) return w;
-  return u0.squaredNorm() > 0 ? perp(u0) : V2(1.0, 0.0);
-}
-
 // A bound on the distance of every point x of the segment [c0, c1] to the chain of segments seg[lo..hi]
 // (consecutive: seg[q + 1] starts where seg[q] ends; w[q] = bisector(seg[q], seg[q + 1])). A run of
 // consecutive segments qa..qb covers [c0, c1] in parts, cut where [c0, c1] crosses the bisectors of the
 // vertices between them; a part is within the larger distance of its two ends from its segment, as the
 // distance to a segment is convex along a line. Any cuts give a valid bound, since the parts join
 // from c0 to c1 whatever their order; at the bisector the distances to both segments are equal, which
-// makes the bound tight where [c0, c1] passes a vertex. val(d2, q) turns the squared distance d2 to
-// seg[q] into the bound's measure and must be increasing in d2; D0, D1: squared distances of c0, c1
-// to seg[lo..hi]. Returns the smallest largest part value over all runs (a single segment included).
-template <class Val>
-double run_bound(const V2& c0, const V2& c1, const Seg* seg, const V2* w, long lo, long hi, const double* D0,
-                 const double* D1, const Val& val) {
-  const V2 e = c1 - c0;
+// makes the bound tight where [c0, c1] passes a vertex. The bound's measure val(d2, q) of the squared
+// distance d2 to seg[q] is d2 itself, or √d2 + sag[q] where sag is not null (increasing in d2); D0, D1:
+// squared distances of c0, c1 to seg[lo..hi]. Returns the smallest largest part value over all runs (a
+// single segment included). The values of the ends and of the cuts on both sides of each vertex are
+// independent of one another: the smoothing kernel computes them (run_parts), the runs are folded here.
+struct RunWork {
+  std::vector<double> v0, v1, vn, vx;
+};
+
+double run_bound(const V2& c0, const V2& c1, const SegTable& seg, long lo, long hi, const double* D0, const double* D1,
+                 const double* sag, RunWork& work) {
+  static const detail::SmoothingKernels& kernels = detail::smoothing_kernels();
+  const auto n = static_cast<std::size_t>(hi - lo + 1);
+  for (auto* v : {&work.v0, &work.v1, &work.vn, &work.vx}) v->resize(n);
+  const double c[4] = {c0.x(), c0.y(), c1.x(), c1.y()};
+  const detail::SegRows rows = seg.rows();
+  kernels.run_parts(c, rows, lo, hi, sag, D0, D1, work.v0.data(), work.v1.data(), work.vn.data(), work.vx.data());
+  const double *V0 = work.v0.data(), *V1 = work.v1.data();
+  const double *VN = work.vn.data(), *VX = work.vx.data();  // per vertex lo + i: the cut's values
   double best = 1e300;
   double cover = 1e300;  // best bound on c0..x (x: the last cut), over runs ending at segment q − 1
-  V2 x = c0;
   for (long q = lo; q <= hi; ++q) {
     const auto i = static_cast<std::size_t>(q - lo);
-    const double v0 = val(D0[i], q);
-    best = std::min(best, std::max(v0, val(D1[i], q)));
+    const double v0 = V0[i];
+    best = std::min(best, std::max(v0, V1[i]));
     double vx = 0;  // the previous cut's value for segment q
     if (q > lo) {
-      vx = val(dist2(x, seg[q]), q);
-      best = std::min(best, std::max({cover, vx, val(D1[i], q)}));
+      vx = VX[i - 1];
+      best = std::min(best, std::max({cover, vx, V1[i]}));
     }
     if (q == hi) break;
-    const V2& wq = w[q];
-    double t = cross2(seg[q + 1].a - c0, wq) / cross2(e, wq);
-    if (!(t >= 0)) t = 0;  // NaN too
-    if (!(t <= 1)) t = 1;
-    const V2 xn = c0 + t * e;
-    const double vn = val(dist2(xn, seg[q]), q);
+    const double vn = VN[i];  // the next cut's value for segment q
     cover = std::min(std::max(v0, vn), q > lo ? std::max({cover, vx, vn}) : 1e300);
-    x = xn;
   }
   return best;
 }

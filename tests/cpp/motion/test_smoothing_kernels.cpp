@@ -276,3 +276,76 @@ TEST_CASE("smoothing kernels: foot_points gives the definition's bits in every c
   CHECK(kept > 20);
   CHECK(span_changes > 200);
 }
+
+TEST_CASE("smoothing kernels: run_parts gives the definition's bits in every copy") {
+  const auto& best = detail::smoothing_kernels();
+  const auto& plain = detail::smoothing_kernels_plain();
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  int cut_inside = 0, cut_clamped = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    // a chain with bisectors at its vertices (some degenerate: a zero or parallel direction)
+    const long n = 1 + static_cast<long>(30 * (0.5 + 0.5 * uni(rng)));
+    std::vector<double> ax, ay, dx, dy, il2, wx, wy, sag;
+    double x = 0, y = 0;
+    for (long q = 0; q < n; ++q) {
+      const bool point = uni(rng) > 0.85;
+      const double ex = point ? 0.0 : 0.5 + 0.5 * uni(rng), ey = point ? 0.0 : uni(rng);
+      const double l2 = ex * ex + ey * ey;
+      ax.push_back(x);
+      ay.push_back(y);
+      dx.push_back(ex);
+      dy.push_back(ey);
+      il2.push_back(l2 > 0 ? 1.0 / l2 : 0.0);
+      sag.push_back(0.01 * (1.0 + uni(rng)));
+      const double r = uni(rng);
+      wx.push_back(r > 0.9 ? 0.0 : uni(rng));
+      wy.push_back(r > 0.9 ? 0.0 : 1.0 + uni(rng));
+      x += ex;
+      y += ey;
+    }
+    const detail::SegRows s{ax.data(), ay.data(), dx.data(), dy.data(), il2.data(), wx.data(), wy.data()};
+    const long lo = static_cast<long>((n - 1) * (0.5 + 0.5 * uni(rng)));
+    const long hi = lo + static_cast<long>((n - 1 - lo) * (0.5 + 0.5 * uni(rng)));
+    const double c[4] = {ax[static_cast<std::size_t>(lo)] + 0.2 * uni(rng), 0.3 * uni(rng), x + 0.2 * uni(rng), y + 0.3 * uni(rng)};
+    const std::size_t len = static_cast<std::size_t>(hi - lo + 1);
+    std::vector<double> D0(len), D1(len);
+    for (long q = lo; q <= hi; ++q) {
+      D0[static_cast<std::size_t>(q - lo)] = dist2_def(c[0], c[1], s, q);
+      D1[static_cast<std::size_t>(q - lo)] = dist2_def(c[2], c[3], s, q);
+    }
+    for (const bool with_sag : {false, true}) {
+      // the definition, one segment and one vertex at a time (run_bound()'s loop)
+      const auto val = [&](double d2, long q) { return with_sag ? std::sqrt(d2) + sag[static_cast<std::size_t>(q)] : d2; };
+      std::vector<double> W0(len + 9, 5.0), W1 = W0, WN = W0, WX = W0;
+      const double ex = c[2] - c[0], ey = c[3] - c[1];
+      for (long q = lo; q <= hi; ++q) {
+        const auto i = static_cast<std::size_t>(q - lo);
+        W0[i] = val(D0[i], q);
+        W1[i] = val(D1[i], q);
+        if (q == hi) break;
+        const auto u = static_cast<std::size_t>(q);
+        const double bx = ax[u + 1] - c[0], by = ay[u + 1] - c[1];
+        double t = (bx * wy[u] - by * wx[u]) / (ex * wy[u] - ey * wx[u]);
+        if (!(t >= 0)) t = 0;
+        if (!(t <= 1)) t = 1;
+        cut_inside += t > 0 && t < 1;
+        cut_clamped += t == 0 || t == 1;
+        const double px = c[0] + t * ex, py = c[1] + t * ey;
+        WN[i] = val(dist2_def(px, py, s, q), q);
+        WX[i] = val(dist2_def(px, py, s, q + 1), q + 1);
+      }
+      for (const auto* k : {&plain, &best}) {
+        std::vector<double> V0(len + 9, 5.0), V1 = V0, VN = V0, VX = V0;  // 5.0 past the ranges: nothing is written there
+        k->run_parts(c, s, lo, hi, with_sag ? sag.data() : nullptr, D0.data(), D1.data(), V0.data(), V1.data(), VN.data(),
+                     VX.data());
+        CHECK(same(V0, W0));
+        CHECK(same(V1, W1));
+        CHECK(same(VN, WN));
+        CHECK(same(VX, WX));
+      }
+    }
+  }
+  CHECK(cut_inside > 200);
+  CHECK(cut_clamped > 200);
+}

@@ -128,6 +128,48 @@ __attribute__((flatten)) void pair_window(const double* p, const SegRows& s, lon
   }
 }
 
+// run_bound()'s parts: the end points' values, W segments per step, then the cuts at the bisectors
+// and their values for the segments on both sides, W vertices per step (loads at q + 1 for the
+// segment after the vertex)
+__attribute__((flatten)) void run_parts(const double* c, const SegRows& s, long lo, long hi, const double* sag,
+                                        const double* D0, const double* D1, double* V0, double* V1, double* VN,
+                                        double* VX) {
+  const D zero = B::set(0.0), one = B::set(1.0);
+  // val(d2, q) for the W values from segment q on
+  const auto val = [sag](D d2, long q, M v, bool full) NETSHAPE_SIMD_LAMBDA {
+    return sag == nullptr ? d2 : B::add(B::sqrt(d2), B::load(sag + q, v, full));
+  };
+  for (long q = lo; q <= hi; q += W) {
+    const long n = hi - q + 1;
+    const bool full = n >= W;
+    const M v = B::valid(static_cast<int>(full ? W : n));
+    const long i = q - lo;
+    B::store(V0 + i, val(B::load(D0 + i, v, full), q, v, full), v, full);
+    B::store(V1 + i, val(B::load(D1 + i, v, full), q, v, full), v, full);
+  }
+  const D c0x = B::set(c[0]), c0y = B::set(c[1]);
+  const D ex = B::set(c[2] - c[0]), ey = B::set(c[3] - c[1]);
+  for (long q = lo; q < hi; q += W) {
+    const long n = hi - q;  // vertices left
+    const bool full = n >= W;
+    const M v = B::valid(static_cast<int>(full ? W : n));
+    const long i = q - lo;
+    const D wx = B::load(s.wx + q, v, full), wy = B::load(s.wy + q, v, full);
+    const D bx = B::load(s.ax + q + 1, v, full), by = B::load(s.ay + q + 1, v, full);
+    const D ax = B::sub(bx, c0x), ay = B::sub(by, c0y);
+    D t = B::div(B::sub(B::mul(ax, wy), B::mul(ay, wx)), B::sub(B::mul(ex, wy), B::mul(ey, wx)));
+    t = B::blend(B::ge(t, zero), zero, t);  // NaN too
+    t = B::blend(B::le(t, one), one, t);
+    const D x = B::add(c0x, B::mul(t, ex)), y = B::add(c0y, B::mul(t, ey));
+    const D dn = dist2(x, y, B::load(s.ax + q, v, full), B::load(s.ay + q, v, full), B::load(s.dx + q, v, full),
+                       B::load(s.dy + q, v, full), B::load(s.il2 + q, v, full));
+    const D dx = dist2(x, y, bx, by, B::load(s.dx + q + 1, v, full), B::load(s.dy + q + 1, v, full),
+                       B::load(s.il2 + q + 1, v, full));
+    B::store(VN + i, val(dn, q, v, full), v, full);
+    B::store(VX + i, val(dx, q + 1, v, full), v, full);
+  }
+}
+
 // Spline::span_near(): u's knot span (t[k] ≤ u < t[k + 1], the last one for u ≥ t[m]), searched from
 // span k first, then by bisection as std::upper_bound over t[3..m] does it (the first knot above u).
 NETSHAPE_SIMD_INLINE int span_of(const FootSpline& sp, double u, int k) {
@@ -272,6 +314,6 @@ __attribute__((flatten)) void foot_points(const FootSpline& sp, int n, double* u
 }  // namespace
 
 extern const SmoothingKernels smoothing_kernel_table;
-const SmoothingKernels smoothing_kernel_table{&power_basis, &pair_window, &foot_points, NETSHAPE_KERNEL_ISA_NAME};
+const SmoothingKernels smoothing_kernel_table{&power_basis, &pair_window, &run_parts, &foot_points, NETSHAPE_KERNEL_ISA_NAME};
 
 }  // namespace netshape::motion::detail::NETSHAPE_KERNEL_ISA
