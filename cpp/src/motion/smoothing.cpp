@@ -31,6 +31,15 @@ void SmoothOptions::validate() const {
 }
 
 
+namespace detail {
+const SmoothingKernels& smoothing_kernels_plain() { return baseline::smoothing_kernel_table; }
+
+const SmoothingKernels& smoothing_kernels() {
+  static const SmoothingKernels& chosen = NETSHAPE_SIMD_SELECT(detail, smoothing_kernel_table);
+  return chosen;
+}
+}  // namespace detail
+
 namespace {
 SmoothResult smooth_program(const std::vector<toolpath::Block>& program, const SmoothOptions& opt,
                             const Vec3* first_start);

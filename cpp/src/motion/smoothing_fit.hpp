@@ -51,18 +51,20 @@ struct CheckCache {
   std::vector<double> seg_u0, seg_u1;  // per polyline segment: the parameter range of the chords it was bounded by
   // buffers kept between checks (chain_check says what they hold)
   std::vector<V2> cp, cw;
-  std::vector<double> cu, cpar, csag, Q0, Q1, K1;
+  std::vector<double> cu, cpar, csag, Q0, Q1;
   std::vector<int> cspan;
   std::vector<char> todo;
   std::vector<std::pair<double, double>> fresh;
   std::vector<Seg> cseg;
+  SegTable crows;  // cseg and cw as rows
+  RunWork run;
 };
 
 // In a check with the cache, the chords of a knot span whose bound is valid and the polyline segments
 // whose chords all lie in such spans keep their bounds.
-bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector<Seg>& segs,
-                 const std::vector<V2>& wseg, const std::vector<double>& cum, const ParamMap& amap, double eps,
-                 double mean, CheckCache& cache, RunFit& out, std::vector<double>& bad) {
+bool chain_check(const Spline& sp, const std::vector<V2>& pts, const SegTable& srows, const std::vector<double>& cum,
+                 const ParamMap& amap, double eps, double mean, CheckCache& cache, RunFit& out,
+                 std::vector<double>& bad) {
   const std::size_t n = pts.size();
   const double sag_share = 0.03 * eps;
   bad.clear();
@@ -118,35 +120,30 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   // chord's middle through the parameter map); squared distances, one root at the end (the root is
   // increasing, so min and max commute with it)
   const long ns = static_cast<long>(n) - 1;
-  auto sq = [](double d2, long) { return d2; };
   double D0[7], D1[7];
   auto window = [&](long s, long& lo, long& hi) {
     lo = std::max(0L, s - 3);
     hi = std::min(ns - 1, s + 3);
   };
-  // The bound for chord [c0, c1] with sagitta bound sag, D0 and D1 filled for c0, c1 and the window
-  // lo..hi. `lost`: an end point alone is farther than eps from the window, so every part of the chord
-  // that holds it is bounded above eps however the chord is cut (the chord fails).
+  // The bound for chord [c0, c1] with sagitta bound sag against the window lo..hi, D0 and D1 filled
+  // for c0, c1 on the way: first the best single segment (best2: the smallest over q of the larger
+  // squared distance of c0, c1 to segment q), then run_bound. `lost`: an end point alone is farther
+  // than eps from the window, so every part of the chord that holds it is bounded above eps however the
+  // chord is cut (the chord fails).
   auto chord_bound = [&](const V2& c0, const V2& c1, long lo, long hi, double sag, bool& lost) {
-    double best2 = 1e300, m0 = 1e300, m1 = 1e300;
-    for (long q = lo; q <= hi; ++q) {
-      const auto i = static_cast<std::size_t>(q - lo);
-      best2 = std::min(best2, std::max(D0[i], D1[i]));
-      m0 = std::min(m0, D0[i]);
-      m1 = std::min(m1, D1[i]);
-    }
+    double mins[3];  // best2, then the smallest squared distances m0, m1 of c0 and of c1
+    pair_window(c0, c1, srows, lo, hi, nullptr, D0, D1, mins);
+    const double best2 = mins[0], m0 = mins[1], m1 = mins[2];
     const double b = std::sqrt(best2) + sag;
     lost = std::sqrt(std::max(m0, m1)) > eps;
     if (b <= eps || lost) return b;  // one segment will do, or nothing will
-    return std::min(b, std::sqrt(run_bound(c0, c1, segs.data(), wseg.data(), lo, hi, D0, D1, sq)) + sag);
+    return std::min(b, std::sqrt(run_bound(c0, c1, srows, lo, hi, D0, D1, nullptr, cache.run)) + sag);
   };
-  auto fill = [&](const V2& p, long lo, long hi, double* D) { dist2_window(p, segs.data(), lo, hi, D); };
   struct Job {
     double u0, u1, sag;
     V2 c0, c1;
   };
   std::vector<Job> jobs;
-  long plo = 0, phi = -1;  // window of the previous chord, whose end point's distances are in D1
   std::size_t sc = 0;      // segment search: cum[sc] <= um for the chords' nondecreasing middles um
   auto& span_bound = cache.span_bound;
   auto valid = [eps](double b) { return b >= 0 && b <= eps; };
@@ -172,18 +169,11 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     double& sb = span_bound[static_cast<std::size_t>(cspan[j])];
     if (!todo[static_cast<std::size_t>(cspan[j])]) {
       bound = std::max(bound, sb);
-      plo = 0;
-      phi = -1;
       continue;
     }
     const long s = std::clamp(static_cast<long>(sc), 0L, ns - 1);
     long lo, hi;
     window(s, lo, hi);
-    // cp[j] is the previous chord's end point: keep its distances where the windows overlap
-    dist2_window(cp[j], segs.data(), lo, hi, D0, D1, plo, phi);
-    fill(cp[j + 1], lo, hi, D1);
-    plo = lo;
-    phi = hi;
     bool lost;
     double best = chord_bound(cp[j], cp[j + 1], lo, hi, csag[j], lost);
     if (best > eps && !lost) {  // bisect the chord; the first part that fails decides
@@ -193,8 +183,6 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
       while (!jobs.empty()) {
         const Job jb = jobs.back();
         jobs.pop_back();
-        fill(jb.c0, lo, hi, D0);
-        fill(jb.c1, lo, hi, D1);
         const double b = chord_bound(jb.c0, jb.c1, lo, hi, jb.sag, lost);
         if (b > eps && !lost && (jb.c1 - jb.c0).norm() > fine && --budget > 0) {
           const double um2 = 0.5 * (jb.u0 + jb.u1);
@@ -206,7 +194,6 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
         best = std::max(best, b);
         if (best > eps) break;
       }
-      fill(cp[j + 1], lo, hi, D1);  // the next chord reads its start point's distances from D1
     }
     bound = std::max(bound, best);
     if (best > eps) bad.push_back(um);
@@ -217,11 +204,12 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   const long nch = static_cast<long>(cp.size()) - 1;
   auto& cseg = cache.cseg;  // the chords and the bisectors at the chord points between them
   auto& cw = cache.cw;
+  auto& crows = cache.crows;
   cseg.clear();
   cw.clear();
   for (long q = 0; q < nch; ++q) cseg.push_back(make_seg(cp[static_cast<std::size_t>(q)], cp[static_cast<std::size_t>(q) + 1]));
   for (long q = 0; q + 1 < nch; ++q) cw.push_back(bisector(cseg[static_cast<std::size_t>(q)], cseg[static_cast<std::size_t>(q) + 1]));
-  auto chord_val = [&](double d2, long q) { return std::sqrt(d2) + csag[static_cast<std::size_t>(q)]; };
+  crows.assign(cseg, cw);
   // the chords whose arc length along the polyline (through the parameter map) lies within ±w of the
   // piece's arc lengths [ua, ub], and two more each side; a chord outside the window can only make the
   // bound larger, never smaller
@@ -233,35 +221,28 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
   // Also `ends`: at most the bound of the degenerate pieces [q0, q0] and [q1, q1] (the square root of the
   // larger of the two smallest squared distances plus the smallest σ); above eps, every bisection of
   // the piece keeps a part whose bound is above eps, so the piece fails whatever it is cut into.
-  // Q0, Q1: squared distances of q0, q1 to the chords lo..hi.
+  // Q0, Q1: squared distances of q0, q1 to the chords lo..hi, filled on the way.
   auto& Q0 = cache.Q0;
   auto& Q1 = cache.Q1;
-  auto& K1 = cache.K1;
   auto poly_bound = [&](const V2& q0, const V2& q1, long lo, long hi, double& ends) {
-    double best = 1e300, m0 = 1e300, m1 = 1e300, smin = 1e300;
-    for (long q = lo; q <= hi; ++q) {
-      const auto qi = static_cast<std::size_t>(q);
-      const double d0 = Q0[static_cast<std::size_t>(q - lo)], d1 = Q1[static_cast<std::size_t>(q - lo)];
-      best = std::min(best, std::sqrt(std::max(d0, d1)) + csag[qi]);
-      m0 = std::min(m0, d0);
-      m1 = std::min(m1, d1);
-      smin = std::min(smin, csag[qi]);
-    }
+    Q0.resize(static_cast<std::size_t>(hi - lo + 1));
+    Q1.resize(static_cast<std::size_t>(hi - lo + 1));
+    // the best single chord (the smallest over q of √max(d0, d1) + σ_q), the smallest squared
+    // distances m0, m1 of q0 and of q1, and the smallest σ
+    double mins[5];
+    pair_window(q0, q1, crows, lo, hi, csag.data(), Q0.data(), Q1.data(), mins);
+    double best = mins[3];
+    const double m0 = mins[1], m1 = mins[2], smin = mins[4];
     ends = std::sqrt(std::max(m0, m1)) + smin;
     if (best > eps && ends <= eps)
-      best = std::min(best, run_bound(q0, q1, cseg.data(), cw.data(), lo, hi, Q0.data(), Q1.data(), chord_val));
+      best = std::min(best, run_bound(q0, q1, crows, lo, hi, Q0.data(), Q1.data(), csag.data(), cache.run));
     return best;
-  };
-  auto cfill = [&](const V2& p, long lo, long hi, std::vector<double>& D) {
-    D.resize(static_cast<std::size_t>(hi - lo + 1));
-    dist2_window(p, cseg.data(), lo, hi, D.data());
   };
   struct Part {
     V2 a0, a1;
     double ua, ub;
   };
   std::vector<Part> pj;
-  long clo = 0, chi = -1;  // chord window of the previous segment; K1: its end point's squared distances
   std::size_t wa = 0, wb = 0;  // cwindow's searches for the segments' nondecreasing arc lengths
   // does the parameter range [u0, u1] meet a span checked again?
   auto meets_fresh = [&](double u0, double u1) {
@@ -275,7 +256,6 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
     double& gu1 = cache.seg_u1[i];
     if (valid(gb) && !meets_fresh(gu0, gu1)) {
       bound = std::max(bound, gb);
-      chi = -1;
       continue;
     }
     const double li = cum[i + 1] - cum[i];
@@ -292,14 +272,8 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
       while (wb < cu.size() && cu[wb] <= cum[i + 1] + w) ++wb;
       const long lo = std::max(0L, static_cast<long>(wa) - 2), hi = std::min(nch - 1, static_cast<long>(wb) + 1);
       used(lo, hi);
-      Q0.resize(static_cast<std::size_t>(hi - lo + 1));  // pts[i] is the previous segment's end point
-      dist2_window(pts[i], cseg.data(), lo, hi, Q0.data(), K1.data(), clo, chi);
-      cfill(pts[i + 1], lo, hi, Q1);
       double ends;
       const double b = poly_bound(pts[i], pts[i + 1], lo, hi, ends);
-      std::swap(K1, Q1);
-      clo = lo;
-      chi = hi;
       if (b <= eps) {
         bound = std::max(bound, b);
         gb = b;
@@ -324,8 +298,6 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const std::vector
       cwindow(pt.ua, pt.ub, lo, hi);
       used(lo, hi);
       double ends;
-      cfill(pt.a0, lo, hi, Q0);
-      cfill(pt.a1, lo, hi, Q1);
       const double b = poly_bound(pt.a0, pt.a1, lo, hi, ends);
       if (b > eps && ends <= eps && (pt.a1 - pt.a0).norm() > fine && --budget > 0) {
         const V2 am = 0.5 * (pt.a0 + pt.a1);
@@ -402,6 +374,8 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   std::vector<V2> wseg;
   for (std::size_t i = 0; i + 1 < n; ++i) segs.push_back(make_seg(pts[i], pts[i + 1]));
   for (std::size_t i = 0; i + 1 < segs.size(); ++i) wseg.push_back(bisector(segs[i], segs[i + 1]));
+  SegTable srows;  // segs and wseg as rows
+  srows.assign(segs, wseg);
   const double eps = opt.fit_tolerance();
   const int spans = std::max(3, static_cast<int>(std::ceil(L / (opt.knot_spacing * mean))));
   const double dk = L / spans;
@@ -475,6 +449,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   ParamMap amap;
   std::vector<double> bad, add;
   FitWork work;
+  FootWork foot;
   CheckCache cache;  // the bounds of the last check, per knot span and per polyline segment
   cache.span_bound.assign(sp.P.size(), -1.0);
   cache.seg_bound.assign(n - 1, -1.0);
@@ -506,38 +481,22 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
     std::fill(raised.begin(), raised.end(), 0);
     bool over = false;
     add.clear();
+    // A sample on a span the solve left alone keeps its foot point and residual (within the target).
+    // The others move to their foot points by Newton steps on (s(u) − p)·s'(u) = 0, kept only where
+    // they bring the curve closer (at most two steps, the second only after a step of at least 1e-9;
+    // SmoothingKernels::foot_points, several samples at a time), in the order of the samples.
+    foot.clear();
     for (std::size_t q = 0; q < samples.size(); ++q) {
-      // a sample on a span the solve left alone keeps its foot point and residual (within the target)
       if (!changed[static_cast<std::size_t>(span[q])]) continue;
+      foot.push(q, samples[q], span[q]);
+    }
+    foot.run(sp, L, mean);
+    for (std::size_t i = 0; i < foot.q.size(); ++i) {
+      const std::size_t q = foot.q[i];
       Sample& s = samples[q];
-      // foot point by Newton steps on (s(u) − p)·s'(u) = 0, kept only where it brings the curve closer
-      // (at most two steps, the second only after a step of at least 1e-9; one evaluation per pass, so
-      // that the compiler inlines the one call)
-      double u = s.u, du = 0, r_old = 0;
-      int k = span[q], k_old = k;
-      V2 c0, c1, c2;
-      for (int it = 0;; ++it) {  // it: the steps taken so far
-        sp.eval(u, k, c0, c1, c2);
-        if (it == 0) {
-          k_old = k;
-          r_old = (c0 - s.p).norm();
-        } else if (it == 2 || std::abs(du) < 1e-9) {
-          break;
-        }
-        const V2 r = c0 - s.p;
-        const double fp = c1.squaredNorm() + r.dot(c2);
-        if (!(fp > 0)) break;
-        du = std::clamp(-r.dot(c1) / fp, -0.25 * mean, 0.25 * mean);
-        u = std::clamp(u + du, 0.0, L);
-      }
-      double res = (c0 - s.p).norm();
-      if (res <= r_old) {
-        s.u = u;
-        span[q] = k;
-      } else {
-        res = r_old;
-        span[q] = k_old;
-      }
+      s.u = foot.u[i];
+      span[q] = foot.k[i];
+      const double res = foot.res[i];
       if (res > target) {
         const double g = res / target;
         s.w *= std::clamp(1.2 * g * g, 1.2, 100.0);
@@ -550,7 +509,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
     }
     if (!over) {
       amap.build(samples, L);
-      if (!chain_check(sp, pts, segs, wseg, cum, amap, eps, mean, cache, out, bad)) return false;
+      if (!chain_check(sp, pts, srows, cum, amap, eps, mean, cache, out, bad)) return false;
       if (bad.empty()) return true;
       std::sort(bad.begin(), bad.end());
       for (std::size_t q = 0; q < samples.size(); ++q) {

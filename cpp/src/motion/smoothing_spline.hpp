@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "netshape/core/types.hpp"
+#include "smoothing_kernels.hpp"
 
 namespace netshape::motion {
 namespace {
@@ -38,13 +39,6 @@ double dist2(const V2& p, const Seg& s) {
   return (r - t * s.d).squaredNorm();
 }
 
-// Squared distances of p to the segments lo..hi into D[0..hi − lo]; where prev holds the same point's
-// distances to the segments plo..phi, they are taken from there instead of computed again.
-void dist2_window(const V2& p, const Seg* segs, long lo, long hi, double* D, const double* prev = nullptr,
-                  long plo = 0, long phi = -1) {
-  for (long q = lo; q <= hi; ++q) D[q - lo] = prev && q >= plo && q <= phi ? prev[q - plo] : dist2(p, segs[q]);
-}
-
 // Direction of the bisector at the vertex between consecutive segments s0 and s1: u1 − u0 for their unit
 // directions u0, u1 (points on the line through the vertex with this direction are equally far from
 // both segments), the normal of s0 where they run straight on, any direction for a point segment.
@@ -55,40 +49,82 @@ V2 bisector(const Seg& s0, const Seg& s1) {
   return u0.squaredNorm() > 0 ? perp(u0) : V2(1.0, 0.0);
 }
 
+// A chain of segments as rows (detail::SegRows) for the smoothing kernels: the values make_seg()
+// gives, one array per field, and the bisectors w[q] (bisector(seg[q], seg[q + 1])) at its vertices.
+struct SegTable {
+  std::vector<double> ax, ay, dx, dy, il2, wx, wy;
+  void assign(const std::vector<Seg>& segs, const std::vector<V2>& w) {
+    const std::size_t n = segs.size();
+    for (auto* v : {&ax, &ay, &dx, &dy, &il2}) v->resize(n);
+    for (std::size_t q = 0; q < n; ++q) {
+      ax[q] = segs[q].a.x();
+      ay[q] = segs[q].a.y();
+      dx[q] = segs[q].d.x();
+      dy[q] = segs[q].d.y();
+      il2[q] = segs[q].il2;
+    }
+    wx.resize(w.size());
+    wy.resize(w.size());
+    for (std::size_t q = 0; q < w.size(); ++q) {
+      wx[q] = w[q].x();
+      wy[q] = w[q].y();
+    }
+  }
+  detail::SegRows rows() const {
+    return {ax.data(), ay.data(), dx.data(), dy.data(), il2.data(), wx.data(), wy.data()};
+  }
+};
+
+// The squared distances of p0 and p1 to the segments lo..hi of s (dist2() of each) into D0, D1
+// [0..hi − lo] and their minima over the window (SmoothingKernels::pair_window says which; sag: per
+// segment, or null), several segments per step in the smoothing kernel.
+void pair_window(const V2& p0, const V2& p1, const SegTable& s, long lo, long hi, const double* sag, double* D0,
+                 double* D1, double* mins) {
+  static const detail::SmoothingKernels& kernels = detail::smoothing_kernels();
+  const double p[4] = {p0.x(), p0.y(), p1.x(), p1.y()};
+  const detail::SegRows rows = s.rows();
+  kernels.pair_window(p, rows, lo, hi, sag, D0, D1, mins);
+}
+
 // A bound on the distance of every point x of the segment [c0, c1] to the chain of segments seg[lo..hi]
 // (consecutive: seg[q + 1] starts where seg[q] ends; w[q] = bisector(seg[q], seg[q + 1])). A run of
 // consecutive segments qa..qb covers [c0, c1] in parts, cut where [c0, c1] crosses the bisectors of the
 // vertices between them; a part is within the larger distance of its two ends from its segment, as the
 // distance to a segment is convex along a line. Any cuts give a valid bound, since the parts join
 // from c0 to c1 whatever their order; at the bisector the distances to both segments are equal, which
-// makes the bound tight where [c0, c1] passes a vertex. val(d2, q) turns the squared distance d2 to
-// seg[q] into the bound's measure and must be increasing in d2; D0, D1: squared distances of c0, c1
-// to seg[lo..hi]. Returns the smallest largest part value over all runs (a single segment included).
-template <class Val>
-double run_bound(const V2& c0, const V2& c1, const Seg* seg, const V2* w, long lo, long hi, const double* D0,
-                 const double* D1, const Val& val) {
-  const V2 e = c1 - c0;
+// makes the bound tight where [c0, c1] passes a vertex. The bound's measure val(d2, q) of the squared
+// distance d2 to seg[q] is d2 itself, or √d2 + sag[q] where sag is not null (increasing in d2); D0, D1:
+// squared distances of c0, c1 to seg[lo..hi]. Returns the smallest largest part value over all runs (a
+// single segment included). The values of the ends and of the cuts on both sides of each vertex are
+// independent of one another: the smoothing kernel computes them (run_parts), the runs are folded here.
+struct RunWork {
+  std::vector<double> v0, v1, vn, vx;
+};
+
+double run_bound(const V2& c0, const V2& c1, const SegTable& seg, long lo, long hi, const double* D0, const double* D1,
+                 const double* sag, RunWork& work) {
+  static const detail::SmoothingKernels& kernels = detail::smoothing_kernels();
+  const auto n = static_cast<std::size_t>(hi - lo + 1);
+  for (auto* v : {&work.v0, &work.v1, &work.vn, &work.vx}) v->resize(n);
+  const double c[4] = {c0.x(), c0.y(), c1.x(), c1.y()};
+  const detail::SegRows rows = seg.rows();
+  kernels.run_parts(c, rows, lo, hi, sag, D0, D1, work.v0.data(), work.v1.data(), work.vn.data(), work.vx.data());
+  const double *V0 = work.v0.data(), *V1 = work.v1.data();
+  const double *VN = work.vn.data(), *VX = work.vx.data();  // per vertex lo + i: the cut's values
   double best = 1e300;
   double cover = 1e300;  // best bound on c0..x (x: the last cut), over runs ending at segment q − 1
-  V2 x = c0;
   for (long q = lo; q <= hi; ++q) {
     const auto i = static_cast<std::size_t>(q - lo);
-    const double v0 = val(D0[i], q);
-    best = std::min(best, std::max(v0, val(D1[i], q)));
+    const double v0 = V0[i];
+    best = std::min(best, std::max(v0, V1[i]));
     double vx = 0;  // the previous cut's value for segment q
     if (q > lo) {
-      vx = val(dist2(x, seg[q]), q);
-      best = std::min(best, std::max({cover, vx, val(D1[i], q)}));
+      vx = VX[i - 1];
+      best = std::min(best, std::max({cover, vx, V1[i]}));
     }
     if (q == hi) break;
-    const V2& wq = w[q];
-    double t = cross2(seg[q + 1].a - c0, wq) / cross2(e, wq);
-    if (!(t >= 0)) t = 0;  // NaN too
-    if (!(t <= 1)) t = 1;
-    const V2 xn = c0 + t * e;
-    const double vn = val(dist2(xn, seg[q]), q);
+    const double vn = VN[i];  // the next cut's value for segment q
     cover = std::min(std::max(v0, vn), q > lo ? std::max({cover, vx, vn}) : 1e300);
-    x = xn;
   }
   return best;
 }
@@ -138,44 +174,19 @@ struct Spline {
   // Built by the Cox–de Boor recursion on polynomials in x = u − t[k]:
   //   N_{i,p} = (u − t_i)/(t_{i+p} − t_i) · N_{i,p−1} + (t_{i+p+1} − u)/(t_{i+p+1} − t_{i+1}) · N_{i+1,p−1}
   // (a term with a zero denominator is zero), starting from N_{k,0} = 1 on span k.
-  // pb of the spans k0..k1 (clipped to 3..m − 1); pb holds m entries
+  // pb of the spans k0..k1 (clipped to 3..m − 1); pb holds m entries. The spans are independent: the
+  // smoothing kernel does them several at a time, each with the operations of the recursion above in
+  // its order: per degree p = 1..3 and r = 0..p, with a0, a1, b0, b1 = t_i, t_{i+p}, t_{i+1}, t_{i+p+1}
+  // relative to t[k] and n = N_{·, p−1}, M[r][j] += f·(n[j−1] − a0·n[j]) with f = 1/(a1 − a0) where
+  // a1 > a0 (n[−1] = 0, the j = 0 term f·(−a0·n[0])), then M[r][j] += f·(b1·n'[j] − n'[j−1]) with
+  // n' = N_{i+1, p−1}, f = 1/(b1 − b0) where b1 > b0 (the j = 0 term f·(b1·n'[0])), M starting at zero.
   void power_basis(int k0, int k1) {
     const int m = static_cast<int>(P.size());
-    for (int k = std::max(k0, 3); k <= std::min(k1, m - 1); ++k) {
-      pb[static_cast<std::size_t>(k)] = {};
-      const double tk = t[static_cast<std::size_t>(k)];
-      if (!(t[static_cast<std::size_t>(k + 1)] > tk)) continue;
-      double d[8];  // d[q] = t[k − 3 + q] − t[k]
-      for (int q = 0; q < 8; ++q) d[q] = t[static_cast<std::size_t>(k - 3 + q)] - tk;
-      double N[4][4] = {{1, 0, 0, 0}};  // N[r][j]: coefficient of x^j in N_{k−p+r, p}
-      for (int p = 1; p <= 3; ++p) {
-        double M[4][4] = {};
-        for (int r = 0; r <= p; ++r) {
-          // with i = k − p + r: t_i = d[3 − p + r], t_{i+1} = d[4 − p + r], t_{i+p} = d[3 + r], t_{i+p+1} = d[4 + r]
-          const double a0 = d[3 - p + r], a1 = d[3 + r], b0 = d[4 - p + r], b1 = d[4 + r];
-          if (r >= 1 && a1 > a0) {  // (x − a0)/(a1 − a0) · N_{i,p−1}, which is N[r − 1]
-            const double f = 1.0 / (a1 - a0);
-            const double* n = N[r - 1];
-            M[r][0] += f * (-a0 * n[0]);
-            M[r][1] += f * (n[0] - a0 * n[1]);
-            M[r][2] += f * (n[1] - a0 * n[2]);
-            M[r][3] += f * (n[2] - a0 * n[3]);
-          }
-          if (r < p && b1 > b0) {  // (b1 − x)/(b1 − b0) · N_{i+1,p−1}, which is N[r]
-            const double f = 1.0 / (b1 - b0);
-            const double* n = N[r];
-            M[r][0] += f * (b1 * n[0]);
-            M[r][1] += f * (b1 * n[1] - n[0]);
-            M[r][2] += f * (b1 * n[2] - n[1]);
-            M[r][3] += f * (b1 * n[3] - n[2]);
-          }
-        }
-        std::copy(&M[0][0], &M[0][0] + 16, &N[0][0]);
-      }
-      auto& b = pb[static_cast<std::size_t>(k)];
-      for (std::size_t j = 0; j < 4; ++j)
-        for (std::size_t r = 0; r < 4; ++r) b[4 * j + r] = N[r][j];
-    }
+    k0 = std::max(k0, 3);
+    k1 = std::min(k1, m - 1);
+    if (k0 > k1) return;
+    static const detail::SmoothingKernels& kernels = detail::smoothing_kernels();
+    kernels.power_basis(t.data(), k0, k1, pb.data()->data());
   }
   // pw of the spans k0..k1 (clipped to 3..m − 1) from pb and P; the spans a control point i reaches
   // are i..i + 3, so after P[lo..hi] change, prepare(lo, hi + 3) brings pw up to date
@@ -298,6 +309,34 @@ struct Sample {
   V2 p;
   double w;
   double a;  // arc length of p along the polyline
+};
+
+// The samples whose foot points a round moves (their indices q) and, per sample, the parameter u and
+// span k (in: the sample's, out: its foot point's) and the residual res, for SmoothingKernels::foot_points.
+struct FootWork {
+  std::vector<std::size_t> q;
+  std::vector<double> u, px, py, res;
+  std::vector<int> k;
+  void clear() {
+    q.clear();
+    u.clear();
+    px.clear();
+    py.clear();
+    k.clear();
+  }
+  void push(std::size_t i, const Sample& s, int span) {
+    q.push_back(i);
+    u.push_back(s.u);
+    px.push_back(s.p.x());
+    py.push_back(s.p.y());
+    k.push_back(span);
+  }
+  void run(const Spline& sp, double L, double mean) {
+    static const detail::SmoothingKernels& kernels = detail::smoothing_kernels();
+    res.resize(q.size());
+    const detail::FootSpline f{sp.t.data(), sp.pw.data()->data()->data(), static_cast<int>(sp.P.size()), L, mean};
+    kernels.foot_points(f, static_cast<int>(q.size()), u.data(), k.data(), px.data(), py.data(), res.data());
+  }
 };
 
 // Monotone map from the spline parameter to arc length along the polyline, piecewise linear through the
