@@ -277,6 +277,24 @@ struct Batch<8> {
 };
 #endif
 
+/// The lanes of a folded left to right into m with std::min's semantics (m = a_i < m ? a_i : m: a lane
+/// replaces m only when smaller, so a NaN lane leaves it, and of equal values m stays).
+template <int W>
+NETSHAPE_SIMD_INLINE double fold_min(typename Batch<W>::D a, double m) noexcept {
+  alignas(64) double l[W];
+  Batch<W>::storeu(l, a);
+  for (int i = 0; i < W; ++i) m = l[i] < m ? l[i] : m;
+  return m;
+}
+/// The same with std::max's semantics (m = m < a_i ? a_i : m).
+template <int W>
+NETSHAPE_SIMD_INLINE double fold_max(typename Batch<W>::D a, double m) noexcept {
+  alignas(64) double l[W];
+  Batch<W>::storeu(l, a);
+  for (int i = 0; i < W; ++i) m = m < l[i] ? l[i] : m;
+  return m;
+}
+
 /// Hint that the cache line at p will be written soon (no-op where the compiler has no prefetch).
 NETSHAPE_SIMD_INLINE void prefetch_for_write(const double* p) noexcept {
 #if defined(__GNUC__)

@@ -254,21 +254,9 @@ __attribute__((flatten)) void record_singles(const BlendBounds& t, const double*
 // 17 nodes and room for whole packets: the rows are read up to node 16 + W − 1 (axis_rows() needs x set
 // that far) and written up to 16 + W + 1
 constexpr int node_lanes = 32;
-// The lanes of v folded left to right with std::max (std::min).
-NETSHAPE_SIMD_INLINE double lanes_max(D v) {
-  alignas(64) double l[W];
-  B::storeu(l, v);
-  double m = l[0];
-  for (int j = 1; j < W; ++j) m = std::max(m, l[j]);
-  return m;
-}
-NETSHAPE_SIMD_INLINE double lanes_min(D v) {
-  alignas(64) double l[W];
-  B::storeu(l, v);
-  double m = l[0];
-  for (int j = 1; j < W; ++j) m = std::min(m, l[j]);
-  return m;
-}
+// The lanes of v folded left to right with std::max (std::min), from its first lane.
+NETSHAPE_SIMD_INLINE double lanes_max(D v) { return simd::fold_max<W>(v, B::lane(v, 0)); }
+NETSHAPE_SIMD_INLINE double lanes_min(D v) { return simd::fold_min<W>(v, B::lane(v, 0)); }
 
 // With `folds`, also the left folds of the five rows over the 16 intervals (std::max, the lo row
 // std::min) into folds[0..4], in the row order above. A fold over packets (lane j over the intervals

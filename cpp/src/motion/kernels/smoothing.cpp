@@ -73,14 +73,6 @@ __attribute__((flatten)) void power_basis(const double* t, int k0, int k1, doubl
   }
 }
 
-// The smallest lane of a, folded with std::min's semantics (a NaN lane is skipped).
-NETSHAPE_SIMD_INLINE double lanes_min(D a, double m) {
-  alignas(64) double l[W];
-  B::storeu(l, a);
-  for (int i = 0; i < W; ++i) m = l[i] < m ? l[i] : m;
-  return m;
-}
-
 // dist2() of one point (x, y) to the W segments of a step
 NETSHAPE_SIMD_INLINE D dist2(D x, D y, D ax, D ay, D dx, D dy, D il2) {
   const D zero = B::set(0.0), one = B::set(1.0);
@@ -119,12 +111,12 @@ __attribute__((flatten)) void pair_window(const double* p, const SegRows& s, lon
       smin = B::min(in(sg), smin);
     }
   }
-  mins[0] = lanes_min(best2, 1e300);
-  mins[1] = lanes_min(m0, 1e300);
-  mins[2] = lanes_min(m1, 1e300);
+  mins[0] = simd::fold_min<W>(best2, 1e300);
+  mins[1] = simd::fold_min<W>(m0, 1e300);
+  mins[2] = simd::fold_min<W>(m1, 1e300);
   if (sag != nullptr) {
-    mins[3] = lanes_min(best, 1e300);
-    mins[4] = lanes_min(smin, 1e300);
+    mins[3] = simd::fold_min<W>(best, 1e300);
+    mins[4] = simd::fold_min<W>(smin, 1e300);
   }
 }
 
