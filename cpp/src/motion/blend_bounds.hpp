@@ -20,14 +20,10 @@
 namespace netshape::motion::detail {
 
 #if defined(__SSE2__)
-// Two-lane forms of the scalar operations the SIMD paths repeat bit for bit: std::min(a, b) is
-// _mm_min_pd(b, a) and std::max(a, b) is _mm_max_pd(b, a), including ties and signed zeros.
+// Two-lane forms of std::min and std::max for BlendBounds::whole()'s folds, bit for bit: std::min(a, b)
+// is _mm_min_pd(b, a) and std::max(a, b) is _mm_max_pd(b, a), including ties and signed zeros.
 inline __m128d min_ab(__m128d a, __m128d b) noexcept { return _mm_min_pd(b, a); }
 inline __m128d max_ab(__m128d a, __m128d b) noexcept { return _mm_max_pd(b, a); }
-// mask ? a : b, lane by lane
-inline __m128d pick(__m128d mask, __m128d a, __m128d b) noexcept {
-  return _mm_or_pd(_mm_and_pd(mask, a), _mm_andnot_pd(mask, b));
-}
 #endif
 
 // A piece over the table nodes i0..i1 in jerk mode: its largest curvature |κ| at those nodes and the
