@@ -90,7 +90,7 @@ void Smoother::reset() noexcept {
   out_pos_ = out_end_ = 0;
   base_ = out_base_ = pushed_ = 0;
   scanned_ = 0;
-  eager_refused_ = 0;
+  eager_tries_ = 0;
   front_moved_ = false;
   finished_ = done_ = false;
   counts_ = SmoothCounts{};
@@ -112,25 +112,24 @@ void Smoother::smooth_chunk(bool finishing) {
   }
   // a full buffer: the last clean cut block, else a vertex
   int attempts = 0;
-  for (std::size_t c = n - 1; c >= 1 && attempts < cut_attempts; --c) {
-    const toolpath::Block& b = buf_[c];
-    if (b.length() <= 1e-9 || micro_line(b, options_)) continue;
-    ++attempts;
-    if (try_cut(c)) return;
-  }
-  forced_cut();
+  if (!try_cuts(1, attempts)) forced_cut();
 }
 
 bool Smoother::eager_cut() {
-  // the cut blocks pushed since the last look, newest first, with at least min_chunk_ blocks before
-  // them; a chunk tries at most cut_attempts of them (each refusal smooths the chunk once more)
-  const std::size_t n = buf_.size(), first = std::max<std::size_t>(scanned_, static_cast<std::size_t>(min_chunk_));
-  scanned_ = n;
-  for (std::size_t c = n; c-- > first && eager_refused_ < cut_attempts;) {
+  // the cut blocks pushed since the last look with at least min_chunk_ blocks before them
+  const std::size_t first = std::max<std::size_t>(scanned_, static_cast<std::size_t>(min_chunk_));
+  scanned_ = buf_.size();
+  return try_cuts(first, eager_tries_);
+}
+
+bool Smoother::try_cuts(std::size_t first, int& tries) {
+  // newest first, each try counted in `tries` (a refusal smooths the chunk once more), at most
+  // cut_attempts of them
+  for (std::size_t c = buf_.size(); c-- > std::max<std::size_t>(first, 1) && tries < cut_attempts;) {
     const toolpath::Block& b = buf_[c];
-    if (b.length() <= 1e-9 || micro_line(b, options_)) continue;
+    if (b.length() <= 1e-9 || micro_line(b, options_)) continue;  // no cut block
+    ++tries;
     if (try_cut(c)) return true;
-    ++eager_refused_;
   }
   return false;
 }
@@ -215,7 +214,7 @@ void Smoother::take(std::size_t blocks, std::size_t out_blocks) {
   buf_.erase(buf_.begin(), buf_.begin() + static_cast<std::ptrdiff_t>(std::min(blocks, buf_.size())));
   base_ += static_cast<long>(blocks);
   scanned_ = 0;  // the blocks left are looked at again from the new front
-  eager_refused_ = 0;
+  eager_tries_ = 0;
 }
 
 }  // namespace netshape::motion

@@ -119,6 +119,7 @@ class Smoother {
   void smooth_chunk(bool finishing);              // smooths the next chunk into result_; may throw
   void smooth_front(std::size_t blocks);          // smooth buf_[0, blocks) into result_
   bool eager_cut();                               // try the cut blocks pushed since the last look
+  bool try_cuts(std::size_t first, int& tries);   // try buf_[first..] newest first; true on a cut
   bool try_cut(std::size_t c);                    // smooth buf_[0..c]; true if c is a clean cut
   void forced_cut();                              // smooth up to the sharpest vertex of the buffer
   void take(std::size_t blocks, std::size_t out_blocks);  // hand out result_[0, out_blocks)
@@ -134,7 +135,7 @@ class Smoother {
   long out_base_ = 0;
   long pushed_ = 0;
   std::size_t scanned_ = 0;             // buf_[0, scanned_) were looked at for an eager cut
-  int eager_refused_ = 0;               // eager cuts refused since the last chunk was taken
+  int eager_tries_ = 0;                 // eager cuts tried (and refused) since the last chunk was taken
   bool front_moved_ = false;            // buf_[0]'s first part was handed out: its output starts at front_start_
   Vec3 front_start_ = Vec3::Zero();
   bool finished_ = false, done_ = false;
