@@ -331,7 +331,7 @@ struct RunEnds {
 
 constexpr double sharp_turn = 0.3;  // [rad] a vertex turning more gets dense knots and samples
 constexpr int sharp_reach = 8;      // they reach ±2·sharp_reach fit tolerances from the vertex
-constexpr int fit_reach = 16;       // a round solves the control points this many spans around raised samples
+constexpr int fit_reach = 6;        // a round solves the control points this many spans around raised samples
 
 // Interior vertices of the polyline turning more than sharp_turn.
 std::vector<std::size_t> sharp_vertices(const std::vector<V2>& pts, const std::vector<double>& cum) {

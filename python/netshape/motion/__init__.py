@@ -209,7 +209,7 @@ def _dwells(program, n: int):
 
 def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float = 0.98,
                 max_segment: float = 4.0, max_turn: float = 0.5236, min_blocks: int = 3, window: int = 4096,
-                smoothing_length: float = 10.0, lead_length: float = 2.0, max_fit_turn: float = 1.6057):
+                smoothing_length: float = 1.5, lead_length: float = 2.0, max_fit_turn: float = 1.6057):
     """Tolerance-band smoothing of micro-segment runs (C++ ``netshape::motion::smooth``).
 
     Runs of line blocks each at most `max_segment` [mm] long, turning at most `max_turn` [rad] at every
@@ -232,7 +232,7 @@ def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float
 
 def smooth_path_streamed(program, tolerance: float = 0.01, *, chunk: int = 1, feed=None, fit_share: float = 0.98,
                          max_segment: float = 4.0, max_turn: float = 0.5236, min_blocks: int = 3,
-                         window: int = 4096, smoothing_length: float = 10.0, lead_length: float = 2.0,
+                         window: int = 4096, smoothing_length: float = 1.5, lead_length: float = 2.0,
                          max_fit_turn: float = 1.6057, min_chunk: int = 64):
     """:func:`smooth_path` through the streaming C++ ``netshape::motion::Smoother``.
 

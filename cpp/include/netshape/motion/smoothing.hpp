@@ -50,7 +50,7 @@ struct SmoothOptions {
   int min_blocks = 3;         ///< shortest run that is smoothed [blocks]
   int window = 4096;          ///< longest run fitted at once [blocks] (longer runs are cut at a vertex)
   int max_refinements = 60;   ///< pull-back rounds (refit with raised weights) before a run is cut / kept
-  double smoothing_length = 10.0;  ///< ℓ: the fit minimises Σ w·dist² + ℓ⁴·∫|s''|² (ℓ in mm)
+  double smoothing_length = 1.5;   ///< ℓ: the fit minimises Σ w·dist² + ℓ⁴·∫|s''|² (ℓ in mm)
   double knot_spacing = 1.0;  ///< knot spacing of the spline in mean segment lengths of the run
   double lead_length = 2.0;   ///< longest part of an adjoining line a run's curve may use [mm]
   bool round_corners = true;  ///< replace the vertex between two program lines by an arc within fit_tolerance()
