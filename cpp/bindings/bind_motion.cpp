@@ -344,7 +344,8 @@ void bind_motion(py::module_& m) {
       py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
       py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("fit_share") = 0.98, py::arg("max_segment") = 4.0,
       py::arg("max_turn") = 0.5236, py::arg("min_blocks") = 3, py::arg("window") = 4096,
-      py::arg("smoothing_length") = SmoothOptions{}.smoothing_length, py::arg("lead_length") = 2.0, py::arg("max_fit_turn") = 1.6057);
+      py::arg("smoothing_length") = SmoothOptions{}.smoothing_length, py::arg("lead_length") = 2.0,
+      py::arg("max_fit_turn") = 1.6057);
   m.def(
       "_smooth_stream_arrays",
       [](const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,
@@ -377,8 +378,8 @@ void bind_motion(py::module_& m) {
       py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
       py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("fit_share") = 0.98, py::arg("max_segment") = 4.0,
       py::arg("max_turn") = 0.5236, py::arg("min_blocks") = 3, py::arg("window") = 4096,
-      py::arg("smoothing_length") = SmoothOptions{}.smoothing_length, py::arg("lead_length") = 2.0, py::arg("chunk") = 1,
-      py::arg("max_fit_turn") = 1.6057, py::arg("min_chunk") = Smoother::default_min_chunk);
+      py::arg("smoothing_length") = SmoothOptions{}.smoothing_length, py::arg("lead_length") = 2.0,
+      py::arg("chunk") = 1, py::arg("max_fit_turn") = 1.6057, py::arg("min_chunk") = Smoother::default_min_chunk);
   m.def(
       "_smooth_plan",
       [](const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,
