@@ -19,6 +19,25 @@ int interval_at(const std::array<double, 17>& table, double s) {
   const auto it = std::upper_bound(table.begin(), table.end(), s);
   return std::clamp(static_cast<int>(it - table.begin()) - 1, 0, 15);
 }
+
+// Whether pieces of two table intervals each lose little against pieces of one (curvature: |κ| at the
+// 17 table nodes; share: the centripetal part of the axis budget at the cubic's fastest speed, as in
+// split_cubic_block()): over every pair of intervals the tangent turns by at most 0.05 rad (the largest
+// |κ| at its three nodes times its length), so no axis' tangent bound grows by more than 0.05 of the
+// speed; and the centripetal part takes at most twice the budget, or |κ| varies by at most 3 % over each
+// pair, so the merged curvature bound hardly binds or hardly differs. A small cubic of a smoothed
+// micro-segment program (~0.5 mm) mostly qualifies; a quarter circle in one cubic turns 0.2 rad per
+// pair and keeps 16 pieces.
+bool pairs_suffice(const double (&curvature)[17], const std::array<double, 17>& table, double share) {
+  bool even = true;
+  for (int j = 0; j < 16; j += 2) {
+    const double lo = std::min({curvature[j], curvature[j + 1], curvature[j + 2]});
+    const double hi = std::max({curvature[j], curvature[j + 1], curvature[j + 2]});
+    if (!(hi * (table[static_cast<std::size_t>(j + 2)] - table[static_cast<std::size_t>(j)]) <= 0.05)) return false;
+    even = even && hi <= 1.03 * lo;
+  }
+  return even || share <= 2.0;
+}
 }  // namespace
 
 const CubicRecordKernels& cubic_record_kernels_plain() { return baseline::cubic_record_kernel_table; }
@@ -93,8 +112,10 @@ void PlannerState::split_cubic_block() noexcept {
   int step = 16 / cubic_piece_count();
   if (!jerk_limited_) {
     // a gentle cubic (the centripetal part takes at most 2 % of any axis' budget at the fastest speed
-    // the tangent bounds allow) is one piece, a moderate one (at most 25 %) four: finer pieces would
-    // only relax a bound that hardly binds, and each piece costs a node and its passes
+    // the tangent bounds allow) is one piece, a moderate one (at most 25 %) four, one whose table
+    // intervals may go two at a time (pairs_suffice) eight: finer pieces would only relax a bound that
+    // hardly binds or hardly changes between them, and each piece costs a node, its passes and a
+    // planned segment
     const Vec3& U = whole.tangent_bound;  // the whole cubic's bounds (init_cubic_node)
     const Vec3& K = whole.curvature_bound;
     double vcap = base.feed_cap;
@@ -104,6 +125,7 @@ void PlannerState::split_cubic_block() noexcept {
     for (int i = 0; i < 3; ++i) share = std::max(share, K[i] * vcap * vcap / limits_.acceleration[i]);
     if (share <= 0.02) step = 16;
     else if (share <= 0.25) step = 4;
+    else if (pairs_suffice(ct.curvature, g.table, share)) step = 2;
   }
   double cuts[18];  // the window's ends and at most 15 table nodes between them
   int node_at[18];  // the table node a cut lies on, −1 at the window's ends

@@ -116,6 +116,60 @@ TEST_CASE("cubic block: a circle quadrant as one cubic runs like the arc, every 
   }
 }
 
+// the segments the planner hands out for one cubic block from rest to rest (its pieces)
+long planned_pieces(const Ctrl& c, const AxisLimits& lim, double feed) {
+  Planner p(lim, PlanOptions{});
+  REQUIRE(p.push(chord(c[0], c[3], feed), CubicControls{true, c[1], c[2]}) == Status::ok);
+  p.finish();
+  PlannedSegment seg;
+  long n = 0;
+  while (p.next_segment(seg) == Status::ok) ++n;
+  return n;
+}
+
+TEST_CASE("cubic block: pieces of two table intervals where the curve turns little and its curvature is even") {
+  // Without jerk limits a strongly curved cubic is cut into 16 pieces, or into 8 where every pair of
+  // table intervals turns by at most 0.05 rad and either its curvature varies by at most 3 % over each
+  // pair or the centripetal part takes at most twice the axis budget. Arcs of radius R and sweep phi
+  // as one cubic (handles 4/3·tan(phi/4)·R; curvature within ~1e-5 of 1/R for phi <= 0.3); the same
+  // curve split in two halves (de Casteljau at u = 1/2: twice as many pieces over it, joined with
+  // equal tangent and curvature) is faster by at most 0.5 % with 8 pieces (1 % with 16: a quarter
+  // circle's 16 pieces against 32); and the arc block itself takes the same time within 2 %.
+  const AxisLimits lim = AxisLimits::uniform(250, 3000);
+  struct Case {
+    double R, phi;
+    long pieces;
+  };
+  for (const Case k : {Case{2.0, 0.25, 8}, Case{1.0, 0.3, 8}, Case{0.5, 0.4, 16}, Case{10.0, M_PI / 2, 16}}) {
+    CAPTURE(k.R);
+    CAPTURE(k.phi);
+    const double h = 4.0 / 3.0 * std::tan(k.phi / 4) * k.R;
+    const Vec3 a(k.R, 0, 0), b(k.R * std::cos(k.phi), k.R * std::sin(k.phi), 0);
+    const Ctrl c = {a, a + Vec3(0, h, 0), b - h * Vec3(-std::sin(k.phi), std::cos(k.phi), 0), b};
+    CHECK(planned_pieces(c, lim, 250) == k.pieces);
+    const Vec3 m01 = (c[0] + c[1]) / 2, m12 = (c[1] + c[2]) / 2, m23 = (c[2] + c[3]) / 2;
+    const Vec3 q1 = (m01 + m12) / 2, q2 = (m12 + m23) / 2, mid = (q1 + q2) / 2;
+    std::vector<toolpath::Block> halves;
+    std::vector<CubicControls> controls;
+    add_cubic(halves, controls, {c[0], m01, q1, mid}, 250);
+    add_cubic(halves, controls, {mid, q2, m23, c[3]}, 250);
+    toolpath::Block arc = chord(a, b, 250);
+    arc.kind = toolpath::MotionKind::arc;
+    arc.center = Vec3::Zero();
+    const Trajectory tc = plan({chord(a, b, 250)}, {{true, c[1], c[2]}}, lim, PlanOptions{});
+    const Trajectory th = plan(halves, controls, lim, PlanOptions{});
+    const Trajectory ta = plan({arc}, lim, PlanOptions{});
+    std::printf("arc R %.1f mm, %.2f rad: %ld pieces, cubic %.6f s, halves %.6f s, arc %.6f s\n", k.R, k.phi,
+                k.pieces, tc.stats.cycle_time, th.stats.cycle_time, ta.stats.cycle_time);
+    CHECK(tc.stats.cycle_time <= (k.pieces == 8 ? 1.005 : 1.01) * th.stats.cycle_time);
+    CHECK(std::abs(tc.stats.cycle_time / ta.stats.cycle_time - 1) < 0.02);
+  }
+  // a 0.5 mm cubic whose curvature grows from 0.28 to 0.56 /mm (~9 % per pair, at most 0.035 rad per
+  // pair): the centripetal part at 250 mm/s is ~12 times the budget
+  const Ctrl uneven = {Vec3(0, 0, 0), Vec3(0.17, 0, 0), Vec3(0.34, 0.012, 0), Vec3(0.5, 0.045, 0)};
+  CHECK(planned_pieces(uneven, lim, 250) == 16);
+}
+
 TEST_CASE("cubic blocks: a C2 B-spline chain under jerk limits is not slowed at its joints") {
   std::vector<Vec3> d;
   for (int j = 0; j <= 22; ++j) d.emplace_back(3.0 * j, 2.5 * std::sin(0.8 * j), 0.4 * std::cos(0.5 * j));
