@@ -87,6 +87,14 @@ SmoothResult smooth_program(const std::vector<toolpath::Block>& program, const S
     return b.kind == MotionKind::line && l > 1e-9 && l <= opt.max_segment;
   };
   auto dir = [&](std::size_t i) { return ((program[i].end - program[i].start) / program[i].length()).eval(); };
+  // turn_between(dir(q − 1), dir(q)) at the vertex between blocks q − 1 and q, computed once per vertex
+  // (the run search, the corner counts and the checks below ask for most vertices several times)
+  std::vector<double> turn_memo(nb, -1.0);
+  auto turn_at = [&](std::size_t q) {
+    double& t = turn_memo[q];
+    if (t < 0) t = turn_between(dir(q - 1), dir(q));
+    return t;
+  };
   // shortest block whose direction is sure enough to lend a corner its line (corner_lead below); shorter
   // lines between two corners' lines are parts of one compound corner (round_corners)
   const double lead_min = std::max(0.02, 2.0 * opt.tolerance);
@@ -100,7 +108,7 @@ SmoothResult smooth_program(const std::vector<toolpath::Block>& program, const S
     const auto ua = static_cast<std::size_t>(a);
     const auto &b0 = program[ua], &b1 = program[ua + 1];
     return b0.kind == MotionKind::line && b1.kind == MotionKind::line && b0.length() > 1e-9 && b1.length() > 1e-9 &&
-           (b1.start - b0.end).norm() <= 1e-9 && turn_between(dir(ua), dir(ua + 1)) < 1e-3;
+           (b1.start - b0.end).norm() <= 1e-9 && turn_at(ua + 1) < 1e-3;
   };
   // the side of a vertex that begins with block q and goes on with step ±1 is straight: past up to
   // three blocks shorter than lead_min (tiny CAM blocks at a corner), a block continues the next one
@@ -110,7 +118,7 @@ SmoothResult smooth_program(const std::vector<toolpath::Block>& program, const S
     return straight_pair(step > 0 ? q : q - 1);
   };
   auto kept_corner = [&](std::size_t q) {
-    const double th = turn_between(dir(q - 1), dir(q));
+    const double th = turn_at(q);
     if (th <= opt.max_turn) return false;
     if (th > opt.max_fit_turn) return true;
     return straight_side(static_cast<long>(q) - 1, -1) && straight_side(static_cast<long>(q), 1);
@@ -265,7 +273,9 @@ SmoothResult smooth_program(const std::vector<toolpath::Block>& program, const S
     // the vertex at q's outer end (its start when at_start) turns at least 1e-3 rad
     auto corner_at = [&](std::size_t q, bool at_start) { return vertex_turn(at_start ? q : q + 1) >= 1e-3; };
     auto lends = [&](std::size_t q, std::size_t r) {
-      return program[q].length() >= lead_min && turn_between(dir(std::min(q, r)), dir(std::max(q, r))) <= 0.5 * opt.max_turn;
+      const std::size_t q0 = std::min(q, r), q1 = std::max(q, r);
+      return program[q].length() >= lead_min &&
+             (q1 == q0 + 1 ? turn_at(q1) : turn_between(dir(q0), dir(q1))) <= 0.5 * opt.max_turn;
     };
     auto corner_lead = [&](std::size_t q, std::size_t r) { return corner_at(q, r > q) && lends(q, r); };
     // the number of tiny blocks (1 to 3) from q inward (step ±1) before a block that lends at the
@@ -391,7 +401,7 @@ SmoothResult smooth_program(const std::vector<toolpath::Block>& program, const S
       // creases the curve passes, inside the run or at a lead line, are no kept corners (the count above
       // took every corner)
       for (std::size_t q = r0 + 1; q < r1; ++q)
-        if (turn_between(dir(q - 1), dir(q)) > opt.max_turn) --res.corners_kept;
+        if (turn_at(q) > opt.max_turn) --res.corners_kept;
       if (lead_in && turn_between(dir(static_cast<std::size_t>(lin)), dir(r0)) > opt.max_turn) --res.corners_kept;
       if (lead_out && turn_between(dir(r1 - 1), dir(static_cast<std::size_t>(lout))) > opt.max_turn) --res.corners_kept;
       if (lead_in) {  // the line before now ends where the curve starts
@@ -460,7 +470,7 @@ SmoothResult smooth_program(const std::vector<toolpath::Block>& program, const S
       // a straight run (every vertex turning less than 1e-3 rad) next to a corner stays as programmed:
       // its lines are the curve already, and the corner is rounded between them
       bool straight = corner_end(i0, true) || corner_end(j0 - 1, false);
-      for (std::size_t q = i0 + 1; q < j0 && straight; ++q) straight = turn_between(dir(q - 1), dir(q)) < 1e-3;
+      for (std::size_t q = i0 + 1; q < j0 && straight; ++q) straight = turn_at(q) < 1e-3;
       if (straight) {
         for (std::size_t q = i0; q < j0; ++q) keep(q);
         continue;
@@ -470,7 +480,7 @@ SmoothResult smooth_program(const std::vector<toolpath::Block>& program, const S
         std::size_t cut = i0 + mb;
         double worst = -1;
         for (std::size_t q = i0 + mb; q + mb <= j0; ++q) {
-          const double th = turn_between(dir(q - 1), dir(q));
+          const double th = turn_at(q);
           if (th > worst) {
             worst = th;
             cut = q;

@@ -445,6 +445,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   for (std::size_t q = 0; q < samples.size(); ++q) span[q] = sp.span(samples[q].u);
   std::vector<char> raised(samples.size(), 1);  // weight raised since the last solve (all before the first)
   std::vector<char> changed;                    // per knot span: its polynomial changed in this round
+  std::vector<char> hot;                        // per knot span: holds a sample whose weight rose
   std::vector<std::pair<int, int>> win;
   ParamMap amap;
   std::vector<double> bad, add;
@@ -464,10 +465,13 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
     if (round == 0) {
       win.emplace_back(nf, m - nk - 1);
     } else {
-      for (std::size_t q = 0; q < samples.size(); ++q)
-        if (raised[q]) win.emplace_back(std::max(nf, span[q] - 3 - fit_reach), std::min(m - nk - 1, span[q] + fit_reach));
+      // the spans holding a raised sample, in order: their windows come out sorted (both ends grow with
+      // the span), each once
+      hot.assign(static_cast<std::size_t>(m), 0);
+      for (std::size_t q = 0; q < samples.size(); ++q) hot[static_cast<std::size_t>(span[q])] |= raised[q];
+      for (int k = 0; k < m; ++k)
+        if (hot[static_cast<std::size_t>(k)]) win.emplace_back(std::max(nf, k - 3 - fit_reach), std::min(m - nk - 1, k + fit_reach));
     }
-    std::sort(win.begin(), win.end());
     changed.assign(static_cast<std::size_t>(m), 0);
     for (std::size_t w = 0; w < win.size();) {
       auto [lo, hi] = win[w];
@@ -485,11 +489,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
     // The others move to their foot points by Newton steps on (s(u) − p)·s'(u) = 0, kept only where
     // they bring the curve closer (at most two steps, the second only after a step of at least 1e-9;
     // SmoothingKernels::foot_points, several samples at a time), in the order of the samples.
-    foot.clear();
-    for (std::size_t q = 0; q < samples.size(); ++q) {
-      if (!changed[static_cast<std::size_t>(span[q])]) continue;
-      foot.push(q, samples[q], span[q]);
-    }
+    foot.collect(samples, span, changed);
     foot.run(sp, L, mean);
     for (std::size_t i = 0; i < foot.q.size(); ++i) {
       const std::size_t q = foot.q[i];

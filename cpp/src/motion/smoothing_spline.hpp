@@ -317,19 +317,28 @@ struct FootWork {
   std::vector<std::size_t> q;
   std::vector<double> u, px, py, res;
   std::vector<int> k;
-  void clear() {
-    q.clear();
-    u.clear();
-    px.clear();
-    py.clear();
-    k.clear();
-  }
-  void push(std::size_t i, const Sample& s, int span) {
-    q.push_back(i);
-    u.push_back(s.u);
-    px.push_back(s.p.x());
-    py.push_back(s.p.y());
-    k.push_back(span);
+  // the samples on the spans marked in `changed` (span[i]: sample i's), in their order; each sample is
+  // written and kept when its span is marked (no branch on the mark)
+  void collect(const std::vector<Sample>& samples, const std::vector<int>& span, const std::vector<char>& changed) {
+    const std::size_t n = samples.size();
+    q.resize(n);
+    u.resize(n);
+    px.resize(n);
+    py.resize(n);
+    k.resize(n);
+    std::size_t c = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const int ki = span[i];
+      q[c] = i;
+      u[c] = samples[i].u;
+      px[c] = samples[i].p.x();
+      py[c] = samples[i].p.y();
+      k[c] = ki;
+      c += changed[static_cast<std::size_t>(ki)] != 0;
+    }
+    for (auto* v : {&u, &px, &py}) v->resize(c);
+    q.resize(c);
+    k.resize(c);
   }
   void run(const Spline& sp, double L, double mean) {
     static const detail::SmoothingKernels& kernels = detail::smoothing_kernels();
