@@ -248,7 +248,10 @@ struct Spline {
 };
 
 // Symmetric banded solve (half bandwidth 3) by Cholesky: A(i, i + k) = band[i][k] for rows 0..n − 1
-// (entries with i + k ≥ n are not read); in place on rhs. lo: workspace, lo[i][k] = L(i, i − k).
+// (entries with i + k ≥ n are not read); in place on rhs (left changed when A is not positive
+// definite: false). lo: workspace, lo[i][k] = L(i, i − k). Each row's forward substitution follows its
+// factorisation in the same pass (the same operations as two passes: a row's step reads only rows
+// already done), so the processor overlaps the two chains of divisions and roots.
 bool band_solve(const std::array<double, 4>* band, V2* rhs, int n, std::vector<std::array<double, 4>>& lo) {
   lo.resize(static_cast<std::size_t>(n));
   auto L = [&](int i) -> std::array<double, 4>& { return lo[static_cast<std::size_t>(i)]; };
@@ -275,9 +278,6 @@ bool band_solve(const std::array<double, 4>* band, V2* rhs, int n, std::vector<s
     }
     if (!(diag > 0)) return false;
     li[0] = std::sqrt(diag);
-  }
-  for (int i = 0; i < n; ++i) {
-    const auto& li = L(i);
     V2 s = rhs[i];
     if (i >= 3) {
       s -= li[3] * rhs[i - 3];
@@ -354,13 +354,14 @@ struct FootWork {
 // program blocks and nearby polyline segments are found through this map.
 struct ParamMap {
   std::vector<double> u, a;
+  std::vector<std::pair<double, double>> ua;  // (build's buffer)
   void build(const std::vector<Sample>& samples, double L) {
-    std::vector<std::pair<double, double>> ua;
-    ua.reserve(samples.size() + 2);
+    ua.clear();
     ua.emplace_back(0.0, 0.0);
     for (const Sample& s : samples) ua.emplace_back(s.u, s.a);
     ua.emplace_back(L, L);
-    std::sort(ua.begin(), ua.end());
+    // (the samples' parameters mostly ascend already)
+    if (!std::is_sorted(ua.begin(), ua.end())) std::sort(ua.begin(), ua.end());
     u.clear();
     a.clear();
     for (const auto& [x, y] : ua) {
