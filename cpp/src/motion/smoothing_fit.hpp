@@ -442,7 +442,8 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   std::vector<std::array<double, 4>> pen_band(sp.P.size());
   penalty_rows(sp, pen, pen_band, 0, m0 - 1);
   std::vector<int> span(samples.size());  // each sample's knot span
-  for (std::size_t q = 0; q < samples.size(); ++q) span[q] = sp.span(samples[q].u);
+  int ks = 3;  // the samples ascend in u: each search starts at the previous sample's span
+  for (std::size_t q = 0; q < samples.size(); ++q) ks = span[q] = sp.span_near(samples[q].u, ks);
   std::vector<char> raised(samples.size(), 1);  // weight raised since the last solve (all before the first)
   std::vector<char> changed;                    // per knot span: its polynomial changed in this round
   std::vector<char> hot;                        // per knot span: holds a sample whose weight rose
