@@ -469,7 +469,8 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
       // the spans holding a raised sample, in order: their windows come out sorted (both ends grow with
       // the span), each once
       hot.assign(static_cast<std::size_t>(m), 0);
-      for (std::size_t q = 0; q < samples.size(); ++q) hot[static_cast<std::size_t>(span[q])] |= raised[q];
+      for (std::size_t q = 0; q < samples.size(); ++q)
+        if (raised[q]) hot[static_cast<std::size_t>(span[q])] = 1;
       for (int k = 0; k < m; ++k)
         if (hot[static_cast<std::size_t>(k)]) win.emplace_back(std::max(nf, k - 3 - fit_reach), std::min(m - nk - 1, k + fit_reach));
     }

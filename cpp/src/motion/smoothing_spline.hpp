@@ -317,8 +317,7 @@ struct FootWork {
   std::vector<std::size_t> q;
   std::vector<double> u, px, py, res;
   std::vector<int> k;
-  // the samples on the spans marked in `changed` (span[i]: sample i's), in their order; each sample is
-  // written and kept when its span is marked (no branch on the mark)
+  // the samples on the spans marked in `changed` (span[i]: sample i's), in their order
   void collect(const std::vector<Sample>& samples, const std::vector<int>& span, const std::vector<char>& changed) {
     const std::size_t n = samples.size();
     q.resize(n);
@@ -329,12 +328,13 @@ struct FootWork {
     std::size_t c = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const int ki = span[i];
+      if (!changed[static_cast<std::size_t>(ki)]) continue;
       q[c] = i;
       u[c] = samples[i].u;
       px[c] = samples[i].p.x();
       py[c] = samples[i].p.y();
       k[c] = ki;
-      c += changed[static_cast<std::size_t>(ki)] != 0;
+      ++c;
     }
     for (auto* v : {&u, &px, &py}) v->resize(c);
     q.resize(c);
