@@ -442,8 +442,13 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   std::vector<std::array<double, 4>> pen_band(sp.P.size());
   penalty_rows(sp, pen, pen_band, 0, m0 - 1);
   std::vector<int> span(samples.size());  // each sample's knot span
-  int ks = 3;  // the samples ascend in u: each search starts at the previous sample's span
-  for (std::size_t q = 0; q < samples.size(); ++q) ks = span[q] = sp.span_near(samples[q].u, ks);
+  // every sample's span; the samples' parameters (nearly) ascend, so each search starts at the previous
+  // sample's span
+  auto find_spans = [&] {
+    int k = 3;
+    for (std::size_t q = 0; q < samples.size(); ++q) k = span[q] = sp.span_near(samples[q].u, k);
+  };
+  find_spans();
   std::vector<char> raised(samples.size(), 1);  // weight raised since the last solve (all before the first)
   std::vector<char> changed;                    // per knot span: its polynomial changed in this round
   std::vector<char> hot;                        // per knot span: holds a sample whose weight rose
@@ -598,8 +603,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
             }
             k0 = k1 + 1;
           }
-        int k = 3;  // the samples' parameters nearly ascend: each search starts at the previous span
-        for (std::size_t q = 0; q < samples.size(); ++q) k = span[q] = sp.span_near(samples[q].u, k);
+        find_spans();
       }
     }
   }
