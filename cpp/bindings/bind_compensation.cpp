@@ -125,6 +125,7 @@ void bind_deflection_compensation(py::module_& m) {
       .def_readwrite("discount", &DeflectionCompensationOptions::discount)
       .def_readwrite("max_iterations", &DeflectionCompensationOptions::max_iterations)
       .def_readwrite("anderson_depth", &DeflectionCompensationOptions::anderson_depth)
+      .def_readwrite("active", &DeflectionCompensationOptions::active)
       .def_readwrite("path", &DeflectionCompensationOptions::path)
       .def("validate", &DeflectionCompensationOptions::validate);
   py::class_<DeflectionCompensationResult>(m, "DeflectionCompensationResult")
@@ -151,6 +152,29 @@ void bind_deflection_compensation(py::module_& m) {
       py::arg("model"), py::arg("cutter"), py::arg("stock"), py::arg("nominal"),
       py::arg_v("options", DeflectionCompensationOptions{}, "DeflectionCompensationOptions()"),
       "compensate the path (n, 3) for tool deflection; converged = False with a message when it fails");
+  m.def(
+      "wall_remains",
+      [](const RefPoints3& wall, const RefVector& top, const Eigen::VectorXi& first_later, const RefPoints3& path,
+         const Eigen::VectorXi& cutting, double radius, double clearance) {
+        py::gil_scoped_release release;
+        return wall_remains(wall, top, first_later, path, cutting, radius, clearance);
+      },
+      py::arg("wall"), py::arg("top"), py::arg("first_later"), py::arg("path"), py::arg("cutting"),
+      py::arg("radius"), py::arg("clearance"),
+      "(n) 1 where wall point k (XY, bottom z; top[k]) is not cut away by a cutting move j >= first_later[k]");
+  py::class_<DrawingOffsets>(m, "DrawingOffsets")
+      .def_readonly("offsets", &DrawingOffsets::offsets)
+      .def_readonly("normals", &DrawingOffsets::normals)
+      .def_readonly("s", &DrawingOffsets::s)
+      .def_readonly("foot_distance", &DrawingOffsets::foot_distance);
+  m.def(
+      "drawing_offsets",
+      [](const RefPoints3& points, const RefPoints3& drawing, netshape::deflection::WallSide side, double window) {
+        py::gil_scoped_release release;
+        return drawing_offsets(points, drawing, side, window);
+      },
+      py::arg("points"), py::arg("drawing"), py::arg("side"), py::arg("window") = 2.0,
+      "signed offsets C, normals and foot arc lengths of program points against a drawing's contour");
 }
 
 // --- volumetric compensation of a whole program (post-processor) ---------------------------------------

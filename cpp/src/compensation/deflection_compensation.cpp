@@ -127,34 +127,77 @@ DeflectionCompensationResult compensate_deflection(const DeflectionModel& model,
   res.normals = wall_normals(nominal, po.side);
   const double eps = options.tolerance, lam = options.discount;
 
+  const Eigen::VectorXi& act = options.active;
+  NETSHAPE_CHECK(act.size() == 0 || act.size() == n, "active.size", act.size(),
+                 "must be 0 or the number of path points");
+  auto is_active = [&](Eigen::Index i) { return act.size() == 0 || act[i] != 0; };
+
+  // every evaluation is remembered when it is the best so far (smallest max |e| over the active points)
+  double best_worst = std::numeric_limits<double>::infinity();
+  VectorXd best_C;
+  PathWallErrors best_eval;
   auto evaluate = [&](const VectorXd& C) {
     PathWallErrors r = path_wall_errors(model, cutter, stock, nominal, res.normals, C, po);
     ++res.path_evaluations;
     res.point_evaluations += n;
-    res.history.push_back(max_abs_level(r, level, nullptr));
+    const double worst = max_abs_level(r, level, nullptr, act);
+    res.history.push_back(worst);
+    if (worst < best_worst) {
+      best_worst = worst;
+      best_C = C;
+      best_eval = r;
+    }
     return r;
   };
   VectorXd C = VectorXd::Zero(n);
   res.before = evaluate(C);
   if (res.before.engaged.sum() == 0)
     throw std::invalid_argument("path: never touches the stock (no point of the path engages material)");
-  auto errors_of = [&](const PathWallErrors& r) { return VectorXd(r.error.col(level)); };
+  auto errors_of = [&](const PathWallErrors& r) {
+    VectorXd e = r.error.col(level);
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (!is_active(i)) e[i] = 0.0;
+    return e;
+  };
   auto point_name = [&](int i) {
     return fmt("point %.0f (x %.3f, y %.3f mm)", i, nominal(i, 0), nominal(i, 1));
   };
+  // Never worse than the program as written: an active point whose |e| ends above its uncompensated
+  // |e| (by more than 1 % of the tolerance) has its offset halved, six times at most, then zeroed.
+  auto never_worse = [&](PathWallErrors&& after) {
+    const double slack = 0.01 * eps;
+    for (int round = 0; round <= 7; ++round) {
+      bool worse = false;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        if (!is_active(i)) continue;
+        const double a = std::abs(after.error(i, level)), b = std::abs(res.before.error(i, level));
+        if (!(a <= b + slack)) {
+          worse = true;
+          C[i] = round < 6 ? 0.5 * C[i] : 0.0;
+        }
+      }
+      if (!worse || round == 7) break;
+      after = evaluate(C);
+    }
+    return std::move(after);
+  };
   auto finish = [&](PathWallErrors&& after) {
+    res.after = never_worse(std::move(after));
     res.offsets = C;
-    res.after = std::move(after);
     res.positions = res.after.positions;
-    const double worst = max_abs_level(res.after, level, &res.worst_index);
-    return worst;
+    return max_abs_level(res.after, level, &res.worst_index, act);
+  };
+  // a scheme that stops short of the tolerance leaves its best iterate, not its last
+  auto finish_best = [&]() {
+    C = best_C;
+    return finish(PathWallErrors(best_eval));
   };
 
   switch (options.scheme) {
     case DeflectionScheme::one_d: {
       DeflectionModel m = model;
       for (Eigen::Index i = 0; i < n; ++i) {
-        if (!res.before.engaged[i] || res.before.width[i] <= 1e-9) continue;
+        if (!is_active(i) || !res.before.engaged[i] || res.before.width[i] <= 1e-9) continue;
         m.force.axial_depth = res.before.depth[i];
         const double z = deflection::cut_levels(res.before.depth[i])[level];
         C[i] = one_d_compensation(m, po.side, std::min(res.before.width[i], 2.0 * m.force.radius), z,
@@ -184,17 +227,19 @@ DeflectionCompensationResult compensate_deflection(const DeflectionModel& model,
       for (int it = 1; it <= options.max_iterations; ++it) {
         res.iterations = it;
         int where = 0;
-        const double worst = max_abs_level(cur, level, &where);
+        const double worst = max_abs_level(cur, level, &where, act);
         if (worst <= eps) {
-          finish(std::move(cur));
-          res.converged = true;
+          const double left = finish(std::move(cur));
+          res.converged = left <= eps;
           res.message = std::string(to_string(options.scheme)) +
-                        fmt(": converged, max |e| %.3f um <= %.3f um after %.0f evaluations", worst * 1e3, eps * 1e3,
-                            static_cast<double>(res.path_evaluations));
+                        fmt(res.converged ? ": converged, max |e| %.3f um <= %.3f um after %.0f evaluations"
+                                          : ": converged, but the never-worse guard left %.3f um > %.3f um after "
+                                            "%.0f evaluations",
+                            left * 1e3, eps * 1e3, static_cast<double>(res.path_evaluations));
           return res;
         }
         if (!std::isfinite(worst)) {
-          finish(std::move(cur));
+          finish_best();
           res.message = std::string(to_string(options.scheme)) + ": diverged: non-finite error at " + point_name(where);
           return res;
         }
@@ -224,7 +269,7 @@ DeflectionCompensationResult compensate_deflection(const DeflectionModel& model,
         }
         C = next;
         PathWallErrors trial = evaluate(C);
-        const double w2 = max_abs_level(trial, level, nullptr);
+        const double w2 = max_abs_level(trial, level, nullptr, act);
         if (anderson && !(w2 <= 2.0 * worst)) {
           // the extrapolation raised the residual: restart from the plain step
           dF.clear();
@@ -240,15 +285,15 @@ DeflectionCompensationResult compensate_deflection(const DeflectionModel& model,
         prev = now;
         if (grew >= 3) {
           int w = 0;
-          max_abs_level(cur, level, &w);
-          finish(std::move(cur));
+          max_abs_level(cur, level, &w, act);
+          finish_best();
           res.message = std::string(to_string(options.scheme)) +
                         fmt(": diverging: max |e| grew for 3 iterations in a row to %.3f um, at ", now * 1e3) +
                         point_name(w) + " (lower the discount factor or the feed)";
           return res;
         }
       }
-      const double worst = finish(std::move(cur));
+      const double worst = finish_best();
       res.message = std::string(to_string(options.scheme)) +
                     fmt(": iteration limit %.0f reached with max |e| %.3f um > %.3f um at ",
                         options.max_iterations, worst * 1e3, eps * 1e3) +
@@ -263,8 +308,11 @@ DeflectionCompensationResult compensate_deflection(const DeflectionModel& model,
       PointEvaluator ev(model, cutter, po);
       PathWallErrors scratch;
       size_result(scratch, 1, po.profile_levels);
+      auto nominal_xy = [&](Eigen::Index j) { return Vec2(nominal(j, 0), nominal(j, 1)); };
+      SweptIndex swept;
       int most = 0;
       for (Eigen::Index i = n - 1; i >= 0; --i) {
+        if (!is_active(i)) continue;  // a wall a later pass cuts away stays as programmed (C = 0)
         double c = i + 1 < n ? C[i + 1] : 0.0;
         const Vec2 Ri(nominal(i, 0), nominal(i, 1)), ni(res.normals(i, 0), res.normals(i, 1));
         bool ok = false;
@@ -273,14 +321,20 @@ DeflectionCompensationResult compensate_deflection(const DeflectionModel& model,
         for (it = 1; it <= options.max_iterations; ++it) {
           const Vec2 Pi = Ri + c * ni;
           const Vec2 xc = nominal_tangent(nominal, i);
-          // earlier points at the trial offset
+          // earlier points at the trial offset: each lies |c| from its nominal point, so the grid of the
+          // nominal moves answers for it while its reach covers R + |c|
           auto trial = [&](Eigen::Index j) {
             return Vec2(Vec2(nominal(j, 0), nominal(j, 1)) + c * Vec2(res.normals(j, 0), res.normals(j, 1)));
           };
-          auto removed = [&](const Vec3& p) { return removed_by_earlier(Vec2(p.x(), p.y()), i, Pi, R, trial); };
+          if (!(R + std::abs(c) <= swept.reach()))
+            swept.build(n, nominal_xy, R + std::max(2.0 * std::abs(c), 0.5));
+          auto removed = [&](const Vec3& p) {
+            const Vec2 q(p.x(), p.y());
+            return swept.near_before(q, i - 1, R, trial) || (i > 0 && in_last_sweep(q, trial(i - 1), Pi, R));
+          };
           const Vec3 tip(Pi.x(), Pi.y(), nominal(i, 2));
           const PointCut pc = scan_window(ct, tip, xc, po.immersion, stock, [&](const Vec3& p) {
-            return stock.is_material(p) && !removed(p);
+            return material_at(stock, p) && !removed(p);
           });
           ev.evaluate(pc, xc, ni, c, 0, scratch);
           ++res.point_evaluations;

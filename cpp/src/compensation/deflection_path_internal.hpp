@@ -1,7 +1,7 @@
 #pragma once
 // Private pieces shared by the deflection prediction along a path (deflection_path.cpp) and its
-// compensation (deflection_compensation.cpp): the engagement scan, the single-point evaluator, the
-// earlier-path test and result helpers.
+// compensation (deflection_compensation.cpp): the engagement scan, the single-point evaluator and
+// result helpers.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +11,7 @@
 
 #include "netshape/compensation/deflection_compensation.hpp"
 #include "netshape/core/error.hpp"
+#include "compensation/swept_index.hpp"
 
 namespace netshape::compensation::detail {
 
@@ -28,6 +29,29 @@ inline std::string fmt(const char* f, double a, double b = 0, double c = 0, doub
 }
 
 inline bool window_holds(double st, double ex, double a) { return wrap(a - st) <= ex - st + 1e-12; }
+
+/// Material of the stock before the contour at p, read from the Z-map's bilinear surface (height_at)
+/// rather than its cells: a wall the stock already has (a pre-cut, an earlier pass) then moves
+/// continuously with the point instead of in steps of one cell, so the engagement, the deflection and
+/// the compensated offsets are continuous along the path, as the real wall is.
+inline bool material_at(const stock::ZMap& z, const Vec3& p) {
+  const double h = z.height_at(p.x(), p.y());
+  return p.z() >= z.bottom() && p.z() < h;  // false outside the map (h NaN)
+}
+
+/// True if q lies within the tool's sweep from `from` up to (not including) the disc at `to`: closer
+/// than R·(1 − 1e-9) to the segment, so the points of the circle about `to` ahead of the motion
+/// (exactly R from `to`) stay material. Together with the moves before `from` this is the material
+/// the tool has removed when it arrives at `to`, independent of how densely the path is sampled
+/// (without it, the sliver between the disc at `from` and the circle at `to` would count as uncut
+/// and widen the window by (|to − from| / 2R) rad behind the wall angle).
+inline bool in_last_sweep(const Vec2& q, const Vec2& from, const Vec2& to, double R) {
+  const Vec2 ab = to - from;
+  const double l2 = ab.squaredNorm();
+  const double t = l2 > 0.0 ? std::clamp((q - from).dot(ab) / l2, 0.0, 1.0) : 0.0;
+  const double r = R * (1.0 - 1e-9);
+  return (from + t * ab - q).squaredNorm() < r * r;
+}
 
 /// Engagement of one point: the window, the axial depth, whether it cuts.
 struct PointCut {
@@ -208,44 +232,21 @@ PointCut scan_window(const cutter::Cutter& cutter, const Vec3& tip, const Vec2& 
   return pc;
 }
 
-inline double seg_dist2(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double l2 = ab.squaredNorm();
-  double t = l2 > 0 ? (p - a).dot(ab) / l2 : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  return (a + t * ab - p).squaredNorm();
-}
-
-/// True if q (XY) lies within R of the polyline through the earlier points 0 … i−1 (point_of(j) gives
-/// point j in XY): the material the flat end's swept discs removed before point i. Walks back from
-/// i − 1 until the polyline has left the reach 2R + 2 mm of R_i.
-template <typename PointOf>
-bool removed_by_earlier(const Vec2& q, Eigen::Index i, const Vec2& Ri, double R, PointOf point_of) {
-  if (i == 0) return false;
-  const double r2 = R * R, reach = 2.0 * R + 2.0;
-  Vec2 b = point_of(i - 1);
-  if ((q - b).squaredNorm() < r2) return true;
-  for (Eigen::Index j = i - 1; j >= 1; --j) {
-    const Vec2 a = point_of(j - 1);
-    if (seg_dist2(q, a, b) < r2) return true;
-    if ((a - Ri).norm() > reach && (b - Ri).norm() > reach) break;
-    b = a;
-  }
-  return false;
-}
-
-inline double max_abs_level(const PathWallErrors& r, int level, int* where) {
+/// Largest |error| at `level` over the points with active[i] ≠ 0 (every point when `active` is
+/// empty); its index in *where. NaN counts as the worst.
+inline double max_abs_level(const PathWallErrors& r, int level, int* where, const Eigen::VectorXi& active = {}) {
   double best = -1.0;
   int w = 0;
   for (Eigen::Index i = 0; i < r.error.rows(); ++i) {
+    if (active.size() && !active[i]) continue;
     const double v = std::abs(r.error(i, level));
-    if (!(v <= best)) {  // NaN counts as worst
+    if (!(v <= best)) {
       best = std::isfinite(v) ? v : std::numeric_limits<double>::infinity();
       w = static_cast<int>(i);
     }
   }
   if (where) *where = w;
-  return best;
+  return std::max(best, 0.0);
 }
 
 }  // namespace netshape::compensation::detail

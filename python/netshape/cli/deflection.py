@@ -74,6 +74,9 @@ def register(sub) -> None:
         q.add_argument("--side", choices=("auto", "left", "right"), default="auto",
                        help="wall side: left of the feed (up milling) or right (down milling); default auto")
         if name == "predict":
+            q.add_argument("--drawing", metavar="NOMINAL.ngc",
+                           help="measure the wall against this program's contour (the drawing) instead of "
+                                "PROGRAM's own: checks a compensated program")
             q.add_argument("--json", metavar="OUT.json", help="write max_wall_error_mm and the per-point table")
             q.add_argument("--plot", metavar="DIR", help="write PNG plots into DIR")
             q.set_defaults(func=run_predict)
@@ -88,6 +91,8 @@ def register(sub) -> None:
                            help="discount factor lambda in (0, 1] of the update (default 1)")
             q.add_argument("--max-iterations", type=a.integer("--max-iterations", ge=1, le=100000), default=50,
                            metavar="N", help="iteration limit, 1..100000 (default 50)")
+            q.add_argument("--density", type=a.integer("--density", ge=1, le=16), default=4, metavar="K",
+                           help="check the written program at K times the sample density, 1..16 (default 4)")
             q.add_argument("-o", "--output", required=True, metavar="OUT.nc", help="compensated program")
             q.add_argument("--json", metavar="OUT.json", help="also write the summary as JSON")
             q.set_defaults(func=run_compensate)
@@ -175,26 +180,84 @@ def _setup(args):
                         inertia=args.inertia, load=args.load, side=args.side)
 
 
+def _final_wall(setup, r):
+    """Per point: the block's wall is part of the finished part (netshape.deflection.walls)."""
+    import numpy as np
+
+    from netshape.deflection import walls, wall_normals
+
+    normals = np.asarray(wall_normals(setup.nominal, setup.side))
+    remains = walls.wall_remains_points(setup.program, setup.owner, setup.nominal, normals, np.asarray(r.depth),
+                                        setup.cutter.radius)
+    return walls.final_wall_points(setup.owner, remains, np.asarray(r.engaged))
+
+
+def _pieces(setup, final):
+    from netshape.deflection import walls
+
+    blocks = list(setup.program.blocks)
+    return [{k: v for k, v in p.items() if k != "points"}
+            for p in walls.contour_pieces(setup.owner, final, lambda b: blocks[b].line)]
+
+
+def _um(levels: dict) -> str:
+    return ", ".join(f"{k} {v * 1e3:.2f} um" for k, v in levels.items())
+
+
 def run_predict(args) -> int:
     import numpy as np
 
     from netshape import deflection as d
+    from netshape.cli import CliError
+    from netshape.deflection import walls
 
     t0 = time.perf_counter()
     setup = _setup(args)
     r = d.predict_path(setup)
+    final = _final_wall(setup, r)
+    data = {"side": str(setup.side).split(".")[-1], "feed_per_tooth_mm": setup.model.force.feed_per_tooth}
+    if args.drawing:
+        from netshape.toolpath import read_gcode
+
+        drawing = d.setup_path(read_gcode(args.drawing), setup.cutter, setup.stock, coefficients=args.coefficients,
+                               rpm=args.rpm, spacing=args.spacing, inertia=args.inertia, load=args.load,
+                               side=data["side"])
+        from netshape.deflection.checked import dense_drawing
+
+        d_pts, d_owner, _ = dense_drawing(drawing, 4)
+        dr = d.path_wall_errors(drawing.model, drawing.cutter, drawing.stock, d_pts,
+                                d.wall_normals(d_pts, drawing.side), np.zeros(len(d_pts)), drawing.options)
+        d_final = _final_wall(replace_nominal(drawing, d_pts, d_owner), dr)
+        chk = walls.check_against_drawing(setup.model, setup.cutter, setup.stock, setup.nominal, d_pts, d_final,
+                                          setup.side, setup.options)
+        if float(np.max(np.abs(chk.offsets))) > setup.cutter.radius:
+            raise CliError(f"--drawing = {args.drawing}: {args.program} lies up to "
+                           f"{float(np.max(np.abs(chk.offsets))):.3f} mm from its contour, more than the tool "
+                           "radius: not the same contour")
+        err, final, engaged, prof = chk.error, chk.final, chk.engaged, chk.profile
+        data["drawing"] = args.drawing
+        data["offset_mm"] = {"min": float(np.min(chk.offsets)), "max": float(np.max(chk.offsets))}
+    else:
+        err, engaged, prof = np.asarray(r.error), np.asarray(r.engaged, dtype=bool), np.asarray(r.profile)
     dt = time.perf_counter() - t0
-    mx = d.max_wall_error(r)
-    print(f"{args.program}: {len(setup.nominal)} points, {int(np.sum(r.engaged))} cutting, "
-          f"{str(setup.side).split('.')[-1]} wall")
-    print(f"largest wall error: bottom {mx['bottom'] * 1e3:.2f} um, middle {mx['middle'] * 1e3:.2f} um, "
-          f"top {mx['top'] * 1e3:.2f} um   ({dt:.2f} s)")
+    sel = final & engaged
+    mx = dict(zip(("bottom", "middle", "top"),
+                  map(float, np.abs(err[sel]).max(axis=0) if np.any(sel) else np.zeros(3))))
+    pieces = _pieces(setup, _final_wall(setup, r))
+    print(f"{args.program}: {len(setup.nominal)} points, {int(np.sum(engaged))} cutting, {int(np.sum(sel))} on "
+          f"the final wall, {data['side']} wall" + (f", against {args.drawing}" if args.drawing else ""))
+    if not np.any(sel):
+        print("no point leaves a wall of the finished part (every wall is cut away by a later pass)")
+    print(f"largest wall error: {_um(mx)}   ({dt:.2f} s)")
     if args.json:
-        prof = np.asarray(r.profile)
-        _write_json(args.json, {"max_wall_error_mm": mx, "side": str(setup.side).split(".")[-1],
-                                "feed_per_tooth_mm": setup.model.force.feed_per_tooth,
-                                "points": d.path_table(r, setup.nominal),
-                                "profile": {"levels": int(prof.shape[1]), "error_mm": prof.tolist()}})
+        table = d.path_table(r, setup.nominal)
+        for k, name in enumerate(("error_bottom_mm", "error_middle_mm", "error_top_mm")):
+            table[name] = err[:, k].tolist()
+        table["final_wall"] = final.astype(bool).tolist()
+        data.update({"max_wall_error_mm": mx, "contours": pieces, "points": table,
+                     "profile": {"levels": int(prof.shape[1]) if prof.ndim == 2 else 0,
+                                 "error_mm": np.asarray(prof).tolist()}})
+        _write_json(args.json, data)
     if args.plot:
         from netshape.deflection.plots import plot_prediction
 
@@ -202,32 +265,61 @@ def run_predict(args) -> int:
     return 0
 
 
+def replace_nominal(setup, nominal, owner):
+    from dataclasses import replace
+
+    return replace(setup, nominal=nominal, owner=owner)
+
+
 def run_compensate(args) -> int:
     import numpy as np
 
-    from netshape import deflection as d
     from netshape.cli import CliError
+    from netshape.deflection.checked import compensate_checked
     from netshape.toolpath import write_gcode
 
     t0 = time.perf_counter()
     setup = _setup(args)
-    res = d.compensate_path(setup, scheme=args.scheme, level=args.level, tolerance=args.tolerance,
-                            discount=args.discount, max_iterations=args.max_iterations)
+    chk = compensate_checked(setup, scheme=args.scheme, level=args.level, tolerance=args.tolerance,
+                             discount=args.discount, max_iterations=args.max_iterations, density=args.density)
+    res = chk.result
     dt = time.perf_counter() - t0
-    lv = ("bottom", "middle", "top").index(args.level)
-    before = float(np.max(np.abs(np.asarray(res.before.error)[:, lv])))
-    after = float(np.max(np.abs(np.asarray(res.after.error)[:, lv])))
-    print(f"scheme {args.scheme}, level {args.level}: largest wall error {before * 1e3:.2f} um before, "
-          f"{after * 1e3:.2f} um after; {res.iterations} iterations, {res.path_evaluations} path evaluations, "
-          f"{dt:.2f} s")
+    before, after = chk.before_mm, chk.after_mm
+    n_final = int(chk.final.sum())
+    print(f"scheme {args.scheme}, level {args.level}: {res.iterations} iterations, {res.path_evaluations} path "
+          f"evaluations, {chk.rounds} round(s), {dt:.2f} s")
+    print(f"written program checked at {args.density}x the sample density ({len(chk.check.s)} samples, "
+          f"{n_final} drawing samples on the final wall)")
+    print(f"  before: {_um(before)}")
+    print(f"  after:  {_um(after)}")
+    others = [k for k in ("bottom", "middle", "top") if k != args.level and after[k] > args.tolerance]
+    if others:
+        print(f"  taper: a 2-D offset moves the whole tool, so the {' and '.join(others)} of the wall keep "
+              f"{', '.join(f'{after[k] * 1e3:.2f}' for k in others)} um")
+    if chk.worse_points:
+        print(f"  warning: {chk.worse_points} samples are worse than the uncompensated program")
     if not res.converged:
         raise CliError(f"{args.output} not written: {res.message}")
-    program = d.compensated_program(setup, np.asarray(res.positions), arc_tolerance=args.tolerance)
+    status = "ok" if chk.converged and not chk.worse_points else "tolerance_missed"
+    if status != "ok":
+        lv = ("bottom", "middle", "top").index(args.level)
+        miss = chk.check.final & (np.abs(chk.check.error[:, lv]) > args.tolerance)
+        where = ", ".join(f"({p[0]:.3f}, {p[1]:.3f})" for p in chk.check.points[miss][:5])
+        print(f"  warning: the written program leaves {after[args.level] * 1e3:.3f} um > --tolerance "
+              f"{args.tolerance * 1e3:.3f} um at the {args.level} level between its samples, at "
+              f"{int(miss.sum())} of {len(miss)} checked samples ({where}{' ...' if miss.sum() > 5 else ''}): "
+              "where the required offset steps (engagement entries and exits) a polyline can only approach it")
+    program = setup.program.with_blocks(chk.blocks, chk.origin)
     write_gcode(program, args.output, header_comment=f"netshape deflection compensate: {args.scheme}, "
-                f"{args.level}, max wall error {before * 1e3:.1f} -> {after * 1e3:.2f} um")
+                f"{args.level}, max wall error {before[args.level] * 1e3:.1f} -> {after[args.level] * 1e3:.2f} um "
+                f"(bottom {after['bottom'] * 1e3:.1f}, top {after['top'] * 1e3:.1f} um)")
     if args.json:
-        _write_json(args.json, {"scheme": args.scheme, "level": args.level, "converged": True,
+        _write_json(args.json, {"scheme": args.scheme, "level": args.level, "converged": True, "status": status,
                                 "iterations": res.iterations, "path_evaluations": res.path_evaluations,
-                                "max_wall_error_before_mm": before, "max_wall_error_after_mm": after,
+                                "rounds": chk.rounds, "density": args.density,
+                                "samples_checked": int(len(chk.check.s)),
+                                "max_wall_error_before_mm": before[args.level],
+                                "max_wall_error_after_mm": after[args.level],
+                                "before_mm": before, "after_mm": after, "worse_points": chk.worse_points,
                                 "time_s": dt, "message": res.message})
     return 0

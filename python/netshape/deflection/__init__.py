@@ -241,6 +241,15 @@ def contour_of(program, spacing: float):
     """The program's cutting moves (lines and XY arcs with XY motion) as one polyline sampled at most
     ``spacing`` [mm] apart: ``(points (n, 3), first, last, feed_mm_s)`` where first/last are the block
     indices of the contour. ValueError unless they form one contiguous contour at constant Z."""
+    pts, _, first, last, feed = contour_samples(program, spacing)
+    return pts, first, last, feed
+
+
+def contour_samples(program, spacing: float, density: int = 1):
+    """Like :func:`contour_of`, with each block cut into ``density`` × ceil(length / spacing) equal
+    pieces: ``(points (n, 3), owner (n), first, last, feed_mm_s)``, owner[i] the program block point i
+    ends (the first point: the contour's first block). With density d, every d-th point of a block is
+    the point :func:`contour_of` gives, so a sparser sampling is a subset of a denser one."""
     _check_positive("spacing", spacing)
     blocks = list(program.blocks)
     idx = [i for i, b in enumerate(blocks)
@@ -249,6 +258,7 @@ def contour_of(program, spacing: float):
         raise ValueError("program: no cutting move with XY motion (nothing to evaluate)")
     first, last = idx[0], idx[-1]
     pts = [np.asarray(blocks[first].start, dtype=float)]
+    owner = [first]
     for i in range(first, last + 1):
         b = blocks[i]
         if int(b.kind) == 0 or math.hypot(b.end[0] - b.start[0], b.end[1] - b.start[1]) <= 1e-9:
@@ -258,10 +268,11 @@ def contour_of(program, spacing: float):
             raise ValueError(f"program line {b.line}: the contour must stay at Z = {pts[0][2]:g} mm (2-D contour)")
         if int(b.kind) == 2 and str(b.plane).split(".")[-1] != "xy":
             raise ValueError(f"program line {b.line}: arcs of the contour must be in the XY plane (G17)")
-        k = max(1, math.ceil(b.length() / spacing))
+        k = max(1, math.ceil(b.length() / spacing)) * int(density)
         for j in range(1, k + 1):
             pts.append(np.asarray(b.point_at(j / k), dtype=float))
-    return np.vstack(pts), first, last, float(blocks[first].feed)
+            owner.append(i)
+    return np.vstack(pts), np.asarray(owner, dtype=np.int64), first, last, float(blocks[first].feed)
 
 
 @dataclass
@@ -276,20 +287,25 @@ class PathSetup:
     last: int
     side: object
     options: PathOptions
+    owner: np.ndarray | None = None   # program block of each nominal point
+    spacing: float = 0.5              # the nominal points' spacing [mm]
 
 
 def setup_path(program, cutter, stock, *, coefficients, rpm: float, spacing: float = 0.5,
                inertia: str = "square", load: str = "distributed", side: str = "auto",
-               disk_height: float = 0.05, profile_levels: int = 21) -> PathSetup:
-    """Sample the program's contour, derive the feed per tooth from its F and ``rpm`` and pick the
-    wall side (``auto``: the side whose wall angle lies in the engaged window at most points)."""
+               disk_height: float = 0.05, profile_levels: int = 21,
+               feed_per_tooth: float | None = None) -> PathSetup:
+    """Sample the program's contour, derive the feed per tooth from its F and ``rpm`` (or take
+    ``feed_per_tooth`` [mm] when given) and pick the wall side (``auto``: the side whose wall angle
+    lies in the engaged window at most points)."""
     _check_positive("rpm", rpm)
     if cutter.stick_out <= 0 or cutter.youngs_modulus <= 0:
         raise ValueError(f"youngs_modulus = {cutter.youngs_modulus!r}: must be positive [MPa]")
-    nominal, first, last, feed = contour_of(program, spacing)
+    nominal, owner, first, last, feed = contour_samples(program, spacing)
     if feed <= 0:
         raise ValueError("program: the contour has no feed (F) programmed")
-    c = feed * 60.0 / (rpm * cutter.flutes)
+    c = feed * 60.0 / (rpm * cutter.flutes) if feed_per_tooth is None else _check_positive("feed_per_tooth",
+                                                                                            feed_per_tooth)
     depth = max(stock.max_height() - float(nominal[0, 2]), 1e-3)
     if cutter.stick_out < min(depth, cutter.flute_length):
         raise ValueError(f"stick_out_mm = {cutter.stick_out:g}: shorter than the cut depth "
@@ -309,7 +325,7 @@ def setup_path(program, cutter, stock, *, coefficients, rpm: float, spacing: flo
         opt.side = WallSide.left if left > right else WallSide.right
     else:
         opt.side = _d.wall_side_from_string(side)
-    return PathSetup(model, cutter, stock, program, nominal, first, last, opt.side, opt)
+    return PathSetup(model, cutter, stock, program, nominal, first, last, opt.side, opt, owner, float(spacing))
 
 
 def predict_path(setup: PathSetup):
@@ -375,15 +391,18 @@ def compensated_blocks(setup: PathSetup, positions: np.ndarray, *, arc_tolerance
     blocks = list(setup.program.blocks)
     contour = blocks[setup.first:setup.last + 1]
     nominal = setup.nominal
-    # the contour block of every sampled point, by arc length along the nominal contour
-    ends = np.cumsum([b.length() for b in contour])
-    arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(nominal[:, 0]), np.diff(nominal[:, 1])))])
-    scale = ends[-1] / arc[-1] if arc[-1] > 0 else 1.0
-    owner = np.minimum(np.searchsorted(ends, arc * scale - 1e-9), len(contour) - 1)
+    # the contour block each sampled point ends
+    if setup.owner is not None and len(setup.owner) == len(nominal):
+        owner = np.asarray(setup.owner, dtype=np.int64) - setup.first
+    else:  # by arc length along the nominal contour
+        ends = np.cumsum([b.length() for b in contour])
+        arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(nominal[:, 0]), np.diff(nominal[:, 1])))])
+        scale = ends[-1] / arc[-1] if arc[-1] > 0 else 1.0
+        owner = np.minimum(np.searchsorted(ends, arc * scale - 1e-9), len(contour) - 1)
     new = blocks[:setup.first]
     origin = list(range(setup.first))  # index of the original block each new block came from
     start = np.asarray(contour[0].start, dtype=float)
-    if np.linalg.norm(positions[0] - start) > 1e-9:
+    if np.linalg.norm(positions[0] - start) > 1e-6:
         new.append(_line(contour[0], start, positions[0]))
         origin.append(setup.first)
     i = 1
@@ -411,7 +430,7 @@ def compensated_blocks(setup: PathSetup, positions: np.ndarray, *, arc_tolerance
                 origin.append(setup.first + int(bi))
         i = j + 1
     end = np.asarray(contour[-1].end, dtype=float)
-    if np.linalg.norm(positions[-1] - end) > 1e-9:
+    if np.linalg.norm(positions[-1] - end) > 1e-6:
         new.append(_line(contour[-1], positions[-1], end))
         origin.append(setup.last)
     new.extend(blocks[setup.last + 1:])
@@ -420,11 +439,17 @@ def compensated_blocks(setup: PathSetup, positions: np.ndarray, *, arc_tolerance
 
 
 def _fits_arc(blk, pts, tol: float) -> bool:
-    """All points within tol [mm] of the arc about blk's centre from pts[0] to pts[-1] (radius linear in
-    the angle fraction; the points were sampled uniformly in angle)."""
+    """All points within tol [mm] of the arc about blk's centre from pts[0] to pts[-1], its radius
+    linear in the swept angle (as netshape.toolpath reads an arc whose ends lie at different radii)."""
     c = np.asarray(blk.center, dtype=float)[:2]
     r = np.hypot(pts[:, 0] - c[0], pts[:, 1] - c[1])
-    frac = np.linspace(0.0, 1.0, len(pts))
+    ang = np.unwrap(np.arctan2(pts[:, 1] - c[1], pts[:, 0] - c[0]))
+    sweep = ang[-1] - ang[0]
+    if abs(sweep) < 1e-12:
+        return False
+    frac = (ang - ang[0]) / sweep
+    if np.any(np.diff(frac) <= 0):
+        return False
     return bool(np.max(np.abs(r - (r[0] + (r[-1] - r[0]) * frac))) <= tol)
 
 

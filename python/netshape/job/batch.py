@@ -89,7 +89,9 @@ def run_one(spec: dict, out_dir: str) -> dict:
     row["cycle_time_original_s"] = s["cycle_time_s"]["original"]
     row["cycle_time_compensated_s"] = s["cycle_time_s"]["compensated"]
     row["run_time_s"] = s["run_time_s"]["total"]
-    row["status"] = "ok"
+    # a stage that ran but did not finish cleanly (deflection unconverged or skipped) marks the row
+    trouble = [f"{k}: {v}" for k, v in s.get("stages", {}).items() if v != "ok"]
+    row["status"] = "; ".join(trouble) if trouble else "ok"
     return row
 
 

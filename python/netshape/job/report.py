@@ -71,8 +71,9 @@ def plot_wall_error(defl, vol, order_text):
     if defl is not None and defl.available:
         ax.plot(*_broken(defl.s_mm, 1e3 * defl.before_mm), lw=0.8, label="before")
         if defl.after_mm is not None:
-            ax.plot(*_broken(defl.s_mm[:len(defl.after_mm)], 1e3 * defl.after_mm), lw=0.8, label="after")
-        ax.set_ylabel("wall error [µm]")
+            s_after = defl.s_after_mm if defl.s_after_mm is not None else defl.s_mm
+            ax.plot(*_broken(s_after, 1e3 * defl.after_mm), lw=0.8, label="after (written program)")
+        ax.set_ylabel("final-wall error [µm]")
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3)
     else:
@@ -189,6 +190,28 @@ def write_html(path, summary: dict, images: dict[str, str]) -> None:
     notes = [f"{k}: {v}" for k, v in summary.get("stages", {}).items() if v != "ok"]
     if notes:
         out.append("<ul>" + "".join(f'<li class="note">{html.escape(n)}</li>' for n in notes) + "</ul>")
+    dfl = summary.get("deflection")
+    if dfl:
+        out.append('<h2>Deflection: contours</h2><table id="contours"><tr><th>line</th><th>final wall</th>'
+                   "<th>converged</th><th>iterations</th><th>max residual [mm]</th></tr>")
+        for c in dfl.get("contours", []):
+            out.append(f"<tr><td>{c['line']}</td><td>{'yes' if c['final_wall'] else 'no (cut away later)'}</td>"
+                       f"<td>{_fmt(c.get('converged'))}</td><td>{_fmt(c.get('iterations'))}</td>"
+                       f"<td>{_fmt(c.get('max_residual_mm'))}</td></tr>")
+        out.append("</table>")
+        lv = dfl.get("levels_mm", {})
+        if lv:
+            out.append("<p>Largest final-wall error per level [mm] (a 2-D offset moves the whole tool, so the "
+                       "levels other than the reference keep the taper of the bent tool): "
+                       + "; ".join(f"{html.escape(w)}: " + ", ".join(f"{k} {_fmt(v)}" for k, v in d.items())
+                                   for w, d in lv.items()) + "</p>")
+        for c in dfl.get("contours_skipped", []):
+            out.append(f'<p class="note">skipped contour at line {c["line"]}: {html.escape(c["reason"])}</p>')
+        pts = dfl.get("unconverged_points", [])
+        if pts:
+            out.append('<p class="note">Points above the tolerance after compensation: '
+                       + ", ".join(f"line {p['line']} ({p['x_mm']:.3f}, {p['y_mm']:.3f}) {p['error_mm'] * 1e3:.2f} µm"
+                                   for p in pts[:20]) + (" …" if len(pts) > 20 else "") + "</p>")
     out.append("<h2>Errors [mm]</h2>")
     out.append('<table id="errors"><tr><th>source</th><th>max before</th><th>max after</th><th>RMS before</th>'
                "<th>RMS after</th></tr>")
@@ -206,8 +229,11 @@ def write_html(path, summary: dict, images: dict[str, str]) -> None:
     for k, v in summary["run_time_s"].items():
         out.append(f'<tr><td>{k}</td><td data-key="run_time_s.{k}">{_fmt(v)}</td></tr>')
     out.append("</table>")
-    out.append("<p>Errors are distances of the predicted tool-tip path (or wall) from the nominal one; "
-               "total is the root sum of squares of the sources predicted.</p>")
+    out.append("<p>Deflection errors are those of the walls that remain at the end of the program (signed, "
+               "+ material left); volumetric errors are distances of the predicted tool-tip path from the "
+               "nominal one. Total: on final walls the deflection error plus the machine's tip error along "
+               "the wall normal (before), or plus the volumetric residual in the adverse direction (after, "
+               "whose direction the residual distance does not give); elsewhere the volumetric error.</p>")
     out.append("<h2>Plots</h2>")
     captions = {"force": "Cutting force along the path", "wall_error": "Error before and after compensation",
                 "volumetric": "Volumetric error map", "feed": "Feed profile", "zmap": "Z-map heights"}

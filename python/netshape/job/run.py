@@ -136,7 +136,7 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True) -> d
     defl = None
     if p["deflection"]:
         defl = S.run("deflection", stage_deflection, job, stock0, prog, compensate=c["deflection"])
-        status["deflection"] = "ok" if defl.available and not defl.reason else defl.reason
+        status["deflection"] = defl.status
         if defl.available and defl.after_mm is None:
             defl.after_mm = defl.before_mm  # program not changed for deflection: the same error after
     # the program handed to the volumetric stage: deflection-compensated where that was applied
@@ -188,7 +188,9 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True) -> d
         "deflection": st.error_stats(*((defl.before_mm, defl.after_mm) if defl is not None and defl.available
                                        else (None, None))),
         "volumetric": st.error_stats(*((vol.before_mm, vol.after_mm) if vol is not None else (None, None))),
-        "total": st.error_stats(st.total_error(defl, vol, "before"), st.total_error(defl, vol, "after")),
+        "total": st.error_stats(
+            st.total_error(defl, vol, "before", machine, lambda p: np.asarray(p) + prog.offsets[0]),
+            st.total_error(defl, vol, "after")),
     }
     applied = job.compensations
     if defl is not None and defl.compensated is None and "deflection" in applied:
@@ -213,6 +215,9 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True) -> d
         "versions": versions(),
         "files": files,
     }
+    if defl is not None:
+        summary["deflection"] = {"status": defl.status, "reason": defl.reason, **defl.info,
+                                 "levels_mm": defl.levels_mm, "unconverged_points": defl.unconverged_points}
     if forces is not None:
         summary["forces"] = {"max_peak_resultant_N": float(np.max(forces.peak_resultant, initial=0.0)),
                              "samples": int(len(forces.peak_resultant))}

@@ -15,16 +15,26 @@ from .stages import Program, _sub_toolpath, coefficients_for, make_cutter, stock
 
 @dataclass
 class DeflectionResult:
-    """Wall error along the path [mm] before and after deflection compensation, or why there is none."""
+    """Wall error of the part's final walls [mm] before and after deflection compensation, or why there
+    is none. ``s_mm``/``before_mm`` are the uncompensated program's samples on final walls (path
+    distance along the feed moves, signed error at the reference level), ``s_after_mm``/``after_mm``
+    the written program's; ``points_mm``/``normals`` the stock-frame positions and wall normals of the
+    ``before`` samples; ``contours`` one entry per contour piece (see :func:`stage_deflection`)."""
 
     available: bool
     reason: str = ""
     s_mm: np.ndarray = field(default_factory=lambda: np.zeros(0))       # path distance of each point
     before_mm: np.ndarray = field(default_factory=lambda: np.zeros(0))  # signed wall error
     after_mm: np.ndarray | None = None
+    s_after_mm: np.ndarray | None = None
     compensated: object = None                                          # Toolpath (G54 frame) or None
     info: dict = field(default_factory=dict)
-    ranges: list = field(default_factory=list)                          # (s0, s1) [mm] of each contour
+    ranges: list = field(default_factory=list)                          # (s0, s1) [mm] of each final wall
+    points_mm: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    normals: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    levels_mm: dict = field(default_factory=dict)                       # {"before"/"after": {level: max}}
+    unconverged_points: list = field(default_factory=list)              # {"line", "x_mm", "y_mm", "error_mm"}
+    status: str = "ok"                                                  # ok, unconverged, skipped
 
 
 def contour_runs(tp) -> list[tuple[int, int]]:
@@ -56,36 +66,45 @@ def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> De
     generation, Z-map engagement) and, when asked, the deflection-compensated program.
 
     The program is cut in order on a copy of the stock; every contour (a run of XY cutting moves at one
-    Z, :func:`contour_runs`) is evaluated on the stock as the moves before it left it, compensated with
-    the job's scheme and reference level, and replaced by its compensated moves. A contour the model
-    cannot evaluate (it never touches the stock, say) keeps its moves and is listed in ``info``. Where
-    the tool is not a flat end mill, the result says so (``available`` False) instead of reporting zero
-    error.
+    Z, :func:`contour_runs`) is evaluated on the stock as the moves before it left it, its own earlier
+    moves removed exactly (the tool's swept discs). Only the walls that remain at the end of the
+    program count (netshape.deflection.walls): a block whose wall a later move cuts away (clearing
+    rings, roughing steps) is reported with ``final_wall`` false, keeps its moves and adds nothing to
+    the error. Contours with final walls are compensated with the job's scheme and reference level
+    and the written moves are checked against the drawing at four times the sample density
+    (netshape.deflection.checked); that check is the error after.
 
-    It drives the deflection area's contour API: ``setup_path`` for one contiguous 2-D contour,
-    ``predict_path`` (wall errors at the bottom, middle and top levels), ``compensate_path`` and
-    ``compensated_blocks`` (the compensated moves and the contour block each came from)."""
+    ``info["contours"]`` lists every contour piece (a run of blocks with one final-wall status):
+    ``line``, ``final_wall``, ``converged``, ``iterations``, ``max_residual_mm``;
+    ``info["contours_skipped"]`` the contours that could not be evaluated, with the reason. A tool
+    that is not a flat end mill makes the result unavailable (``available`` False) rather than zero."""
     from netshape import deflection as nd
     from netshape import stock as nst
     from netshape.cutter import CutterKind
+    from netshape.deflection import walls
+    from netshape.deflection.checked import compensate_checked
     from netshape.errors import Error
 
     cutter = make_cutter(job.tool)
     if cutter.kind != CutterKind.flat:
-        return DeflectionResult(available=False, reason="deflection wall error: the model needs a flat end mill "
+        return DeflectionResult(available=False, status="skipped",
+                                reason="deflection wall error: the model needs a flat end mill "
                                 f"(tool.kind = {job.tool['kind']})")
     coeffs = coefficients_for(job, cutter)
     tp = stock_frame_toolpath(prog)
     blocks = list(tp.blocks)
-    level = ("bottom", "middle", "top").index(job.compensate["deflection_level"])
+    level_name = job.compensate["deflection_level"]
+    level = ("bottom", "middle", "top").index(level_name)
+    tol = 5e-4
     spacing = job.cutting["error_spacing_mm"]
     # path distance along the feed moves at the start of every block (the volumetric samples' measure)
-    lengths = np.array([0.0 if b.kind == 0 else float(b.length()) for b in blocks])
+    lengths = np.array([0.0 if int(b.kind) == 0 else float(b.length()) for b in blocks])
     s_start = np.concatenate([[0.0], np.cumsum(lengths)])
     z = stock0.copy()
-    out_blocks, s_all, before_all, after_all, skipped = [], [], [], [], []
+    out_blocks, skipped, contours = [], [], []
+    s_b, e_b, s_a, e_a, pts_b, nrm_b, ranges, unconv_pts = [], [], [], [], [], [], [], []
+    lv_before, lv_after = np.zeros(3), np.zeros(3)
     origin: list[int] = []  # index in tp.blocks of the block each of out_blocks came from
-    unconverged: list[str] = []  # contours whose iteration stopped above the tolerance (where and why)
     iterations = 0
     done = 0
     for first, last in contour_runs(tp):
@@ -97,57 +116,110 @@ def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> De
         sub = _sub_toolpath(tp, run)
         rpm = job.cutting["spindle_rpm"] or abs(float(run[0].spindle_rpm))
         try:
-            setup = nd.setup_path(sub, cutter, z, coefficients=coeffs, rpm=rpm, spacing=spacing)
+            setup = nd.setup_path(sub, cutter, z, coefficients=coeffs, rpm=rpm, spacing=spacing,
+                                  feed_per_tooth=job.cutting["feed_per_tooth_mm"])
             pred = nd.predict_path(setup)
         except ValueError as exc:
-            skipped.append(f"line {run[0].line}: {' '.join(str(exc).split())}")
+            skipped.append({"line": int(run[0].line), "reason": " ".join(str(exc).split())})
             out_blocks.extend(run)
             origin.extend(range(first, last + 1))
+            nst.sweep(z, cutter, sub)
+            done = last + 1
+            continue
+        nominal = np.asarray(setup.nominal, dtype=float)
+        normals = np.asarray(nd.wall_normals(nominal, setup.side))
+        remains = walls.wall_remains_points(tp, setup.owner + first, nominal, normals, np.asarray(pred.depth),
+                                            cutter.radius)
+        final = walls.final_wall_points(setup.owner, remains, np.asarray(pred.engaged))
+        arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(nominal[:, :2], axis=0), axis=1))])
+        err = np.asarray(pred.error, dtype=float)
+        pieces = walls.contour_pieces(setup.owner, final, lambda b: run[b].line)
+        chk = None
+        if compensate and np.any(final):
+            chk = compensate_checked(setup, scheme=job.compensate["deflection_scheme"], level=level_name,
+                                     tolerance=tol, later_program=tp, block_offset=first)
+            res = chk.result
+            iterations = max(iterations, int(res.iterations))
+            if not chk.converged and job.compensate["deflection_unconverged"] == "fail":
+                raise Error(f"deflection compensation of the contour from line {run[0].line}: {res.message}")
+            new, sub_origin = chk.blocks, chk.origin
+            for b in new:  # keep the source line (work offset, reports) of the contour
+                if b.line <= 0:
+                    b.line = run[0].line
+            out_blocks.extend(new)
+            origin.extend(first + int(k) for k in sub_origin)
+            # the written program's samples on final walls: after; the drawing's: before
+            d_arc = chk.before.s
+            fin_b, fin_a = chk.before.final & chk.before.engaged, chk.check.final
+            s_b.append(s_start[first] + d_arc[fin_b])
+            e_b.append(chk.before.error[fin_b, level])
+            s_a.append(s_start[first] + chk.check.s[fin_a])
+            e_a.append(chk.check.error[fin_a, level])
+            pts_b.append(chk.before.points[fin_b])
+            nrm_b.append(np.asarray(nd.wall_normals(chk.before.points, setup.side))[fin_b])
+            lv_before = np.maximum(lv_before, list(chk.before_mm.values()))
+            lv_after = np.maximum(lv_after, list(chk.after_mm.values()))
+            bad = fin_a & (np.abs(chk.check.error[:, level]) > tol)
+            for i in np.flatnonzero(bad)[:50]:
+                unconv_pts.append({"line": int(run[0].line), "x_mm": float(chk.check.points[i, 0]),
+                                   "y_mm": float(chk.check.points[i, 1]),
+                                   "error_mm": float(chk.check.error[i, level])})
         else:
-            nominal = np.asarray(setup.nominal, dtype=float)
-            arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(nominal[:, :2], axis=0), axis=1))])
-            s_all.append(s_start[first] + arc)
-            before = np.asarray(pred.error, dtype=float)[:, level]
-            before_all.append(before)
-            if compensate:
-                res = nd.compensate_path(setup, scheme=job.compensate["deflection_scheme"],
-                                             level=job.compensate["deflection_level"])
-                if not res.converged:
-                    where = f"deflection compensation of the contour from line {run[0].line}: {res.message}"
-                    if job.compensate["deflection_unconverged"] == "fail":
-                        raise Error(where)
-                    # the last iterate is written; its residual is the "after" error of these points
-                    unconverged.append(" ".join(where.split()))
-                iterations = max(iterations, int(res.iterations))
-                after_all.append(np.asarray(res.after.error, dtype=float)[:, level])
-                new, sub_origin = nd.compensated_blocks(setup, np.asarray(res.positions, dtype=float))
-                for b in new:  # keep the source line (work offset, reports) of the contour
-                    if b.line <= 0:
-                        b.line = run[0].line
-                out_blocks.extend(new)
-                origin.extend(first + int(k) for k in sub_origin)
-            else:
-                after_all.append(before)
-                out_blocks.extend(run)
-                origin.extend(range(first, last + 1))
+            fin = final & np.asarray(pred.engaged, dtype=bool)
+            s_b.append(s_start[first] + arc[fin])
+            e_b.append(err[fin, level])
+            s_a.append(s_start[first] + arc[fin])
+            e_a.append(err[fin, level])
+            pts_b.append(nominal[fin])
+            nrm_b.append(normals[fin])
+            if np.any(fin):
+                mx = np.abs(err[fin]).max(axis=0)
+                lv_before = np.maximum(lv_before, mx)
+                lv_after = np.maximum(lv_after, mx)
+            out_blocks.extend(run)
+            origin.extend(range(first, last + 1))
+        for pc in pieces:
+            entry = {"line": pc["line"], "final_wall": pc["final_wall"]}
+            if pc["final_wall"]:
+                fin = final[pc["points"]]
+                ranges.append((float(s_start[first] + arc[pc["points"]][fin][0]),
+                               float(s_start[first] + arc[pc["points"]][fin][-1])))
+                if chk is not None:
+                    lo, hi = arc[pc["points"]][0], arc[pc["points"]][-1]
+                    on = chk.check.final & (chk.check.s >= lo - 1e-9) & (chk.check.s <= hi + 1e-9)
+                    resid = float(np.max(np.abs(chk.check.error[on, level]))) if np.any(on) else 0.0
+                    entry.update({"converged": bool(chk.converged), "iterations": int(chk.result.iterations),
+                                  "max_residual_mm": resid})
+                else:
+                    entry.update({"converged": None, "iterations": 0, "max_residual_mm": None})
+            contours.append(entry)
         nst.sweep(z, cutter, sub)
         done = last + 1
     out_blocks.extend(blocks[done:])
     origin.extend(range(done, len(blocks)))
-    info = {"contours": len(s_all), "contours_skipped": skipped}
+    unconverged = [c for c in contours if c["final_wall"] and c["converged"] is False]
+    info = {"contours": contours, "contours_skipped": skipped}
     if compensate:
         info["iterations"] = iterations
-        info["contours_unconverged"] = unconverged
-    if not s_all:
-        why = skipped[0] if skipped else "the program has no 2-D contour (XY moves at one Z)"
-        return DeflectionResult(available=False, reason=f"deflection wall error: no contour evaluated ({why})",
-                                info=info)
-    res = DeflectionResult(available=True, s_mm=np.concatenate(s_all), before_mm=np.concatenate(before_all),
-                           after_mm=np.concatenate(after_all), info=info,
-                           ranges=[(float(a[0]), float(a[-1])) for a in s_all])
+        info["contours_unconverged"] = [c["line"] for c in unconverged]
+    if not contours:
+        why = skipped[0]["reason"] if skipped else "the program has no 2-D contour (XY moves at one Z)"
+        return DeflectionResult(available=False, status="skipped", info=info,
+                                reason=f"deflection wall error: no contour evaluated ({why})")
+    cat = (lambda xs, w=None: np.concatenate(xs) if xs else np.zeros(0 if w is None else (0, w)))
+    res = DeflectionResult(available=True, s_mm=cat(s_b), before_mm=cat(e_b), s_after_mm=cat(s_a),
+                           after_mm=cat(e_a), info=info, ranges=ranges, points_mm=cat(pts_b, 3),
+                           normals=cat(nrm_b, 2), unconverged_points=unconv_pts,
+                           levels_mm={"before": dict(zip(("bottom", "middle", "top"), map(float, lv_before))),
+                                      "after": dict(zip(("bottom", "middle", "top"), map(float, lv_after)))})
     if compensate:
         res.compensated = tp.with_blocks(out_blocks, origin)
-        if unconverged:
-            res.reason = (f"compensation did not converge on {len(unconverged)} contour(s), the last iterate is "
-                          f"written and its residual is the error after: {'; '.join(unconverged)}")
+    if unconverged:
+        res.status = "unconverged"
+        res.reason = (f"compensation did not reach the tolerance on {len(unconverged)} final-wall contour(s) "
+                      f"(lines {', '.join(str(c['line']) for c in unconverged)}); the best iterate is written")
+    elif skipped:
+        res.status = "skipped"
+        res.reason = f"{len(skipped)} contour(s) skipped: " + "; ".join(
+            f"line {c['line']}: {c['reason']}" for c in skipped)
     return res

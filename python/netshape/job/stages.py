@@ -474,26 +474,42 @@ def error_stats(before, after) -> dict:
             "rms_before_mm": rms(before), "rms_after_mm": rms(after)}
 
 
-def total_error(defl: DeflectionResult | None, vol: VolumetricResult | None, which: str):
-    """Total error along the path [mm] from the sources predicted: the root sum of squares of the
-    deflection wall error (interpolated onto the volumetric samples by path distance) and the
-    volumetric path deviation; one source alone is the total."""
+def total_error(defl: DeflectionResult | None, vol: VolumetricResult | None, which: str, machine=None,
+                to_machine=None):
+    """Total error [mm] from the sources predicted, at the points where they act on the part.
+
+    On the final walls (the deflection samples) the errors add along the wall normal n: before
+    compensation the wall error minus the machine's tip error along n (``machine`` and ``to_machine``,
+    stock-frame points → machine frame, give it; a tip moved towards the wall cuts more), after it the
+    wall error plus the volumetric residual distance in the adverse direction (that residual has no
+    direction), interpolated by path distance. Elsewhere on the path the volumetric error alone. One
+    source alone is the total."""
     d_s = d_v = None
     if defl is not None and defl.available:
-        d_s, d_v = defl.s_mm, (defl.before_mm if which == "before" else defl.after_mm)
+        if which == "before":
+            d_s, d_v = defl.s_mm, defl.before_mm
+        else:
+            d_s = defl.s_after_mm if defl.s_after_mm is not None else defl.s_mm
+            d_v = defl.after_mm
     v_s = v_v = None
     if vol is not None:
         v_s, v_v = (vol.s_before_mm, vol.before_mm) if which == "before" else (vol.s_after_mm, vol.after_mm)
     if d_v is None and v_v is None:
         return None
-    if d_v is None:
-        return v_v
-    if v_v is None:
+    if v_v is None or len(v_v) == 0:
         return d_v
-    d_on_v = np.interp(v_s, d_s, d_v)
-    if defl.ranges:  # no wall error between contours (plunges, links, rapids)
-        inside = np.zeros(len(v_s), dtype=bool)
-        for s0, s1 in defl.ranges:
-            inside |= (v_s >= s0) & (v_s <= s1)
-        d_on_v = np.where(inside, d_on_v, 0.0)
-    return np.sqrt(d_on_v**2 + v_v**2)
+    if d_v is None or len(d_v) == 0:
+        return v_v
+    if which == "before" and machine is not None and to_machine is not None and len(defl.points_mm) == len(d_v):
+        from netshape import machine as nm
+
+        e = np.asarray(nm.tip_error(machine, to_machine(defl.points_mm)), dtype=float)
+        on_wall = d_v - np.einsum("ij,ij->i", e[:, :2], defl.normals)
+    else:
+        v_on_d = np.interp(d_s, v_s, v_v)
+        on_wall = d_v + np.where(d_v >= 0, 1.0, -1.0) * v_on_d
+    # volumetric samples off the final walls keep their own error
+    inside = np.zeros(len(v_s), dtype=bool)
+    for s0, s1 in defl.ranges:
+        inside |= (v_s >= s0) & (v_s <= s1)
+    return np.concatenate([on_wall, v_v[~inside]])

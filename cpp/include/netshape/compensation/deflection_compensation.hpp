@@ -107,6 +107,10 @@ struct DeflectionCompensationOptions {
   double discount = 1.0;    ///< λ ∈ (0, 1]
   int max_iterations = 50;  ///< LIMIT (per point for sectional)
   int anderson_depth = 5;   ///< m of the accelerated scheme
+  /// (n) 1 where the point's wall is part of the finished part (see wall_remains), 0 where a later
+  /// pass cuts it away: such a point keeps C = 0 (as programmed) and its error does not count
+  /// against the tolerance. Empty: every point counts.
+  Eigen::VectorXi active;
   PathOptions path{};
   void validate() const;
 };
@@ -127,10 +131,39 @@ struct DeflectionCompensationResult {
 };
 
 /// Compensate the path `nominal` (n, 3) over `stock`. Throws std::invalid_argument for bad input
-/// (including a path that never touches the stock); a non-converging scheme returns converged = false.
+/// (including a path that never touches the stock); a non-converging scheme returns converged = false
+/// with the best iterate (the smallest max |e| at the reference level over the active points).
+/// Never worse: an active point whose |e| at the reference level ends above its uncompensated |e|
+/// has its offset halved (at most six times, then zeroed) and the path evaluated again, so the
+/// result is never worse than the program as written at any sample.
 DeflectionCompensationResult compensate_deflection(const deflection::DeflectionModel& model,
                                                    const cutter::Cutter& cutter, const stock::ZMap& stock,
                                                    const Eigen::Ref<const Points3>& nominal,
                                                    const DeflectionCompensationOptions& options);
+
+/// Which walls remain at the end of a program: wall point k touches the wall at `wall` row k (XY of
+/// the contact of the tool's side with the wall, z its bottom) up to the height top[k]; it is cut
+/// away when a cutting move j ≥ first_later[k] of `path` (tool tips (m, 3); move j joins rows j − 1
+/// and j, cutting[j] ≠ 0 when it is a feed move; cutting[0] is ignored) passes closer than
+/// radius − clearance to it in XY with its tip below top[k]. Returns (n) 1 where the wall remains.
+/// Cost: a grid of the moves, so each wall point visits only the moves within reach.
+Eigen::VectorXi wall_remains(const Eigen::Ref<const Points3>& wall, const Eigen::Ref<const VectorXd>& top,
+                             const Eigen::Ref<const Eigen::VectorXi>& first_later,
+                             const Eigen::Ref<const Points3>& path, const Eigen::Ref<const Eigen::VectorXi>& cutting,
+                             double radius, double clearance);
+
+/// A program's points measured against a drawing's contour (tool-centre polylines in the same order):
+/// for each point the signed distance C along the drawing's wall normal (+ towards the wall), the
+/// unit normal n there (so that foot + C·n is the point) and the arc length s of the foot along the
+/// drawing [mm]. Each foot is searched from the previous one forwards over the arc length the point
+/// has moved plus `window` [mm], so a pocket whose passes lie side by side is followed pass by pass.
+struct DrawingOffsets {
+  VectorXd offsets;  ///< (n) C [mm]
+  Points2 normals;   ///< (n, 2) n
+  VectorXd s;        ///< (n) arc length of the foot along the drawing [mm]
+  VectorXd foot_distance;  ///< (n) |point − foot| [mm] (equals |C| unless the foot is a corner)
+};
+DrawingOffsets drawing_offsets(const Eigen::Ref<const Points3>& points, const Eigen::Ref<const Points3>& drawing,
+                               deflection::WallSide side, double window = 2.0);
 
 }  // namespace netshape::compensation

@@ -1,0 +1,174 @@
+"""Deflection compensation judged on the program it writes.
+
+:func:`compensate_checked` compensates a contour at the setup's samples, writes the compensated moves,
+samples the written contour ``density`` times more densely and measures its wall against the drawing
+(:func:`netshape.deflection.walls.check_against_drawing`). Where the written program misses the
+tolerance at the reference level between samples (the offset curve bends at engagement entries and
+exits) or is worse than the uncompensated program, samples of a denser drawing are added there and
+the contour is compensated again, up to ``max_rounds`` times; a round that does not make the written
+program better ends the refinement, and the best written program is kept. What it reports is the last written
+program's check, at every level: a 2-D offset moves the whole tool, so it cannot remove the taper
+between the bottom and the top of the wall that the tool's bending leaves.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from .. import _core
+from .walls import DrawingCheck, check_against_drawing, final_wall_points, wall_remains_points
+
+_comp = _core.compensation
+_LEVELS = ("bottom", "middle", "top")
+
+
+@dataclass
+class CheckedCompensation:
+    """A compensation and the check of what it wrote.
+
+    ``result`` the last compensation (its ``after`` at its own samples), ``setup`` the setup of its
+    samples, ``blocks``/``origin`` the written moves (see ``compensated_blocks``), ``check`` the written
+    program against the drawing at ``density``× the samples, ``before`` the uncompensated program's
+    check on the same drawing, ``rounds`` the compensations run, ``final`` the final-wall flag of each
+    dense drawing sample."""
+
+    result: object
+    setup: object
+    blocks: list
+    origin: list
+    check: DrawingCheck
+    before: DrawingCheck
+    rounds: int
+    final: np.ndarray
+    level: int
+    tolerance: float
+
+    @property
+    def after_mm(self) -> dict:
+        return self.check.max_mm()
+
+    @property
+    def before_mm(self) -> dict:
+        return self.before.max_mm()
+
+    @property
+    def converged(self) -> bool:
+        return bool(self.result.converged) and self.after_mm[_LEVELS[self.level]] <= self.tolerance * (1 + 1e-9)
+
+    @property
+    def worse_points(self) -> int:
+        """Written-program samples whose |error| at the reference level exceeds the uncompensated one's
+        (by more than 1 % of the tolerance) — 0 when the never-worse rule holds."""
+        b = np.interp(self.check.s, self.before.s, np.abs(self.before.error[:, self.level]))
+        a = np.abs(self.check.error[:, self.level])
+        return int(np.sum(self.check.final & (a > b + 0.01 * self.tolerance)))
+
+
+def dense_drawing(setup, density: int):
+    """The setup's contour sampled ``density`` times more densely: (points, owner, coarse) with coarse
+    marking the setup's own samples."""
+    from . import contour_samples
+
+    pts, owner, first, last, _ = contour_samples(setup.program, setup.spacing, density)
+    # in each block the samples j = d, 2d, … (and the contour's first point) are the sparse ones
+    coarse = np.zeros(len(pts), dtype=bool)
+    coarse[0] = True
+    count = 0
+    for i in range(1, len(pts)):
+        count = count + 1 if owner[i] == owner[i - 1] else 1
+        coarse[i] = count % density == 0
+    return pts, owner, coarse
+
+
+def _block_flags(owner_from, flags_from, owner_to):
+    """Per-point flags of one sampling carried to another by block (final-wall status is per block,
+    plus the start of each final-wall block, see walls.final_wall_points)."""
+    owner_from, owner_to = np.asarray(owner_from), np.asarray(owner_to)
+    flags_from = np.asarray(flags_from, dtype=bool)
+    block = {}
+    for b in np.unique(owner_from):
+        sel = owner_from == b
+        block[int(b)] = bool(np.any(flags_from[sel][1:])) if np.sum(sel) > 1 else bool(flags_from[sel][0])
+    out = np.array([block.get(int(b), False) for b in owner_to], dtype=bool)
+    starts = np.flatnonzero(out[1:] & (owner_to[1:] != owner_to[:-1]))
+    out[starts] = True
+    return out
+
+
+def compensate_checked(setup, *, scheme: str = "accelerated", level: str = "middle", tolerance: float = 5e-4,
+                       discount: float = 1.0, max_iterations: int = 50, anderson_depth: int = 5,
+                       density: int = 4, max_rounds: int = 4, final=None, later_program=None,
+                       block_offset: int = 0, arc_tolerance: float | None = None) -> CheckedCompensation:
+    """Compensate ``setup``'s contour and check the written program (module docstring).
+
+    The drawing is sampled ``density`` times more densely than the setup for the checks, and the
+    samples that refinement may add come from a pool 4 × ``density`` times denser. ``final``: per
+    point of the ``density``-times denser drawing, whether its wall is a final wall (None: computed
+    from ``later_program`` — the program whose later moves may cut the wall, default the setup's
+    program — whose block b is the setup program's block b − ``block_offset``)."""
+    from . import compensated_blocks, contour_samples
+
+    lv = _LEVELS.index(level)
+    arc_tol = tolerance if arc_tolerance is None else arc_tolerance
+    d_pts, d_owner, _ = dense_drawing(setup, density)
+    p_pts, p_owner, selected = dense_drawing(setup, 4 * density)
+    opt = setup.options
+    normals = np.asarray(_comp.wall_normals(d_pts, setup.side))
+    before_r = _comp.path_wall_errors(setup.model, setup.cutter, setup.stock, d_pts, normals,
+                                      np.zeros(len(d_pts)), opt)
+    if final is None:
+        prog = setup.program if later_program is None else later_program
+        remains = wall_remains_points(prog, d_owner + block_offset, d_pts, normals, np.asarray(before_r.depth),
+                                      setup.cutter.radius)
+        final = final_wall_points(d_owner, remains, np.asarray(before_r.engaged))
+    final = np.asarray(final, dtype=bool)
+    p_final = _block_flags(d_owner, final, p_owner)
+    before = check_against_drawing(setup.model, setup.cutter, setup.stock, d_pts, d_pts, final, setup.side, opt)
+    p_arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(p_pts[:, 0]), np.diff(p_pts[:, 1])))])
+    rounds = 0
+    best = None  # (largest written-program error on final walls, + 1 when not converged; result)
+    while True:
+        rounds += 1
+        o = _comp.DeflectionCompensationOptions()
+        o.scheme = _comp.deflection_scheme_from_string(scheme)
+        o.level = _comp.reference_level_from_string(level)
+        o.tolerance = float(tolerance)
+        o.discount = float(discount)
+        o.max_iterations = int(max_iterations)
+        o.anderson_depth = int(anderson_depth)
+        o.active = p_final[selected].astype(np.int32)
+        o.path = opt
+        nominal = p_pts[selected]
+        res = _comp.compensate_deflection(setup.model, setup.cutter, setup.stock, nominal, o)
+        sub = replace(setup, nominal=nominal, owner=p_owner[selected])
+        blocks, origin = compensated_blocks(sub, np.asarray(res.positions, dtype=float), arc_tolerance=arc_tol)
+        written = setup.program.with_blocks(blocks, origin)
+        # the written program at `density` times its own sample density: every written block in at
+        # least `density` pieces
+        w_pts = contour_samples(written, setup.spacing, density)[0]
+        check = check_against_drawing(setup.model, setup.cutter, setup.stock, w_pts, d_pts, final, setup.side, opt)
+        out = CheckedCompensation(res, sub, blocks, origin, check, before, rounds, final, lv, float(tolerance))
+        b_ref = np.interp(check.s, before.s, np.abs(before.error[:, lv]))
+        a_ref = np.abs(check.error[:, lv])
+        bad = check.final & ((a_ref > tolerance) | (a_ref > b_ref + 0.01 * tolerance))
+        score = float(np.max(a_ref[check.final], initial=0.0)) + (0.0 if res.converged else 1.0)
+        if best is not None and score >= best[0]:
+            return best[1]  # refining made the written program no better: keep the best one
+        best = (score, out)
+        if not np.any(bad) or rounds >= max_rounds or not res.converged:
+            return out
+        # the pool's samples within one check spacing of each miss (largest misses first, at most as
+        # many new samples as the setup has)
+        grow = np.zeros(len(p_pts), dtype=bool)
+        budget = int(np.sum(selected))
+        for i in np.flatnonzero(bad)[np.argsort(-a_ref[bad])]:
+            near = (np.abs(p_arc - check.s[i]) <= setup.spacing / density) & ~selected & ~grow
+            if np.sum(near) > budget:
+                break
+            grow |= near
+            budget -= int(np.sum(near))
+        if not np.any(grow):
+            return out
+        selected = selected | grow

@@ -1,0 +1,157 @@
+"""The part's wall: which passes leave it, and the written program judged against the drawing.
+
+- **Final wall.** The wall a pass generates at a point touches the tool's side at W = P + R·n (P the
+  tool centre, n the wall normal, R the radius), from the cut's bottom up to the top of the material.
+  It is part of the finished part unless a later cutting move of the program passes closer than
+  R − ``clearance`` to W in XY with its tip below the top of that wall: a clearing ring or a roughing
+  step whose wall the finish pass cuts away is not a wall of the part. A block is a final-wall block
+  when most of its engaged points leave a wall that remains; only those are reported and compensated.
+- **Against the drawing.** A program (compensated or not) is measured against the drawing's contour
+  (the nominal program): each sample's signed offset C from the drawing along the drawing's wall
+  normal, the deflection evaluated at the sample, and the wall error e = −C − δ·n, as the compensation
+  defines it, so the compensated program a user runs is checked by the same model that predicted the
+  error, at a density of its own choosing rather than at the compensation's samples.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .._core import compensation as _comp
+
+#: A later move must come this much closer than the radius to take a wall away [mm]: a pass at
+#: exactly one radius (the next step down along the same wall) leaves it.
+FINAL_WALL_CLEARANCE_MM = 0.005
+
+_LEVELS = ("bottom", "middle", "top")
+
+
+def program_polyline(program, spacing: float):
+    """Every move of ``program`` as tool-tip rows at most ``spacing`` [mm] apart: ``(rows (m, 3),
+    cutting (m), first_row (blocks + 1))``; move j (rows j − 1 → j) is a feed move when cutting[j],
+    and block b's rows are first_row[b] … first_row[b + 1] − 1."""
+    blocks = list(program.blocks)
+    rows = [np.asarray(blocks[0].start, dtype=float)] if blocks else [np.zeros(3)]
+    cutting = [0]
+    first_row = []
+    for b in blocks:
+        first_row.append(len(rows))
+        k = max(1, math.ceil(float(b.length()) / spacing)) if int(b.kind) == 2 else 1
+        for j in range(1, k + 1):
+            rows.append(np.asarray(b.point_at(j / k) if k > 1 else b.end, dtype=float))
+            cutting.append(0 if int(b.kind) == 0 else 1)
+    first_row.append(len(rows))
+    return np.vstack(rows), np.asarray(cutting, dtype=np.int32), np.asarray(first_row, dtype=np.int64)
+
+
+def wall_remains_points(program, owner, nominal, normals, depth, radius: float, *,
+                        clearance: float = FINAL_WALL_CLEARANCE_MM, spacing: float = 0.25) -> np.ndarray:
+    """(n) bool: the wall point i generates (tool centre ``nominal[i]`` of block ``owner[i]`` of
+    ``program``, wall normal ``normals[i]``, cut depth ``depth[i]``) remains at the end of the program.
+    Points that cut nothing (depth 0) generate no wall (False)."""
+    nominal = np.asarray(nominal, dtype=float)
+    normals = np.asarray(normals, dtype=float)
+    depth = np.asarray(depth, dtype=float)
+    rows, cutting, first_row = program_polyline(program, spacing)
+    wall = nominal.copy()
+    wall[:, :2] += radius * normals
+    top = nominal[:, 2] + depth
+    later = first_row[np.minimum(np.asarray(owner, dtype=np.int64) + 1, len(first_row) - 1)]
+    keep = np.asarray(_comp.wall_remains(wall, top, later.astype(np.int32), rows, cutting, float(radius),
+                                         float(clearance)), dtype=bool)
+    return keep & (depth > 1e-9)
+
+
+def final_wall_points(owner, point_remains, engaged) -> np.ndarray:
+    """(n) bool per point from its block: a block is a final-wall block when most of its engaged
+    points leave a wall that remains (a block that cuts nothing is not). The point where a final-wall
+    block starts counts too, whichever block it ends, so that the compensated offset is in place at
+    the start of the final wall instead of ramping up along it."""
+    owner = np.asarray(owner)
+    engaged = np.asarray(engaged, dtype=bool)
+    remains = np.asarray(point_remains, dtype=bool)
+    out = np.zeros(len(owner), dtype=bool)
+    for b in np.unique(owner):
+        sel = owner == b
+        n_eng = int(np.sum(engaged[sel]))
+        out[sel] = n_eng > 0 and int(np.sum(remains[sel] & engaged[sel])) * 2 > n_eng
+    starts = np.flatnonzero(out[1:] & (owner[1:] != owner[:-1]))
+    out[starts] = True
+    return out
+
+
+def contour_pieces(owner, final, first_line) -> list[dict]:
+    """Maximal runs of consecutive blocks with the same final-wall status: ``{"first_block",
+    "last_block", "final_wall", "points": slice}`` (``first_line`` maps a block index to its line)."""
+    owner = np.asarray(owner)
+    final = np.asarray(final, dtype=bool)
+    pieces: list[dict] = []
+    start = 0
+    for i in range(1, len(owner) + 1):
+        if i == len(owner) or final[i] != final[start] and owner[i] != owner[i - 1]:
+            pieces.append({"first_block": int(owner[start]), "last_block": int(owner[i - 1]),
+                           "line": int(first_line(int(owner[start]))), "final_wall": bool(final[start]),
+                           "points": slice(start, i)})
+            start = i
+    return pieces
+
+
+@dataclass
+class DrawingCheck:
+    """A program's wall against a drawing: per sample of the program (``points``) the error at the
+    bottom, middle and top (``error`` (n, 3) [mm], + material left), the signed offset from the drawing
+    ``offsets``, the foot's arc length ``s`` along the drawing and ``final`` (the drawing's final-wall
+    status there)."""
+
+    points: np.ndarray
+    error: np.ndarray
+    offsets: np.ndarray
+    s: np.ndarray
+    final: np.ndarray
+    engaged: np.ndarray
+    profile: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+
+    def max_mm(self) -> dict:
+        """Largest |error| per level over the final-wall samples [mm] (0 where there are none)."""
+        e = np.abs(self.error[self.final]) if np.any(self.final) else np.zeros((1, 3))
+        return dict(zip(_LEVELS, map(float, e.max(axis=0))))
+
+
+def check_against_drawing(model, cutter, stock, points, drawing, drawing_final, side, options) -> DrawingCheck:
+    """Evaluate the wall of the tool-centre polyline ``points`` (n, 3) against the ``drawing``'s
+    polyline (m, 3), whose samples carry the final-wall flags ``drawing_final`` (m)."""
+    points = np.asarray(points, dtype=float)
+    drawing = np.asarray(drawing, dtype=float)
+    d = _comp.drawing_offsets(points, drawing, side)
+    C = np.asarray(d.offsets, dtype=float)
+    n = np.asarray(d.normals, dtype=float)
+    # evaluated as foot + C·n, so that the cutting frame is the drawing's tangent as in the
+    # compensation (each point is where the program puts it either way); a point whose foot coincides
+    # with the previous one's (at a corner of the drawing, or a join shorter than a micrometre) takes
+    # that point's deflection
+    foot = points.copy()
+    foot[:, :2] -= C[:, None] * n
+    keep = np.concatenate([[True], np.hypot(*np.diff(foot[:, :2], axis=0).T) >= 1e-6])
+    src = np.maximum.accumulate(np.where(keep, np.arange(len(points)), 0))
+    k_idx = np.flatnonzero(keep)
+    r = _comp.path_wall_errors(model, cutter, stock, foot[keep], n[keep], C[keep], options)
+    pos = np.searchsorted(k_idx, src)
+    # e = −C − δ·n: the kept point's δ·n with each point's own C
+    dn = -(np.asarray(r.error, dtype=float) + C[keep][:, None])[pos]
+    err = -C[:, None] - dn
+    prof = np.asarray(r.profile, dtype=float)
+    if prof.size:
+        prof = -C[:, None] - (-(prof + C[keep][:, None]))[pos]
+    engaged = np.asarray(r.engaged, dtype=bool)[pos]
+    arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(drawing[:, 0]), np.diff(drawing[:, 1])))])
+    s = np.asarray(d.s, dtype=float)
+    # a point is on a final wall when the drawing's segment its foot lies on joins two final-wall
+    # samples; a foot at either end of the drawing is beyond its wall (a join back to the nominal end)
+    seg = np.clip(np.searchsorted(arc, s, side="left"), 1, len(drawing) - 1)
+    df = np.asarray(drawing_final, dtype=bool)
+    final = df[seg] & df[seg - 1] & (s > 1e-9) & (s < arc[-1] - 1e-9)
+    return DrawingCheck(points=points, error=err, offsets=C, s=s, final=final,
+                        engaged=engaged, profile=prof)
