@@ -22,10 +22,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-TOOL_TOML = ('kind = "flat"\ndiameter_mm = {d}\nflutes = 4\nhelix_deg = 30.0\nflute_length_mm = 20.0\n'
-             'stick_out_mm = {stick_out}\nyoungs_modulus_MPa = 600000.0\n')
-
-
 @dataclass(frozen=True)
 class Pocket:
     """A rounded-rectangle pocket cleared by rings, then finished; lengths [mm], angles [deg]."""
@@ -69,18 +65,26 @@ def _loop_moves(a: float, b: float, rc: float) -> list[tuple]:
     ("line", end) and ("arc", end, centre) items (arcs counter-clockwise)."""
     rc = min(rc, a, b)
     moves: list[tuple] = []
+    at = (0.0, -b)
+
+    def line(q):
+        nonlocal at
+        if math.hypot(q[0] - at[0], q[1] - at[1]) > 1e-9:  # no zero-length moves where the arcs meet
+            moves.append(("line", q))
+        at = q
+
     # the four corners, counter-clockwise from the −Y side: (corner, direction into it, direction out)
     corners = [((a, -b), (1, 0), (0, 1)), ((a, b), (0, 1), (-1, 0)),
                ((-a, b), (-1, 0), (0, -1)), ((-a, -b), (0, -1), (1, 0))]
     for (cx, cy), (ix, iy), (ox, oy) in corners:
-        p = (cx - ix * rc, cy - iy * rc)
         if rc > 0:
-            moves.append(("line", p))
-            centre = (p[0] + ox * rc, p[1] + oy * rc)
-            moves.append(("arc", (cx + ox * rc, cy + oy * rc), centre))
+            p = (cx - ix * rc, cy - iy * rc)
+            line(p)
+            at = (cx + ox * rc, cy + oy * rc)
+            moves.append(("arc", at, (p[0] + ox * rc, p[1] + oy * rc)))
         else:
-            moves.append(("line", (cx, cy)))
-    moves.append(("line", (0.0, -b)))
+            line((cx, cy))
+    line((0.0, -b))
     return moves
 
 
@@ -134,13 +138,6 @@ def pocket_gcode(p: Pocket, part: str = "all") -> str:
         cur = m[1]
     lines += ["G0 Z10", "M30", ""]
     return "\n".join(lines)
-
-
-def finish_length(p: Pocket) -> float:
-    """Length of the finish loop [mm]."""
-    a, b, rc = p.loops()[-1]
-    rc = min(rc, a, b)
-    return 4 * (a + b) - 8 * rc + 2 * math.pi * rc
 
 
 def stock_bounds(p: Pocket, margin: float = 6.0, top: float = 0.0, bottom: float = -10.0):
