@@ -125,9 +125,10 @@ def _assert_matches_the_sweep(setup, exact, swept, radius: float):
 @pytest.mark.parametrize("rotation", [0.0, 30.0], ids=["0deg", "30deg"])
 @pytest.mark.parametrize("diameter", [6.0, 8.0, 10.0], ids=["D6", "D8", "D10"])
 def test_closed_square_returns_over_its_start(diameter, rotation):
-    """Round a 20 x 20 mm boss, 2 mm radial depth, clockwise (down milling); the last side runs back along
-    the first for 6 mm, ending 0.3 mm inside it, so there it cuts a thin re-cut, not the first pass's
-    2 mm (which the first side, 70+ mm of path back, removed)."""
+    """Round a 20 x 20 mm boss, clockwise (down milling), 2 mm radial depth (rotated 30°: the square path
+    round the unrotated boss, radial depth varying along each side up to 5.7 mm); the last side runs back
+    along the first for 6 mm, ending 0.3 mm inside it, so there it re-cuts at most 0.3 mm, not what the
+    first side (70+ mm of path back) already removed."""
     half = 10.0 + diameter / 2 - 2.0
     text = square_gcode(half, 6.0, recut=0.3, rotation_deg=rotation, clockwise=True)
     setup, exact, swept = _exact_and_swept(text, diameter, [-10.0, -10.0, -10.0], [10.0, 10.0, 0.0])
