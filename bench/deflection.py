@@ -11,7 +11,15 @@ distributed cantilever influence, the wall error at bottom/middle/top; the integ
 schemes iterate it in Python exactly as the C++ does. A rate is path points × path evaluations / CPU
 time (time.process_time), best of --repeat runs.
 
-    PYTHONPATH=python python bench/deflection.py [--repeat 2]
+Pocket (issue 36): prediction rate along a pocket — clearing rings and a finish contour at one Z as one
+run (tests/python/deflection/pocket_cases.py: 8 mm flat end mill, 4 flutes, 2 mm deep, stepover 3 mm,
+corner R8, 0.5 mm point spacing, 0.1 mm Z-map) — grown to about 500, 2 000 and 8 000 path points by
+scaling the pocket (half-widths 4:3, as many rings as fit), so the density of earlier moves near a point
+stays the same and the cost per point should stay flat. Reported: path points/s with exact self-removal,
+its cost per point relative to the 500-point pocket, and the Z-map sweep (exact_self_removal = False) for
+reference.
+
+    PYTHONPATH=python python bench/deflection.py [--repeat 2] [--only straight|pocket]
 """
 
 from __future__ import annotations
@@ -30,6 +38,12 @@ import netshape as ns
 from netshape import deflection as d
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+
+# the pocket programs live with the tests (tests/python/deflection/pocket_cases.py)
+sys.path.insert(0, os.path.join(HERE, "..", "tests", "python", "deflection"))
+from pocket_cases import Pocket, pocket_gcode, stock_bounds  # noqa: E402
+
+POCKET_POINTS = (500, 2000, 8000)
 
 
 def _example():
@@ -218,10 +232,60 @@ def best_of(fn, repeat):
     return best, out
 
 
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description="deflection throughput vs NumPy")
-    ap.add_argument("--repeat", type=int, default=2)
-    args = ap.parse_args(argv)
+def grown_pocket(points: int, spacing: float = 0.5, diameter: float = 8.0, stepover: float = 3.0):
+    """The pocket (half-widths 20·k x 15·k mm, corner R8, as many rings at ``stepover`` as leave the
+    innermost one narrower than the tool) whose run has about ``points`` path points: (Pocket, Toolpath)."""
+    r = 0.5 * diameter
+
+    def make(k):
+        hy = 15.0 * k
+        rings = max(0, math.ceil((hy - 2 * r) / stepover))
+        while rings > 0 and hy - r - rings * stepover <= 1e-6:
+            rings -= 1
+        return Pocket(half_x=20.0 * k, half_y=hy, tool_diameter=diameter, stepover=stepover, rings=rings)
+
+    def count(k):
+        return len(d.contour_of(ns.toolpath.parse_gcode(pocket_gcode(make(k))), spacing)[0])
+
+    lo, hi = 0.5, 8.0
+    for _ in range(30):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if count(mid) < points else (lo, mid)
+    p = make(hi)
+    return p, ns.toolpath.parse_gcode(pocket_gcode(p))
+
+
+def pocket_table(repeat: int) -> None:
+    cutter = ns.cutter.Cutter.flat_end(8.0, 4, math.radians(30.0))
+    cutter.flute_length, cutter.stick_out, cutter.youngs_modulus = 20.0, 40.0, 600e3
+    rows = []
+    for target in POCKET_POINTS:
+        p, prog = grown_pocket(target)
+        lo, hi = stock_bounds(p)
+        stock = ns.stock.ZMap(lo[0], hi[0], lo[1], hi[1], 0.1, hi[2], lo[2])
+        setup = d.setup_path(prog, cutter, stock, coefficients="leekunhwee_flat_slot", rpm=8000, spacing=0.5,
+                             side="right", profile_levels=0)
+        n = len(setup.nominal)
+        normals = np.asarray(d.wall_normals(setup.nominal, setup.side))
+        zero = np.zeros(n)
+        swept_opt = d.PathOptions()
+        swept_opt.side, swept_opt.profile_levels, swept_opt.exact_self_removal = setup.side, 0, False
+        t_e, _ = best_of(lambda: d.path_wall_errors(setup.model, cutter, stock, setup.nominal, normals, zero,
+                                                    setup.options), repeat)
+        t_z, _ = best_of(lambda: d.path_wall_errors(setup.model, cutter, stock, setup.nominal, normals, zero,
+                                                    swept_opt), repeat)
+        rows.append((n, 2 * p.half_x, 2 * p.half_y, p.rings, n / t_e, n / t_z))
+    base = rows[0][4]
+    print(f"pocket, rings + finish in one run (D8, 4 flutes, 2 mm deep, stepover 3 mm, 0.5 mm points, "
+          f"0.1 mm Z-map), load average {os.getloadavg()[0]:.1f}")
+    print("| path points | pocket [mm] | rings | exact self-removal: points/s | cost per point ÷ 500-point case "
+          "| Z-map sweep: points/s |")
+    print("|---|---|---|---|---|---|")
+    for n, w, h, rings, r_e, r_z in rows:
+        print(f"| {n:,} | {w:.0f} x {h:.0f} | {rings} | {r_e:,.0f} | {base / r_e:.2f} | {r_z:,.0f} |")
+
+
+def straight_table(repeat: int) -> None:
     ex = _example()
     with tempfile.TemporaryDirectory() as tmp:
         (lo, hi), rough, finish = ex.cases()["straight"]
@@ -240,12 +304,12 @@ def main(argv=None) -> int:
     normals = np.asarray(d.wall_normals(setup.nominal, setup.side))
     print(f"straight cut across arc-preshaped stock: {n} path points, load average {os.getloadavg()[0]:.1f}")
     rows = []
-    t_c, r = best_of(lambda: d.predict_path(setup), args.repeat)
+    t_c, r = best_of(lambda: d.predict_path(setup), repeat)
     t_n, e_np = best_of(lambda: numpy_path(setup, normals, np.zeros(n)), 1)
     diff = np.max(np.abs(np.asarray(r.error) - e_np))
     rows.append(("predict", n / t_c, n / t_n, 1, 1))
     for sc in ("one-d", "integrated", "sectional", "accelerated"):
-        t_c, res = best_of(lambda: d.compensate_path(setup, scheme=sc), args.repeat)
+        t_c, res = best_of(lambda: d.compensate_path(setup, scheme=sc), repeat)
         pts = n * res.path_evaluations
         if sc in ("integrated", "accelerated"):
             t_n, (ev, _) = best_of(lambda: numpy_scheme(setup, sc == "accelerated"), 1)
@@ -259,6 +323,17 @@ def main(argv=None) -> int:
         ratio = f"{a / b:.1f}x" if b == b else "—"
         nb = f"{b:,.0f}" if b == b else "—"
         print(f"| {name} | {a:,.0f} | {nb} | {ratio} | {ea} / {eb if eb else '—'} |")
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description="deflection throughput vs NumPy; pocket prediction rate by size")
+    ap.add_argument("--repeat", type=int, default=2)
+    ap.add_argument("--only", choices=("straight", "pocket"), default=None)
+    args = ap.parse_args(argv)
+    if args.only in (None, "straight"):
+        straight_table(args.repeat)
+    if args.only in (None, "pocket"):
+        pocket_table(args.repeat)
     return 0
 
 
