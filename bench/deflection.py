@@ -5,8 +5,8 @@ Case: the straight cut across arc-preshaped stock of examples/deflection_seeds00
 1993 §5: D 25 mm, 4 flutes, 60°, stick-out 250 mm, A 2.5 mm, f 0.0127 mm), 0.5 mm point spacing.
 
 The NumPy reference evaluates the same path model: per point the engagement scan (720 angles,
-material = the pre-path Z-map's pillars via ZMap.is_material_points minus the discs swept along the
-earlier points, largest gap removed, edges bisected 40 times), the element forces of every disk and flute vectorised in NumPy with the same smooth edge weights, the
+material = the pre-path Z-map's bilinear surface (ZMap.height_at_points) minus the discs swept along
+every earlier move and the move into the point, largest gap removed, edges bisected 40 times), the element forces of every disk and flute vectorised in NumPy with the same smooth edge weights, the
 distributed cantilever influence, the wall error at bottom/middle/top; the integrated and Anderson
 schemes iterate it in Python exactly as the C++ does. A rate is path points × path evaluations / CPU
 time (time.process_time), best of --repeat runs.
@@ -96,31 +96,24 @@ def _seg_dist2(q, a, b):
 
 
 def numpy_window(zmap, R, tip, xc, earlier, angles=720):
-    """Engaged window of the C++ scan: material of the pre-path Z-map minus the discs swept along the
-    earlier points (within reach), an angular scan, the largest gap removed, the edges bisected."""
+    """Engaged window of the C++ scan: material of the pre-path Z-map's bilinear surface minus the
+    discs swept along every earlier move and along the move into the tip (up to, not including, the
+    tip's own disc), an angular scan, the largest gap removed, the edges bisected."""
     yc = np.array([-xc[1], xc[0]])
-    reach = 2 * R + 2.0
-    if len(earlier):
-        far = np.linalg.norm(earlier - tip[None, :2], axis=1) > reach
-        k = len(earlier)
-        # walk back until two consecutive points are out of reach (as the C++ does)
-        stop = 0
-        for j in range(k - 1, 0, -1):
-            if far[j] and far[j - 1]:
-                stop = j - 1
-                break
-        pts = earlier[stop:]
-    else:
-        pts = earlier
+    pts = earlier
 
     def material(phi):
         q = tip[None, :2] + R * (np.sin(phi)[:, None] * xc[None] + np.cos(phi)[:, None] * yc[None])
-        p3 = np.column_stack([q, np.full(len(q), tip[2] + 1e-6)])
-        m = np.asarray(zmap.is_material_points(p3))
+        h = np.asarray(zmap.height_at_points(q))
+        z = tip[2] + 1e-6
+        m = (z >= zmap.bottom) & (z < h)
         if len(pts) == 1:
             m &= np.sum((q - pts[0]) ** 2, axis=1) >= R * R
         elif len(pts) > 1:
             m &= np.min(_seg_dist2(q, pts[:-1], pts[1:]), axis=1) >= R * R
+        if len(pts):
+            r = R * (1.0 - 1e-9)
+            m &= _seg_dist2(q, pts[-1:], tip[None, :2])[:, 0] >= r * r
         return m
 
     phi = 2 * math.pi * np.arange(angles) / angles
