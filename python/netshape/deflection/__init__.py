@@ -450,6 +450,10 @@ def _fits_arc(blk, pts, tol: float) -> bool:
     frac = (ang - ang[0]) / sweep
     if np.any(np.diff(frac) <= 0):
         return False
+    # the ends' radii must agree as closely as a G-code reader accepts (1e-3 of the radius, and well
+    # within netshape's own reader tolerance), so that the written arc reads back
+    if abs(r[-1] - r[0]) > 5e-4 * r[0]:
+        return False
     return bool(np.max(np.abs(r - (r[0] + (r[-1] - r[0]) * frac))) <= tol)
 
 

@@ -6,7 +6,9 @@ samples the written contour ``density`` times more densely and measures its wall
 tolerance at the reference level between samples (the offset curve bends at engagement entries and
 exits) or is worse than the uncompensated program, samples of a denser drawing are added there and
 the contour is compensated again, up to ``max_rounds`` times; a round that does not make the written
-program better ends the refinement, and the best written program is kept. What it reports is the last written
+program better ends the refinement, and the best written program is kept. Last, where the written
+program is worse than the uncompensated one between samples, the offsets of the samples around are
+halved (then zeroed) until it is nowhere worse. What it reports is the last written
 program's check, at every level: a 2-D offset moves the whole tool, so it cannot remove the taper
 between the bottom and the top of the wall that the tool's bending leaves.
 """
@@ -155,10 +157,10 @@ def compensate_checked(setup, *, scheme: str = "accelerated", level: str = "midd
         bad = check.final & ((a_ref > tolerance) | (a_ref > b_ref + 0.01 * tolerance))
         score = float(np.max(a_ref[check.final], initial=0.0)) + (0.0 if res.converged else 1.0)
         if best is not None and score >= best[0]:
-            return best[1]  # refining made the written program no better: keep the best one
+            return _never_worse(best[1], d_pts, density, arc_tol)  # refining did not help: the best one
         best = (score, out)
         if not np.any(bad) or rounds >= max_rounds or not res.converged:
-            return out
+            return _never_worse(out, d_pts, density, arc_tol)
         # the pool's samples within one check spacing of each miss (largest misses first, at most as
         # many new samples as the setup has)
         grow = np.zeros(len(p_pts), dtype=bool)
@@ -170,5 +172,35 @@ def compensate_checked(setup, *, scheme: str = "accelerated", level: str = "midd
             grow |= near
             budget -= int(np.sum(near))
         if not np.any(grow):
-            return out
+            return _never_worse(out, d_pts, density, arc_tol)
         selected = selected | grow
+
+
+def _never_worse(out: CheckedCompensation, d_pts, density: int, arc_tol: float) -> CheckedCompensation:
+    """Where the written program is worse than the uncompensated one between samples, halve the offsets
+    of the samples on either side (six times at most, then zero them), write and check again."""
+    from . import compensated_blocks, contour_samples
+
+    setup, res = out.setup, out.result
+    nominal = np.asarray(setup.nominal, dtype=float)
+    normals = np.asarray(res.normals, dtype=float)
+    C = np.asarray(res.offsets, dtype=float).copy()
+    arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(nominal[:, 0]), np.diff(nominal[:, 1])))])
+    for attempt in range(7):
+        b = np.interp(out.check.s, out.before.s, np.abs(out.before.error[:, out.level]))
+        worse = out.check.final & (np.abs(out.check.error[:, out.level]) > b + 0.01 * out.tolerance)
+        if not np.any(worse):
+            return out
+        for s in out.check.s[worse]:
+            k = int(np.clip(np.searchsorted(arc, s), 1, len(arc) - 1))
+            C[k - 1:k + 1] = 0.0 if attempt == 6 else 0.5 * C[k - 1:k + 1]
+        positions = nominal.copy()
+        positions[:, :2] += C[:, None] * normals
+        blocks, origin = compensated_blocks(setup, positions, arc_tolerance=arc_tol)
+        written = setup.program.with_blocks(blocks, origin)
+        w_pts = contour_samples(written, setup.spacing, density)[0]
+        check = check_against_drawing(setup.model, setup.cutter, setup.stock, w_pts, d_pts, out.final, setup.side,
+                                      setup.options)
+        out = CheckedCompensation(res, setup, blocks, origin, check, out.before, out.rounds, out.final, out.level,
+                                  out.tolerance)
+    return out

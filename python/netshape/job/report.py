@@ -191,6 +191,8 @@ def write_html(path, summary: dict, images: dict[str, str]) -> None:
     if notes:
         out.append("<ul>" + "".join(f'<li class="note">{html.escape(n)}</li>' for n in notes) + "</ul>")
     dfl = summary.get("deflection")
+    if dfl and dfl.get("reason"):
+        out.append(f'<p class="note">deflection: {html.escape(dfl["reason"])}</p>')
     if dfl:
         out.append('<h2>Deflection: contours</h2><table id="contours"><tr><th>line</th><th>final wall</th>'
                    "<th>converged</th><th>iterations</th><th>max residual [mm]</th></tr>")

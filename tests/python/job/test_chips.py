@@ -40,7 +40,8 @@ def test_3d_chips_all_predictions(shared_data, tmp_path):
     assert e["total"]["max_after_mm"] < e["total"]["max_before_mm"]
     # a ball nose: the deflection model (flat end mills) says why it has no figures, it does not report 0
     assert e["deflection"]["max_before_mm"] is None
-    assert "flat end mill" in s["stages"]["deflection"]
+    assert s["stages"]["deflection"] == "skipped"
+    assert "flat end mill" in s["deflection"]["reason"]
     # a ball nose of 10 mm in aluminium-like coefficients: forces of tens to hundreds of newtons
     assert 10 < s["forces"]["max_peak_resultant_N"] < 5000
     assert s["cycle_time_s"]["original"] > 0 and s["cycle_time_s"]["compensated"] > 0

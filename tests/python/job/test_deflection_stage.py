@@ -37,37 +37,50 @@ def _job(tmp_path):
 class _Errors:
     def __init__(self, n, middle):
         self.error = np.column_stack([np.full(n, middle / 2), np.full(n, middle), np.full(n, 2 * middle)])
+        self.depth = np.full(n, 3.0)
+        self.engaged = np.ones(n, dtype=np.int32)
 
 
 def _fake_api(monkeypatch, calls):
     """Stand-ins for the deflection area's contour API with known answers: 20 µm wall error at the
-    middle level before, 1 µm after; the compensated contour is the nominal one."""
+    middle level before, 1 µm after (the written program's check); the compensated contour is the
+    nominal one. The final-wall rule itself runs for real on the stand-in's points."""
     from types import SimpleNamespace
 
-    def setup_path(program, cutter, stock, *, coefficients, rpm, spacing):
+    import netshape.deflection.checked as checked
+
+    def setup_path(program, cutter, stock, *, coefficients, rpm, spacing, feed_per_tooth=None):
         calls.append(("setup", len(program.blocks), rpm))
-        pts = [np.asarray(program.blocks[0].start)]
-        for b in program.blocks:
+        pts, owner = [np.asarray(program.blocks[0].start)], [0]
+        for i, b in enumerate(program.blocks):
             k = max(1, int(np.ceil(b.length() / spacing)))
             pts += [np.asarray(b.point_at(j / k)) for j in range(1, k + 1)]
+            owner += [i] * k
         if stock.max_height() < -5.5 and program.blocks[0].start[2] > -4:
             raise ValueError("program: the contour never touches the stock")
-        return SimpleNamespace(nominal=np.array(pts), program=program)
+        return SimpleNamespace(nominal=np.array(pts), program=program, owner=np.array(owner),
+                               side=netshape.deflection.WallSide.right)
 
     def predict_path(setup):
         return _Errors(len(setup.nominal), 0.020)
 
-    def compensate_path(setup, *, scheme, level):
+    def check(setup, middle):
+        n = len(setup.nominal)
+        arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(setup.nominal[:, :2], axis=0).T))])
+        return SimpleNamespace(s=arc, error=_Errors(n, middle).error, final=np.ones(n, dtype=bool),
+                               engaged=np.ones(n, dtype=bool), points=setup.nominal)
+
+    def compensate_checked(setup, *, scheme, level, tolerance, later_program, block_offset):
         calls.append(("compensate", scheme, level))
-        return SimpleNamespace(converged=True, message="", iterations=4, positions=setup.nominal,
-                               after=_Errors(len(setup.nominal), 0.001))
+        blocks = list(setup.program.blocks)
+        return SimpleNamespace(result=SimpleNamespace(converged=True, message="", iterations=4), converged=True,
+                               blocks=blocks, origin=list(range(len(blocks))), before=check(setup, 0.020),
+                               check=check(setup, 0.001), before_mm={"bottom": 0.01, "middle": 0.02, "top": 0.04},
+                               after_mm={"bottom": 0.0005, "middle": 0.001, "top": 0.002})
 
-    def compensated_blocks(setup, positions):
-        return list(setup.program.blocks), list(range(len(setup.program.blocks)))
-
-    for name, f in (("setup_path", setup_path), ("predict_path", predict_path),
-                    ("compensate_path", compensate_path), ("compensated_blocks", compensated_blocks)):
-        monkeypatch.setattr(netshape.deflection, name, f, raising=False)
+    monkeypatch.setattr(netshape.deflection, "setup_path", setup_path)
+    monkeypatch.setattr(netshape.deflection, "predict_path", predict_path)
+    monkeypatch.setattr(checked, "compensate_checked", compensate_checked)
 
 
 def test_contour_runs_of_the_demo_pocket():
@@ -94,9 +107,15 @@ def test_a_present_prediction_reaches_the_summary(tmp_path, monkeypatch):
     assert d["max_before_mm"] == pytest.approx(0.020) and d["max_after_mm"] == pytest.approx(0.001)
     v = s["errors"]["volumetric"]
     t = s["errors"]["total"]
-    # root sum of squares per point: bounded by the sources' maxima
-    assert max(0.020, v["max_before_mm"]) <= t["max_before_mm"] <= math.hypot(0.020, v["max_before_mm"]) + 1e-12
+    # on the final walls the errors add along the wall normal: within the machine's error of the wall
+    # error before; after, the volumetric residual is added in the adverse direction
+    assert 0.020 - v["max_before_mm"] <= t["max_before_mm"] <= 0.020 + v["max_before_mm"] + 1e-12
+    assert 0.001 <= t["max_after_mm"] <= 0.001 + v["max_after_mm"] + 1e-12
     assert t["max_after_mm"] < t["max_before_mm"]
+    # the per-contour block: the rings are not final walls, the finishing passes are
+    contours = s["deflection"]["contours"]
+    assert [c["final_wall"] for c in contours].count(True) >= 1
+    assert all(c["converged"] for c in contours if c["final_wall"])
     assert s["job"]["compensations"] == ["deflection", "volumetric"]
     assert s["stages"]["deflection"] == "ok"
 
