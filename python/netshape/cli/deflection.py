@@ -125,6 +125,8 @@ def run_wall(args) -> int:
     from netshape import deflection as d
     from netshape.cli import CliError
 
+    a.check_outputs(args, files=("--json",))
+
     # options checked against each other (single values were checked while parsing, a --tool file's
     # values by load_cutter)
     if args.tool:
@@ -180,6 +182,9 @@ def run_predict(args) -> int:
 
     from netshape import deflection as d
 
+    from netshape._atomic import all_or_nothing
+
+    a.check_outputs(args, files=("--json",), folders=("--plot",))
     t0 = time.perf_counter()
     setup = _setup(args)
     r = d.predict_path(setup)
@@ -189,16 +194,17 @@ def run_predict(args) -> int:
           f"{str(setup.side).split('.')[-1]} wall")
     print(f"largest wall error: bottom {mx['bottom'] * 1e3:.2f} um, middle {mx['middle'] * 1e3:.2f} um, "
           f"top {mx['top'] * 1e3:.2f} um   ({dt:.2f} s)")
-    if args.json:
-        prof = np.asarray(r.profile)
-        _write_json(args.json, {"max_wall_error_mm": mx, "side": str(setup.side).split(".")[-1],
-                                "feed_per_tooth_mm": setup.model.force.feed_per_tooth,
-                                "points": d.path_table(r, setup.nominal),
-                                "profile": {"levels": int(prof.shape[1]), "error_mm": prof.tolist()}})
-    if args.plot:
-        from netshape.deflection.plots import plot_prediction
+    with all_or_nothing():
+        if args.json:
+            prof = np.asarray(r.profile)
+            _write_json(args.json, {"max_wall_error_mm": mx, "side": str(setup.side).split(".")[-1],
+                                    "feed_per_tooth_mm": setup.model.force.feed_per_tooth,
+                                    "points": d.path_table(r, setup.nominal),
+                                    "profile": {"levels": int(prof.shape[1]), "error_mm": prof.tolist()}})
+        if args.plot:
+            from netshape.deflection.plots import plot_prediction
 
-        plot_prediction(setup, r, args.plot)
+            plot_prediction(setup, r, args.plot)
     return 0
 
 
@@ -207,8 +213,10 @@ def run_compensate(args) -> int:
 
     from netshape import deflection as d
     from netshape.cli import CliError
-    from netshape.toolpath import write_gcode
+    from netshape._atomic import all_or_nothing
+    from netshape.toolpath import gcode_encoding, write_gcode
 
+    a.check_outputs(args, files=("--output", "--json"))
     t0 = time.perf_counter()
     setup = _setup(args)
     res = d.compensate_path(setup, scheme=args.scheme, level=args.level, tolerance=args.tolerance,
@@ -223,11 +231,13 @@ def run_compensate(args) -> int:
     if not res.converged:
         raise CliError(f"{args.output} not written: {res.message}")
     program = d.compensated_program(setup, np.asarray(res.positions), arc_tolerance=args.tolerance)
-    write_gcode(program, args.output, header_comment=f"netshape deflection compensate: {args.scheme}, "
-                f"{args.level}, max wall error {before * 1e3:.1f} -> {after * 1e3:.2f} um")
-    if args.json:
-        _write_json(args.json, {"scheme": args.scheme, "level": args.level, "converged": True,
-                                "iterations": res.iterations, "path_evaluations": res.path_evaluations,
-                                "max_wall_error_before_mm": before, "max_wall_error_after_mm": after,
-                                "time_s": dt, "message": res.message})
+    with all_or_nothing():
+        write_gcode(program, args.output, encoding=gcode_encoding(args.program),
+                    header_comment=f"netshape deflection compensate: {args.scheme}, {args.level}, max wall error "
+                    f"{before * 1e3:.1f} -> {after * 1e3:.2f} um")
+        if args.json:
+            _write_json(args.json, {"scheme": args.scheme, "level": args.level, "converged": True,
+                                    "iterations": res.iterations, "path_evaluations": res.path_evaluations,
+                                    "max_wall_error_before_mm": before, "max_wall_error_after_mm": after,
+                                    "time_s": dt, "message": res.message})
     return 0

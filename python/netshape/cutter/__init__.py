@@ -23,15 +23,10 @@ from __future__ import annotations
 
 import math
 import os
-import sys
 
 from .._atomic import atomic_write
 from .._core import cutter as _cutter
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
 
 Cutter = _cutter.Cutter
 CutterKind = _cutter.CutterKind
@@ -102,11 +97,9 @@ def _cutter_kind_name(k) -> str:
 
 def load_cutter(path: str | os.PathLike) -> Cutter:
     """Read a cutter from a TOML file. Unknown keys and bad values raise ValueError naming key and value."""
-    with open(path, "rb") as fh:
-        try:
-            data = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise ValueError(f"{os.fspath(path)}: not valid TOML: {exc}") from None
+    from .._text import read_toml
+
+    data = read_toml(path)
     try:
         return cutter_from_dict(data, source=os.fspath(path))
     except ValueError as exc:

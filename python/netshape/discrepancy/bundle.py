@@ -102,10 +102,6 @@ from typing import Any
 
 import numpy as np
 
-try:  # Python ≥ 3.11
-    import tomllib
-except ModuleNotFoundError:  # pragma: no cover - Python 3.10 needs the tomli package
-    import tomli as tomllib
 
 from ._manifest import Bundle, _check_keys, _experiment_head, _fail, _mode, _number, _read_csv
 from .wall_bundle import WallContourExperiment, WallExperiment, _load_wall
@@ -358,11 +354,9 @@ def load_bundle(path: str | os.PathLike) -> Bundle:
     manifest = p if p.is_file() else p / "manifest.toml"
     if not manifest.is_file():
         raise FileNotFoundError(2, "No such file or directory", str(manifest))
-    try:
-        with open(manifest, "rb") as fh:
-            doc = tomllib.load(fh)
-    except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{manifest}: not valid TOML: {exc}") from None
+    from netshape._text import read_toml
+
+    doc = read_toml(manifest)
     kind = doc.get("kind")
     where = str(manifest)
     if kind not in KINDS:

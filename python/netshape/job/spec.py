@@ -13,15 +13,10 @@ import copy
 import math
 import os
 import re
-import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
 
 #: Work offsets a program may select; the job gives each as ``G54_mm = [x, y, z]``.
 WORK_OFFSETS = ("G54", "G55", "G56", "G57", "G58", "G59")
@@ -138,11 +133,9 @@ def _path(src: str, base: Path, key: str, v: Any, *, must_exist: bool = True) ->
 
 
 def _read_toml(path: Path, src_for_errors: str) -> dict:
-    try:
-        with open(path, "rb") as fh:
-            return tomllib.load(fh)
-    except tomllib.TOMLDecodeError as exc:
-        raise JobError(f"{src_for_errors}: not valid TOML: {exc}") from None
+    from netshape._text import read_toml
+
+    return read_toml(path, src_for_errors)
 
 
 def _tool(src: str, base: Path, where: str, v: Any) -> dict:
