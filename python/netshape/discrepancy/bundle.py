@@ -244,6 +244,9 @@ def _load_force(doc: dict, root: Path, where: str) -> Bundle:
             raise _fail(we, f"format = {fmt!r}: must be 'csv' or 'dynoware'")
         if times is not None and not np.all(np.diff(times) > 0):
             raise _fail(str(path), "column 'time_s': times must increase strictly")
+        if angles is not None and (len(angles) < 2 or not np.median(np.abs(np.diff(angles))) > 0):
+            raise _fail(str(path), "column 'angle_deg': the angle must advance from row to row (the median step "
+                        "is 0)")
         if "time_window_s" in e:
             win = e["time_window_s"]
             if (

@@ -317,6 +317,10 @@ def _compensate(src: str, v: Any) -> dict:
     return out
 
 
+#: Largest work offset or tool length accepted [mm] (100 m: beyond any machine's travel).
+MAX_OFFSET_MM = 1e5
+
+
 def _offsets(src: str, v: Any) -> dict:
     known = {f"{g}_mm" for g in WORK_OFFSETS} | {"tool_length_mm"}
     t = _check_keys(src, "offsets", v, known)
@@ -324,9 +328,14 @@ def _offsets(src: str, v: Any) -> dict:
     for g in WORK_OFFSETS:
         if f"{g}_mm" in t:
             out[g] = _vec3(src, f"offsets.{g}_mm", t[f"{g}_mm"])
+            for i, x in enumerate(out[g]):
+                if abs(x) > MAX_OFFSET_MM:
+                    raise _err(src, f"offsets.{g}_mm[{i}]", x, f"must be within ±{MAX_OFFSET_MM:g} [mm]")
     out["tool_length_mm"] = None
     if "tool_length_mm" in t:
         out["tool_length_mm"] = _number(src, "offsets.tool_length_mm", t["tool_length_mm"], nonneg=True)
+        if out["tool_length_mm"] > MAX_OFFSET_MM:
+            raise _err(src, "offsets.tool_length_mm", t["tool_length_mm"], f"must be at most {MAX_OFFSET_MM:g} [mm]")
     return out
 
 
