@@ -154,8 +154,12 @@ def _client(scheduler: str | None, workers: int):
         check_scheduler(scheduler)
         try:
             return Client(scheduler, timeout="10s"), None
-        except (OSError, TimeoutError) as exc:
-            raise ValueError(f"--scheduler = {scheduler}: cannot connect ({' '.join(str(exc).split())})") from None
+        except Exception as exc:  # noqa: BLE001 - refused, timed out, or something else answers there
+            why = " ".join(str(exc).split())[:200] or type(exc).__name__
+            if isinstance(exc, MemoryError):
+                why = "what answers there does not speak the Dask protocol"
+            raise ValueError(f"--scheduler = {scheduler}: cannot connect ({why}); is `dask scheduler` running "
+                             "there?") from None
     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
     return Client(cluster), cluster
 
