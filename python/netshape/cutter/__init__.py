@@ -66,6 +66,12 @@ def cutter_from_dict(d: dict, *, source: str = "cutter") -> Cutter:
     flutes = d["flutes"]
     if isinstance(flutes, bool) or not isinstance(flutes, int):
         raise ValueError(f"flutes = {flutes!r}: must be an integer")
+    if not -2**31 <= flutes < 2**31:  # beyond the core's int: its one 1..64 check on the nearest int, this value named
+        near = 2**31 - 1 if flutes > 0 else -2**31
+        try:
+            check_flutes(near, "flutes")
+        except ValueError as exc:
+            raise ValueError(str(exc).replace(str(near), str(flutes))) from None
     c.flutes = flutes  # 1..64: checked by validate() below
     c.helix = math.radians(_number("helix_deg", d["helix_deg"]))
     c.flute_length = _number("flute_length_mm", d["flute_length_mm"])
