@@ -173,3 +173,18 @@ def test_latin1_comment_kept_by_run(tmp_path):
     out = tmp_path / "o"
     assert main(["run", str(job), "--out", str(out), "--quiet"]) == 0
     assert LATIN1 in (out / "part_compensated.ngc").read_bytes()
+
+
+def test_latin1_byte_in_a_deflection_stock_and_heights_csv(tmp_path, capsys):
+    stock = tmp_path / "stock.toml"
+    stock.write_bytes(b"# Rohteil Alu, 60 x 50 Ma\xdfe\nmin_mm = [-10.0, -10.0, -10.0]\nmax_mm = [40.0, 5.0, 0.0]\n"
+                      b"spacing_mm = 0.5\n")
+    _one_line(capsys, ["deflection", "predict", str(DEMO / "part.ngc"), "--tool", str(DEMO / "tool.toml"),
+                       "--stock", str(stock), "--coefficients", "leekunhwee_flat_slot", "--rpm", "8000"],
+              "stock.toml:1: not UTF-8 text (byte 0xDF")
+    from .test_cli_outputs import quick_job
+
+    job = quick_job(tmp_path)
+    (job.parent / "h.csv").write_bytes(b"# H\xf6hen\n" + b"\n".join([b"0,0,0"] * 3) + b"\n")
+    job.write_text(job.read_text().replace("\nspacing_mm = 1.0", '\nheights = "h.csv"'))
+    _one_line(capsys, ["run", str(job), "--out", str(tmp_path / "o"), "--quiet"], "h.csv:1: not UTF-8 text (byte 0xF6")

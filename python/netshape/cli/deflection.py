@@ -170,7 +170,10 @@ def _setup(args):
     from netshape.cutter import load_cutter
     from netshape.toolpath import read_gcode
 
+    from netshape._text import read_toml
+
     cutter = load_cutter(args.tool)
+    read_toml(args.stock)  # not UTF-8 or nested too deep: refused here naming the file and line
     stock = d.load_stock(args.stock)
     program = read_gcode(args.program)
     return d.setup_path(program, cutter, stock, coefficients=args.coefficients, rpm=args.rpm, spacing=args.spacing,

@@ -159,7 +159,11 @@ def stage_stock(job: Job):
         if path.suffix.lower() == ".npy":
             h = np.load(path, allow_pickle=False)
         else:
-            h = np.loadtxt(path, delimiter=",", ndmin=2)
+            import io
+
+            from netshape._text import read_text
+
+            h = np.loadtxt(io.StringIO(read_text(path)), delimiter=",", ndmin=2)
         h = np.asarray(h, dtype=float)
         if h.ndim != 2 or min(h.shape) < 2:
             raise ValueError(f"stock.heights = {str(path)!r}: shape {h.shape}, must be (ny, nx) with ny, nx ≥ 2")
