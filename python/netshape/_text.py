@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import sys
 
 if sys.version_info >= (3, 11):
@@ -54,38 +55,30 @@ def read_text(path, src: str | None = None) -> str:
     return decode(read_bytes(path), _name(path, src))
 
 
-def _depth_check(text: str, src: str, opening: str, closing: str) -> None:
-    """Refuse nesting deeper than MAX_DEPTH counted over brackets outside strings (an upper bound for
-    TOML inline tables and arrays, exact for JSON)."""
-    depth, in_str, esc, quote = 0, False, False, ""
-    line = 1
-    for ch in text:
-        if ch == "\n":
-            line += 1
-            if quote in ("'", '"') and opening == "[{":  # TOML basic/literal strings end at the line
-                in_str = False
-        if in_str:
-            if esc:
-                esc = False
-            elif ch == "\\" and quote == '"':
-                esc = True
-            elif ch == quote:
-                in_str = False
-            continue
-        if ch in "\"'" and (ch == '"' or opening == "[{"):
-            in_str, quote = True, ch
-        elif ch == "#" and opening == "[{":
-            in_str, quote = True, "\n"  # a TOML comment runs to the end of the line
-        elif ch in opening:
+#: What is not structure: strings (and TOML comments), dropped before brackets are counted.
+_TOML_SKIP = re.compile(r'"""[\s\S]*?"""|\'\'\'[\s\S]*?\'\'\'|"(?:\\.|[^"\\\n])*"|\'[^\'\n]*\'|#[^\n]*')
+_JSON_SKIP = re.compile(r'"(?:\\.|[^"\\])*"')
+
+
+def _depth_check(text: str, src: str, skip: re.Pattern) -> None:
+    """Refuse nesting deeper than MAX_DEPTH, counted over the brackets outside strings and comments (an
+    upper bound of the nesting of TOML inline tables and arrays, exact for JSON)."""
+    if text.count("[") + text.count("{") <= MAX_DEPTH:
+        return
+    bare = skip.sub(lambda m: "\n" * m.group().count("\n"), text)  # keeps the line numbers
+    depth = 0
+    for m in re.finditer(r"[\[\]{}]", bare):
+        if m.group() in "[{":
             depth += 1
             if depth > MAX_DEPTH:
+                line = bare.count("\n", 0, m.start()) + 1
                 raise InputError(f"{src}:{line}: nested more than {MAX_DEPTH} levels deep")
-        elif ch in closing:
+        else:
             depth = max(0, depth - 1)
 
 
 def loads_toml(text: str, src: str) -> dict:
-    _depth_check(text, src, "[{", "]}")
+    _depth_check(text, src, _TOML_SKIP)
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -101,7 +94,7 @@ def read_toml(path, src: str | None = None) -> dict:
 
 
 def loads_json(text: str, src: str):
-    _depth_check(text, src, "[{", "]}")
+    _depth_check(text, src, _JSON_SKIP)
 
     def constant(name):
         raise InputError(f"{src}: not valid JSON: {name} is not a number JSON allows")

@@ -54,16 +54,20 @@ def _cases(tmp: Path):
     adir = tmp / "adir"
     adir.mkdir()
     job = str(tmp / "missing-job.toml")
+    # a device stands in for /dev/null: a FIFO of this test's own, so that a regression writing over it
+    # (as root may) replaces nothing of the system's
+    fifo = tmp / "device"
+    os.mkfifo(fifo)
     out = []
     for bad, why in ((str(afile), "is a file, not a folder"), (str(afile / "sub"), "lies under"),
-                     ("/dev/null", "not a folder")):
+                     (str(fifo), "not a folder")):
         out += [(["run", job, "--out", bad, "--quiet"], "--out", bad, why),
                 (["batch", job, "--out", bad, "--scheduler", "none", "--quiet"], "--out", bad, why),
                 (["diagnose", str(tmp), "--json", str(tmp / "d.json"), "--report", bad], "--report", bad, why),
                 (["deflection", "predict", "p.nc", *PATH_COMMON, "--plot", bad], "--plot", bad, why),
                 (["posture", "plan", "--impeller", "--out", bad], "--out", bad, why)]
     for bad, why in ((str(adir), "is a folder, not a file"), (str(afile / "o.json"), "lies under"),
-                     ("/dev/null", "not a regular file")):
+                     (str(fifo), "not a regular file")):
         out += [(PLAN + ["--json", bad], "--json", bad, why),
                 (["diagnose", str(tmp), "--json", bad], "--json", bad, why),
                 (["deflection", "compensate", "p.nc", *PATH_COMMON, "-o", bad], "--output", bad, why),
@@ -80,6 +84,16 @@ def test_bad_output_paths_refused_before_any_work(tmp_path, monkeypatch, capsys)
         # refused before reading any input (the job and bundle given here do not exist)
         assert "no such file" not in line
         assert sorted(p.name for p in tmp_path.iterdir()) == before, argv
+
+
+def test_dev_null_refused_without_writing():
+    """/dev/null itself, checked only (a writer that renamed over it would replace the device)."""
+    from netshape._atomic import check_output_file, check_output_folder
+
+    with pytest.raises(ValueError, match=r"--json = '/dev/null': is not a regular file"):
+        check_output_file("/dev/null", "--json")
+    with pytest.raises(ValueError, match=r"--out = '/dev/null': is a file, not a folder"):
+        check_output_folder("/dev/null", "--out")
 
 
 def test_unwritable_folder_refused_naming_the_option(tmp_path, monkeypatch, capsys):

@@ -11,7 +11,7 @@ Mutation classes: TOML values replaced (wrong type, negative, zero, huge, non-fi
 value), keys deleted, duplicated or unknown, lines truncated, a Latin-1 byte, nesting 200 deep; G-code
 numbers replaced, garbage words, Latin-1 comments, truncation; CSV cells replaced (text, empty, NaN,
 huge), a column dropped or made constant; JSON values replaced by null, lists, strings, huge numbers,
-deep nesting; numeric options replaced; output paths that are a file, a folder, under a file, /dev/null.
+deep nesting; numeric options replaced; output paths that are a file, a folder, under a file, a device (a FIFO).
 Left out, with the issue 42 item that covers them: tiny positive spacings, steps, tolerances and feeds
 (1e-3 and below: `--spacing 1e-3` or `F0.001` is unbounded work) and huge counts (`--points 100000`),
 both item 4 (work bounded before it starts); huge feed scales (the G-code writer's range: item 2).
@@ -325,7 +325,10 @@ def mutate_option(argv: list[str], rng: random.Random, numeric: list[str]) -> li
 
 def bad_output(argv: list[str], option: str, inp: Path, rng: random.Random, folder: bool) -> list[str]:
     afile = inp / "mini.ngc"
-    choices = [str(afile), str(afile / "x"), "/dev/null"] if folder else [str(inp), str(afile / "x"), "/dev/null"]
+    device = inp / "device"  # a FIFO standing in for /dev/null (a regression must not replace the real one)
+    if not device.exists():
+        os.mkfifo(device)
+    choices = [str(afile), str(afile / "x"), str(device)] if folder else [str(inp), str(afile / "x"), str(device)]
     out = list(argv)
     out[out.index(option) + 1] = rng.choice(choices)
     return out
