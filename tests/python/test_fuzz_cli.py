@@ -381,8 +381,8 @@ def _entry_points(inp: Path, out: Path) -> dict:
 
 
 #: mutations per entry point (a few hundred in all)
-COUNTS = {"info": 25, "forces": 25, "deflection wall": 25, "deflection predict": 25, "deflection compensate": 20,
-          "volumetric map": 25, "volumetric compensate": 25, "plan": 30, "posture plan": 30, "diagnose": 25,
+COUNTS = {"info": 30, "forces": 30, "deflection wall": 25, "deflection predict": 25, "deflection compensate": 20,
+          "volumetric map": 25, "volumetric compensate": 25, "plan": 35, "posture plan": 30, "diagnose": 15,
           "run": 50, "batch": 12, "demo": 4}
 
 
