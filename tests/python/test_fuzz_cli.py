@@ -109,7 +109,8 @@ STOCK = "min_mm = [-16.0, -16.0, -6.0]\nmax_mm = [16.0, 12.0, 0.0]\nspacing_mm =
 BALL = ('kind = "ball"\ndiameter_mm = 4.0\nflutes = 2\nhelix_deg = 30.0\nflute_length_mm = 20.0\n'
         'stick_out_mm = 40.0\nshank_diameter_mm = 4.0\nshank_length_mm = 35.0\nholder_diameter_mm = 24.0\n'
         'holder_length_mm = 80.0\n')
-LIMITS = "[velocity]\nX = 200.0\nY = 200.0\nZ = 100.0\n[acceleration]\nX = 2000.0\nY = 2000.0\nZ = 1000.0\n"
+LIMITS = ("[limits]\nvmax_mm_s = 200.0\namax_mm_s2 = [2000.0, 2000.0, 1000.0]\n"
+          "[axes.z]\nvmax_mm_s = 100.0\namax_mm_s2 = 1000.0\njmax_mm_s3 = 1.0e5\n")
 
 # values a mutation puts in place of a TOML value, a G-code number, a CSV cell or an option
 TOML_VALUES = ["-1", "0", "1e300", "-1e300", "nan", "inf", "-inf", '""', '"x"', "[]", "{}", "true", "[1, 2]",
@@ -386,6 +387,22 @@ COUNTS = {"info": 30, "forces": 30, "deflection wall": 25, "deflection predict":
           "run": 50, "batch": 12, "demo": 4}
 
 
+def test_the_unmutated_inputs_run(base, tmp_path):
+    """Each entry point's command as the fuzz starts from it exits 0 (else its mutations test nothing)."""
+    for entry in COUNTS:
+        if entry == "demo":
+            continue
+        inp, out = _case_dir(base, tmp_path, len(entry))
+        argv = _entry_points(inp, out)[entry][0]
+        import time
+        t0 = time.time()
+        code, err = _run_case(argv, out, f"{entry} (unmutated)")
+        if TRACE:
+            print(entry, round(time.time() - t0, 2), file=sys.__stderr__, flush=True)
+        assert code == 0, (entry, err)
+        shutil.rmtree(inp.parent)
+
+
 @pytest.mark.parametrize("entry", list(COUNTS))
 def test_fuzz_entry_point(base, tmp_path, entry):
     rng = random.Random(f"{SEED}-{entry}")
@@ -412,4 +429,6 @@ def test_fuzz_entry_point(base, tmp_path, entry):
             print(f"{entry} #{i} ({kind}): {argv}", file=sys.__stderr__, flush=True)
         code, _ = _run_case(argv, out, f"{entry} #{i} ({kind})", allow_1=entry == "batch")
         outcomes[code] += 1
+    if TRACE:
+        print(f"{entry}: exit codes {outcomes}", file=sys.__stderr__, flush=True)
     assert sum(outcomes.values()) > 0
