@@ -118,14 +118,17 @@ def stage_names(job: Job) -> list[str]:
 
 
 def _owned_earlier(folder: Path) -> set[str]:
-    """Files an earlier run wrote into ``folder``, as its summary.json lists them (empty if none)."""
+    """Files an earlier run wrote into ``folder``, as its summary.json lists them (empty if none, or if
+    that summary.json is not one netshape wrote)."""
     try:
         from netshape._text import read_json
 
-        files = read_json(folder / "summary.json").get("files", {})
-    except (OSError, ValueError, AttributeError):
+        doc = read_json(folder / "summary.json")
+        files = doc.get("files", {})
+        ours = "netshape" in doc.get("versions", {})
+    except (OSError, ValueError, AttributeError, TypeError):
         return set()
-    if not isinstance(files, dict):
+    if not ours or not isinstance(files, dict):
         return set()
     return {v for v in files.values() if isinstance(v, str) and v and Path(v).name == v}
 
