@@ -76,6 +76,9 @@ def main(argv: list[str] | None = None) -> int:
     except (ValueError, CliError, FileNotFoundError, IsADirectoryError, PermissionError) as exc:
         print(f"{args._prog}: error: {_one_line(exc)}", file=sys.stderr)
         return 2
+    except RecursionError:  # backstop: input readers refuse deep nesting themselves, naming the file
+        print(f"{args._prog}: error: input nested too deeply to read", file=sys.stderr)
+        return 2
     except KeyboardInterrupt:
         print("netshape: interrupted", file=sys.stderr)
         return 130

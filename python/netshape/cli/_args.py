@@ -207,3 +207,25 @@ def _message(err: argparse.ArgumentError) -> str:
         value, choices = m.group(1).strip("'"), m.group(2).replace("'", "")
         return f"{names[-1]} = {value}: must be one of {choices}"
     return f"argument {name}: {msg}"
+
+
+def check_outputs(args, files: tuple[str, ...] = (), folders: tuple[str, ...] = ()) -> None:
+    """Check every output path the user gave before the command does any work (netshape._atomic: a
+    folder where a file is expected or the reverse, under a file, a device, not writable), and refuse
+    one path given to two options. Options are named as on the command line (``--json``); a
+    ``--opt ... (NAME)`` entry is the file NAME inside the folder option ``--opt``."""
+    import os
+
+    from netshape._atomic import check_output_file, check_output_folder
+
+    seen: dict[str, str] = {}
+    for option, check in [(o, check_output_file) for o in files] + [(o, check_output_folder) for o in folders]:
+        dest = option.lstrip("-").replace("-", "_")
+        value = getattr(args, dest, None)
+        if not value:
+            continue
+        check(value, option)
+        key = os.path.realpath(value)
+        if key in seen:
+            raise ValueError(f"{option} = {value!r}: the same path as {seen[key]}; give each output its own path")
+        seen[key] = option

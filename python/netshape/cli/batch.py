@@ -35,9 +35,11 @@ def register(sub) -> None:
 def run(args) -> int:
     from pathlib import Path
 
+    from netshape._atomic import check_output_folder
     from netshape.cli import CliError
     from netshape.job.batch import run_batch
 
+    check_output_folder(args.out, "--out")
     try:
         rows = run_batch(args.jobs, args.out, scheduler=args.scheduler, workers=args.workers,
                          parquet=args.parquet, progress=not args.quiet)

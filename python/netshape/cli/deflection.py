@@ -130,6 +130,8 @@ def run_wall(args) -> int:
     from netshape import deflection as d
     from netshape.cli import CliError
 
+    a.check_outputs(args, files=("--json",))
+
     # options checked against each other (single values were checked while parsing, a --tool file's
     # values by load_cutter)
     if args.tool:
@@ -173,7 +175,10 @@ def _setup(args):
     from netshape.cutter import load_cutter
     from netshape.toolpath import read_gcode
 
+    from netshape._text import read_toml
+
     cutter = load_cutter(args.tool)
+    read_toml(args.stock)  # not UTF-8 or nested too deep: refused here naming the file and line
     stock = d.load_stock(args.stock)
     program = read_gcode(args.program)
     return d.setup_path(program, cutter, stock, coefficients=args.coefficients, rpm=args.rpm, spacing=args.spacing,
@@ -208,13 +213,15 @@ def run_predict(args) -> int:
     import numpy as np
 
     from netshape import deflection as d
+    from netshape._atomic import all_or_nothing
     from netshape.cli import CliError
     from netshape.deflection import walls
 
+    a.check_outputs(args, files=("--json",), folders=("--plot",))
     t0 = time.perf_counter()
     setup = _setup(args)
     r = d.predict_path(setup)
-    final = _final_wall(setup, r)
+    final = own_final = _final_wall(setup, r)
     data = {"side": str(setup.side).split(".")[-1], "feed_per_tooth_mm": setup.model.force.feed_per_tooth}
     if args.drawing:
         from netshape.toolpath import read_gcode
@@ -243,25 +250,26 @@ def run_predict(args) -> int:
     sel = final & engaged
     mx = dict(zip(("bottom", "middle", "top"),
                   map(float, np.abs(err[sel]).max(axis=0) if np.any(sel) else np.zeros(3))))
-    pieces = _pieces(setup, _final_wall(setup, r))
+    pieces = _pieces(setup, own_final)
     print(f"{args.program}: {len(setup.nominal)} points, {int(np.sum(engaged))} cutting, {int(np.sum(sel))} on "
           f"the final wall, {data['side']} wall" + (f", against {args.drawing}" if args.drawing else ""))
     if not np.any(sel):
         print("no point leaves a wall of the finished part (every wall is cut away by a later pass)")
     print(f"largest wall error: {_um(mx)}   ({dt:.2f} s)")
-    if args.json:
-        table = d.path_table(r, setup.nominal)
-        for k, name in enumerate(("error_bottom_mm", "error_middle_mm", "error_top_mm")):
-            table[name] = err[:, k].tolist()
-        table["final_wall"] = final.astype(bool).tolist()
-        data.update({"max_wall_error_mm": mx, "contours": pieces, "points": table,
-                     "profile": {"levels": int(prof.shape[1]) if prof.ndim == 2 else 0,
-                                 "error_mm": np.asarray(prof).tolist()}})
-        _write_json(args.json, data)
-    if args.plot:
-        from netshape.deflection.plots import plot_prediction
+    with all_or_nothing():
+        if args.json:
+            table = d.path_table(r, setup.nominal)
+            for k, name in enumerate(("error_bottom_mm", "error_middle_mm", "error_top_mm")):
+                table[name] = err[:, k].tolist()
+            table["final_wall"] = final.astype(bool).tolist()
+            data.update({"max_wall_error_mm": mx, "contours": pieces, "points": table,
+                         "profile": {"levels": int(prof.shape[1]) if prof.ndim == 2 else 0,
+                                     "error_mm": np.asarray(prof).tolist()}})
+            _write_json(args.json, data)
+        if args.plot:
+            from netshape.deflection.plots import plot_prediction
 
-        plot_prediction(setup, r, args.plot)
+            plot_prediction(setup, r, args.plot)
     return 0
 
 
@@ -275,9 +283,11 @@ def run_compensate(args) -> int:
     import numpy as np
 
     from netshape.cli import CliError
+    from netshape._atomic import all_or_nothing
     from netshape.deflection.checked import compensate_checked
-    from netshape.toolpath import write_gcode
+    from netshape.toolpath import gcode_encoding, write_gcode
 
+    a.check_outputs(args, files=("--output", "--json"))
     t0 = time.perf_counter()
     setup = _setup(args)
     chk = compensate_checked(setup, scheme=args.scheme, level=args.level, tolerance=args.tolerance,
@@ -310,16 +320,18 @@ def run_compensate(args) -> int:
               f"{int(miss.sum())} of {len(miss)} checked samples ({where}{' ...' if miss.sum() > 5 else ''}): "
               "where the required offset steps (engagement entries and exits) a polyline can only approach it")
     program = setup.program.with_blocks(chk.blocks, chk.origin)
-    write_gcode(program, args.output, header_comment=f"netshape deflection compensate: {args.scheme}, "
-                f"{args.level}, max wall error {before[args.level] * 1e3:.1f} -> {after[args.level] * 1e3:.2f} um "
-                f"(bottom {after['bottom'] * 1e3:.1f}, top {after['top'] * 1e3:.1f} um)")
-    if args.json:
-        _write_json(args.json, {"scheme": args.scheme, "level": args.level, "converged": True, "status": status,
-                                "iterations": res.iterations, "path_evaluations": res.path_evaluations,
-                                "rounds": chk.rounds, "density": args.density,
-                                "samples_checked": int(len(chk.check.s)),
-                                "max_wall_error_before_mm": before[args.level],
-                                "max_wall_error_after_mm": after[args.level],
-                                "before_mm": before, "after_mm": after, "worse_points": chk.worse_points,
-                                "time_s": dt, "message": res.message})
+    with all_or_nothing():
+        write_gcode(program, args.output, encoding=gcode_encoding(args.program),
+                    header_comment=f"netshape deflection compensate: {args.scheme}, {args.level}, max wall error "
+                    f"{before[args.level] * 1e3:.1f} -> {after[args.level] * 1e3:.2f} um "
+                    f"(bottom {after['bottom'] * 1e3:.1f}, top {after['top'] * 1e3:.1f} um)")
+        if args.json:
+            _write_json(args.json, {"scheme": args.scheme, "level": args.level, "converged": True,
+                                    "status": status, "iterations": res.iterations,
+                                    "path_evaluations": res.path_evaluations, "rounds": chk.rounds,
+                                    "density": args.density, "samples_checked": int(len(chk.check.s)),
+                                    "max_wall_error_before_mm": before[args.level],
+                                    "max_wall_error_after_mm": after[args.level],
+                                    "before_mm": before, "after_mm": after, "worse_points": chk.worse_points,
+                                    "time_s": dt, "message": res.message})
     return 0

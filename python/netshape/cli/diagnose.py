@@ -44,18 +44,21 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from netshape._atomic import atomic_write
+    from netshape._atomic import all_or_nothing, atomic_write
+    from netshape.cli._args import check_outputs
     from netshape.discrepancy import diagnose, load_bundle
 
+    check_outputs(args, files=("--json",), folders=("--report",))
     bundle = load_bundle(args.bundle)
     d = diagnose(bundle)
     text = json.dumps(d.to_dict(), indent=2)
-    with atomic_write(args.json) as fh:
-        fh.write(text + "\n")
-    if args.report:
-        from netshape.discrepancy.report import write_report
+    with all_or_nothing():
+        with atomic_write(args.json) as fh:
+            fh.write(text + "\n")
+        if args.report:
+            from netshape.discrepancy.report import write_report
 
-        write_report(d, args.report)
+            write_report(d, args.report)
     print(d.summary())
     for e in d.experiments:
         if "flute1_angle_at_t0_deg" in e:

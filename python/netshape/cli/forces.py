@@ -69,9 +69,12 @@ def register(sub) -> None:
 def run(args) -> int:
     import numpy as np
 
-    from netshape._atomic import atomic_write
+    from netshape._atomic import all_or_nothing, atomic_write
     from netshape.cli import CliError
+    from netshape.cli._args import check_outputs
     from netshape.force import cutter_forces
+
+    check_outputs(args, files=("--csv", "--plot"))
 
     # options checked against each other (single values were checked while parsing)
     if args.mode != "slot" and args.ae is None:
@@ -101,15 +104,16 @@ def run(args) -> int:
         samples_per_revolution=args.samples, revolutions=args.revolutions)
     deg = np.degrees(angles)
     table = np.column_stack([deg, forces])
-    with atomic_write(args.csv, "w") as fh:
-        fh.write("angle_deg,fx_N,fy_N,fz_N\n")
-        np.savetxt(fh, table, delimiter=",", fmt="%.10g")
-    if args.plot:
-        from netshape._atomic import atomic_save_figure
-        from netshape.force.plots import plot_forces
+    with all_or_nothing():
+        with atomic_write(args.csv, "w") as fh:
+            fh.write("angle_deg,fx_N,fy_N,fz_N\n")
+            np.savetxt(fh, table, delimiter=",", fmt="%.10g")
+        if args.plot:
+            from netshape._atomic import atomic_save_figure
+            from netshape.force.plots import plot_forces
 
-        title = (f"{args.tool} D{args.diameter:g} N{args.flutes} β{args.helix:g}° {args.mode} "
-                 f"ap {args.ap:g} c {args.feed_per_tooth:g} mm, {args.rpm:g} rpm")
-        fig = plot_forces(angles, forces, title=title, rpm=args.rpm)
-        atomic_save_figure(fig, args.plot, dpi=110)
+            title = (f"{args.tool} D{args.diameter:g} N{args.flutes} β{args.helix:g}° {args.mode} "
+                     f"ap {args.ap:g} c {args.feed_per_tooth:g} mm, {args.rpm:g} rpm")
+            fig = plot_forces(angles, forces, title=title, rpm=args.rpm)
+            atomic_save_figure(fig, args.plot, dpi=110)
     return 0

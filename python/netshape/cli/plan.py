@@ -151,7 +151,11 @@ def run(args) -> int:
     from netshape.cli import CliError
     from netshape.motion import make_options, plan
 
+    from netshape._atomic import all_or_nothing
+    from netshape.cli._args import check_outputs
+
     _check(args)
+    check_outputs(args, files=("--json", "--samples", "--plot", "--smoothed-gcode"))
     limits = _limits(args)
     if args.junction_deviation is not None:
         deviation, scv = args.junction_deviation, 0.0
@@ -167,60 +171,61 @@ def run(args) -> int:
         arrays = toolpath.read_gcode_arrays(args.program, **offset_kwargs(args))
     arrays = {k: np.asarray(v) for k, v in arrays.items()}
     arrays["feed"] = arrays["feed"] * args.feed_scale
-    if args.rule == "smooth":
-        skw = dict(max_segment=args.max_segment, max_turn=math.radians(args.max_turn),
-                   max_fit_turn=math.radians(args.max_fit_turn))
-        traj = plan(arrays, limits, rule="smooth", tolerance=args.tolerance, ts1=args.ts1, ts2=args.ts2,
-                    lookahead=args.lookahead, **skw)
-        if args.smoothed_gcode:
-            from netshape.motion import smooth_path
-            from netshape.motion.smooth_gcode import write_smoothed_gcode
+    with all_or_nothing():
+        if args.rule == "smooth":
+            skw = dict(max_segment=args.max_segment, max_turn=math.radians(args.max_turn),
+                       max_fit_turn=math.radians(args.max_fit_turn))
+            traj = plan(arrays, limits, rule="smooth", tolerance=args.tolerance, ts1=args.ts1, ts2=args.ts2,
+                        lookahead=args.lookahead, **skw)
+            if args.smoothed_gcode:
+                from netshape.motion import smooth_path
+                from netshape.motion.smooth_gcode import write_smoothed_gcode
 
-            new = smooth_path(arrays, args.tolerance, **skw)[0]
-            kw = {} if args.chord_tolerance is None else {"chord_tolerance": args.chord_tolerance}
-            try:
-                write_smoothed_gcode(new, args.smoothed_gcode, args.smoothed_format or "arcs", **kw)
-            except ValueError as exc:  # the core's chord count names its argument; name the option
-                msg = str(exc)
-                if msg.startswith("chord_tolerance "):
-                    raise CliError("--chord-tolerance" + msg[len("chord_tolerance"):]) from None
-                raise
-    else:
-        traj = plan(arrays, limits, options)
-    out = {
-        "program": str(args.program),
-        "rule": args.rule,
-        "tolerance_mm": args.tolerance if args.rule in ("blend", "smooth") else None,
-        "ts1_s": args.ts1,
-        "ts2_s": args.ts2,
-        "lookahead": args.lookahead,
-        "junction_deviation_mm": ((deviation if deviation > 0 else None) if args.rule == "junction-deviation"
-                                  else None),
-        "scv_mm_s": (scv if scv > 0 else None) if args.rule == "junction-deviation" else None,
-        "junction_accel": args.junction_accel if args.rule == "junction-deviation" else None,
-        "limits": {
-            "vmax_mm_s": list(limits.velocity),
-            "amax_mm_s2": list(limits.acceleration),
-            "jmax_mm_s3": [x if math.isfinite(x) else None for x in limits.jerk],
-        },
-    }
-    out.update(traj.stats)
-    out["note"] = ("max_axis_* are finite differences of the fine samples at ts2; rules that jump velocity at "
-                   "a vertex (paper, junction-deviation) show it as large acceleration and jerk")
-    with atomic_write(args.json, "w") as fh:
-        json.dump(out, fh, indent=2, default=float)
-        fh.write("\n")
-    if args.samples:
-        table = np.column_stack([traj.t, traj.position, traj.velocity, traj.feed, traj.block])
-        with atomic_write(args.samples, "w") as fh:
-            fh.write("t_s,x_mm,y_mm,z_mm,vx_mm_s,vy_mm_s,vz_mm_s,feed_mm_s,block\n")
-            np.savetxt(fh, table, delimiter=",", fmt=["%.6f"] + ["%.6f"] * 7 + ["%d"])
-    if args.plot:
-        from netshape._atomic import atomic_save_figure
-        from netshape.motion.plots import plot_profiles
+                new = smooth_path(arrays, args.tolerance, **skw)[0]
+                kw = {} if args.chord_tolerance is None else {"chord_tolerance": args.chord_tolerance}
+                try:
+                    write_smoothed_gcode(new, args.smoothed_gcode, args.smoothed_format or "arcs", **kw)
+                except ValueError as exc:  # the core's chord count names its argument; name the option
+                    msg = str(exc)
+                    if msg.startswith("chord_tolerance "):
+                        raise CliError("--chord-tolerance" + msg[len("chord_tolerance"):]) from None
+                    raise
+        else:
+            traj = plan(arrays, limits, options)
+        out = {
+            "program": str(args.program),
+            "rule": args.rule,
+            "tolerance_mm": args.tolerance if args.rule in ("blend", "smooth") else None,
+            "ts1_s": args.ts1,
+            "ts2_s": args.ts2,
+            "lookahead": args.lookahead,
+            "junction_deviation_mm": ((deviation if deviation > 0 else None) if args.rule == "junction-deviation"
+                                      else None),
+            "scv_mm_s": (scv if scv > 0 else None) if args.rule == "junction-deviation" else None,
+            "junction_accel": args.junction_accel if args.rule == "junction-deviation" else None,
+            "limits": {
+                "vmax_mm_s": list(limits.velocity),
+                "amax_mm_s2": list(limits.acceleration),
+                "jmax_mm_s3": [x if math.isfinite(x) else None for x in limits.jerk],
+            },
+        }
+        out.update(traj.stats)
+        out["note"] = ("max_axis_* are finite differences of the fine samples at ts2; rules that jump velocity at "
+                       "a vertex (paper, junction-deviation) show it as large acceleration and jerk")
+        with atomic_write(args.json, "w") as fh:
+            json.dump(out, fh, indent=2, default=float)
+            fh.write("\n")
+        if args.samples:
+            table = np.column_stack([traj.t, traj.position, traj.velocity, traj.feed, traj.block])
+            with atomic_write(args.samples, "w") as fh:
+                fh.write("t_s,x_mm,y_mm,z_mm,vx_mm_s,vy_mm_s,vz_mm_s,feed_mm_s,block\n")
+                np.savetxt(fh, table, delimiter=",", fmt=["%.6f"] + ["%.6f"] * 7 + ["%d"])
+        if args.plot:
+            from netshape._atomic import atomic_save_figure
+            from netshape.motion.plots import plot_profiles
 
-        fig = plot_profiles(traj, title=f"{args.program} — rule {args.rule}")
-        atomic_save_figure(fig, args.plot)
+            fig = plot_profiles(traj, title=f"{args.program} — rule {args.rule}")
+            atomic_save_figure(fig, args.plot)
     dwell = traj.stats.get("dwell_time_s", 0.0)
     print(f"{traj.stats['blocks']} blocks, cycle time {traj.stats['cycle_time_s']:.4f} s"
           + (f" (dwells {dwell:.4f} s)" if dwell else "") + ", "

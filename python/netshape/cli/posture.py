@@ -61,11 +61,13 @@ def register(sub) -> None:
 
 def run(args) -> int:
     import math
-    import os
-    from pathlib import Path
 
     from netshape import posture as npost
+    from netshape._atomic import all_or_nothing
     from netshape.cli import CliError
+    from netshape.cli._args import check_outputs
+
+    check_outputs(args, folders=("--out",))
 
     # options checked against each other (single values were checked while parsing; --plot-point against
     # the number of points by PostureRun.write)
@@ -100,12 +102,11 @@ def run(args) -> int:
     opts.passes = args.passes
     opts.cspace.theta_max = math.radians(args.tilt_max)
     run_ = npost.plan_postures(cc, normals, verts, faces, assembly, clearance=args.clearance, options=opts)
-    out = Path(args.out)
-    try:
-        os.makedirs(out, exist_ok=True)
-    except (FileExistsError, NotADirectoryError):
-        raise CliError(f"--out {args.out}: not a folder") from None
-    run_.write(out, plot=args.plot, plot_point=args.plot_point, kinematics=kin, feed_mm_per_min=args.feed)
+    from netshape._atomic import make_output_folder
+
+    out = make_output_folder(args.out, "--out")
+    with all_or_nothing():
+        run_.write(out, plot=args.plot, plot_point=args.plot_point, kinematics=kin, feed_mm_per_min=args.feed)
     s = run_.summary()
     print(f"{s['points']} CC points: collisions raw {s['collisions']['raw']}, mc {s['collisions']['mc']}, "
           f"final {s['collisions']['final']}; repaired {s['repaired']}; max posture change "

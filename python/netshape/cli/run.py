@@ -27,9 +27,19 @@ def register(sub) -> None:
 
 def execute(job_path, out, quiet: bool) -> tuple[int, dict | None]:
     """Run a job for the CLI: (exit code, summary). Stage failures print one line naming the stage."""
+    from netshape._atomic import check_output_folder
     from netshape.job import StageFailed, load_job, run_job
 
+    if out is not None:
+        check_output_folder(out, "--out")
     job = load_job(job_path)
+    if job.grid:
+        n = 1
+        for v in job.grid.values():
+            n *= len(v)
+        print(f"netshape run: warning: {job_path}: [grid] ({', '.join(job.grid)}; {n} combinations) is not "
+              "used by run, which runs the job once without it; run the grid with netshape batch",
+              file=sys.stderr)
     try:
         summary = run_job(job, out, quiet=quiet)
     except StageFailed as exc:
@@ -37,6 +47,9 @@ def execute(job_path, out, quiet: bool) -> tuple[int, dict | None]:
             raise ValueError(str(exc)) from None
         print(f"netshape run: error: {exc}", file=sys.stderr)
         return 1, None
+    if summary.get("stale_files"):
+        print(f"netshape run: warning: the output folder also holds files this run did not write: "
+              f"{', '.join(summary['stale_files'])}", file=sys.stderr)
     return 0, summary
 
 

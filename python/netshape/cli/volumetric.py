@@ -67,8 +67,10 @@ def run(args) -> int:
 
     action = args.volumetric_command
     from netshape import machine as nm
-    from netshape._atomic import atomic_save_figure, atomic_write
+    from netshape._atomic import all_or_nothing, atomic_save_figure, atomic_write
+    from netshape.cli._args import check_outputs
 
+    check_outputs(args, files=("--plot", "--json") if action == "map" else ("--output", "--json"))
     machine = nm.load_machine(args.machine)
     if action == "map":
         if args.program:
@@ -80,26 +82,29 @@ def run(args) -> int:
         s = emap.summary()
         print(f"{machine.name}: {s['points']} points, volumetric error {s['min_um']:.3f} – {s['max_um']:.3f} µm "
               f"(mean {s['mean_um']:.3f}); exact − first order ≤ {s['max_exact_minus_first_order_um']:.3g} µm")
-        if args.plot:
-            atomic_save_figure(nm.plot_error_map(emap), args.plot, dpi=120)
-        if args.json:
-            with atomic_write(args.json, "w") as fh:
-                json.dump({"machine": machine.name, **emap.to_dict(points=True)}, fh, indent=1)
+        with all_or_nothing():
+            if args.plot:
+                atomic_save_figure(nm.plot_error_map(emap), args.plot, dpi=120)
+            if args.json:
+                with atomic_write(args.json, "w") as fh:
+                    json.dump({"machine": machine.name, **emap.to_dict(points=True)}, fh, indent=1)
         return 0
     if action == "compensate":
         from netshape import compensation as nc
 
         from netshape.cli._offsets import offset_kwargs, reader_warnings
 
-        with reader_warnings("volumetric"):
-            rep = nc.compensate_gcode(machine, args.program, args.output, chord_tolerance=args.chord_tolerance, **offset_kwargs(args))
-        d = rep.to_dict()
+        with all_or_nothing():
+            with reader_warnings("volumetric"):
+                rep = nc.compensate_gcode(machine, args.program, args.output, chord_tolerance=args.chord_tolerance,
+                                          **offset_kwargs(args))
+            d = rep.to_dict()
+            if args.json:
+                with atomic_write(args.json, "w") as fh:
+                    json.dump(d, fh, indent=1)
         print(f"{args.output}: {d['blocks_in']} blocks in, {d['blocks_out']} out; largest correction "
               f"{d['max_correction_mm'] * 1e3:.3f} µm, residual ≤ {d['max_residual_mm']:.2g} mm, "
               f"path within {d['max_path_deviation_mm'] * 1e3:.3f} µm; arcs kept {d['arcs_kept']}, "
               f"split {d['arcs_split']}; {d['commands']} comments and non-motion words kept")
-        if args.json:
-            with atomic_write(args.json, "w") as fh:
-                json.dump(d, fh, indent=1)
         return 0
     raise CliError(f"unknown action {action!r}")

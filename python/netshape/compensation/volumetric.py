@@ -124,6 +124,7 @@ def compensate_gcode(machine: _m.Machine, program: str | os.PathLike, output: st
                                     tool_table=tool_table)
     text = tpm.format_gcode(tp, header_comment=f"netshape volumetric compensation of {os.path.basename(os.fspath(program))} "
                             f"for machine {machine.name}, chord tolerance {chord_tolerance:g} mm")
-    with atomic_write(output, "w") as fh:
+    encoding = tpm.gcode_encoding(program)
+    with atomic_write(output, "w", encoding=encoding, errors="replace") as fh:
         fh.write(text)
     return report

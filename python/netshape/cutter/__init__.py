@@ -23,15 +23,10 @@ from __future__ import annotations
 
 import math
 import os
-import sys
 
 from .._atomic import atomic_write
 from .._core import cutter as _cutter
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
 
 Cutter = _cutter.Cutter
 CutterKind = _cutter.CutterKind
@@ -71,6 +66,12 @@ def cutter_from_dict(d: dict, *, source: str = "cutter") -> Cutter:
     flutes = d["flutes"]
     if isinstance(flutes, bool) or not isinstance(flutes, int):
         raise ValueError(f"flutes = {flutes!r}: must be an integer")
+    if not -2**31 <= flutes < 2**31:  # beyond the core's int: its one 1..64 check on the nearest int, this value named
+        near = 2**31 - 1 if flutes > 0 else -2**31
+        try:
+            check_flutes(near, "flutes")
+        except ValueError as exc:
+            raise ValueError(str(exc).replace(str(near), str(flutes))) from None
     c.flutes = flutes  # 1..64: checked by validate() below
     c.helix = math.radians(_number("helix_deg", d["helix_deg"]))
     c.flute_length = _number("flute_length_mm", d["flute_length_mm"])
@@ -102,11 +103,9 @@ def _cutter_kind_name(k) -> str:
 
 def load_cutter(path: str | os.PathLike) -> Cutter:
     """Read a cutter from a TOML file. Unknown keys and bad values raise ValueError naming key and value."""
-    with open(path, "rb") as fh:
-        try:
-            data = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise ValueError(f"{os.fspath(path)}: not valid TOML: {exc}") from None
+    from .._text import read_toml
+
+    data = read_toml(path)
     try:
         return cutter_from_dict(data, source=os.fspath(path))
     except ValueError as exc:

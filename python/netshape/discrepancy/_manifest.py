@@ -5,6 +5,7 @@ names the manifest field or the CSV line (see :mod:`netshape.discrepancy.bundle`
 from __future__ import annotations
 
 import csv
+import io
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -72,8 +73,10 @@ def _read_csv(path: Path, required: tuple, optional: tuple, alternatives: tuple 
     tuple of column names of which exactly one must be present (besides ``required``)."""
     if not path.is_file():
         raise FileNotFoundError(2, "No such file or directory", str(path))
-    with open(path, newline="", encoding="utf-8") as fh:
-        rows = [r for r in csv.reader(fh) if r and not r[0].lstrip().startswith("#")]
+    from netshape._text import read_text
+
+    text = read_text(path)
+    rows = [r for r in csv.reader(io.StringIO(text, newline="")) if r and not r[0].lstrip().startswith("#")]
     if not rows:
         raise _fail(str(path), "empty file (expected a header row and data rows)")
     header = [h.strip() for h in rows[0]]

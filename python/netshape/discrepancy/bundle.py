@@ -102,10 +102,6 @@ from typing import Any
 
 import numpy as np
 
-try:  # Python ≥ 3.11
-    import tomllib
-except ModuleNotFoundError:  # pragma: no cover - Python 3.10 needs the tomli package
-    import tomli as tomllib
 
 from ._manifest import Bundle, _check_keys, _experiment_head, _fail, _mode, _number, _read_csv
 from .wall_bundle import WallContourExperiment, WallExperiment, _load_wall
@@ -248,6 +244,9 @@ def _load_force(doc: dict, root: Path, where: str) -> Bundle:
             raise _fail(we, f"format = {fmt!r}: must be 'csv' or 'dynoware'")
         if times is not None and not np.all(np.diff(times) > 0):
             raise _fail(str(path), "column 'time_s': times must increase strictly")
+        if angles is not None and (len(angles) < 2 or not np.median(np.abs(np.diff(angles))) > 0):
+            raise _fail(str(path), "column 'angle_deg': the angle must advance from row to row (the median step "
+                        "is 0)")
         if "time_window_s" in e:
             win = e["time_window_s"]
             if (
@@ -358,11 +357,9 @@ def load_bundle(path: str | os.PathLike) -> Bundle:
     manifest = p if p.is_file() else p / "manifest.toml"
     if not manifest.is_file():
         raise FileNotFoundError(2, "No such file or directory", str(manifest))
-    try:
-        with open(manifest, "rb") as fh:
-            doc = tomllib.load(fh)
-    except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{manifest}: not valid TOML: {exc}") from None
+    from netshape._text import read_toml
+
+    doc = read_toml(manifest)
     kind = doc.get("kind")
     where = str(manifest)
     if kind not in KINDS:

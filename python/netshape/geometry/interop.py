@@ -13,7 +13,6 @@ The dictionary form (also the JSON and TOML layout)::
 from __future__ import annotations
 
 import json
-import tomllib
 from pathlib import Path
 from typing import Any
 
@@ -55,8 +54,27 @@ def _require(d: dict[str, Any], key: str) -> Any:
     return d[key]
 
 
+def _degree(d: dict[str, Any], key: str) -> int:
+    v = _require(d, key)
+    if isinstance(v, bool) or not isinstance(v, int):
+        raise ValueError(f"{key} = {v!r}: must be an integer")
+    return v
+
+
+def _reals(value: Any, field: str, ndim: int = 1) -> np.ndarray:
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        arr = None
+    if arr is None or arr.ndim != ndim or not np.all(np.isfinite(arr)):
+        shown = repr(value) if len(repr(value)) <= 60 else repr(value)[:57] + "..."
+        raise ValueError(f"{field} = {shown}: must be " + ("a list of finite numbers" if ndim == 1 else
+                                                           "a list of [x, y, z] points of finite numbers [mm]"))
+    return arr
+
+
 def _points(value: Any, field: str) -> np.ndarray:
-    arr = np.asarray(value, dtype=float)
+    arr = _reals(value, field, 2)
     if arr.ndim != 2 or arr.shape[1] != 3:
         raise ValueError(f"{field} = array of shape {arr.shape}: must be (n, 3) [mm]")
     return np.ascontiguousarray(arr)
@@ -64,26 +82,36 @@ def _points(value: Any, field: str) -> np.ndarray:
 
 def from_dict(d: dict[str, Any]) -> NurbsCurve | NurbsSurface:
     """Inverse of :func:`to_dict`. Raises ValueError naming the bad key."""
+    if not isinstance(d, dict):
+        raise ValueError(f"document = {type(d).__name__}: must be an object/table with type = 'curve' or 'surface'")
     kind = d.get("type")
     weights = d.get("weights")
-    w = None if weights is None else np.asarray(weights, dtype=float)
+    w = None if weights is None else _reals(weights, "weights")
     if kind == "surface":
         return NurbsSurface(
-            int(_require(d, "degree_u")),
-            int(_require(d, "degree_v")),
-            np.asarray(_require(d, "knots_u"), dtype=float),
-            np.asarray(_require(d, "knots_v"), dtype=float),
+            _degree(d, "degree_u"),
+            _degree(d, "degree_v"),
+            _reals(_require(d, "knots_u"), "knots_u"),
+            _reals(_require(d, "knots_v"), "knots_v"),
             _points(_require(d, "control_points"), "control_points"),
             w,
         )
     if kind == "curve":
         return NurbsCurve(
-            int(_require(d, "degree")),
-            np.asarray(_require(d, "knots"), dtype=float),
+            _degree(d, "degree"),
+            _reals(_require(d, "knots"), "knots"),
             _points(_require(d, "control_points"), "control_points"),
             w,
         )
     raise ValueError(f"type = {kind!r}: must be 'curve' or 'surface'")
+
+
+def _from_file(doc: Any, path) -> NurbsCurve | NurbsSurface:
+    """:func:`from_dict` of a file's document; errors start with the file name."""
+    try:
+        return from_dict(doc)
+    except (ValueError, TypeError) as exc:
+        raise ValueError(f"{path}: {' '.join(str(exc).split())}") from None
 
 
 def save_json(shape: NurbsCurve | NurbsSurface, path: str | Path) -> None:
@@ -93,8 +121,9 @@ def save_json(shape: NurbsCurve | NurbsSurface, path: str | Path) -> None:
 
 
 def load_json(path: str | Path) -> NurbsCurve | NurbsSurface:
-    with open(path, encoding="utf-8") as f:
-        return from_dict(json.load(f))
+    from .._text import read_json
+
+    return _from_file(read_json(path), path)
 
 
 def save_toml(shape: NurbsCurve | NurbsSurface, path: str | Path) -> None:
@@ -106,8 +135,9 @@ def save_toml(shape: NurbsCurve | NurbsSurface, path: str | Path) -> None:
 
 
 def load_toml(path: str | Path) -> NurbsCurve | NurbsSurface:
-    with open(path, "rb") as f:
-        return from_dict(tomllib.load(f))
+    from .._text import read_toml
+
+    return _from_file(read_toml(path), path)
 
 
 def to_geomdl(shape: NurbsCurve | NurbsSurface):

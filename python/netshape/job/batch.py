@@ -15,6 +15,13 @@ values, the error figures of summary.json, the cycle times and the run time. ``O
 ``OUT/batch.png`` compares the runs. Runs go to a ``LocalCluster`` (``workers`` processes, one thread
 each) or to an existing scheduler by address; ``scheduler="none"`` runs them one by one in this
 process. dask is an optional dependency: ``pip install netshape[batch]``.
+
+Before any run starts: the output paths are checked, --parquet's pandas/pyarrow are imported, and a
+scheduler address is connected to (a few seconds at most). Every path a task carries is absolute (the
+output folder is resolved here, on the client), so workers started in other folders write where the
+table is. A run that fails, or whose task dies with its workers (``KilledWorker``) or is lost with the
+scheduler, is a row with ``failed_stage`` and the reason in ``status``; the table and the page are
+written for every row, also when the batch is interrupted.
 """
 
 from __future__ import annotations
@@ -24,8 +31,10 @@ import csv
 import io
 import itertools
 import os
+import socket
 import time
 from pathlib import Path
+from urllib.parse import urlsplit
 
 from .spec import JobError, _read_toml, job_from_dict, set_dotted
 
@@ -33,6 +42,16 @@ from .spec import JobError, _read_toml, job_from_dict, set_dotted
 ERROR_COLUMNS = [f"{src}_{k}" for src in ("deflection", "volumetric", "total")
                  for k in ("max_before_mm", "max_after_mm", "rms_before_mm", "rms_after_mm")]
 TIME_COLUMNS = ["cycle_time_original_s", "cycle_time_compensated_s", "run_time_s"]
+#: Files the batch writes into its output folder (beside one folder per run).
+TABLE_FILES = ("batch.csv", "batch.png", "batch.html")
+
+
+class BatchInterrupted(KeyboardInterrupt):
+    """Ctrl-C during a batch; ``rows`` holds the finished rows and the others marked not run."""
+
+    def __init__(self, rows: list[dict]):
+        super().__init__("batch interrupted")
+        self.rows = rows
 
 
 def expand(paths) -> list[dict]:
@@ -69,9 +88,19 @@ def expand(paths) -> list[dict]:
     return specs
 
 
+def failed_row(spec: dict, stage: str, reason: str, run_time_s: float | None = None) -> dict:
+    """The row of a run that did not finish: no figures, ``failed_stage`` and the reason in ``status``."""
+    row = {"run": spec["run"], "job": spec["job"], **spec["params"]}
+    row.update({c: None for c in ERROR_COLUMNS + TIME_COLUMNS})
+    row["run_time_s"] = run_time_s
+    row["failed_stage"] = stage
+    row["status"] = " ".join(str(reason).split()) or "failed"
+    return row
+
+
 def run_one(spec: dict, out_dir: str) -> dict:
     """Run one spec into ``out_dir/<run id>/``; returns its batch row (``status`` ok or why it failed)."""
-    from .run import run_job
+    from .run import StageFailed, run_job
 
     t0 = time.perf_counter()
     row = {"run": spec["run"], "job": spec["job"], **spec["params"]}
@@ -79,20 +108,42 @@ def run_one(spec: dict, out_dir: str) -> dict:
         job = job_from_dict(spec["doc"], source=f"{spec['job']} [{spec['run']}]", base_dir=spec["base_dir"])
         s = run_job(job, Path(out_dir) / spec["run"], quiet=True)
     except Exception as exc:  # one failed run is a row, not the end of the study
-        row.update({c: None for c in ERROR_COLUMNS + TIME_COLUMNS})
-        row["run_time_s"] = round(time.perf_counter() - t0, 4)
-        row["status"] = " ".join(str(exc).split()) or type(exc).__name__
-        return row
+        stage = exc.stage if isinstance(exc, StageFailed) else "setup"
+        return failed_row(spec, stage, " ".join(str(exc).split()) or type(exc).__name__,
+                          round(time.perf_counter() - t0, 4))
     for src in ("deflection", "volumetric", "total"):
         for k, v in s["errors"][src].items():
             row[f"{src}_{k}"] = v
     row["cycle_time_original_s"] = s["cycle_time_s"]["original"]
     row["cycle_time_compensated_s"] = s["cycle_time_s"]["compensated"]
     row["run_time_s"] = s["run_time_s"]["total"]
+    row["failed_stage"] = None
     # a stage that ran but did not finish cleanly (deflection unconverged or skipped) marks the row
     trouble = [f"{k}: {v}" for k, v in s.get("stages", {}).items() if v != "ok"]
     row["status"] = "; ".join(trouble) if trouble else "ok"
     return row
+
+
+def check_scheduler(address: str, timeout_s: float = 5.0) -> None:
+    """Refuse, within ``timeout_s``, a scheduler address that is malformed or where nothing listens
+    (ValueError naming --scheduler); the Dask client's own wait is 30 s and ends in a traceback."""
+    u = urlsplit(address if "://" in address else f"tcp://{address}")
+    if u.scheme not in ("tcp", "tls"):
+        raise ValueError(f"--scheduler = {address}: must be tcp://HOST:PORT (or tls://), 'none', or omitted "
+                         "for a LocalCluster")
+    try:
+        host, port = u.hostname, u.port
+    except ValueError:
+        host, port = None, None
+    if not host or port is None:
+        raise ValueError(f"--scheduler = {address}: must be tcp://HOST:PORT, e.g. tcp://127.0.0.1:8786")
+    try:
+        with socket.create_connection((host, port), timeout=timeout_s):
+            pass
+    except OSError as exc:
+        why = "timed out" if isinstance(exc, socket.timeout) else (exc.strerror or str(exc))
+        raise ValueError(f"--scheduler = {address}: cannot connect ({why}); is `dask scheduler` running "
+                         "there?") from None
 
 
 def _client(scheduler: str | None, workers: int):
@@ -102,25 +153,89 @@ def _client(scheduler: str | None, workers: int):
         raise ImportError("netshape batch needs dask.distributed: pip install 'netshape[batch]' "
                           "(or pip install 'dask[distributed]'), or run with --scheduler none") from None
     if scheduler:
-        return Client(scheduler), None
+        check_scheduler(scheduler)
+        try:
+            return Client(scheduler, timeout="10s"), None
+        except Exception as exc:  # noqa: BLE001 - refused, timed out, or something else answers there
+            why = " ".join(str(exc).split())[:200] or type(exc).__name__
+            if isinstance(exc, MemoryError):
+                why = "what answers there does not speak the Dask protocol"
+            raise ValueError(f"--scheduler = {scheduler}: cannot connect ({why}); is `dask scheduler` running "
+                             "there?") from None
     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
     return Client(cluster), cluster
 
 
+def _task_failure(exc: BaseException) -> tuple[str, str]:
+    """(failed_stage, reason) of a task that raised on the Dask side instead of returning its row."""
+    name = type(exc).__name__
+    if name == "KilledWorker":
+        return "worker", ("KilledWorker: the workers running this run died (out of memory or killed) as "
+                          "many times as the scheduler allows")
+    if name in ("CancelledError", "FutureCancelledError"):
+        return "scheduler", f"{name}: the task was lost (scheduler or client disconnected)"
+    first = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
+    return "worker", f"{name}: {first}" if first else name
+
+
+def _gather(client, futures, specs: list[dict], progress: bool) -> list[dict]:
+    """Rows in the order of ``specs``: a task's own row, or a failed row for a task that raised, was
+    killed or was lost. Ctrl-C: BatchInterrupted with the rows finished so far."""
+    from dask.distributed import as_completed
+
+    rows: list[dict | None] = [None] * len(specs)
+    where = {f.key: i for i, f in enumerate(futures)}
+    bar = None
+    if progress:
+        from tqdm import tqdm
+
+        bar = tqdm(total=len(futures), unit="run", desc="netshape batch")
+    try:
+        for fut in as_completed(futures):
+            i = where[fut.key]
+            try:
+                rows[i] = fut.result()
+            except Exception as exc:  # noqa: BLE001 - KilledWorker, lost futures, a worker's crash
+                rows[i] = failed_row(specs[i], *_task_failure(exc))
+            if bar is not None:
+                bar.update(1)
+    except KeyboardInterrupt:
+        raise BatchInterrupted(_fill(rows, specs, "interrupted", "not run: the batch was interrupted")) from None
+    except Exception as exc:  # the scheduler went away: what finished stays
+        stage, reason = _task_failure(exc)
+        rows = _fill(rows, specs, stage, reason)
+    finally:
+        if bar is not None:
+            bar.close()
+    return _fill(rows, specs, "scheduler", "not run")
+
+
+def _fill(rows: list, specs: list[dict], stage: str, reason: str) -> list[dict]:
+    return [r if r is not None else failed_row(s, stage, reason) for r, s in zip(rows, specs)]
+
+
 def run_specs(specs: list[dict], out_dir, *, scheduler: str | None = None, workers: int = 2,
-              progress: bool = False, client=None) -> list[dict]:
+              progress: bool = False, client=None, task=None) -> list[dict]:
     """Rows of ``specs`` run on Dask (LocalCluster of ``workers`` by default, or the scheduler at
     ``scheduler``, or an open dask.distributed ``client``, which is left open; ``"none"`` runs them
-    here one by one), in the order of ``specs``."""
-    out_dir = os.fspath(out_dir)
-    Path(out_dir).mkdir(parents=True, exist_ok=True)
+    here one by one), in the order of ``specs``. ``out_dir`` is made absolute here, before any task is
+    sent. ``task`` (default :func:`run_one`) is what each task runs."""
+    out_dir = os.path.abspath(os.fspath(out_dir))
+    task = run_one if task is None else task
     if scheduler == "none":
+        Path(out_dir).mkdir(parents=True, exist_ok=True)
         it = specs
         if progress:
             from tqdm import tqdm
 
             it = tqdm(specs, unit="run", desc="netshape batch")
-        return [run_one(s, out_dir) for s in it]
+        rows: list = [None] * len(specs)
+        try:
+            for i, s in enumerate(it):
+                rows[i] = task(s, out_dir)
+        except KeyboardInterrupt:
+            raise BatchInterrupted(_fill(rows, specs, "interrupted", "not run: the batch was interrupted")) from None
+        return rows
     if not isinstance(workers, int) or workers < 1:
         raise ValueError(f"workers = {workers!r}: must be a positive integer")
     own = client is None
@@ -128,16 +243,10 @@ def run_specs(specs: list[dict], out_dir, *, scheduler: str | None = None, worke
     if own:
         client, cluster = _client(scheduler, workers)
     try:
-        futures = client.map(run_one, specs, out_dir=out_dir, key=[f"netshape-{s['run']}" for s in specs],
+        Path(out_dir).mkdir(parents=True, exist_ok=True)
+        futures = client.map(task, specs, out_dir=out_dir, key=[f"netshape-{s['run']}" for s in specs],
                              pure=False)
-        if progress:
-            from dask.distributed import as_completed
-            from tqdm import tqdm
-
-            with tqdm(total=len(futures), unit="run", desc="netshape batch") as bar:
-                for _ in as_completed(futures):
-                    bar.update(1)
-        return client.gather(futures)
+        return _gather(client, futures, specs, progress)
     finally:
         if own:
             client.close()
@@ -147,13 +256,13 @@ def run_specs(specs: list[dict], out_dir, *, scheduler: str | None = None, worke
 
 def columns(rows: list[dict]) -> list[str]:
     """Column order: run, job, grid keys (first seen order), errors, times, status."""
-    fixed = ["run", "job"] + ERROR_COLUMNS + TIME_COLUMNS + ["status"]
+    fixed = ["run", "job"] + ERROR_COLUMNS + TIME_COLUMNS + ["status", "failed_stage"]
     grid = []
     for r in rows:
         for k in r:
             if k not in fixed and k not in grid:
                 grid.append(k)
-    return ["run", "job", *grid, *ERROR_COLUMNS, *TIME_COLUMNS, "status"]
+    return ["run", "job", *grid, *ERROR_COLUMNS, *TIME_COLUMNS, "status", "failed_stage"]
 
 
 def write_table(rows: list[dict], path, *, parquet: bool = False) -> None:
@@ -171,10 +280,7 @@ def write_table(rows: list[dict], path, *, parquet: bool = False) -> None:
     with atomic_write(path, "w") as fh:
         fh.write(buf.getvalue())
     if parquet:
-        try:
-            import pandas as pd
-        except ImportError:
-            raise ImportError("--parquet needs pandas and pyarrow: pip install pandas pyarrow") from None
+        pd = _parquet_modules()
         target = Path(path).with_suffix(".parquet")
         with atomic_write(target, "wb") as fh:
             pd.DataFrame(rows, columns=cols).to_parquet(fh)
@@ -233,12 +339,52 @@ def write_comparison(rows: list[dict], folder) -> None:
         fh.write("\n".join(out) + "\n")
 
 
+def _parquet_modules():
+    try:
+        import pandas as pd
+        import pyarrow  # noqa: F401
+    except ImportError:
+        raise ImportError("--parquet needs pandas and pyarrow: pip install pandas pyarrow") from None
+    return pd
+
+
+def check_outputs(specs: list[dict], out_dir, *, parquet: bool = False, option: str = "--out") -> Path:
+    """Refuse, before any run, an output folder (or a table file or run folder in it) that cannot be
+    written; ValueError naming the option and the path."""
+    from netshape._atomic import check_output_file, check_output_folder
+
+    out = check_output_folder(out_dir, option)
+    for name in TABLE_FILES + (("batch.parquet",) if parquet else ()):
+        check_output_file(out / name, f"{option} ({name})", make_parent=True)
+    for s in specs:
+        check_output_folder(out / s["run"], f"{option} ({s['run']})")
+    return out
+
+
+def write_outputs(rows: list[dict], out_dir, *, parquet: bool = False) -> None:
+    """batch.csv (+ .parquet), batch.png and batch.html, all or none."""
+    from netshape._atomic import all_or_nothing
+
+    Path(out_dir).mkdir(parents=True, exist_ok=True)
+    with all_or_nothing():
+        write_table(rows, Path(out_dir) / "batch.csv", parquet=parquet)
+        write_comparison(rows, out_dir)
+
+
 def run_batch(paths, out_dir, *, scheduler: str | None = None, workers: int = 2, parquet: bool = False,
-              progress: bool = False) -> list[dict]:
-    """Expand, run, and write ``batch.csv`` (+ .parquet), ``batch.png`` and ``batch.html`` into
-    ``out_dir``. Returns the rows."""
+              progress: bool = False, task=None) -> list[dict]:
+    """Expand, check the outputs (and pandas for ``parquet``, and the scheduler), run, and write
+    ``batch.csv`` (+ .parquet), ``batch.png`` and ``batch.html`` into ``out_dir`` for every row, also
+    when runs failed or the batch was interrupted. Returns the rows."""
     specs = expand(paths)
-    rows = run_specs(specs, out_dir, scheduler=scheduler, workers=workers, progress=progress)
-    write_table(rows, Path(out_dir) / "batch.csv", parquet=parquet)
-    write_comparison(rows, out_dir)
+    out_dir = os.path.abspath(os.fspath(out_dir))
+    if parquet:
+        _parquet_modules()
+    check_outputs(specs, out_dir, parquet=parquet)
+    try:
+        rows = run_specs(specs, out_dir, scheduler=scheduler, workers=workers, progress=progress, task=task)
+    except BatchInterrupted as exc:
+        write_outputs(exc.rows, out_dir, parquet=parquet)
+        raise
+    write_outputs(rows, out_dir, parquet=parquet)
     return rows

@@ -188,6 +188,8 @@ def write_html(path, summary: dict, images: dict[str, str]) -> None:
         "deflection is always applied first, then volumetric on the deflection-compensated path).</p>",
     ]
     notes = [f"{k}: {v}" for k, v in summary.get("stages", {}).items() if v != "ok"]
+    if summary.get("stale_files"):
+        notes.append("files in this folder that this run did not write: " + ", ".join(summary["stale_files"]))
     if notes:
         out.append("<ul>" + "".join(f'<li class="note">{html.escape(n)}</li>' for n in notes) + "</ul>")
     dfl = summary.get("deflection")

@@ -4,8 +4,12 @@ Stages: program → stock (box/heights + pre-cuts) → cut (Z-map removal) → f
 error; compensation) → volumetric (error; compensation) → feed plan (original and compensated) →
 outputs (compensated program, summary.json, Z-map STL, PNG plots, report.html).
 
-A stage that raises stops the run with :class:`StageFailed` naming the stage; files already written
-are whole (every file goes through a temporary file and a rename) and no later file is written.
+The output folder is checked before the first stage (a file, under a file, not writable: refused).
+A stage that raises stops the run with :class:`StageFailed` naming the stage; the outputs are written
+all or nothing (each to a temporary file, all renamed into place at the end), so a failed run leaves
+the folder as it was. Files of an earlier run in the same folder that this run does not write are
+removed when the earlier summary.json lists them (netshape wrote them) and reported otherwise
+(``summary["stale_files"]`` and a warning on stderr).
 """
 
 from __future__ import annotations
@@ -113,12 +117,40 @@ def stage_names(job: Job) -> list[str]:
     return names
 
 
-def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True) -> dict:
+def _owned_earlier(folder: Path) -> set[str]:
+    """Files an earlier run wrote into ``folder``, as its summary.json lists them (empty if none, or if
+    that summary.json is not one netshape wrote)."""
+    try:
+        from netshape._text import read_json
+
+        doc = read_json(folder / "summary.json")
+        files = doc.get("files", {})
+        ours = "netshape" in doc.get("versions", {})
+    except (OSError, ValueError, AttributeError, TypeError):
+        return set()
+    if not ours or not isinstance(files, dict):
+        return set()
+    return {v for v in files.values() if isinstance(v, str) and v and Path(v).name == v}
+
+
+def _tidy_folder(folder: Path, earlier: set[str], written: set[str]) -> None:
+    """Remove the files an earlier run wrote (``earlier``) that this run did not write."""
+    for name in sorted(earlier - written):
+        p = folder / name
+        if p.is_file():
+            p.unlink()
+
+
+def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_option: str = "--out") -> dict:
     """Run ``job`` writing into ``out`` (default ``job.output``); returns the summary (also in
-    summary.json). Raises StageFailed naming the stage that failed."""
+    summary.json). Raises ValueError naming ``out`` (``out_option``) or the job's ``output`` key when the
+    folder cannot be written, before any stage runs; StageFailed naming the stage that failed."""
+    from netshape._atomic import all_or_nothing, check_output_folder, make_output_folder
+
     t_start = time.perf_counter()
     folder = Path(out) if out is not None else job.output
-    folder.mkdir(parents=True, exist_ok=True)
+    shown = out_option if out is not None else f"{job.source}: output"
+    check_output_folder(folder, shown)
     S = _Stages(stage_names(job), quiet)
     p, c = job.predict, job.compensate
     status: dict[str, str] = {}
@@ -225,16 +257,19 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True) -> d
         summary["volumetric_compensation"] = {k: v for k, v in vol.report.items() if isinstance(v, (int, float, str))}
 
     def _outputs():
-        from netshape._atomic import atomic_save_figure, atomic_write
+        from netshape import toolpath as tpm
+        from netshape._atomic import atomic_path, atomic_save_figure, atomic_write
 
         if compensated_program is not None:
             tp, idx = compensated_program
             header = (f"netshape compensated {job.program.name}: {' then '.join(applied)}; "
                       f"run with the work offsets of the original")
-            with atomic_write(folder / files["compensated_program"], "w") as fh:
+            with atomic_write(folder / files["compensated_program"], "w", encoding=tpm.gcode_encoding(job.program),
+                              errors="replace") as fh:
                 fh.write(st.write_program_text(tp, idx, header))
         if job.report["zmap_stl"]:
-            zfinal.to_stl(folder / "zmap.stl")
+            with atomic_path(folder / "zmap.stl") as tmp:
+                zfinal.to_stl(tmp)
         from . import report as rp
 
         order = "compensations: " + (" → ".join(applied) or "none")
@@ -248,15 +283,24 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True) -> d
             files[f"plot_{key}"] = rp.PLOTS[key]
         return rp
 
-    rp = S.run("report", _outputs)
-    summary["run_time_s"]["report"] = S.times["report"]
-    summary["run_time_s"]["total"] = round(time.perf_counter() - t_start, 4)
-    rp.write_html(folder / "report.html", summary,
-                  {k: rp.PLOTS[k] for k in rp.PLOTS} if job.report["plots"] else {})
-    from netshape._atomic import atomic_write
+    make_output_folder(folder, shown)
+    earlier = _owned_earlier(folder)
+    with all_or_nothing():
+        rp = S.run("report", _outputs)
+        summary["run_time_s"]["report"] = S.times["report"]
+        summary["run_time_s"]["total"] = round(time.perf_counter() - t_start, 4)
+        written = set(files.values())
+        stale = sorted(p.name for p in folder.iterdir() if p.is_file() and not p.name.startswith(".")
+                       and p.name not in written and p.name not in earlier)
+        if stale:
+            summary["stale_files"] = stale
+        rp.write_html(folder / "report.html", summary,
+                      {k: rp.PLOTS[k] for k in rp.PLOTS} if job.report["plots"] else {})
+        from netshape._atomic import atomic_write
 
-    with atomic_write(folder / "summary.json", "w") as fh:
-        json.dump(summary, fh, indent=2)
-        fh.write("\n")
+        with atomic_write(folder / "summary.json", "w") as fh:
+            json.dump(summary, fh, indent=2)
+            fh.write("\n")
+    _tidy_folder(folder, earlier, written)
     S.close()
     return summary

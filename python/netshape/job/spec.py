@@ -13,15 +13,10 @@ import copy
 import math
 import os
 import re
-import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
 
 #: Work offsets a program may select; the job gives each as ``G54_mm = [x, y, z]``.
 WORK_OFFSETS = ("G54", "G55", "G56", "G57", "G58", "G59")
@@ -138,11 +133,9 @@ def _path(src: str, base: Path, key: str, v: Any, *, must_exist: bool = True) ->
 
 
 def _read_toml(path: Path, src_for_errors: str) -> dict:
-    try:
-        with open(path, "rb") as fh:
-            return tomllib.load(fh)
-    except tomllib.TOMLDecodeError as exc:
-        raise JobError(f"{src_for_errors}: not valid TOML: {exc}") from None
+    from netshape._text import read_toml
+
+    return read_toml(path, src_for_errors)
 
 
 def _tool(src: str, base: Path, where: str, v: Any) -> dict:
@@ -324,6 +317,10 @@ def _compensate(src: str, v: Any) -> dict:
     return out
 
 
+#: Largest work offset or tool length accepted [mm] (100 m: beyond any machine's travel).
+MAX_OFFSET_MM = 1e5
+
+
 def _offsets(src: str, v: Any) -> dict:
     known = {f"{g}_mm" for g in WORK_OFFSETS} | {"tool_length_mm"}
     t = _check_keys(src, "offsets", v, known)
@@ -331,9 +328,14 @@ def _offsets(src: str, v: Any) -> dict:
     for g in WORK_OFFSETS:
         if f"{g}_mm" in t:
             out[g] = _vec3(src, f"offsets.{g}_mm", t[f"{g}_mm"])
+            for i, x in enumerate(out[g]):
+                if abs(x) > MAX_OFFSET_MM:
+                    raise _err(src, f"offsets.{g}_mm[{i}]", x, f"must be within ±{MAX_OFFSET_MM:g} [mm]")
     out["tool_length_mm"] = None
     if "tool_length_mm" in t:
         out["tool_length_mm"] = _number(src, "offsets.tool_length_mm", t["tool_length_mm"], nonneg=True)
+        if out["tool_length_mm"] > MAX_OFFSET_MM:
+            raise _err(src, "offsets.tool_length_mm", t["tool_length_mm"], f"must be at most {MAX_OFFSET_MM:g} [mm]")
     return out
 
 

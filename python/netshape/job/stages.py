@@ -159,7 +159,11 @@ def stage_stock(job: Job):
         if path.suffix.lower() == ".npy":
             h = np.load(path, allow_pickle=False)
         else:
-            h = np.loadtxt(path, delimiter=",", ndmin=2)
+            import io
+
+            from netshape._text import read_text
+
+            h = np.loadtxt(io.StringIO(read_text(path)), delimiter=",", ndmin=2)
         h = np.asarray(h, dtype=float)
         if h.ndim != 2 or min(h.shape) < 2:
             raise ValueError(f"stock.heights = {str(path)!r}: shape {h.shape}, must be (ny, nx) with ny, nx ≥ 2")
@@ -367,6 +371,27 @@ class VolumetricResult:
     report: dict = field(default_factory=dict)
 
 
+#: Largest volumetric error accepted [mm]: larger ones come from a wrong machine file or error_scale.
+MAX_TIP_ERROR_MM = 1e3
+
+
+def check_tip_errors(job: Job, pts: np.ndarray, e: np.ndarray) -> None:
+    """Refuse volumetric errors that are not finite or exceed MAX_TIP_ERROR_MM, naming the job key that
+    made them (machine.error_scale when it is not 1, else machine.file) and the first such point."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        size = np.linalg.norm(e, axis=1)
+    bad = ~(size <= MAX_TIP_ERROR_MM)
+    if not bad.any():
+        return
+    i = int(np.argmax(bad))
+    p = pts[i]
+    what = (f"a volumetric error of {size[i]:.3g} mm at machine point ({p[0]:g}, {p[1]:g}, {p[2]:g}) mm "
+            f"(more than {MAX_TIP_ERROR_MM:g} mm is refused)")
+    if job.error_scale != 1.0:
+        raise ValueError(f"machine.error_scale = {job.error_scale:g}: gives {what}")
+    raise ValueError(f"machine.file = {str(job.machine)!r}: gives {what}")
+
+
 def stage_volumetric(job: Job, machine, tp_machine) -> VolumetricResult:
     """Volumetric error along the feed moves: at points every ``cutting.error_spacing_mm`` the actual tip
     p + e(p) and its distance to the nominal path (machine frame)."""
@@ -377,6 +402,7 @@ def stage_volumetric(job: Job, machine, tp_machine) -> VolumetricResult:
     if len(pts) == 0:
         raise ValueError(f"program = {str(job.program)!r}: no feed moves to predict the volumetric error of")
     e = nm.tip_error(machine, pts)
+    check_tip_errors(job, pts, e)
     dev = distance_to_path(pts + e, a, b, job.cutting["error_spacing_mm"])
     return VolumetricResult(s_before_mm=s, before_mm=dev, points_mm=pts, error_vectors_mm=e)
 

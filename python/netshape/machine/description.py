@@ -43,10 +43,6 @@ from typing import Any, Mapping
 
 from .._core import machine as _m
 
-try:  # Python ≥ 3.11
-    import tomllib
-except ModuleNotFoundError:  # pragma: no cover - Python 3.10 needs the tomli package
-    import tomli as tomllib
 
 AXES = ("X", "Y", "Z")
 _COMPONENT_LETTERS = "XYZABC"
@@ -103,8 +99,10 @@ def read_error_table(path: str | os.PathLike, axis: str | None = None) -> dict[s
     unknown column, a missing or non-finite value, or positions that do not strictly increase.
     """
     p = Path(path)
-    with open(p, newline="", encoding="utf-8") as fh:
-        rows = [r for r in csv.reader(line for line in fh if line.strip() and not line.lstrip().startswith("#"))]
+    from .._text import read_text
+
+    lines = read_text(p).splitlines(keepends=True)
+    rows = [r for r in csv.reader(line for line in lines if line.strip() and not line.lstrip().startswith("#"))]
     if not rows:
         raise ValueError(f"{p}: empty error table")
     header = [h.strip() for h in rows[0]]
@@ -275,9 +273,7 @@ def load_machine(path: str | os.PathLike) -> _m.Machine:
     p = Path(path)
     if not p.exists():
         raise FileNotFoundError(2, "No such file or directory", str(p))
-    try:
-        with open(p, "rb") as fh:
-            doc = tomllib.load(fh)
-    except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{p}: not valid TOML: {exc}") from None
+    from .._text import read_toml
+
+    doc = read_toml(p)
     return machine_from_dict(doc, p.parent, str(p))

@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import math
 import os
-import tomllib
 
 from .._core import motion as _m
 
@@ -72,9 +71,7 @@ def limits_from_dict(doc: dict, path: str = "<limits>") -> _m.AxisLimits:
 def read_limits(path: str | os.PathLike) -> _m.AxisLimits:
     """Read AxisLimits from a TOML file; ValueError naming the file and key on bad content."""
     p = os.fspath(path)
-    try:
-        with open(p, "rb") as fh:
-            doc = tomllib.load(fh)
-    except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{p}: not valid TOML: {exc}") from None
+    from .._text import read_toml
+
+    doc = read_toml(p)
     return limits_from_dict(doc, p)

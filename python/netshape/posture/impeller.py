@@ -27,17 +27,11 @@ from __future__ import annotations
 
 import math
 import os
-import sys
 from dataclasses import dataclass, field, fields
 
 import numpy as np
 
 from ..geometry import NurbsSurface, TriangleMesh
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
 
 
 @dataclass
@@ -243,11 +237,9 @@ def load_impeller(path: str | os.PathLike | None = None) -> Impeller:
     """The impeller of a TOML file of :class:`ImpellerParams` keys (None: the defaults)."""
     if path is None:
         return make_impeller()
-    with open(path, "rb") as fh:
-        try:
-            data = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise ValueError(f"{os.fspath(path)}: not valid TOML: {exc}") from None
+    from .._text import read_toml
+
+    data = read_toml(path)
     return make_impeller(impeller_params_from_dict(data, source=os.fspath(path)))
 
 

@@ -6,19 +6,14 @@ from __future__ import annotations
 import json
 import math
 import os
-import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from .._atomic import atomic_write
+from .._atomic import atomic_path, atomic_write
 from .._core import posture as _p
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
 
 #: Columns of postures_*.csv: path length of the CC points, tool tip (lowest point of the ball along the axis),
 #: unit axis from the tip towards the spindle.
@@ -59,11 +54,9 @@ def assembly_from_dict(d: dict, *, source: str = "tool") -> _p.CutterAssembly:
 
 
 def _load_toml(path) -> dict:
-    with open(path, "rb") as fh:
-        try:
-            return tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise ValueError(f"{os.fspath(path)}: not valid TOML: {exc}") from None
+    from .._text import read_toml
+
+    return read_toml(path)
 
 
 def load_tool(path: str | os.PathLike) -> _p.CutterAssembly:
@@ -205,7 +198,8 @@ class PostureRun:
             raise ValueError(f"--out = {str(out)!r}: not a folder")
         written = []
         stl = out / "obstacles.stl"
-        write_stl(stl, self.obstacle_vertices, self.obstacle_faces, name="netshape posture obstacles")
+        with atomic_path(stl) as tmp:
+            write_stl(tmp, self.obstacle_vertices, self.obstacle_faces, name="netshape posture obstacles")
         written.append(stl)
         header = ",".join(CSV_COLUMNS)
         for stage in ("raw", "mc", "final"):

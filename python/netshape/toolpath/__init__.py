@@ -165,6 +165,31 @@ def _path(path: str | os.PathLike) -> str:
     return p
 
 
+def gcode_encoding(path: str | os.PathLike) -> str:
+    """``"utf-8"`` when the program file is UTF-8 (or ASCII), else ``"latin-1"``: G-code words are ASCII,
+    so only comments can hold other bytes, and a program that is not UTF-8 is read with its comments as
+    Latin-1 (ISO 8859-1, one character per byte). Writers given this encoding put every comment back
+    byte for byte."""
+    with open(_path(path), "rb") as fh:
+        data = fh.read()
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError:
+        return "latin-1"
+    return "utf-8"
+
+
+def _read_latin1(path: str) -> str | None:
+    """The program text decoded as Latin-1 when the file is not UTF-8; None when it is UTF-8."""
+    with open(path, "rb") as fh:
+        data = fh.read()
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError:
+        return data.decode("latin-1")
+    return None
+
+
 def _arcs_mode(arcs: str, chord_tolerance: float) -> bool:
     if arcs not in ("keep", "split"):
         raise ValueError(f"arcs = {arcs!r}: must be 'keep' or 'split'")
@@ -204,7 +229,10 @@ def read_gcode(
         (a ``ValueError``) with ``source``, ``line``, ``column`` for bad or unsupported G-code.
     """
     split = _arcs_mode(arcs, chord_tolerance)
-    tp = _tp.read_gcode(_path(path), reader_options(work_offsets, tool_table, line_numbers))
+    p = _path(path)
+    latin1 = _read_latin1(p)
+    opts = reader_options(work_offsets, tool_table, line_numbers)
+    tp = _tp.read_gcode(p, opts) if latin1 is None else _tp.parse_gcode(latin1, p, opts)
     _warn(tp.warnings)
     return tp.split_arcs(float(chord_tolerance)) if split else tp
 
@@ -321,6 +349,7 @@ def write_gcode(
     decimals: int = -1,
     absolute_arc_centers: bool = False,
     header_comment: str = "",
+    encoding: str = "utf-8",
 ) -> None:
     """Write ``toolpath`` as G-code to ``path``, whole or not at all (temporary file + rename).
 
@@ -330,7 +359,8 @@ def write_gcode(
     G1 chords within ``chord_tolerance`` [mm] when ``split_arcs``; the program's own M2/M30, else M2.
     Coordinates are written in program coordinates (the tool path's work offsets and tool lengths in
     force subtracted). ``decimals=-1`` writes the shortest numbers that read back exactly, so read ->
-    write -> read gives the same blocks and the same commands.
+    write -> read gives the same blocks and the same commands. ``encoding``: that of the program the
+    tool path was read from (:func:`gcode_encoding`), so its comments are written back byte for byte.
     """
     text = format_gcode(
         toolpath,
@@ -340,7 +370,7 @@ def write_gcode(
         absolute_arc_centers=absolute_arc_centers,
         header_comment=header_comment,
     )
-    with atomic_write(path, "w") as fh:
+    with atomic_write(path, "w", encoding=encoding, errors="replace") as fh:
         fh.write(text)
 
 
@@ -361,6 +391,7 @@ __all__ = [
     "block_bounds",
     "chord_count",
     "format_gcode",
+    "gcode_encoding",
     "iter_gcode",
     "non_motion",
     "parse_gcode",

@@ -171,3 +171,24 @@ def test_ball_end_mill_is_refused_by_the_force_workflow(fb):
     b = nd.load_bundle(fb)
     with pytest.raises(ValueError, match=r"\[tool\] type = 'ball'.*flat end mills"):
         nd.diagnose(b)
+
+
+def test_force_angles_that_do_not_advance(fb, capsys):
+    """A force CSV whose angle_deg column holds one value (issue 42 item 5: was a ZeroDivisionError)."""
+    path = fb / "e1.csv"
+    lines = path.read_text().splitlines()
+    path.write_text("\n".join([lines[0]] + ["10," + ln.split(",", 1)[1] for ln in lines[1:]]) + "\n")
+    with pytest.raises(ValueError, match=r"e1.csv: column 'angle_deg': the angle must advance"):
+        nd.load_bundle(fb)
+    assert main(["diagnose", str(fb), "--json", str(fb / "d.json")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "angle_deg" in err and "Traceback" not in err
+    assert not (fb / "d.json").exists()
+
+
+def test_latin1_byte_in_a_force_csv(fb, capsys):
+    path = fb / "e1.csv"
+    path.write_bytes(path.read_bytes().replace(b"\n", b"\n# Kraftmessung, Fr\xe4ser 2\n", 1))
+    assert main(["diagnose", str(fb), "--json", str(fb / "d.json")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "e1.csv:2: not UTF-8 text (byte 0xE4" in err
