@@ -163,7 +163,7 @@ void write_gcode(const Toolpath& tp, std::ostream& os, const WriterOptions& opt)
     }
     NETSHAPE_CHECK(std::isfinite(b.feed) && b.feed >= 0.0, "block.feed", b.feed, "must be a non-negative number [mm/s]");
     NETSHAPE_CHECK(b.feed <= max_feed_mm_per_min / 60.0, "block.feed", b.feed,
-                   "must not exceed max_feed_mm_per_min / 60 = 16666.67 mm/s (F 1e6 mm/min) [mm/s]");
+                   "must not exceed max_feed_mm_per_min / 60 = 1666666.67 mm/s (F 1e8 mm/min) [mm/s]");
     // tool and spindle the commands did not set (tool paths built in code, or changed by a transform)
     if (b.tool != tool) {
       NETSHAPE_CHECK(b.tool >= 0, "block.tool", b.tool, "must not be negative");

@@ -12,9 +12,10 @@
 
 namespace netshape::toolpath {
 
-/// Largest feed the writer writes, F [mm/min] (16 667 mm/s): far above any machine tool, far below the
-/// numbers whose F words stop being a feed. A block feed above it throws std::invalid_argument.
-constexpr double max_feed_mm_per_min = 1e6;
+/// Largest feed the writer writes, F [mm/min] (1.67e6 mm/s): far above any machine tool and the rapid
+/// feeds programs write as F words (3D_Chips.ngc has F4500000), far below the numbers whose F words stop
+/// being a feed. A block feed above it throws std::invalid_argument.
+constexpr double max_feed_mm_per_min = 1e8;
 
 /// Options of the writer.
 struct WriterOptions {
