@@ -10,7 +10,6 @@ are whole (every file goes through a temporary file and a rename) and no later f
 
 from __future__ import annotations
 
-import json
 import platform
 import sys
 import time
@@ -96,6 +95,25 @@ class _Stages:
             self.bar = None
 
 
+def _check_results(job: Job, summary: dict) -> None:
+    """Refuse a summary holding NaN/inf, naming the job key its first such figure comes from."""
+    from netshape._json import NonFiniteResult, first_non_finite
+
+    found = first_non_finite(summary)
+    if not found:
+        return
+    key = found[0]
+    causes = (("errors.volumetric", f"machine = {str(job.machine)!r} (error_scale = {job.error_scale!r})"),
+              ("volumetric_compensation", f"machine = {str(job.machine)!r} (error_scale = {job.error_scale!r})"),
+              ("forces", f"cutting.spindle_rpm = {job.cutting['spindle_rpm']!r} (feed_per_tooth_mm = "
+                         f"{job.cutting['feed_per_tooth_mm']!r})"),
+              ("errors.deflection", f"tool.stick_out_mm = {job.tool.get('stick_out_mm')!r} (diameter_mm = "
+                                    f"{job.tool.get('diameter_mm')!r})"),
+              ("cycle_time_s", "limits"))
+    cause = next((c for prefix, c in causes if key.startswith(prefix)), None)
+    raise NonFiniteResult(key, found[1], f"{job.source}: {cause}" if cause else str(job.source))
+
+
 def stage_names(job: Job) -> list[str]:
     p, c = job.predict, job.compensate
     names = ["program", "stock", "cut"]
@@ -116,7 +134,10 @@ def stage_names(job: Job) -> list[str]:
 def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True) -> dict:
     """Run ``job`` writing into ``out`` (default ``job.output``); returns the summary (also in
     summary.json). Raises StageFailed naming the stage that failed."""
+    from .budget import check_job_work
+
     t_start = time.perf_counter()
+    check_job_work(job)  # before anything is written: the work the job's numbers imply
     folder = Path(out) if out is not None else job.output
     folder.mkdir(parents=True, exist_ok=True)
     S = _Stages(stage_names(job), quiet)
@@ -243,15 +264,14 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True) -> d
             files[f"plot_{key}"] = rp.PLOTS[key]
         return rp
 
+    _check_results(job, summary)  # no output of a run whose results are not finite
     rp = S.run("report", _outputs)
     summary["run_time_s"]["report"] = S.times["report"]
     summary["run_time_s"]["total"] = round(time.perf_counter() - t_start, 4)
     rp.write_html(folder / "report.html", summary,
                   {k: rp.PLOTS[k] for k in rp.PLOTS} if job.report["plots"] else {})
-    from netshape._atomic import atomic_write
+    from netshape._json import write_json
 
-    with atomic_write(folder / "summary.json", "w") as fh:
-        json.dump(summary, fh, indent=2)
-        fh.write("\n")
+    write_json(folder / "summary.json", summary, cause=str(job.source))
     S.close()
     return summary
