@@ -4,7 +4,6 @@ add it and show the gap shrink (netshape.discrepancy, docs/discrepancy.md)."""
 from __future__ import annotations
 
 import argparse
-import json
 
 _DESCRIPTION = """\
 Read a measurement bundle (BUNDLE_DIR/manifest.toml + CSV files: kind cutting_force,
@@ -49,7 +48,9 @@ def run(args) -> int:
 
     bundle = load_bundle(args.bundle)
     d = diagnose(bundle)
-    text = json.dumps(d.to_dict(), indent=2)
+    from netshape._json import dumps_json
+
+    text = dumps_json(d.to_dict(), indent=2, cause=str(args.bundle))
     with atomic_write(args.json) as fh:
         fh.write(text + "\n")
     if args.report:
