@@ -125,3 +125,11 @@ def test_a_non_finite_result_is_an_error_not_a_file(tmp_path, monkeypatch):
     with pytest.raises(ValueError, match=r"job.toml: gives a non-finite result \(versions.netshape = nan\); nothing"):
         run_job(job, tmp_path / "o", quiet=True)
     assert not (tmp_path / "o" / "summary.json").exists()
+
+
+def test_a_batch_run_with_a_non_finite_feed_per_tooth_is_refused_before_any_runs(capsys, tmp_path):
+    """spindle_rpm = 1e-300 once gave a batch row with status ok and inf cells."""
+    job = _job(tmp_path, extra='\n[grid]\n"cutting.spindle_rpm" = [8000.0, 1e-300]\n')
+    _refused(capsys, ["batch", str(job), "--scheduler", "none", "--quiet", "--out", str(tmp_path / "b")],
+             f"{job} [job-001]: cutting.spindle_rpm = 1e-300: gives a feed per tooth of")
+    assert not (tmp_path / "b").exists()
