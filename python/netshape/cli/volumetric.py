@@ -88,8 +88,8 @@ def run(args) -> int:
             if len(emap.points) == 0:
                 raise CliError(f"{args.program}: no motion blocks")
         else:
-            B.refuse_over(f"--grid = {','.join(map(str, args.grid))}", float(np.prod(args.grid, dtype=float)), limit,
-                          "map points", "raise --max-points")
+            points = float(np.prod(args.grid, dtype=float))
+            B.refuse_over(f"--grid = {','.join(map(str, args.grid))}", points, limit, "map points", "raise --max-points")
             emap = nm.grid_error_map(machine, args.grid)
         _check_map(emap, args.machine, machine)
         s = emap.summary()

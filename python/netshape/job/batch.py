@@ -62,7 +62,8 @@ def expand(paths, max_runs: int | None = None) -> list[dict]:
     limit = MAX_BATCH_RUNS if max_runs is None else max_runs
     size = study_size(paths)
     try:
-        refuse_over(f"{paths[0]}: grid" if len(paths) == 1 else f"{len(paths)} job files", size, limit, "runs (grid combinations over all jobs)", "raise --max-runs")
+        cause = f"{paths[0]}: grid" if len(paths) == 1 else f"{len(paths)} job files"
+        refuse_over(cause, size, limit, "runs (grid combinations over all jobs)", "raise --max-runs")
     except ValueError as exc:
         raise JobError(str(exc)) from None
     specs = []
