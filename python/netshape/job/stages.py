@@ -377,6 +377,11 @@ def stage_volumetric(job: Job, machine, tp_machine) -> VolumetricResult:
     if len(pts) == 0:
         raise ValueError(f"program = {str(job.program)!r}: no feed moves to predict the volumetric error of")
     e = nm.tip_error(machine, pts)
+    bad = ~np.isfinite(e).all(axis=1)
+    if bad.any():  # the machine's numbers, not the path: name them before any later step trips on it
+        x, y, z = pts[int(np.argmax(bad))]
+        raise ValueError(f"{job.source}: machine = {str(job.machine)!r} (error_scale = {job.error_scale!r}): its "
+                         f"error model gives a non-finite tip error at X{x:g} Y{y:g} Z{z:g} (machine frame)")
     dev = distance_to_path(pts + e, a, b, job.cutting["error_spacing_mm"])
     return VolumetricResult(s_before_mm=s, before_mm=dev, points_mm=pts, error_vectors_mm=e)
 

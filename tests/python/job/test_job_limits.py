@@ -133,3 +133,12 @@ def test_a_batch_run_with_a_non_finite_feed_per_tooth_is_refused_before_any_runs
     _refused(capsys, ["batch", str(job), "--scheduler", "none", "--quiet", "--out", str(tmp_path / "b")],
              f"{job} [job-001]: cutting.spindle_rpm = 1e-300: gives a feed per tooth of")
     assert not (tmp_path / "b").exists()
+
+
+def test_a_non_finite_machine_error_names_the_machine(capsys, tmp_path):
+    """A 1e300 polynomial once stopped the run with scipy's "'x' must be finite"."""
+    job = _job(tmp_path, "predict", {"deflection": "false", "forces": "false"})
+    m = job.parent / "machine.toml"
+    m.write_text(m.read_text().replace("EXX_mm = [0.002, 2.5e-5]", "EXX_mm = [0.002, 2.5e-5, 0, 0, 1e300]"))
+    _refused(capsys, ["run", str(job), "--quiet"], f"machine = '{m}' (error_scale = 1.0): its error model gives a "
+             "non-finite tip error at", max_s=30.0)
