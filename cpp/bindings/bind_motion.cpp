@@ -290,14 +290,14 @@ void bind_motion(py::module_& m) {
          py_types::RefPoints3 center, const Eigen::Ref<const Eigen::VectorXi>& clockwise,
          const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
          py_types::RefVector feed, py_types::RefMatrix ctrl, const AxisLimits& limits, const PlanOptions& options,
-         bool with_deviation) {
+         bool with_deviation, long max_samples) {
         std::vector<CubicControls> controls;
         const auto blocks = motion_arrays::planned_blocks_from_arrays(kind, start, end, center, clockwise, plane, turns,
                                                                       feed, ctrl, controls);
         Trajectory tr;
         {
           py::gil_scoped_release release;
-          tr = plan(blocks, controls, limits, options, with_deviation);
+          tr = plan(blocks, controls, limits, options, with_deviation, max_samples);
         }
         const auto& s = tr.stats;
         py::dict stats;
@@ -318,7 +318,7 @@ void bind_motion(py::module_& m) {
       },
       py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
       py::arg("turns"), py::arg("feed"), py::arg("ctrl"), py::arg("limits"), py::arg("options"),
-      py::arg("with_deviation") = true);
+      py::arg("with_deviation") = true, py::arg("max_samples") = 0L);
 
   m.def(
       "_smooth_arrays",

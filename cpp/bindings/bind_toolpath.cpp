@@ -322,6 +322,7 @@ void bind_toolpath(py::module_& m) {
     return os.str();
   }, py::arg("toolpath"), py::arg_v("options", WriterOptions{}, "WriterOptions()"));
   m.def("chord_count", &chord_count, py::arg("radius"), py::arg("sweep"), py::arg("tol"));
+  m.attr("max_feed_mm_per_min") = max_feed_mm_per_min;
   m.def("block_bounds", [](const Block& b) {
     Vec3 lo, hi;
     block_bounds(b, lo, hi);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "netshape/core/error.hpp"
@@ -74,15 +75,16 @@ void measure_samples(const Points3& x, double ts, TrajectoryStats& st) {
 }
 
 Trajectory plan(const std::vector<toolpath::Block>& blocks, const AxisLimits& limits, const PlanOptions& options,
-                bool with_deviation) {
-  return plan(blocks, {}, limits, options, with_deviation);
+                bool with_deviation, long max_samples) {
+  return plan(blocks, {}, limits, options, with_deviation, max_samples);
 }
 
 Trajectory plan(const std::vector<toolpath::Block>& blocks, const std::vector<CubicControls>& controls,
-                const AxisLimits& limits, const PlanOptions& options, bool with_deviation) {
+                const AxisLimits& limits, const PlanOptions& options, bool with_deviation, long max_samples) {
+  NETSHAPE_CHECK(max_samples >= 0, "max_samples", max_samples, "must be >= 0 (0: no limit)");
   NETSHAPE_CHECK(controls.empty() || controls.size() == blocks.size(), "controls", controls.size(),
                  "must be empty or hold one entry per block");
-  Planner planner(limits, options);
+  options.validate();
   static const CubicControls none;
   const auto controls_of = [&](std::size_t i) -> const CubicControls& { return controls.empty() ? none : controls[i]; };
   // cubic blocks as curves (the deviation is measured against them), by block index
@@ -118,6 +120,11 @@ Trajectory plan(const std::vector<toolpath::Block>& blocks, const std::vector<Cu
                                 : distance_to_block(p, blocks[b]);
   };
   NETSHAPE_CHECK(!index.empty(), "blocks", blocks.size(), "must contain at least one block that moves");
+  // A look-ahead deeper than the program holds the whole program either way; its ring is sized by the
+  // depth (tens of kB per block), so plan with the depth the program can use: the same trajectory.
+  PlanOptions used = options;
+  used.lookahead = std::min(options.lookahead, std::max(2, static_cast<int>(std::min<std::size_t>(index.size(), 1000000)) + 2));
+  Planner planner(limits, used);
 
   std::vector<double> t, feed;
   std::vector<Vec3> pos, vel;
@@ -127,6 +134,10 @@ Trajectory plan(const std::vector<toolpath::Block>& blocks, const std::vector<Cu
   for (;;) {
     const Status st = planner.next(s);
     if (st == Status::ok) {
+      if (max_samples > 0 && static_cast<long>(t.size()) >= max_samples)
+        throw std::invalid_argument("max_samples = " + std::to_string(max_samples) +
+                                    ": the plan needs more fine samples (stopped at t = " + std::to_string(s.t) +
+                                    " s into the program); raise the limit or the fine period ts2");
       t.push_back(s.t);
       pos.push_back(s.position);
       vel.push_back(s.velocity);

@@ -19,18 +19,25 @@ void WriterOptions::validate() const {
 
 namespace {
 
+// Every finite double fits this buffer in fixed notation: at most a sign, 309 integer digits, a point and
+// 324 places (the shortest form of 5e-324), or 309 digits and 12 places with fixed decimals. A number that
+// does not fit (or is not finite) throws instead of being copied past the buffer.
+constexpr std::size_t number_chars = 400;
+
 class NumberFormat {
  public:
   explicit NumberFormat(int decimals) : decimals_(decimals) {}
   void put(std::string& out, char letter, double v) const {
+    if (!std::isfinite(v)) throw Error(std::string("write_gcode: ") + letter + " word is not a finite number");
     out += letter;
-    char buf[64];
+    char buf[number_chars];
     if (v == 0.0) v = 0.0;  // no "-0"
     if (decimals_ < 0) {
       auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed);
+      if (r.ec != std::errc()) throw Error(std::string("write_gcode: ") + letter + " word does not fit");
       out.append(buf, r.ptr);
     } else {
-      int n = std::snprintf(buf, sizeof buf, "%.*f", decimals_, v);
+      std::size_t n = printed(buf, std::snprintf(buf, sizeof buf, "%.*f", decimals_, v), letter);
       if (decimals_ > 0) {  // strip trailing zeros and a bare point
         while (n > 1 && buf[n - 1] == '0') --n;
         if (buf[n - 1] == '.') --n;
@@ -39,24 +46,30 @@ class NumberFormat {
         buf[0] = '0';
         n = 1;
       }
-      out.append(buf, static_cast<std::size_t>(n));
+      out.append(buf, n);
     }
   }
   // Feed [units/min]: rounded to 1e-6 (shortest form would keep the binary noise of mm/s × 60, e.g.
-  // 1000000.0000000001); fixed decimals when asked for fewer.
+  // 1000000.0000000001); fixed decimals when asked for fewer. `f` is in [0, max_feed_mm_per_min].
   void put_feed(std::string& out, double f) const {
     out += 'F';
-    char buf[64];
+    char buf[number_chars];
     const int d = decimals_ < 0 || decimals_ > 6 ? 6 : decimals_;
-    int n = std::snprintf(buf, sizeof buf, "%.*f", d, f);
+    std::size_t n = printed(buf, std::snprintf(buf, sizeof buf, "%.*f", d, f), 'F');
     if (d > 0) {
       while (n > 1 && buf[n - 1] == '0') --n;
       if (buf[n - 1] == '.') --n;
     }
-    out.append(buf, static_cast<std::size_t>(n));
+    out.append(buf, n);
   }
 
  private:
+  // The length snprintf reported, checked to lie inside the buffer it wrote.
+  static std::size_t printed(const char*, int n, char letter) {
+    if (n < 0 || static_cast<std::size_t>(n) >= number_chars)
+      throw Error(std::string("write_gcode: ") + letter + " word does not fit the number buffer");
+    return static_cast<std::size_t>(n);
+  }
   int decimals_;
 };
 
@@ -149,6 +162,8 @@ void write_gcode(const Toolpath& tp, std::ostream& os, const WriterOptions& opt)
       NETSHAPE_CHECK_FINITE("block.end", b.end[i]);
     }
     NETSHAPE_CHECK(std::isfinite(b.feed) && b.feed >= 0.0, "block.feed", b.feed, "must be a non-negative number [mm/s]");
+    NETSHAPE_CHECK(b.feed <= max_feed_mm_per_min / 60.0, "block.feed", b.feed,
+                   "must not exceed max_feed_mm_per_min / 60 = 1666666.67 mm/s (F 1e8 mm/min) [mm/s]");
     // tool and spindle the commands did not set (tool paths built in code, or changed by a transform)
     if (b.tool != tool) {
       NETSHAPE_CHECK(b.tool >= 0, "block.tool", b.tool, "must not be negative");

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 
 from netshape.cli import _args as a
 
@@ -28,6 +29,8 @@ def register(sub) -> None:
                    help="LocalCluster worker processes, >= 1 (2)")
     p.add_argument("--out", default="netshape-batch", metavar="DIR", help="output folder (netshape-batch)")
     p.add_argument("--parquet", action="store_true", help="also write batch.parquet (needs pandas, pyarrow)")
+    p.add_argument("--max-runs", type=a.integer("--max-runs", "runs", ge=1), default=None, metavar="N",
+                   help="refuse a study of more than N runs, counted before any runs (10000)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run)
 
@@ -37,12 +40,14 @@ def run(args) -> int:
 
     from netshape._atomic import check_output_folder
     from netshape.cli import CliError
-    from netshape.job.batch import run_batch
+    from netshape.job.batch import run_batch, study_size
 
     check_output_folder(args.out, "--out")
+    if not args.quiet:
+        print(f"netshape batch: {study_size(args.jobs)} runs", file=sys.stderr)
     try:
         rows = run_batch(args.jobs, args.out, scheduler=args.scheduler, workers=args.workers,
-                         parquet=args.parquet, progress=not args.quiet)
+                         parquet=args.parquet, progress=not args.quiet, max_runs=args.max_runs)
     except ImportError as exc:
         raise CliError(str(exc)) from None
     failed = [r for r in rows if r["status"] != "ok"]

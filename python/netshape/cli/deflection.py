@@ -71,6 +71,9 @@ def register(sub) -> None:
         _common(q)
         q.add_argument("--spacing", type=a.positive("--spacing", "mm"), default=0.5, metavar="MM",
                        help="path point spacing [mm] (default 0.5)")
+        q.add_argument("--max-points", type=a.integer("--max-points", "points", ge=1), default=None, metavar="N",
+                       help="refuse a program whose path points (its feed length / --spacing, counted before "
+                            "the work) exceed N (2000000)")
         q.add_argument("--side", choices=("auto", "left", "right"), default="auto",
                        help="wall side: left of the feed (up milling) or right (down milling); default auto")
         if name == "predict":
@@ -116,14 +119,10 @@ def _coefficients(text: str):
     return parse_coefficients(text)
 
 
-def _write_json(path, data) -> None:
-    import json
+def _write_json(path, data, cause: str | None = None) -> None:
+    from netshape._json import write_json
 
-    from netshape._atomic import atomic_write
-
-    with atomic_write(path, "w") as fh:
-        json.dump(data, fh, indent=1)
-        fh.write("\n")
+    write_json(path, data, indent=1, cause=cause)
 
 
 def run_wall(args) -> int:
@@ -162,11 +161,17 @@ def run_wall(args) -> int:
                          coefficients=args.coefficients, inertia=args.inertia, load=args.load)
     res = d.steady_wall(model, args.mode, levels=args.levels)
     res.update({"mode": args.mode, "load": args.load, "inertia": args.inertia, "rpm": args.rpm})
+    # a cantilever's deflection grows with stick-out³ / (E · D⁴): the tool's numbers are the cause
+    tool = (f"--tool {args.tool} (stick_out_mm = {stick:g}, diameter_mm = {diameter:g}, youngs_modulus_MPa = {e:g})"
+            if args.tool else f"--stick-out = {stick:g} (with --diameter = {diameter:g}, --youngs-modulus = {e:g})")
+    from netshape._json import check_finite
+
+    check_finite(res, cause=tool)
     w = res["wall_error_mm"]
     print(f"wall error ({res['side']} wall, {args.load}): bottom {w['bottom'] * 1e3:.2f} um, "
           f"middle {w['middle'] * 1e3:.2f} um, top {w['top'] * 1e3:.2f} um; max force {res['max_force_N']:.1f} N")
     if args.json:
-        _write_json(args.json, res)
+        _write_json(args.json, res, cause=tool)
     return 0
 
 
@@ -177,6 +182,7 @@ def _setup(args):
 
     from netshape._text import read_toml
 
+    _check_points(args)
     cutter = load_cutter(args.tool)
     read_toml(args.stock)  # not UTF-8 or nested too deep: refused here naming the file and line
     stock = d.load_stock(args.stock)
@@ -207,6 +213,25 @@ def _pieces(setup, final):
 
 def _um(levels: dict) -> str:
     return ", ".join(f"{k} {v * 1e3:.2f} um" for k, v in levels.items())
+
+
+def _check_points(args) -> None:
+    """Refuse, before any work, a --spacing that puts more than --max-points points on the program."""
+    import warnings
+
+    import numpy as np
+
+    from netshape import _budget as B
+    from netshape import toolpath
+
+    with warnings.catch_warnings():  # the reader's warnings come once, from the real read below
+        warnings.simplefilter("ignore")
+        a = toolpath.read_gcode_arrays(args.program, arcs="keep")
+    feed = np.asarray(a["kind"]) != 0
+    length = float(np.sum(toolpath.block_lengths(a)[feed]))
+    B.refuse_over(f"--spacing = {args.spacing:g}", length / args.spacing + np.count_nonzero(feed),
+                  B.MAX_PATH_POINTS if args.max_points is None else args.max_points,
+                  f"path points along {length:g} mm of feed moves", "raise --max-points or --spacing")
 
 
 def run_predict(args) -> int:

@@ -4,7 +4,6 @@ add it and show the gap shrink (netshape.discrepancy, docs/discrepancy.md)."""
 from __future__ import annotations
 
 import argparse
-import json
 
 _DESCRIPTION = """\
 Read a measurement bundle (BUNDLE_DIR/manifest.toml + CSV files: kind cutting_force,
@@ -51,7 +50,9 @@ def run(args) -> int:
     check_outputs(args, files=("--json",), folders=("--report",))
     bundle = load_bundle(args.bundle)
     d = diagnose(bundle)
-    text = json.dumps(d.to_dict(), indent=2)
+    from netshape._json import dumps_json
+
+    text = dumps_json(d.to_dict(), indent=2, cause=str(args.bundle))
     with all_or_nothing():
         with atomic_write(args.json) as fh:
             fh.write(text + "\n")

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 
 _DESCRIPTION = """\
 Read an RS274/NGC (LinuxCNC dialect) G-code program and print block counts by kind, rapid and feed
@@ -67,7 +66,9 @@ def run(args) -> int:
     with reader_warnings("info"):
         d = info_dict(args.program, **offset_kwargs(args))
     if args.json:
-        print(json.dumps(d, indent=2))
+        from netshape._json import dumps_json
+
+        print(dumps_json(d, indent=2, cause=str(args.program)))
     else:
         print(format_table(d))
     return 0

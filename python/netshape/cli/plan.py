@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import argparse
-import json
+import contextlib
 import math
 
 from netshape.cli import _args as a
@@ -84,6 +84,9 @@ def register(sub) -> None:
                    help="fine loop period [s] (0.0001)")
     p.add_argument("--lookahead", type=a.integer("--lookahead", "blocks", ge=2, le=1_000_000), default=64,
                    metavar="N", help="look-ahead depth in blocks, 2..1000000 (64)")
+    p.add_argument("--max-samples", type=a.integer("--max-samples", "samples", ge=1), default=None, metavar="N",
+                   help="refuse a program whose fine samples (cycle time / --ts2, estimated before planning) "
+                        "exceed N (50000000, about 10 GB while planned)")
     p.add_argument("--allowable", type=a.non_negative("--allowable", "mm/min"), default=100.0,
                    metavar="MM_PER_MIN",
                    help="paper rule: allowable speed difference [mm/min] (100)")
@@ -143,6 +146,58 @@ def _limits(args):
     return AxisLimits.uniform(args.vmax, args.amax, math.inf if args.jmax is None else args.jmax)
 
 
+def _max_samples(args) -> int:
+    from netshape._budget import MAX_PLAN_SAMPLES
+
+    return MAX_PLAN_SAMPLES if args.max_samples is None else args.max_samples
+
+
+@contextlib.contextmanager
+def _samples_named():
+    """The planner's own bound (reached when the estimate was low, e.g. corners under a tiny jerk
+    limit) as the option's error."""
+    try:
+        yield
+    except ValueError as exc:
+        msg = str(exc)
+        if msg.startswith("max_samples = "):
+            raise ValueError("--" + msg.replace("max_samples", "max-samples", 1)) from None
+        raise
+
+
+def _check_work(args, arrays, limits) -> None:
+    """Refuse, before planning, a program whose fine samples (at least its cycle time / ts2) exceed
+    --max-samples, naming the input that makes the time long (docs/motion.md, Limits)."""
+    from netshape._budget import refuse_over
+    from netshape.motion.budget import min_motion_time
+
+    limit = _max_samples(args)
+    bound = min_motion_time(arrays, limits)
+    samples = bound.time_s / args.ts2
+    if samples <= limit:
+        return
+    k = bound.block
+    where = ""
+    if k >= 0 and bound.block_time_s >= 0.5 * bound.time_s:  # one move takes most of the time
+        line = int(arrays["line"][k]) if "line" in arrays else k + 1
+        where = f"{args.program}:{line}: a move of {bound.block_mm:g} mm"
+    if bound.time_s / 1e-4 <= limit:  # would fit at the default period: the period asks for it
+        cause = f"--ts2 = {args.ts2:g} [s]"
+    elif bound.limit in ("vmax", "amax", "jmax"):
+        unit = {"vmax": "mm/s", "amax": "mm/s^2", "jmax": "mm/s^3"}[bound.limit]
+        value = getattr(args, bound.limit)
+        cause = (f"--{bound.limit} = {value:g} [{unit}]" if value is not None
+                 else f"--limits {args.limits} ({bound.limit})") + (f" ({where})" if where else "")
+    elif where:
+        feed = float(arrays["feed"][k]) * 60.0 / args.feed_scale
+        cause = f"{where} at F{feed:g} mm/min" + (f" × --feed-scale {args.feed_scale:g}" if args.feed_scale != 1 else "")
+    else:
+        cause = f"{args.program}: {bound.path_mm:g} mm of moves at their feeds"
+    refuse_over(cause, samples, limit,
+                f"fine samples (at least {bound.time_s:.3g} s of motion, one sample every --ts2 = {args.ts2:g} s)",
+                "raise --max-samples or --ts2")
+
+
 def run(args) -> int:
     import numpy as np
 
@@ -171,12 +226,19 @@ def run(args) -> int:
         arrays = toolpath.read_gcode_arrays(args.program, **offset_kwargs(args))
     arrays = {k: np.asarray(v) for k, v in arrays.items()}
     arrays["feed"] = arrays["feed"] * args.feed_scale
+    _check_work(args, arrays, limits)
+    fmax = toolpath.max_feed_mm_per_min
+    if args.smoothed_gcode and np.max(arrays["feed"], initial=0.0) > fmax / 60.0:  # the writer's bound
+        k = int(np.argmax(arrays["feed"]))
+        raise CliError(f"--feed-scale = {args.feed_scale:g}: gives F {arrays['feed'][k] * 60.0:.6g} mm/min on "
+                       f"{args.program}:{int(arrays['line'][k])}, over the largest feed written, F {fmax:g} mm/min")
     with all_or_nothing():
         if args.rule == "smooth":
             skw = dict(max_segment=args.max_segment, max_turn=math.radians(args.max_turn),
                        max_fit_turn=math.radians(args.max_fit_turn))
-            traj = plan(arrays, limits, rule="smooth", tolerance=args.tolerance, ts1=args.ts1, ts2=args.ts2,
-                        lookahead=args.lookahead, **skw)
+            with _samples_named():
+                traj = plan(arrays, limits, rule="smooth", tolerance=args.tolerance, ts1=args.ts1, ts2=args.ts2,
+                            lookahead=args.lookahead, max_samples=_max_samples(args), **skw)
             if args.smoothed_gcode:
                 from netshape.motion import smooth_path
                 from netshape.motion.smooth_gcode import write_smoothed_gcode
@@ -191,7 +253,8 @@ def run(args) -> int:
                         raise CliError("--chord-tolerance" + msg[len("chord_tolerance"):]) from None
                     raise
         else:
-            traj = plan(arrays, limits, options)
+            with _samples_named():
+                traj = plan(arrays, limits, options, max_samples=_max_samples(args))
         out = {
             "program": str(args.program),
             "rule": args.rule,
@@ -212,11 +275,15 @@ def run(args) -> int:
         out.update(traj.stats)
         out["note"] = ("max_axis_* are finite differences of the fine samples at ts2; rules that jump velocity at "
                        "a vertex (paper, junction-deviation) show it as large acceleration and jerk")
-        with atomic_write(args.json, "w") as fh:
-            json.dump(out, fh, indent=2, default=float)
-            fh.write("\n")
-        if args.samples:
+        from netshape._json import check_finite, write_json
+
+        table = None
+        if args.samples:  # checked before the JSON is written: both or neither
             table = np.column_stack([traj.t, traj.position, traj.velocity, traj.feed, traj.block])
+            if not np.isfinite(table).all():
+                check_finite({"samples": table.tolist()}, cause=args.program)
+        write_json(args.json, out, cause=args.program)
+        if table is not None:
             with atomic_write(args.samples, "w") as fh:
                 fh.write("t_s,x_mm,y_mm,z_mm,vx_mm_s,vy_mm_s,vz_mm_s,feed_mm_s,block\n")
                 np.savetxt(fh, table, delimiter=",", fmt=["%.6f"] + ["%.6f"] * 7 + ["%d"])

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 
+from netshape._budget import MAX_POSTURE_POINTS
 from netshape.cli import _args as a
 
 _DESCRIPTION = """\
@@ -46,8 +47,8 @@ def register(sub) -> None:
                    help="safety clearance [mm] (default 0.5)")
     q.add_argument("--machine", metavar="KIN.toml",
                    help="machine kinematics (table_ac or head_bc): also write program.ngc with A/C or B/C words")
-    q.add_argument("--points", type=a.integer("--points", ge=4), default=40, metavar="N",
-                   help="CC points along the path, >= 4 (default 40)")
+    q.add_argument("--points", type=a.integer("--points", ge=4, le=MAX_POSTURE_POINTS), default=40, metavar="N",
+                   help=f"CC points along the path, 4..{MAX_POSTURE_POINTS} (default 40)")
     q.add_argument("--passes", type=a.integer("--passes", ge=0), default=3, metavar="K",
                    help="MB-spline smoothing passes (default 3)")
     q.add_argument("--tilt-max", type=a.real("--tilt-max", "deg", gt=0, lt=90), default=60.0, metavar="DEG",

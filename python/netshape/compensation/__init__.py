@@ -12,6 +12,7 @@ from .volumetric import (
     compensate_points,
     compensate_points_status,
     compensate_program,
+    estimate_chords,
 )
 
 ProgramOptions = _compensation.ProgramOptions
@@ -22,4 +23,5 @@ VolumetricStatus = _compensation.VolumetricStatus
 __all__ = [
     "ProgramOptions", "ProgramReport", "VolumetricOptions", "VolumetricResult", "VolumetricStatus",
     "compensate_gcode", "compensate_points", "compensate_points_status", "compensate_program",
+    "estimate_chords",
 ]

@@ -112,6 +112,45 @@ def compensate_program(machine: _m.Machine, program: Any, chord_tolerance: float
     return out, report
 
 
+def estimate_chords(machine: _m.Machine, arrays: dict, chord_tolerance: float) -> float:
+    """About how many output moves :func:`compensate_program` writes for block arrays (read with arcs
+    kept; machine axis positions) at ``chord_tolerance`` [mm], computed before the work from a few
+    error evaluations per block: a line whose actual path leaves the nominal one by d at its middle
+    needs about √(d / tol) pieces (the deviation of a piece falls with the square of its length); an arc
+    that is split becomes chords within tol / 2 (r·(1 − cos(θ/2)) per chord). Rapids count once."""
+    kind = np.asarray(arrays["kind"])
+    start, end = np.asarray(arrays["start"], float), np.asarray(arrays["end"], float)
+    tol = float(chord_tolerance)
+    if len(kind) == 0:
+        return 0.0
+    mid = 0.5 * (start + end)
+    pts = np.vstack([start, mid, end])
+    if not np.isfinite(pts).all():
+        return float(len(kind))  # the compensation refuses these points itself
+    e = np.asarray(_m.tip_error(machine, pts, _m.Order.exact))
+    n = len(kind)
+    ea, em, eb = e[:n], e[n:2 * n], e[2 * n:]
+    dev = np.linalg.norm(em - 0.5 * (ea + eb), axis=1)
+    with np.errstate(over="ignore", invalid="ignore"):
+        pieces = np.maximum(1.0, np.ceil(np.sqrt(dev / tol)))
+    arc = np.flatnonzero(kind == 2)
+    if arc.size:
+        from ..toolpath import block_lengths
+
+        axes = np.array([[0, 1], [2, 0], [1, 2]])[np.asarray(arrays["plane"])[arc]]
+        rows = np.arange(arc.size)[:, None]
+        c = np.asarray(arrays["center"], float)[arc][rows, axes]
+        r = np.hypot(*(start[arc][rows, axes] - c).T)
+        length = block_lengths(arrays)[arc]
+        sweep = np.where(r > 0, length / np.maximum(r, 1e-300), 0.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            theta = np.where(0.5 * tol >= r, 0.5 * np.pi, 2.0 * np.arccos(1.0 - 0.5 * tol / r))
+            chords = np.where(sweep > 0, np.ceil(sweep / theta), 1.0)
+        pieces[arc] = np.where(dev[arc] > tol, np.maximum(chords, pieces[arc]), 1.0)
+    pieces[kind == 0] = 1.0
+    return float(np.sum(pieces))
+
+
 def compensate_gcode(machine: _m.Machine, program: str | os.PathLike, output: str | os.PathLike,
                      chord_tolerance: float = 0.002, tolerance: float = 1e-9, *, work_offsets: Any = None,
                      tool_table: Any = None) -> ProgramReport:

@@ -116,8 +116,9 @@ def _from_file(doc: Any, path) -> NurbsCurve | NurbsSurface:
 
 def save_json(shape: NurbsCurve | NurbsSurface, path: str | Path) -> None:
     """Write the dictionary form as JSON (atomically)."""
-    with atomic_write(path, "w") as f:
-        json.dump(to_dict(shape), f, indent=1)
+    from .._json import write_json
+
+    write_json(path, to_dict(shape), indent=1)
 
 
 def load_json(path: str | Path) -> NurbsCurve | NurbsSurface:

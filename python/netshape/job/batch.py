@@ -36,6 +36,7 @@ import time
 from pathlib import Path
 from urllib.parse import urlsplit
 
+from .budget import check_job_work
 from .spec import JobError, _read_toml, job_from_dict, set_dotted
 
 #: The error and time columns of a batch row, after ``run``, ``job`` and the grid keys.
@@ -54,10 +55,36 @@ class BatchInterrupted(KeyboardInterrupt):
         self.rows = rows
 
 
-def expand(paths) -> list[dict]:
+def study_size(paths) -> int:
+    """Runs the job files ask for: one per job, or the product of a job's ``[grid]`` list lengths."""
+    total = 0
+    for path in paths:
+        p = Path(path)
+        if not p.is_file():
+            raise FileNotFoundError(2, "No such file or directory", os.fspath(path))
+        grid = _read_toml(p, os.fspath(path)).get("grid", {})
+        n = 1
+        for v in (grid.values() if isinstance(grid, dict) else ()):
+            n *= len(v) if isinstance(v, list) else 1
+        total += n
+    return total
+
+
+def expand(paths, max_runs: int | None = None) -> list[dict]:
     """One run spec per job and grid combination: ``run`` id, ``job`` file, ``params`` (grid values),
     ``doc`` (the job TOML with the values set, without its grid) and ``base_dir``. Every spec is
-    validated here, so a bad grid value fails before anything runs, naming the run and the key."""
+    validated here, so a bad grid value fails before anything runs, naming the run and the key. A study
+    of more than ``max_runs`` runs (default netshape._budget.MAX_BATCH_RUNS) is refused before it is
+    expanded."""
+    from netshape._budget import MAX_BATCH_RUNS, refuse_over
+
+    limit = MAX_BATCH_RUNS if max_runs is None else max_runs
+    size = study_size(paths)
+    try:
+        cause = f"{paths[0]}: grid" if len(paths) == 1 else f"{len(paths)} job files"
+        refuse_over(cause, size, limit, "runs (grid combinations over all jobs)", "raise --max-runs")
+    except ValueError as exc:
+        raise JobError(str(exc)) from None
     specs = []
     for path in paths:
         p = Path(path)
@@ -78,7 +105,7 @@ def expand(paths) -> list[dict]:
                 except ValueError as exc:
                     raise JobError(f"{path}: grid.{k}: {exc}") from None
             run_id = f"{p.stem}-{i:03d}" if keys else p.stem
-            job_from_dict(d, source=f"{path} [{run_id}]", base_dir=base)
+            check_job_work(job_from_dict(d, source=f"{path} [{run_id}]", base_dir=base))
             specs.append({"run": run_id, "job": os.fspath(path), "params": dict(zip(keys, values)), "doc": d,
                           "base_dir": str(base)})
     ids = [s["run"] for s in specs]
@@ -372,11 +399,11 @@ def write_outputs(rows: list[dict], out_dir, *, parquet: bool = False) -> None:
 
 
 def run_batch(paths, out_dir, *, scheduler: str | None = None, workers: int = 2, parquet: bool = False,
-              progress: bool = False, task=None) -> list[dict]:
-    """Expand, check the outputs (and pandas for ``parquet``, and the scheduler), run, and write
+              progress: bool = False, task=None, max_runs: int | None = None) -> list[dict]:
+    """Expand (at most ``max_runs`` runs, see :func:`expand`), check the outputs (and pandas for ``parquet``, and the scheduler), run, and write
     ``batch.csv`` (+ .parquet), ``batch.png`` and ``batch.html`` into ``out_dir`` for every row, also
     when runs failed or the batch was interrupted. Returns the rows."""
-    specs = expand(paths)
+    specs = expand(paths, max_runs)
     out_dir = os.path.abspath(os.fspath(out_dir))
     if parquet:
         _parquet_modules()

@@ -14,7 +14,6 @@ removed when the earlier summary.json lists them (netshape wrote them) and repor
 
 from __future__ import annotations
 
-import json
 import platform
 import sys
 import time
@@ -100,6 +99,25 @@ class _Stages:
             self.bar = None
 
 
+def _check_results(job: Job, summary: dict) -> None:
+    """Refuse a summary holding NaN/inf, naming the job key its first such figure comes from."""
+    from netshape._json import NonFiniteResult, first_non_finite
+
+    found = first_non_finite(summary)
+    if not found:
+        return
+    key = found[0]
+    causes = (("errors.volumetric", f"machine = {str(job.machine)!r} (error_scale = {job.error_scale!r})"),
+              ("volumetric_compensation", f"machine = {str(job.machine)!r} (error_scale = {job.error_scale!r})"),
+              ("forces", f"cutting.spindle_rpm = {job.cutting['spindle_rpm']!r} (feed_per_tooth_mm = "
+                         f"{job.cutting['feed_per_tooth_mm']!r})"),
+              ("errors.deflection", f"tool.stick_out_mm = {job.tool.get('stick_out_mm')!r} (diameter_mm = "
+                                    f"{job.tool.get('diameter_mm')!r})"),
+              ("cycle_time_s", "limits"))
+    cause = next((c for prefix, c in causes if key.startswith(prefix)), None)
+    raise NonFiniteResult(key, found[1], f"{job.source}: {cause}" if cause else str(job.source))
+
+
 def stage_names(job: Job) -> list[str]:
     p, c = job.predict, job.compensate
     names = ["program", "stock", "cut"]
@@ -144,10 +162,13 @@ def _tidy_folder(folder: Path, earlier: set[str], written: set[str]) -> None:
 def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_option: str = "--out") -> dict:
     """Run ``job`` writing into ``out`` (default ``job.output``); returns the summary (also in
     summary.json). Raises ValueError naming ``out`` (``out_option``) or the job's ``output`` key when the
-    folder cannot be written, before any stage runs; StageFailed naming the stage that failed."""
+    folder cannot be written, before any stage runs (and the work its numbers imply, job.budget); StageFailed naming the stage that failed."""
     from netshape._atomic import all_or_nothing, check_output_folder, make_output_folder
 
+    from .budget import check_job_work
+
     t_start = time.perf_counter()
+    check_job_work(job)  # before anything is written: the work the job's numbers imply
     folder = Path(out) if out is not None else job.output
     shown = out_option if out is not None else f"{job.source}: output"
     check_output_folder(folder, shown)
@@ -283,6 +304,7 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
             files[f"plot_{key}"] = rp.PLOTS[key]
         return rp
 
+    _check_results(job, summary)  # no output of a run whose results are not finite
     make_output_folder(folder, shown)
     earlier = _owned_earlier(folder)
     with all_or_nothing():
@@ -296,11 +318,9 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
             summary["stale_files"] = stale
         rp.write_html(folder / "report.html", summary,
                       {k: rp.PLOTS[k] for k in rp.PLOTS} if job.report["plots"] else {})
-        from netshape._atomic import atomic_write
+        from netshape._json import write_json
 
-        with atomic_write(folder / "summary.json", "w") as fh:
-            json.dump(summary, fh, indent=2)
-            fh.write("\n")
+        write_json(folder / "summary.json", summary, cause=str(job.source))
     _tidy_folder(folder, earlier, written)
     S.close()
     return summary

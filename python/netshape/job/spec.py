@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from netshape._budget import MAX_STL_TRIANGLES, MAX_ZMAP_NODES
 
 #: Work offsets a program may select; the job gives each as ``G54_mm = [x, y, z]``.
 WORK_OFFSETS = ("G54", "G55", "G56", "G57", "G58", "G59")
@@ -188,14 +189,20 @@ def _stock(src: str, base: Path, v: Any) -> dict:
     if "spacing_mm" in t:
         out["spacing_mm"] = _number(src, "stock.spacing_mm", t["spacing_mm"], positive=True)
         cells = (hi[0] - lo[0]) / out["spacing_mm"] * (hi[1] - lo[1]) / out["spacing_mm"]
-        if cells > 4e7:
+        if cells > MAX_ZMAP_NODES:
             raise _err(src, "stock.spacing_mm", t["spacing_mm"], f"gives {cells:.3g} Z-map nodes (> 4e7); "
                        "use a coarser spacing")
+        out["nodes"] = cells
     if "heights" in t:
         hp = _path(src, sbase, "stock.heights", t["heights"])
         if hp.suffix.lower() not in (".npy", ".csv"):
             raise _err(src, "stock.heights", t["heights"], "must be a .npy or .csv file of (ny, nx) heights [mm]")
+        ny, nx, about = _heights_shape(hp)
+        if ny * nx > MAX_ZMAP_NODES:
+            raise _err(src, "stock.heights", t["heights"], f"holds {'about ' if about else ''}{ny:.0f} x {nx} = "
+                       f"{ny * nx:.3g} Z-map nodes, over the limit of 4e7 (not loaded)")
         out["heights"] = hp
+        out["nodes"] = ny * nx
     pre = t.get("pre_cut", [])
     if not isinstance(pre, list):
         raise _err(src, "stock.pre_cut", pre, "must be an array of tables [[stock.pre_cut]]")
@@ -208,6 +215,30 @@ def _stock(src: str, base: Path, v: Any) -> dict:
         out["pre_cut"].append(PreCut(program=_path(src, sbase, f"{w}.program", pc["program"]),
                                      tool=_tool(src, sbase, f"{w}.tool", pc["tool"])))
     return out
+
+
+def _heights_shape(path: Path) -> tuple[float, int, bool]:
+    """(ny, nx, estimated) of a heights file without loading it: a .npy header, or a CSV's first row
+    (nx) and its size in bytes over that row's (ny, an estimate)."""
+    if path.suffix.lower() == ".npy":
+        import numpy as np
+
+        try:
+            with open(path, "rb") as fh:
+                major, _ = np.lib.format.read_magic(fh)
+                read = np.lib.format.read_array_header_1_0 if major == 1 else np.lib.format.read_array_header_2_0
+                shape = read(fh)[0]
+        except (ValueError, OSError):
+            return 0.0, 0, False  # unreadable: the stock stage says so when it loads it
+        if len(shape) != 2:
+            return 0.0, 0, False
+        return float(shape[0]), int(shape[1]), False
+    with open(path, "rb") as fh:
+        first = fh.readline(1 << 20)
+    if not first:
+        return 0.0, 0, False
+    nx = first.count(b",") + 1
+    return path.stat().st_size / len(first), nx, True
 
 
 def _coefficients(src: str, v: Any):
@@ -394,6 +425,11 @@ def job_from_dict(doc: dict, *, source: str | os.PathLike = "<job>", base_dir: s
     for key in ("zmap_stl", "plots"):
         if key in rep:
             report[key] = _bool(src, f"report.{key}", rep[key])
+    triangles = 2.0 * stock.get("nodes", 0.0)  # two per Z-map cell (the sides and base add few)
+    if report["zmap_stl"] and triangles > MAX_STL_TRIANGLES:
+        raise _err(src, "report.zmap_stl", True, f"the Z-map STL would hold {triangles:.3g} triangles "
+                   f"({stock['nodes']:.3g} nodes), over the limit of 1e7 (500 MB); set report.zmap_stl = false "
+                   "or use a coarser stock")
     # what each prediction and compensation needs
     if (predict["forces"] or predict["deflection"]) and coefficients is None:
         which = "forces" if predict["forces"] else "deflection"

@@ -481,7 +481,16 @@ def stage_feed_plan(job: Job, tp):
     limits = nmo.AxisLimits(lim["vmax_mm_s"], lim["amax_mm_s2"], jerk)
     options = nmo.make_options(lim["rule"], ts1=lim["ts1_s"], ts2=lim["ts2_s"], lookahead=lim["lookahead"],
                                tolerance=lim["tolerance_mm"])
-    return nmo.plan(tp, limits, options, with_deviation=False)
+    from netshape._budget import MAX_PLAN_SAMPLES
+
+    try:
+        return nmo.plan(tp, limits, options, with_deviation=False, max_samples=MAX_PLAN_SAMPLES)
+    except ValueError as exc:  # the planner's own bound, reached where the estimate before the run was low
+        if str(exc).startswith("max_samples = "):
+            raise ValueError(f"{job.source}: limits: the feed plan needs more than {MAX_PLAN_SAMPLES} fine samples "
+                             f"(limits.ts2_s = {lim['ts2_s']!r}, jmax_mm_s3 = {lim.get('jmax_mm_s3')!r}); "
+                             "use a larger ts2_s or limits the program can run under") from None
+        raise
 
 
 # ---------------------------------------------------------------------------------------------- errors

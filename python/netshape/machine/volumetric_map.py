@@ -116,7 +116,8 @@ def error_map(machine: _m.Machine, points: Any, shape: tuple = (), label: str = 
     p = _points(points)
     e = _m.tip_error(machine, p, _m.Order.exact)
     f = _m.tip_error(machine, p, _m.Order.first)
-    return ErrorMap(p, e, np.linalg.norm(e, axis=1), np.linalg.norm(e - f, axis=1), tuple(shape), label)
+    with np.errstate(over="ignore", invalid="ignore"):  # a non-finite model is the caller's to name
+        return ErrorMap(p, e, np.linalg.norm(e, axis=1), np.linalg.norm(e - f, axis=1), tuple(shape), label)
 
 
 def grid_error_map(machine: _m.Machine, grid: Sequence[int] = (5, 5, 5), bounds: Any = None) -> ErrorMap:

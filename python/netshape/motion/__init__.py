@@ -258,7 +258,7 @@ def _run_smoother(binding, program, feed, tolerance, fit_share, max_segment, max
     return {k: np.asarray(v) for k, v in arr.items()}, np.asarray(first), np.asarray(last), dict(stats)
 
 
-def _plan_smooth(program, limits, feed, with_deviation, kw):
+def _plan_smooth(program, limits, feed, with_deviation, kw, max_samples=0):
     """rule="smooth": smooth_path, then the blend rule with the rest of the tolerance on the new blocks;
     the deviation is measured against the original program."""
     tol = float(kw.pop("tolerance", 0.01))
@@ -272,7 +272,7 @@ def _plan_smooth(program, limits, feed, with_deviation, kw):
     new, first, last, sstats = smooth_path(arr, tol, **skw)
     fit_share = float(skw.get("fit_share", 0.98))
     options = make_options("blend", tolerance=tol * (1.0 - fit_share), **kw)
-    t, pos, vel, fd, blk, stats = _m._plan_arrays(*_call_args(new), limits, options, False)
+    t, pos, vel, fd, blk, stats = _m._plan_arrays(*_call_args(new), limits, options, False, int(max_samples))
     stats = dict(stats)
     blk = np.asarray(blk)
     pos = np.asarray(pos)
@@ -296,7 +296,7 @@ def _plan_smooth(program, limits, feed, with_deviation, kw):
 
 
 def plan(program, limits: AxisLimits, options: PlanOptions | None = None, *, feed=None,
-         with_deviation: bool = True, **option_keywords) -> Trajectory:
+         with_deviation: bool = True, max_samples: int = 0, **option_keywords) -> Trajectory:
     """Plan and interpolate a program.
 
     program : a toolpath / sequence of blocks, a dict of block arrays, or (n, 3) points of a polyline
@@ -317,10 +317,13 @@ def plan(program, limits: AxisLimits, options: PlanOptions | None = None, *, fee
     original program and ``block`` is the first program block of the smoothed block being run; stats
     add ``runs_smoothed``, ``runs_kept``, ``corners_kept``, ``corners_rounded``, ``max_fit_deviation_mm``,
     ``smoothed_blocks``.
+
+    ``max_samples`` > 0 bounds the fine samples (about 70 B each while planned): the planner stops with a
+    ValueError ``max_samples = N: the plan needs more fine samples …`` instead of filling the memory.
     """
     if options is None and str(option_keywords.get("rule", "")) == "smooth":
         option_keywords.pop("rule")
-        return _plan_smooth(program, limits, feed, with_deviation, option_keywords)
+        return _plan_smooth(program, limits, feed, with_deviation, option_keywords, max_samples)
     if options is None:
         options = make_options(**option_keywords)
     elif option_keywords:
@@ -331,28 +334,36 @@ def plan(program, limits: AxisLimits, options: PlanOptions | None = None, *, fee
     dw = _dwells(program, n)
     cuts = [] if dw is None else [i for i in range(1, n) if dw[i] > 0.0]
     if not cuts:
-        t, pos, vel, fd, blk, stats = _m._plan_arrays(*args, limits, options, with_deviation)
+        t, pos, vel, fd, blk, stats = _m._plan_arrays(*args, limits, options, with_deviation, int(max_samples))
         stats = dict(stats)
         t = np.asarray(t)
         if dw is not None and dw.sum() > 0.0:  # dwells only before the first or after the last move
             t = t + dw[0]
             stats["cycle_time_s"] += float(dw.sum())
     else:
-        t, pos, vel, fd, blk, stats = _plan_pieces(args, dw, [0, *cuts, n], limits, options, with_deviation)
+        t, pos, vel, fd, blk, stats = _plan_pieces(args, dw, [0, *cuts, n], limits, options, with_deviation,
+                                                   int(max_samples))
     stats["dwell_time_s"] = 0.0 if dw is None else float(dw.sum())
     stats["rule"] = rule_name(options.rule)
     stats["ts1_s"], stats["ts2_s"], stats["lookahead"] = options.ts1, options.ts2, options.lookahead
     return Trajectory(np.asarray(t), np.asarray(pos), np.asarray(vel), np.asarray(fd), np.asarray(blk), stats)
 
 
-def _plan_pieces(args, dw, bounds, limits, options, with_deviation):
+def _plan_pieces(args, dw, bounds, limits, options, with_deviation, max_samples=0):
     """Plan blocks [bounds[j], bounds[j+1]) independently (each from rest to rest) and join them with
-    the dwells between them."""
+    the dwells between them; ``max_samples`` (> 0) bounds the samples of all pieces together."""
     ts, ps, vs, fs, bs = [], [], [], [], []
     stats: dict = {}
     t0 = float(dw[0])
     for a, b in zip(bounds[:-1], bounds[1:]):
-        t, pos, vel, fd, blk, st = _m._plan_arrays(*(x[a:b] for x in args), limits, options, with_deviation)
+        left = 0 if max_samples <= 0 else max(1, max_samples - sum(len(x) for x in ts))
+        try:
+            t, pos, vel, fd, blk, st = _m._plan_arrays(*(x[a:b] for x in args), limits, options, with_deviation,
+                                                       left)
+        except ValueError as exc:  # name the bound the caller gave, not this piece's share
+            if str(exc).startswith("max_samples = "):
+                raise ValueError(f"max_samples = {max_samples}: " + str(exc).split(": ", 1)[1]) from None
+            raise
         st = dict(st)
         ts.append(np.asarray(t) + t0)
         ps.append(np.asarray(pos)), vs.append(np.asarray(vel)), fs.append(np.asarray(fd))

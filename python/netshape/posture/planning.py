@@ -3,7 +3,6 @@ JSON / G-code outputs. The computation is in C++ (``netshape._core.posture``); t
 
 from __future__ import annotations
 
-import json
 import math
 import os
 from dataclasses import dataclass, field
@@ -191,8 +190,15 @@ class PostureRun:
               kinematics: _p.Kinematics | None = None, feed_mm_per_min: float = 1000.0) -> list[Path]:
         """Write obstacles.stl, postures_raw.csv, postures_mc.csv, postures_final.csv, summary.json (and
         program.ngc with kinematics, cspace.png and angles.png with plot) into out_dir, each atomically."""
+        from netshape._json import check_finite, write_json
+
         from ..geometry import write_stl
 
+        check_finite(self.summary(), cause="posture plan")  # before any file: nothing half-written
+        for stage in ("raw", "mc", "final"):
+            table = np.asarray(self.table(stage), dtype=float)
+            if not np.isfinite(table).all():
+                check_finite({f"postures_{stage}": table.tolist()}, cause="posture plan")
         out = Path(out_dir)
         if not out.is_dir():
             raise ValueError(f"--out = {str(out)!r}: not a folder")
@@ -211,9 +217,7 @@ class PostureRun:
                     fh.write(",".join(f"{v:.9g}" for v in row) + "\n")
             written.append(path)
         path = out / "summary.json"
-        with atomic_write(path) as fh:
-            json.dump(self.summary(), fh, indent=2)
-            fh.write("\n")
+        write_json(path, self.summary())
         written.append(path)
         if kinematics is not None:
             path = out / "program.ngc"

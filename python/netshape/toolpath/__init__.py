@@ -32,6 +32,8 @@ ReaderOptions = _tp.ReaderOptions
 Command = _tp.Command
 CommandKind = _tp.CommandKind
 chord_count = _tp.chord_count
+#: Largest feed the writer writes, F [mm/min] (C++ ``max_feed_mm_per_min``).
+max_feed_mm_per_min = float(_tp.max_feed_mm_per_min)
 block_bounds = _tp.block_bounds
 
 #: Names of the ``kind`` codes in :func:`read_gcode_arrays` (index = code).
@@ -374,6 +376,28 @@ def write_gcode(
         fh.write(text)
 
 
+def block_lengths(arrays: Mapping[str, Any]) -> np.ndarray:
+    """Path length of every row of block arrays (:func:`read_gcode_arrays`) [mm], shape (n,): lines and
+    rapids their chord, arcs their helix (radius at the start, sweep with ``turns``), cubic rows (kind 3)
+    their chord (a lower bound). Used to size work before it starts."""
+    start, end = np.asarray(arrays["start"], float), np.asarray(arrays["end"], float)
+    out = np.linalg.norm(end - start, axis=1)
+    kind = np.asarray(arrays["kind"])
+    arc = np.flatnonzero(kind == 2)
+    if arc.size:
+        axes = np.array([[0, 1, 2], [2, 0, 1], [1, 2, 0]])[np.asarray(arrays["plane"])[arc]]  # a, b, normal
+        rows = np.arange(arc.size)[:, None]
+        s, e, c = start[arc][rows, axes], end[arc][rows, axes], np.asarray(arrays["center"], float)[arc][rows, axes]
+        a0 = np.arctan2(s[:, 1] - c[:, 1], s[:, 0] - c[:, 0])
+        a1 = np.arctan2(e[:, 1] - c[:, 1], e[:, 0] - c[:, 0])
+        cw = np.asarray(arrays["clockwise"], bool)[arc]
+        sweep = np.where(cw, a0 - a1, a1 - a0) % (2 * np.pi)
+        sweep = np.where(sweep <= 1e-12, 2 * np.pi, sweep) + 2 * np.pi * (np.asarray(arrays["turns"])[arc] - 1)
+        r = np.hypot(s[:, 0] - c[:, 0], s[:, 1] - c[:, 1])
+        out[arc] = np.hypot(r * sweep, e[:, 2] - s[:, 2])
+    return out
+
+
 __all__ = [
     "Block",
     "Command",
@@ -389,7 +413,9 @@ __all__ = [
     "Toolpath",
     "WriterOptions",
     "block_bounds",
+    "block_lengths",
     "chord_count",
+    "max_feed_mm_per_min",
     "format_gcode",
     "gcode_encoding",
     "iter_gcode",

@@ -40,14 +40,17 @@ struct Trajectory {
 
 /// Plan and interpolate a whole program (runs the streaming Planner; the blocks are validated first,
 /// throwing std::invalid_argument on the first bad one). `with_deviation` measures each sample's
-/// distance to the programmed blocks (costs a little).
+/// distance to the programmed blocks (costs a little). `max_samples` > 0 bounds the fine samples (about
+/// 70 B each while planned): the plan stops with std::invalid_argument naming max_samples when it would
+/// write more (0: no bound).
 Trajectory plan(const std::vector<toolpath::Block>& blocks, const AxisLimits& limits,
-                const PlanOptions& options, bool with_deviation = true);
+                const PlanOptions& options, bool with_deviation = true, long max_samples = 0);
 /// The same with cubic blocks: `controls` empty (no cubic block) or one per block; a block with
 /// controls[i].cubic is the cubic Bézier (start, c1, c2, end) and must be of kind line (Planner::push).
 /// `with_deviation` measures against the curve for those blocks.
 Trajectory plan(const std::vector<toolpath::Block>& blocks, const std::vector<CubicControls>& controls,
-                const AxisLimits& limits, const PlanOptions& options, bool with_deviation = true);
+                const AxisLimits& limits, const PlanOptions& options, bool with_deviation = true,
+                long max_samples = 0);
 
 /// Figures of (n, 3) samples at period ts [s] (finite differences).
 void measure_samples(const Points3& position, double ts, TrajectoryStats& stats);

@@ -12,6 +12,11 @@
 
 namespace netshape::toolpath {
 
+/// Largest feed the writer writes, F [mm/min] (1.67e6 mm/s): far above any machine tool and the rapid
+/// feeds programs write as F words (3D_Chips.ngc has F4500000), far below the numbers whose F words stop
+/// being a feed. A block feed above it throws std::invalid_argument.
+constexpr double max_feed_mm_per_min = 1e8;
+
 /// Options of the writer.
 struct WriterOptions {
   bool split_arcs = false;         ///< write arcs as G1 chords instead of G2/G3
@@ -30,7 +35,7 @@ struct WriterOptions {
 /// G54…/G43 commands put in force (from `toolpath.work_offsets` and the commands' values) are
 /// subtracted. A block whose start is not where the previous one ended is preceded by a G0 to its start.
 /// Ends with the program's M2/M30 command, or M2 when it has none. Throws std::invalid_argument for
-/// non-finite blocks, decreasing `before`, multi-line command text or a block after the program end.
+/// non-finite blocks, a feed above max_feed_mm_per_min, decreasing `before`, multi-line command text or a block after the program end.
 void write_gcode(const Toolpath& toolpath, std::ostream& out, const WriterOptions& options = {});
 
 /// The G-code text of `toolpath` (see write_gcode).
