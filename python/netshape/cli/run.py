@@ -47,6 +47,8 @@ def execute(job_path, out, quiet: bool) -> tuple[int, dict | None]:
             raise ValueError(str(exc)) from None
         print(f"netshape run: error: {exc}", file=sys.stderr)
         return 1, None
+    for w in summary.get("warnings", []):
+        print(f"netshape run: warning: {w['kind']}: {w['message']}", file=sys.stderr)
     if summary.get("stale_files"):
         print(f"netshape run: warning: the output folder also holds files this run did not write: "
               f"{', '.join(summary['stale_files'])}", file=sys.stderr)

@@ -192,6 +192,11 @@ def write_html(path, summary: dict, images: dict[str, str]) -> None:
         notes.append("files in this folder that this run did not write: " + ", ".join(summary["stale_files"]))
     if notes:
         out.append("<ul>" + "".join(f'<li class="note">{html.escape(n)}</li>' for n in notes) + "</ul>")
+    warns = summary.get("warnings") or []
+    if warns:
+        out.append('<h2>Warnings</h2><ul id="warnings">' + "".join(
+            f'<li class="note">{html.escape(w["kind"])} (line {w["line"]}): {html.escape(w["message"])}</li>'
+            for w in warns) + "</ul>")
     dfl = summary.get("deflection")
     if dfl and dfl.get("reason"):
         out.append(f'<p class="note">deflection: {html.escape(dfl["reason"])}</p>')

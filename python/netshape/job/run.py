@@ -178,7 +178,10 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
 
     prog = S.run("program", st.stage_program, job)
     stock0 = S.run("stock", st.stage_stock, job)
-    zfinal, removed = S.run("cut", st.stage_cut, job, stock0, prog)
+    warnings: list[dict] = []  # trouble met while running: {"kind", "line", "message"}
+    zfinal, removed = S.run("cut", st.stage_cut, job, stock0, prog, warnings)
+    if any(w["kind"] == "rapid_through_material" for w in warnings):
+        status["cut"] = "rapid_through_material"
 
     forces = None
     if p["forces"]:
@@ -265,6 +268,7 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
         "run_time_s": S.times,
         "stages": status,
         "removed_volume_mm3": removed,
+        "warnings": warnings,
         "versions": versions(),
         "files": files,
     }

@@ -26,7 +26,7 @@ PREDICTIONS = ("forces", "deflection", "volumetric", "feed_plan")
 COMPENSATIONS = ("deflection", "volumetric")
 
 _TOP = {"name", "program", "output", "tool", "stock", "offsets", "coefficients", "machine", "limits",
-        "cutting", "predict", "compensate", "report", "grid"}
+        "cutting", "predict", "compensate", "report", "grid", "start_mm", "clearance_mm"}
 _TOOL_KEYS = {"file", "kind", "diameter_mm", "corner_radius_mm", "flutes", "helix_deg", "flute_length_mm",
               "stick_out_mm", "youngs_modulus_MPa"}
 _STOCK_KEYS = {"file", "min_mm", "max_mm", "spacing_mm", "heights", "pre_cut"}
@@ -75,6 +75,8 @@ class Job:
     report: dict
     grid: dict = field(default_factory=dict)
     raw: dict = field(default_factory=dict)  # the parsed TOML (for batch grids)
+    start_mm: list | None = None     # tool tip before the first move, G54 frame (None: above the stock)
+    clearance_mm: float = 5.0        # the default start's height above the stock top
 
     @property
     def compensations(self) -> list[str]:
@@ -444,13 +446,19 @@ def job_from_dict(doc: dict, *, source: str | os.PathLike = "<job>", base_dir: s
         raise _err(src, "compensate.deflection", True, "needs predict.deflection = true")
     if predict["deflection"] and not predict["forces"]:
         raise _err(src, "predict.deflection", True, "needs predict.forces = true")
+    start = _vec3(src, "start_mm", doc["start_mm"]) if "start_mm" in doc else None
+    clearance = _number(src, "clearance_mm", doc.get("clearance_mm", 5.0), positive=True)
+    if clearance > 1e5:
+        raise _err(src, "clearance_mm", clearance, "must be at most 100000 [mm]")
+    if start is not None and max(abs(x) for x in start) > 1e5:
+        raise _err(src, "start_mm", start, "must lie within ±100000 mm")
     grid = {}
     if "grid" in doc:
         grid = _check_grid(src, doc) if check_grid else doc["grid"]
     return Job(source=Path(src), name=name, program=program, output=output, tool=tool, stock=stock,
                offsets=offsets, coefficients=coefficients, machine=machine, error_scale=scale, limits=limits,
                cutting=cutting, predict=predict, compensate=compensate, report=report, grid=grid,
-               raw=copy.deepcopy(doc))
+               raw=copy.deepcopy(doc), start_mm=start, clearance_mm=clearance)
 
 
 def _check_grid(src: str, doc: dict) -> dict:

@@ -119,11 +119,34 @@ def stage_program(job: Job) -> Program:
             nb.feed = b.feed * scale
             blocks.append(nb)
         tp = tp.with_blocks(blocks, list(range(len(blocks))))
+    tp = _with_start(job, tp)
     lines = np.array([b.line for b in tp.blocks], dtype=np.int64)
     per_line = work_offsets_per_line(tp, job.program)
     idx = per_line[np.clip(lines, 0, len(per_line) - 1)]
     offsets = np.array([job.offsets[g] for g in WORK_OFFSETS], dtype=float)
     return Program(toolpath=tp, offset_index=idx, offsets=offsets, lines=lines)
+
+
+def _with_start(job: Job, tp):
+    """The program with its first move starting where the tool is before it: ``start_mm`` or, by default,
+    ``clearance_mm`` above the stock's top at the first move's XY (the reader's (0, 0, 0) would put the
+    tool inside the stock and sweep a hole the program never cut). Only the first block's start moves;
+    the G-code written is the same (a block gives its end point)."""
+    from netshape import toolpath as tpm
+
+    blocks = list(tp.blocks)
+    first = blocks[0]
+    if job.start_mm is not None:
+        start = np.asarray(job.start_mm, dtype=float)
+    else:
+        top = job.stock["max_mm"][2] if job.stock.get("max_mm") is not None else float(first.end[2])
+        end = np.asarray(first.end, dtype=float)
+        start = np.array([end[0], end[1], max(top, end[2]) + job.clearance_mm])
+    if np.allclose(start, np.asarray(first.start, dtype=float)) or int(first.kind) == 2:
+        return tp  # an arc keeps its own start (its centre was given relative to it)
+    nb = _copy_block(tpm, first)
+    nb.start = start
+    return tp.with_blocks([nb] + blocks[1:], list(range(len(blocks))))
 
 
 def stock_frame_toolpath(prog: Program):
@@ -179,13 +202,48 @@ def stage_stock(job: Job):
     return z
 
 
-def stage_cut(job: Job, stock0, prog: Program):
-    """The stock after the program (Z-map material removal). Returns (ZMap, removed volume [mm³])."""
+def stage_cut(job: Job, stock0, prog: Program, warnings: list | None = None):
+    """The stock after the program (Z-map material removal). Returns (ZMap, removed volume [mm³]).
+    Rapid moves that remove material are appended to ``warnings`` as ``rapid_through_material`` with
+    their program line (each rapid is swept on its own, in order, to tell which)."""
     from netshape import stock as ns
 
     z = stock0.copy()
-    stats = ns.sweep(z, make_cutter(job.tool), stock_frame_toolpath(prog))
-    return z, float(getattr(stats, "removed_volume", float("nan")))
+    tp = stock_frame_toolpath(prog)
+    cutter = make_cutter(job.tool)
+    blocks = list(tp.blocks)
+    rapid = [i for i, b in enumerate(blocks) if int(b.kind) == 0]
+    removed, done = 0.0, 0
+    for i in rapid + [len(blocks)]:
+        if i > done:
+            removed += float(ns.sweep(z, cutter, _sub_toolpath(tp, blocks[done:i])).removed_volume)
+        if i < len(blocks):
+            st = ns.sweep(z, cutter, _sub_toolpath(tp, blocks[i:i + 1]))
+            removed += float(st.removed_volume)
+            if st.removed_volume > 1e-9 and warnings is not None:
+                b = blocks[i]
+                warnings.append({"kind": "rapid_through_material", "line": int(b.line),
+                                 "message": f"the rapid (G0) move on line {b.line} to X{b.end[0]:g} Y{b.end[1]:g} "
+                                            f"Z{b.end[2]:g} removes {st.removed_volume:.3g} mm^3 of stock"})
+        done = i + 1
+    if warnings is not None:
+        _feed_warnings(job, blocks, warnings)
+    return z, removed
+
+
+def _feed_warnings(job: Job, blocks, warnings: list) -> None:
+    """Cuts deeper below the stock top than the tool sticks out (a feed move without a feed is refused
+    by the reader already)."""
+    top = job.stock["max_mm"][2] if job.stock.get("max_mm") is not None else None
+    stick = job.tool.get("stick_out_mm")
+    if top is not None and stick:
+        deep = [b for b in blocks if int(b.kind) != 0 and top - min(b.start[2], b.end[2]) > float(stick)]
+        if deep:
+            b = deep[0]
+            warnings.append({"kind": "tool_shorter_than_cut", "line": int(b.line),
+                             "message": f"line {b.line} cuts {top - min(b.start[2], b.end[2]):g} mm below the stock "
+                                        f"top, more than the tool's stick-out {float(stick):g} mm (the holder would "
+                                        "hit the stock)"})
 
 
 # ---------------------------------------------------------------------------------------------- forces
