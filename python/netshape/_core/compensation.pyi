@@ -7,7 +7,7 @@ import netshape._core.toolpath
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['DeflectionCompensationOptions', 'DeflectionCompensationResult', 'DeflectionScheme', 'PathOptions', 'PathWallErrors', 'ProgramOptions', 'ProgramReport', 'ReferenceLevel', 'VolumetricOptions', 'VolumetricResult', 'VolumetricStatus', 'compensate_deflection', 'compensate_points', 'compensate_points_status', 'compensate_program', 'deflection_scheme_from_string', 'one_d_compensation', 'path_wall_errors', 'reference_level_from_string', 'wall_normals']
+__all__: list[str] = ['DeflectionCompensationOptions', 'DeflectionCompensationResult', 'DeflectionScheme', 'DrawingOffsets', 'PathOptions', 'PathWallErrors', 'ProgramOptions', 'ProgramReport', 'ReferenceLevel', 'VolumetricOptions', 'VolumetricResult', 'VolumetricStatus', 'compensate_deflection', 'compensate_points', 'compensate_points_status', 'compensate_program', 'deflection_scheme_from_string', 'drawing_offsets', 'one_d_compensation', 'path_wall_errors', 'reference_level_from_string', 'wall_normals', 'wall_remains']
 class VolumetricOptions:
     check_travel: bool
     @typing.overload
@@ -330,6 +330,12 @@ class DeflectionCompensationOptions:
     def validate(self) -> None:
         ...
     @property
+    def active(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        ...
+    @active.setter
+    def active(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.int32, "[m, 1]"]) -> None:
+        ...
+    @property
     def anderson_depth(self) -> int:
         ...
     @anderson_depth.setter
@@ -393,6 +399,19 @@ class DeflectionCompensationResult:
     @property
     def worst_index(self) -> int:
         ...
+class DrawingOffsets:
+    @property
+    def foot_distance(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def normals(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 2]"]:
+        ...
+    @property
+    def offsets(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def s(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
 def compensate_deflection(model: netshape._core.deflection.DeflectionModel, cutter: netshape._core.cutter.Cutter, stock: netshape._core.stock.ZMap, nominal: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], options: DeflectionCompensationOptions = ...) -> DeflectionCompensationResult:
     """
     compensate the path (n, 3) for tool deflection; converged = False with a message when it fails
@@ -411,6 +430,10 @@ def compensate_program(machine: netshape._core.machine.Machine, program: netshap
     """
 def deflection_scheme_from_string(name: str) -> DeflectionScheme:
     ...
+def drawing_offsets(points: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], drawing: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], side: netshape._core.deflection.WallSide, window: typing.SupportsFloat | typing.SupportsIndex = 2.0) -> DrawingOffsets:
+    """
+    signed offsets C, normals and foot arc lengths of program points against a drawing's contour
+    """
 def one_d_compensation(model: netshape._core.deflection.DeflectionModel, side: netshape._core.deflection.WallSide, width: typing.SupportsFloat | typing.SupportsIndex, level_z: typing.SupportsFloat | typing.SupportsIndex, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, max_iterations: typing.SupportsInt | typing.SupportsIndex = 100) -> float:
     """
     C [mm] with D[W + C] - C = 0 for a steady cut of width W [mm] (eq. 8)
@@ -424,4 +447,8 @@ def reference_level_from_string(name: str) -> ReferenceLevel:
 def wall_normals(nominal: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], side: netshape._core.deflection.WallSide) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 2]"]:
     """
     (n, 2) unit wall normals of a polyline
+    """
+def wall_remains(wall: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], top: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], first_later: typing.Annotated[numpy.typing.ArrayLike, numpy.int32, "[m, 1]"], path: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], cutting: typing.Annotated[numpy.typing.ArrayLike, numpy.int32, "[m, 1]"], radius: typing.SupportsFloat | typing.SupportsIndex, clearance: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+    """
+    (n) 1 where wall point k (XY, bottom z; top[k]) is not cut away by a cutting move j >= first_later[k]
     """

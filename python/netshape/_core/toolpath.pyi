@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Block', 'BlockArrays', 'Command', 'CommandKind', 'GcodeReader', 'MotionKind', 'Plane', 'ReaderOptions', 'Summary', 'Toolpath', 'WriterOptions', 'block_bounds', 'chord_count', 'format_gcode', 'parse_gcode', 'parse_gcode_arrays', 'read_gcode', 'read_gcode_arrays', 'summarize_gcode', 'summarize_gcode_text']
+__all__: list[str] = ['Block', 'BlockArrays', 'Command', 'CommandKind', 'GcodeReader', 'MotionKind', 'Plane', 'ReaderOptions', 'Summary', 'Toolpath', 'WriterOptions', 'block_bounds', 'chord_count', 'format_gcode', 'max_feed_mm_per_min', 'parse_gcode', 'parse_gcode_arrays', 'read_gcode', 'read_gcode_arrays', 'summarize_gcode', 'summarize_gcode_text']
 class MotionKind:
     """
     Kind of motion block (values are the `kind` array codes).
@@ -588,4 +588,4 @@ def summarize_gcode(path: str, options: ReaderOptions = ...) -> Summary:
     ...
 def summarize_gcode_text(text: str, source: str = '<string>', options: ReaderOptions = ...) -> Summary:
     ...
-max_feed_mm_per_min: float  # value = 100000000.0
+max_feed_mm_per_min: float = 100000000.0

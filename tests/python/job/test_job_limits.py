@@ -140,5 +140,5 @@ def test_a_non_finite_machine_error_names_the_machine(capsys, tmp_path):
     job = _job(tmp_path, "predict", {"deflection": "false", "forces": "false"})
     m = job.parent / "machine.toml"
     m.write_text(m.read_text().replace("EXX_mm = [0.002, 2.5e-5]", "EXX_mm = [0.002, 2.5e-5, 0, 0, 1e300]"))
-    _refused(capsys, ["run", str(job), "--quiet"], f"machine = '{m}' (error_scale = 1.0): its error model gives a "
-             "non-finite tip error at", max_s=30.0)
+    _refused(capsys, ["run", str(job), "--quiet"], f"machine.file = '{m}': gives a volumetric error of nan mm at "
+             "machine point", max_s=30.0)
