@@ -36,6 +36,36 @@ class Problem:
     def with_nuisance(self, spec, values):
         return spec
 
+    # --- noise and structure ---------------------------------------------------------------------
+    #: the assumption behind :meth:`noise_estimate` (stated in the diagnosis when it is used)
+    noise_assumption = "the residual's scatter after a model-free smoother is noise"
+
+    def repeat_noise(self, spec) -> tuple[float, int]:
+        """(σ, dof) from points measured more than once; (0, 0) when the bundle has none."""
+        return 0.0, 0
+
+    def noise_info(self, spec) -> tuple[float, str, str]:
+        """(σ, source, assumption) in order of preference: ``repeats`` (points measured more than once),
+        ``stated`` (the manifest's [noise]), ``estimated`` (:meth:`noise_estimate`)."""
+        from .structure import MIN_REPEAT_DOF
+
+        sig, dof = self.repeat_noise(spec)
+        if dof >= MIN_REPEAT_DOF and sig > 0:
+            return sig, "repeats", (
+                f"pooled scatter of repeated points about their means ({dof} degrees of freedom per component)"
+            )
+        stated = getattr(getattr(self, "bundle", None), "noise", {}) or {}
+        if "sigma" in stated:
+            return float(stated["sigma"]), "stated", "the instrument uncertainty stated in the manifest's [noise]"
+        return self.noise_estimate(spec), "estimated", self.noise_assumption
+
+    def structure_covariates(self, spec) -> tuple[list, dict]:
+        """(component names, {covariate name: (n,) values over all points}) searched for unexplained
+        structure; the default: the sample order only."""
+        n = sum(m.shape[0] for m in self.measured)
+        c = self.measured[0].shape[1]
+        return [f"c{j}" for j in range(c)], {"order": np.arange(n, dtype=float)}
+
     # --- residuals ---------------------------------------------------------------------------------
     def predict(self, spec) -> list:
         raise NotImplementedError

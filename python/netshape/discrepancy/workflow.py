@@ -19,6 +19,8 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
+
 from .bundle import Bundle, load_bundle
 from .catalogue import catalogue
 
@@ -52,6 +54,9 @@ class Diagnosis:
     problem: Any = None
     spec_before: Any = None
     spec_after: Any = None
+    noise_source: str = "estimated"
+    noise_assumption: str = ""
+    unexplained: list = field(default_factory=list)
 
     @property
     def effect(self) -> str | None:
@@ -73,6 +78,9 @@ class Diagnosis:
                 "rms_after": self.rms_after,
                 "noise_estimate": self.noise_estimate,
                 "candidates": [dict(c) for c in self.candidates],
+                "noise_source": self.noise_source,
+                "noise_assumption": self.noise_assumption,
+                "unexplained": [dict(f) for f in self.unexplained],
             }
         )
 
@@ -80,15 +88,23 @@ class Diagnosis:
         u = self.unit
         lines = [
             f"{self.kind}: rms {self.rms_before:.4g} {u} before, {self.rms_after:.4g} {u} after, "
-            f"noise {self.noise_estimate:.4g} {u}"
+            f"noise {self.noise_estimate:.4g} {u} ({self.noise_source})"
         ]
-        if not self.effects:
+        if not self.effects and self.rms_after <= NOISE_FACTOR * self.noise_estimate:
             lines.append("no missing effect found")
+        elif not self.effects:
+            lines.append("no catalogue effect found; the residual exceeds the noise")
         for e in self.effects:
             p = ", ".join(
                 f"{k} = {v:.4g}" if isinstance(v, float) else f"{k} = {v}" for k, v in e["parameters"].items()
             )
             lines.append(f"  + {e['effect']} ({p}): rms {e['rms_after']:.4g} {u}")
+        for f in self.unexplained:
+            extra = f", period {f['period']:.4g}" if "period" in f else (f", at {f['at']:.4g}" if "at" in f else "")
+            lines.append(
+                f"  ? unexplained: {f['component']} {f['form']} against {f['covariate']}{extra}: "
+                f"rms {f['rms']:.4g} {u}"
+            )
         lines += [f"note: {n}" for n in self.notes]
         return "\n".join(lines)
 
@@ -135,7 +151,7 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
     spec0 = spec
     k_nuis = len(problem.nuisance_experiments())
     rms_before = problem.rms(spec)
-    noise = problem.noise_estimate(spec)
+    noise, noise_source, noise_assumption = problem.noise_info(spec)
     loc = problem.localise(spec)
     added, rounds, chain = [], [], []
     k_total = k_nuis
@@ -183,15 +199,28 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
         del cat[best["effect"]]
     clean = [[{k: v for k, v in c.items() if k != "_fit"} for c in r] for r in rounds]
     notes = list(getattr(problem, "notes", []))
-    if not added:
+    unexplained = []
+    if rms_cur > NOISE_FACTOR * noise:
+        from .structure import find_structure
+
+        comps, covs = problem.structure_covariates(spec)
+        r = np.concatenate(problem.residuals(spec))
+        unexplained = find_structure(r, comps, covs, noise)
+    if noise_source == "estimated":
+        notes.append(f"noise estimated from the residual (no repeats, no [noise] in the manifest): assumes {noise_assumption}")
+    if not added and rms_before <= NOISE_FACTOR * noise:
+        notes.append("no missing effect found (the residual is consistent with the noise)")
+    elif not added:
         notes.append(
-            "no missing effect found"
-            + (" (the residual is consistent with the noise)" if rms_before <= NOISE_FACTOR * noise else "")
+            f"no catalogue effect explains the residual ({rms_before:.4g} {problem.unit} against noise "
+            f"{noise:.4g} {problem.unit}): something the catalogue does not hold remains"
+            + (" (see unexplained)" if unexplained else "")
         )
     elif rms_cur > NOISE_FACTOR * noise:
         notes.append(
             f"the residual after the added effects ({rms_cur:.4g} {problem.unit}) is still above the "
             f"noise ({noise:.4g} {problem.unit}): something the catalogue does not hold remains"
+            + (" (see unexplained)" if unexplained else "")
         )
     return Diagnosis(
         kind=bundle.kind,
@@ -210,6 +239,9 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
         problem=problem,
         spec_before=spec0,
         spec_after=spec,
+        noise_source=noise_source,
+        noise_assumption=noise_assumption,
+        unexplained=unexplained,
     )
 
 
