@@ -26,7 +26,7 @@ import math
 import numpy as np
 
 #: extra margin (in units of σ²) over k·ln n for a finding; see the module docstring for its choice.
-STRUCTURE_MARGIN = 20.0
+STRUCTURE_MARGIN = 15.0
 #: at most this many findings per component.
 MAX_FINDINGS = 4
 #: minimum pooled degrees of freedom of repeats before they are used as the noise.
@@ -168,7 +168,12 @@ def _forms(v: np.ndarray, y: np.ndarray, two_level: bool):
         if hi > lo:
             f = np.arange(1.0 / hi, 1.0 / lo, 1.0 / (4.0 * rng))
             d, P, fitted = _periodic_fit(v, y, 1.0 / f)
-            if P is not None:
+            if P is not None:  # refine the period between the neighbours of the coarse grid
+                df = 1.0 / (4.0 * rng)
+                fine = 1.0 / P + np.linspace(-df, df, 41)
+                d2, P2, f2 = _periodic_fit(v, y, 1.0 / fine[fine > 0])
+                if d2 > d:
+                    d, P, fitted = d2, P2, f2
                 out.append(("periodic", 3, d, fitted, {"period": P}))
     return out
 
