@@ -135,9 +135,17 @@ def _periodic_fit(v, y, periods):
     return best
 
 
-def _forms(v: np.ndarray, y: np.ndarray, two_level: bool):
-    """Candidate (form, k, ΔRSS, fitted part (n,), extra) of y against covariate v."""
+def _forms(v: np.ndarray, y: np.ndarray, two_level: bool, cycle: float | None = None):
+    """Candidate (form, k, ΔRSS, fitted part (n,), extra) of y against covariate v. A ``cycle``
+    (an angle's 360°): only the periodic form, at periods cycle/k (k = 1 … 64)."""
     out = []
+    if cycle is not None:
+        lv = np.unique(np.round(v, 9))
+        K = int(min(64, max(1, lv.size // 3)))
+        d, P, fitted = _periodic_fit(v, y, cycle / np.arange(1, K + 1))
+        if P is not None:
+            out.append(("periodic", 2, d, fitted, {"period": P}))
+        return out
     yc = y - y.mean()
     vc = v - v.mean()
     if not two_level and np.sum(vc**2) > 0:
@@ -178,11 +186,21 @@ def _forms(v: np.ndarray, y: np.ndarray, two_level: bool):
     return out
 
 
+#: covariates that are angles: searched for harmonics of their cycle only
+CYCLIC = {"angle": 360.0, "revolution_phase": 360.0}
+#: at most this many points are searched (evenly spaced subsample of larger residuals)
+MAX_POINTS = 20000
+
+
 def find_structure(residual, components, covariates: dict, sigma: float, margin: float = STRUCTURE_MARGIN):
     """Findings [{component, covariate, form, rms, period?/at?/slope?}] in ``residual`` (n, c) against
     ``covariates`` {name: (n,)}: greedily, per component, the candidate with the largest drop of the
     residual sum of squares while that drop exceeds (k·ln n + margin)·σ²."""
     r = np.array(residual, float)
+    if r.shape[0] > MAX_POINTS:
+        keep = np.linspace(0, r.shape[0] - 1, MAX_POINTS).astype(int)
+        r = r[keep]
+        covariates = {k: np.asarray(v, float)[keep] for k, v in covariates.items()}
     n = r.shape[0]
     if sigma <= 0 or n < 8:
         return []
@@ -196,7 +214,7 @@ def find_structure(residual, components, covariates: dict, sigma: float, margin:
                 if np.std(v) == 0:
                     continue
                 two = np.unique(v).size == 2
-                for form, k, d, fitted, extra in _forms(v, y, two):
+                for form, k, d, fitted, extra in _forms(v, y, two, CYCLIC.get(name)):
                     score = d / sigma**2 - (k * math.log(n) + margin)
                     if score > 0 and (best is None or score > best[0]):
                         best = (score, name, form, fitted, extra)

@@ -192,6 +192,20 @@ class WallProblem(Problem):
         e = self.experiments[i]
         return np.lexsort((e.x, self._z[i]))
 
+    noise_assumption = (
+        "the residual changes little between neighbouring points along x at one height (robust second "
+        "differences): structure with a period of a few point spacings would be read as noise"
+    )
+
+    def structure_covariates(self, spec):
+        """Component error; covariates x, z [mm], the revolution phase (deg) and the normal force [N]."""
+        return ["error"], {
+            "x": np.concatenate([np.asarray(e.x, float) for e in self.experiments]),
+            "z": np.concatenate(self._z),
+            "revolution_phase": np.concatenate([self.revolution_phase(i) for i in range(len(self.experiments))]),
+            "normal_force": np.concatenate(self._fn),
+        }
+
     def noise_estimate(self, spec) -> float:
         """Robust second-difference noise of the model residual along x within each height z [mm]."""
         num, den = 0.0, 0
