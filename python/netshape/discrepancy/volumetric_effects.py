@@ -31,6 +31,19 @@ from .problem import Problem, robust_difference_noise
 
 _AXES = "XYZ"
 
+# Physical ranges (issue 37 item 4): a fit at or beyond one is rejected as implausible. Generous
+# limits for a machine tool in working order, not tuned on any test case.
+#: out-of-squareness [µrad] (0.5 mm/m: far beyond any acceptance test)
+SQUARENESS_MAX_URAD = 500.0
+#: linear positioning (scale) error [µm/m] (≈ 40 K of steel expansion)
+SCALE_MAX_UM_PER_M = 500.0
+#: thermal drift amplitude of the tool tip [mm]
+THERMAL_MAX_MM = 0.2
+#: spindle tilt [µrad]
+TILT_MAX_URAD = 1000.0
+#: reversal (backlash) [µm]
+BACKLASH_MAX_UM = 200.0
+
 
 @dataclass(frozen=True)
 class VolumetricSpec:
@@ -199,6 +212,9 @@ class Squareness(Effect):
     covariate = "position"
     description = "out-of-squareness of the axes (ISO 230-1 EC0Y, EB0Z, EA0Z)"
 
+    def physical_bounds(self, problem):
+        return {k: (-SQUARENESS_MAX_URAD, SQUARENESS_MAX_URAD) for k in self.parameters}
+
     def starts(self, problem, spec):
         return [np.array([(spec.get(n, (0.0,))[0]) * 1e6 for n in ("EC0Y", "EB0Z", "EA0Z")])]
 
@@ -216,6 +232,9 @@ class ScaleError(Effect):
     parameters = ("EXX_um_per_m", "EYY_um_per_m", "EZZ_um_per_m")
     covariate = "position"
     description = "scale (linear positioning) error of each axis: the linear term of EXX, EYY, EZZ"
+
+    def physical_bounds(self, problem):
+        return {k: (-SCALE_MAX_UM_PER_M, SCALE_MAX_UM_PER_M) for k in self.parameters}
 
     def starts(self, problem, spec):
         out = []
@@ -279,6 +298,16 @@ class ThermalDrift(_PerAxis):
     def _span(self, problem):
         return max(float(np.max(e.times)) for e in problem.experiments) or 1.0
 
+    def physical_bounds(self, problem):
+        """τ between the sampling interval (the median step of the sorted times) and 10× the
+        measurement's duration; |amplitude| below THERMAL_MAX_MM."""
+        t = np.concatenate([e.times for e in problem.experiments])
+        dt = min(float(np.median(np.diff(np.sort(e.times)))) for e in problem.experiments)
+        return {
+            "time_constant_s": (dt, 10.0 * float(t.max() - t.min())),
+            "amplitude_mm": (-THERMAL_MAX_MM, THERMAL_MAX_MM),
+        }
+
     def starts(self, problem, spec):
         T = self._span(problem)
         return [np.array([0.0, f * T]) for f in (0.2, 1.0)]
@@ -308,6 +337,9 @@ class SpindleTilt(Effect):
             else "needs experiments with different tool_length_mm (else a tilt is an offset)"
         )
 
+    def physical_bounds(self, problem):
+        return {k: (-TILT_MAX_URAD, TILT_MAX_URAD) for k in self.parameters}
+
     def starts(self, problem, spec):
         return [
             np.array(
@@ -336,6 +368,9 @@ class Backlash(_PerAxis):
         if np.unique(np.concatenate([e.directions for e in problem.experiments])).size < 2:
             return "every point is approached from one direction (a reversal would be an offset)"
         return None
+
+    def physical_bounds(self, problem):
+        return {"reversal_um": (-BACKLASH_MAX_UM, BACKLASH_MAX_UM)}
 
     def starts(self, problem, spec):
         return [np.zeros(1)]

@@ -99,6 +99,12 @@ class Diagnosis:
                 f"{k} = {v:.4g}" if isinstance(v, float) else f"{k} = {v}" for k, v in e["parameters"].items()
             )
             lines.append(f"  + {e['effect']} ({p}): rms {e['rms_after']:.4g} {u}")
+        seen = set()
+        for r in self.rounds:
+            for c in r:
+                if c.get("rejected") and c["effect"] not in seen:
+                    seen.add(c["effect"])
+                    lines.append(f"  - {c['effect']} not added: {c['rejected']}")
         for f in self.unexplained:
             extra = f", period {f['period']:.4g}" if "period" in f else (f", at {f['at']:.4g}" if "at" in f else "")
             lines.append(
@@ -173,11 +179,19 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
             cv = problem.cv_rms(make, x0, bnd)
             rms = problem.rms(fit.spec)
             bic = problem.bic(fit.spec, k_total + fit.k)
-            round_.append({"effect": name, "rms": rms, "cv_rms": cv, "bic": bic, "_fit": fit})
+            c = {"effect": name, "rms": rms, "cv_rms": cv, "bic": bic, "_fit": fit}
+            why = eff.implausible(problem, fit, x0, bnd)
+            if why:
+                c["rejected"] = f"implausible: {why}"
+            round_.append(c)
         rounds.append(round_)
         if rms_cur <= NOISE_FACTOR * noise:
             break
-        ok = [c for c in round_ if c["bic"] < bic_cur - BIC_MARGIN and c["cv_rms"] < (1 - CV_MARGIN) * cv_cur]
+        ok = [
+            c
+            for c in round_
+            if "rejected" not in c and c["bic"] < bic_cur - BIC_MARGIN and c["cv_rms"] < (1 - CV_MARGIN) * cv_cur
+        ]
         if not ok:
             break
         best = min(ok, key=lambda c: c["bic"])

@@ -424,7 +424,8 @@ def structured_volumetric_bundle(
     thermal=None,
 ):
     """One experiment on a ``grid`` over x ∈ [−200, 200], y ∈ [−150, 150], z ∈ [−200, 0] mm, measured in
-    ``order`` ("random", "x": X fastest, then Y, Z, or "y": Y fastest), tool length 100 mm, the
+    ``order`` ("random", "x": X fastest, then Y, Z, "y": Y fastest, or "x-slowest": Z fastest, X
+    slowest, so x grows with time), tool length 100 mm, the
     known model VOL_MODEL plus: ``extra`` a list of
     ("periodic", component, covariate, amplitude [mm], period) | ("step", component, covariate, height,
     at) | ("trend", component, covariate, slope [mm per unit]), covariates x, y, z [mm] or t [s];
@@ -441,6 +442,8 @@ def structured_volumetric_bundle(
                           indexing="ij")
     if order == "y":
         pts = np.column_stack([a.transpose(2, 0, 1).ravel() for a in (X, Y, Z)])
+    elif order == "x-slowest":  # X steps once per line: position along x grows with time
+        pts = np.column_stack([a.ravel() for a in (X, Y, Z)])
     else:
         pts = np.column_stack([a.transpose(2, 1, 0).ravel() for a in (X, Y, Z)])
     if order == "random":

@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
+
 import pytest
 
 import netshape.discrepancy as nd
@@ -99,3 +101,51 @@ def test_repeats_preferred_over_stated(tmp_path):
     d = nd.diagnose(structured_volumetric_bundle(tmp_path, repeats=3, stated=5e-3, seed=6))
     assert d.noise_source == "repeats"
     assert abs(d.noise_estimate - SIGMA) < 0.15 * SIGMA
+
+
+# --- issue 37 item 4: plausible or rejected ------------------------------------------------------
+
+
+def test_time_trend_is_not_named_a_100_hour_thermal_drift(tmp_path):
+    """Points measured X fastest over 2 h (1197 points, 6 s apart), ez drifting linearly in time by
+    1 µm per 1000 s: before, thermal_drift was named with amplitude 0.15 mm and τ = 3.6·10⁵ s (100 h,
+    at the fit's bound). τ must lie between the sampling interval and 10× the duration: rejected."""
+    d = nd.diagnose(structured_volumetric_bundle(tmp_path, extra=[("trend", "ez", "t", 1e-6)], order="x"))
+    assert "thermal_drift" not in [e["effect"] for e in d.effects]
+    c = next(c for c in d.candidates if c["effect"] == "thermal_drift")
+    assert c["rejected"].startswith("implausible: time_constant_s")
+    assert "thermal_drift not added: implausible" in d.summary()
+    assert any(u["component"] == "ez" and u["covariate"] == "t" for u in d.unexplained), d.unexplained
+
+
+def test_skew_measured_in_x_order_is_not_a_thermal_drift(tmp_path):
+    """The issue's case: ey = 4·10⁻⁵·x (40 µrad skew, not expressible by the catalogue's squareness),
+    x growing with time: the thermal fit (τ ≫ the measurement) is rejected; the skew is located."""
+    d = nd.diagnose(structured_volumetric_bundle(tmp_path, extra=[("trend", "ey", "x", 4e-5)], order="x-slowest"))
+    assert "thermal_drift" not in [e["effect"] for e in d.effects]
+    assert next(c for c in d.candidates if c["effect"] == "thermal_drift")["rejected"].startswith("implausible")
+    f = d.unexplained[0]
+    assert (f["component"], f["covariate"], f["form"]) == ("ey", "x", "trend")
+    assert abs(f["slope"] - 4e-5) < 2e-6
+
+
+def test_plausible_thermal_drift_is_kept(tmp_path):
+    """A real drift (10 µm, τ = 1200 s over 2 h) is within the bounds and named."""
+    d = nd.diagnose(structured_volumetric_bundle(tmp_path, thermal=("Y", 0.01, 1200.0), order="x"))
+    assert d.effect == "thermal_drift" and "rejected" not in d.candidates[
+        [c["effect"] for c in d.candidates].index("thermal_drift")]
+    assert abs(d.parameters["time_constant_s"] - 1200.0) < 120.0
+
+
+def test_fit_at_its_bound_is_implausible():
+    from netshape.discrepancy.catalogue import EffectFit
+    from netshape.discrepancy.volumetric_effects import Backlash, Squareness
+
+    sq = Squareness()
+    fit = EffectFit({"EC0Y_urad": 800.0, "EB0Z_urad": 0.0, "EA0Z_urad": 0.0}, None, 3, None)
+    assert "EC0Y_urad = 800 is outside" in sq.implausible(None, fit)
+    ok = EffectFit({"EC0Y_urad": 30.0, "EB0Z_urad": 0.0, "EA0Z_urad": 0.0}, None, 3, None)
+    assert sq.implausible(None, ok) is None
+    b = Backlash()
+    fit = EffectFit({"axis": "X", "reversal_um": 3.0}, None, 2, None)
+    assert "upper bound" in b.implausible(None, fit, [3.0], (np.array([-3.0]), np.array([3.0])))
