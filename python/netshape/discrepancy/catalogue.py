@@ -47,6 +47,9 @@ class EffectFit:
     spec: Any
     k: int
     x: np.ndarray
+    #: SciPy least_squares status of the fit (> 0 converged, 0 max_nfev reached, -1 improper input;
+    #: None when unknown)
+    status: int | None = None
 
 
 class Effect:
@@ -115,7 +118,7 @@ class Effect:
             self.bounds(problem, spec),
             train=train,
         )
-        return EffectFit(self.parameters_of(x), new, len(x), x)
+        return EffectFit(self.parameters_of(x), new, len(x), x, getattr(problem, "last_status", None))
 
     def refit(self, problem, spec, fit: EffectFit) -> tuple:
         """(make_spec, x0, bounds) to refit this effect on part of the points (cross-validation),

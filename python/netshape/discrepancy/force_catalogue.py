@@ -91,7 +91,7 @@ class Runout(Effect):
             x, new = problem.least_squares(
                 lambda x: self.apply(problem, base, x), [f.x], self.bounds(problem, base)
             )
-            f = EffectFit(self.parameters_of(x), new, len(x), x)
+            f = EffectFit(self.parameters_of(x), new, len(x), x, problem.last_status)
         return f
 
     def parameters_of(self, x):

@@ -140,9 +140,14 @@ class Problem:
                     xtol=1e-8,
                     ftol=1e-8,
                 )
-                res_x, cost = res.x, float(res.cost)
+                res_x, cost, status = res.x, float(res.cost), int(res.status)
+            if z0.size == 0:
+                status = 1
             if best is None or cost < best[0]:
-                best = (cost, res_x[:p].copy(), spec_of(res_x))
+                best = (cost, res_x[:p].copy(), spec_of(res_x), status)
+        #: SciPy's status of the kept start: > 0 converged (gtol, ftol, xtol), 0 max_nfev reached,
+        #: -1 improper input (read by the workflow, issue 37 item 7)
+        self.last_status = best[3]
         return best[1], best[2]
 
     def folds(self) -> list:
@@ -162,13 +167,17 @@ class Problem:
 
     def cv_rms(self, make_spec, x0, bounds) -> float:
         """Held-out rms: for each fold the parameters x of ``make_spec`` are fitted on the training
-        points (from x0) and predict the test points."""
+        points (from x0: the workflow passes the effect's start on the model without it, never the
+        all-data optimum) and predict the test points. ``self.last_cv_not_converged``: the number of
+        folds whose fit did not converge."""
         sq, cnt = 0.0, 0
+        self.last_cv_not_converged = 0
         for train, test in self.folds():
             try:
-                x, s = self.least_squares(make_spec, [x0], bounds, train=train, max_nfev=8 * (len(x0) + 1))
+                x, s = self.least_squares(make_spec, [x0], bounds, train=train, max_nfev=30 * (len(x0) + 1))
             except ValueError:
                 return math.inf
+            self.last_cv_not_converged += self.last_status <= 0
             r = self.residuals(s)
             for ri, ti in zip(r, test):
                 sq += float(np.sum(ri[ti] ** 2))

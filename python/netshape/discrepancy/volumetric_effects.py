@@ -269,10 +269,10 @@ class _PerAxis(Effect):
             )
             cost = problem.rms(s, train)
             if best is None or cost < best[0]:
-                best = (cost, axis, x, s)
-        _, axis, x, s = best
+                best = (cost, axis, x, s, getattr(problem, "last_status", None))
+        _, axis, x, s, status = best
         return EffectFit(
-            self.parameters_of_axis(axis, x), s, len(x) + 1, np.concatenate([[_AXES.index(axis)], x])
+            self.parameters_of_axis(axis, x), s, len(x) + 1, np.concatenate([[_AXES.index(axis)], x]), status
         )
 
     def apply(self, problem, spec, x):  # x = [axis index, ...] as returned by fit

@@ -164,6 +164,7 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
     rms_cur = rms_before
     cv_cur = rms_before
     bic_cur = problem.bic(spec, k_total)
+    fit_notes = []
     while cat and len(added) < max_effects:
         if rounds and rms_cur <= NOISE_FACTOR * noise:
             break
@@ -176,10 +177,17 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
                 continue
             base = problem.with_nuisance(spec, problem.nuisance_of(fit.spec))
             make, x0, bnd = eff.refit(problem, base, fit)
-            cv = problem.cv_rms(make, x0, bnd)
+            cv = problem.cv_rms(make, _null_start(eff, problem, base, x0), bnd)
+            cv_bad = getattr(problem, "last_cv_not_converged", 0)
             rms = problem.rms(fit.spec)
             bic = problem.bic(fit.spec, k_total + fit.k)
-            c = {"effect": name, "rms": rms, "cv_rms": cv, "bic": bic, "_fit": fit}
+            c = {"effect": name, "rms": rms, "cv_rms": cv, "bic": bic, "_fit": fit,
+                 "converged": fit.status is None or fit.status > 0, "cv_folds_not_converged": int(cv_bad)}
+            if not c["converged"]:
+                fit_notes.append(
+                    f"{name}: the fit did not converge (least_squares status {fit.status}"
+                    + (": max_nfev reached)" if fit.status == 0 else ")")
+                )
             why = eff.implausible(problem, fit, x0, bnd)
             if why:
                 c["rejected"] = f"implausible: {why}"
@@ -205,6 +213,11 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
             chain, spec = _joint_refit(
                 problem, problem.with_nuisance(spec0, problem.nuisance_of(spec)), chain
             )
+            if getattr(problem, "last_status", 1) <= 0:
+                fit_notes.append(
+                    f"the joint refit of {', '.join(e['effect'] for e in added)} did not converge "
+                    f"(least_squares status {problem.last_status})"
+                )
             for entry, (eff, f) in zip(added, chain):
                 entry["parameters"] = f.parameters
             rms_cur = problem.rms(spec)
@@ -212,7 +225,7 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
             added[-1]["rms_after"] = rms_cur
         del cat[best["effect"]]
     clean = [[{k: v for k, v in c.items() if k != "_fit"} for c in r] for r in rounds]
-    notes = list(getattr(problem, "notes", []))
+    notes = list(getattr(problem, "notes", [])) + fit_notes
     unexplained = []
     if rms_cur > NOISE_FACTOR * noise:
         from .structure import find_structure
@@ -259,6 +272,19 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
     )
 
 
+def _null_start(eff, problem, base, x_fit):
+    """Start of the cross-validation folds: the effect's first start on the model without it (its
+    parameters at their no-effect or catalogue default values), never the all-data optimum
+    ``x_fit``, which has seen the test points. Falls back to ``x_fit`` only when the effect's starts
+    do not match its refit parameters (a user effect with its own refit)."""
+    try:
+        x = np.atleast_1d(np.asarray(eff.starts(problem, base)[0], float))
+    except Exception:  # noqa: BLE001 (a user effect without starts)
+        return x_fit
+    x_fit = np.atleast_1d(np.asarray(x_fit, float))
+    return x if x.shape == x_fit.shape else x_fit
+
+
 def _joint_refit(problem, base, chain):
     """Refit the parameters of every effect in ``chain`` [(effect, EffectFit)] together (their
     discrete choices kept), applied in order to ``base``. Returns (new chain, spec)."""
@@ -287,7 +313,7 @@ def _joint_refit(problem, base, chain):
     new = []
     for (eff, fit), sl in zip(chain, parts):
         full = np.concatenate([fit.x[: fit.x.size - (sl.stop - sl.start)], z[sl]])
-        new.append((eff, EffectFit(eff.parameters_of(full), spec, fit.k, full)))
+        new.append((eff, EffectFit(eff.parameters_of(full), spec, fit.k, full, problem.last_status)))
     return new, spec
 
 
