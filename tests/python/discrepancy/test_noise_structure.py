@@ -149,3 +149,14 @@ def test_fit_at_its_bound_is_implausible():
     b = Backlash()
     fit = EffectFit({"axis": "X", "reversal_um": 3.0}, None, 2, None)
     assert "upper bound" in b.implausible(None, fit, [3.0], (np.array([-3.0]), np.array([3.0])))
+
+
+def test_report_shows_unexplained(tmp_path):
+    from netshape.discrepancy.report import write_report
+
+    d = nd.diagnose(structured_volumetric_bundle(tmp_path / "b", extra=FORMS["periodic"]))
+    paths = write_report(d, tmp_path / "rep")
+    html = (tmp_path / "rep" / "index.html").read_text()
+    assert "Unexplained structure" in html and "periodic" in html and "source: estimated" in html
+    assert (tmp_path / "rep" / "unexplained.png").stat().st_size > 1000
+    assert tmp_path / "rep" / "unexplained.png" in paths
