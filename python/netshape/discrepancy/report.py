@@ -241,7 +241,8 @@ def write_report(diagnosis, out_dir) -> list:
             for e in d.effects
         )
         or "<tr><td colspan=3>"
-        + ("no missing effect found" if d.rms_after <= 1.1 * d.noise_estimate else "no catalogue effect added")
+        + ("no missing effect found" if d.rms_after <= 1.1 * d.noise_estimate and not getattr(d, "unexplained", [])
+           else "no catalogue effect added")
         + "</td></tr>"
     )
     notes = "".join(f"<li>{html.escape(n)}</li>" for n in d.notes)

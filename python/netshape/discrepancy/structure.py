@@ -33,23 +33,45 @@ MAX_FINDINGS = 4
 MIN_REPEAT_DOF = 20
 
 
-def repeat_noise(residual: np.ndarray, keys: list) -> tuple[float, int]:
+def repeat_noise(residual: np.ndarray, keys: list, order=None) -> tuple[float, int]:
     """Pooled within-group standard deviation of ``residual`` (n, c) over groups of equal ``keys``
-    (n hashable) with ≥ 2 members. Returns (σ, dof per component)."""
+    (n hashable) with ≥ 2 members. With ``order`` (n,) (the measuring time), a smooth function of it
+    (hat functions at n/40 ≤ 60 quantile knots) is fitted together with the group means (backfitting),
+    so a drift between the repeated runs is not counted as noise. Returns (σ, dof per component)."""
     r = np.asarray(residual, float)
     groups: dict = {}
     for i, k in enumerate(keys):
         groups.setdefault(k, []).append(i)
-    ss, dof = 0.0, 0
-    for idx in groups.values():
-        if len(idx) < 2:
-            continue
-        g = r[idx]
-        ss += float(np.sum((g - g.mean(axis=0)) ** 2))
-        dof += len(idx) - 1
-    if dof == 0:
+    rep = [idx for idx in groups.values() if len(idx) >= 2]
+    if not rep:
         return 0.0, 0
-    return math.sqrt(ss / (dof * r.shape[1])), dof
+    sel = np.concatenate(rep)
+    r = r[sel]
+    gid = np.concatenate([np.full(len(idx), j) for j, idx in enumerate(rep)])
+    ng = len(rep)
+    H = None
+    if order is not None:
+        H = _hats(np.asarray(order, float)[sel], max(3, min(60, r.shape[0] // 40)))[:, 1:]
+    e = r.copy()
+    smooth = np.zeros_like(r)
+    for _ in range(1 if H is None else 30):
+        z = r - smooth
+        means = np.stack([np.bincount(gid, z[:, j], ng) for j in range(r.shape[1])], axis=1)
+        means /= np.bincount(gid, minlength=ng)[:, None]
+        e = z - means[gid]
+        if H is None:
+            break
+        c, *_ = np.linalg.lstsq(H, r - means[gid], rcond=None)
+        new = H @ c
+        if np.max(np.abs(new - smooth)) < 1e-6 * (np.max(np.abs(r)) + 1e-300):
+            smooth = new
+            break
+        smooth = new
+    e = r - smooth - means[gid]
+    dof = r.shape[0] - ng - (0 if H is None else H.shape[1])
+    if dof <= 0:
+        return 0.0, 0
+    return math.sqrt(float(np.sum(e**2)) / (dof * r.shape[1])), dof
 
 
 def _hats(v: np.ndarray, k: int) -> np.ndarray:

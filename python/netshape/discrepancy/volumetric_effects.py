@@ -147,7 +147,8 @@ class VolumetricProblem(Problem):
 
     def repeat_noise(self, spec):
         """Points measured more than once: same nominal point (to 1 µm), tool length and approach
-        direction (ISO 230-2 repeated runs; both directions kept apart so backlash is not noise)."""
+        direction (ISO 230-2 repeated runs; both directions kept apart so backlash is not noise); a
+        smooth drift in t_s between the runs is fitted with the point means, not counted as noise."""
         from .structure import repeat_noise
 
         keys = []
@@ -155,7 +156,10 @@ class VolumetricProblem(Problem):
             d = e.directions if e.directions is not None else np.zeros(len(e.points))
             for p, di in zip(np.round(e.points, 3), d):
                 keys.append((e.tool_length, *p.tolist(), float(di)))
-        return repeat_noise(np.concatenate(self.residuals(spec)), keys)
+        t = None
+        if all(e.times is not None for e in self.experiments):
+            t = np.concatenate([e.times for e in self.experiments])
+        return repeat_noise(np.concatenate(self.residuals(spec)), keys, t)
 
     def structure_covariates(self, spec):
         cov = {
