@@ -161,3 +161,23 @@ def test_report_shows_unexplained(tmp_path):
     assert "Unexplained structure" in html and "periodic" in html and "source: estimated" in html
     assert (tmp_path / "rep" / "unexplained.png").stat().st_size > 1000
     assert tmp_path / "rep" / "unexplained.png" in paths
+
+
+def test_force_and_wall_noise_sources(tmp_path):
+    """Forces spanning ≥ 2 revolutions: each angle is measured once per revolution (repeats); one
+    revolution: the manifest's sigma_N when stated, else estimated. Walls: sigma_mm when stated."""
+    from generators import force_bundle, wall_bundle
+
+    d = nd.diagnose(force_bundle(tmp_path / "f3"))
+    assert d.noise_source == "repeats" and abs(d.noise_estimate - 2.0) < 0.2
+    f1 = force_bundle(tmp_path / "f1", revolutions=1)
+    assert nd.diagnose(f1).noise_source == "estimated"
+    text = (f1 / "manifest.toml").read_text()
+    (f1 / "manifest.toml").write_text(text.replace("[[experiment]]", "[noise]\nsigma_N = 2.5\n[[experiment]]", 1))
+    d = nd.diagnose(f1)
+    assert d.noise_source == "stated" and d.noise_estimate == 2.5
+    w = wall_bundle(tmp_path / "w")
+    text = (w / "manifest.toml").read_text()
+    (w / "manifest.toml").write_text(text.replace("[[experiment]]", "[noise]\nsigma_mm = 0.001\n[[experiment]]", 1))
+    d = nd.diagnose(w)
+    assert d.noise_source == "stated" and d.noise_estimate == 0.001 and d.effects == [] and d.unexplained == []
