@@ -9,7 +9,10 @@ _DESCRIPTION = """\
 Read a measurement bundle (BUNDLE_DIR/manifest.toml + CSV files: kind cutting_force,
 volumetric_error or wall_error), compare it with the bundle's model, fit every effect of the catalogue the model
 may lack, add the one that held-out prediction error and BIC choose, and repeat until the residual
-is consistent with the measurement noise. "effect": null means no missing effect was found.
+is consistent with the measurement noise. "effect": null means no catalogue effect was added:
+"no missing effect found" when the residual is consistent with the noise, else "unexplained" says
+where the rest is (component, covariate, trend/step/periodic). The noise comes from repeated points,
+else the manifest's [noise] sigma_mm / sigma_N, else a smoother estimate ("noise_source").
 
   cutting_force     runout, edge_forces, size_effect, structural_mode
   volumetric_error  squareness, scale_error, thermal_drift, spindle_tilt, backlash
@@ -36,7 +39,8 @@ def register(sub) -> None:
         "--json",
         required=True,
         metavar="OUT.json",
-        help="write kind, effect, parameters, effects, rms_before, rms_after, noise_estimate, candidates",
+        help="write kind, effect, parameters, effects, rms_before, rms_after, noise_estimate, candidates, "
+        "noise_source, noise_assumption, unexplained",
     )
     p.add_argument("--report", metavar="OUT_DIR", help="write residual plots (PNG) and index.html here")
     p.set_defaults(func=run)

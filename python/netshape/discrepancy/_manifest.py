@@ -25,6 +25,9 @@ class Bundle:
     experiments: list
     tool: dict = field(default_factory=dict)
     machine: dict = field(default_factory=dict)
+    #: the manifest's ``[noise]`` table: {"sigma": stated instrument standard uncertainty in the data's
+    #: unit} (``sigma_mm`` for volumetric and wall bundles, ``sigma_N`` for forces), empty if not stated
+    noise: dict = field(default_factory=dict)
 
 
 def _fail(where: str, msg: str) -> ValueError:
@@ -42,6 +45,19 @@ def _number(table: dict, key: str, where: str, *, positive: bool = False, defaul
     if positive and v <= 0:
         raise _fail(where, f"{key} = {v!r}: must be positive")
     return float(v)
+
+
+def _noise_table(doc: dict, key: str, where: str) -> dict:
+    """The optional ``[noise]`` table: ``sigma_mm`` or ``sigma_N`` (``key``), the instrument's stated
+    standard uncertainty of one measured value (> 0)."""
+    if "noise" not in doc:
+        return {}
+    t = doc["noise"]
+    w = f"{where}: [noise]"
+    if not isinstance(t, dict):
+        raise _fail(where, f"[noise] must be a table with {key}")
+    _check_keys(t, (key,), w)
+    return {"sigma": _number(t, key, w, positive=True)}
 
 
 def _check_keys(table: dict, allowed, where: str) -> None:

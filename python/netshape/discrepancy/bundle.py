@@ -103,7 +103,7 @@ from typing import Any
 import numpy as np
 
 
-from ._manifest import Bundle, _check_keys, _experiment_head, _fail, _mode, _number, _read_csv
+from ._manifest import Bundle, _check_keys, _noise_table, _experiment_head, _fail, _mode, _number, _read_csv
 from .wall_bundle import WallContourExperiment, WallExperiment, _load_wall
 
 __all__ = ["Bundle", "ForceExperiment", "VolumetricExperiment", "WallExperiment", "WallContourExperiment",
@@ -168,7 +168,8 @@ class VolumetricExperiment:
 
 
 def _load_force(doc: dict, root: Path, where: str) -> Bundle:
-    _check_keys(doc, ("kind", "tool", "model", "experiment"), where)
+    _check_keys(doc, ("kind", "tool", "model", "experiment", "noise"), where)
+    noise = _noise_table(doc, "sigma_N", where)
     tool = doc.get("tool")
     if not isinstance(tool, dict):
         raise _fail(where, "missing table [tool] (type, diameter_mm, flutes, helix_deg)")
@@ -276,7 +277,7 @@ def _load_force(doc: dict, root: Path, where: str) -> Bundle:
                 times=None if times is None else times - 0.0,
             )
         )
-    return Bundle(kind="cutting_force", path=str(root), model=model_out, experiments=out, tool=tool_out)
+    return Bundle(kind="cutting_force", path=str(root), model=model_out, experiments=out, tool=tool_out, noise=noise)
 
 
 def _axis_list(value: Any, where: str) -> list:
@@ -286,7 +287,8 @@ def _axis_list(value: Any, where: str) -> list:
 
 
 def _load_volumetric(doc: dict, root: Path, where: str) -> Bundle:
-    _check_keys(doc, ("kind", "machine", "model", "experiment"), where)
+    _check_keys(doc, ("kind", "machine", "model", "experiment", "noise"), where)
+    noise = _noise_table(doc, "sigma_mm", where)
     mach = doc.get("machine")
     if not isinstance(mach, dict):
         raise _fail(where, "missing table [machine] (tool_side, workpiece_side, tool_length_mm)")
@@ -347,6 +349,7 @@ def _load_volumetric(doc: dict, root: Path, where: str) -> Bundle:
         model=model_out,
         experiments=out,
         machine={"tool_side": ts, "workpiece_side": ws, "tool_length": length},
+        noise=noise,
     )
 
 

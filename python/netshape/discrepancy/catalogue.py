@@ -47,6 +47,9 @@ class EffectFit:
     spec: Any
     k: int
     x: np.ndarray
+    #: SciPy least_squares status of the fit (> 0 converged, 0 max_nfev reached, -1 improper input;
+    #: None when unknown)
+    status: int | None = None
 
 
 class Effect:
@@ -63,6 +66,32 @@ class Effect:
 
     def applicable(self, problem) -> str | None:
         """None if the bundle carries what the effect needs, else the reason it is skipped."""
+        return None
+
+    def physical_bounds(self, problem) -> dict:
+        """{parameter name: (low, high)}: the physically plausible open range of each named
+        parameter (its unit in its name). A fit that ends at or beyond one is not added: it stays in
+        ``candidates`` with ``rejected: "implausible: …"``. Default: none declared."""
+        return {}
+
+    def implausible(self, problem, fit: EffectFit, x=None, bounds=None) -> str | None:
+        """Why ``fit`` is not physical, or None: a named parameter at or beyond its
+        :meth:`physical_bounds`, or an internal parameter ``x`` (of :meth:`refit`) at one of the fit's
+        finite ``bounds`` (the optimum lies outside what the fit was allowed)."""
+        for name, (lo, hi) in self.physical_bounds(problem).items():
+            v = fit.parameters.get(name)
+            if isinstance(v, (int, float)) and not lo < v < hi:
+                return f"{name} = {v:.4g} is outside ({lo:.4g}, {hi:.4g})"
+        if x is not None and bounds is not None:
+            x = np.atleast_1d(np.asarray(x, float))
+            names = [p for p in self.parameters if p != "axis"]
+            for side, b in (("lower", bounds[0]), ("upper", bounds[1])):
+                b = np.broadcast_to(np.asarray(b, float), x.shape)
+                at = np.isfinite(b) & (np.abs(x - b) <= 1e-9 + 1e-6 * np.abs(b))
+                if at.any():
+                    i = int(np.argmax(at))
+                    label = names[i] if len(names) == x.size else f"parameter {i + 1}"
+                    return f"{label} ended at the fit's {side} bound ({float(b[i]):.4g} internal units)"
         return None
 
     def starts(self, problem, spec) -> list:
@@ -89,7 +118,7 @@ class Effect:
             self.bounds(problem, spec),
             train=train,
         )
-        return EffectFit(self.parameters_of(x), new, len(x), x)
+        return EffectFit(self.parameters_of(x), new, len(x), x, getattr(problem, "last_status", None))
 
     def refit(self, problem, spec, fit: EffectFit) -> tuple:
         """(make_spec, x0, bounds) to refit this effect on part of the points (cross-validation),

@@ -13,6 +13,18 @@ from .catalogue import Effect, EffectFit, register_effect
 from .force_effects import GRID
 
 
+# Physical ranges (issue 37 item 4): a fit at or beyond one is rejected as implausible; generous
+# limits for end milling, not tuned on any test case.
+#: radial runout of the cutter [mm]
+RUNOUT_MAX_MM = 0.1
+#: edge (ploughing) coefficients Kte, Kre, Kae [N/mm]
+EDGE_RANGE_N_PER_MM = (-200.0, 500.0)
+#: chip-thickness exponent of the size effect
+CHIP_EXPONENT_RANGE = (0.3, 1.5)
+#: damping ratio of a tool or dynamometer mode
+DAMPING_RANGE = (0.003, 0.5)
+
+
 class Runout(Effect):
     name, kind = "runout", "cutting_force"
     parameters = ("rho_mm", "lambda_deg")
@@ -37,6 +49,9 @@ class Runout(Effect):
         if problem.flutes == 2:
             return (np.array([-2.0]), np.array([2.0]))
         return (np.array([0.0, -4 * np.pi]), np.array([2.0, 4 * np.pi]))
+
+    def physical_bounds(self, problem):
+        return {"rho_mm": (-1e-9, RUNOUT_MAX_MM)}
 
     def apply(self, problem, spec, x):
         if len(x) == 1:  # 2 flutes: x = ρ·cos λ
@@ -76,7 +91,7 @@ class Runout(Effect):
             x, new = problem.least_squares(
                 lambda x: self.apply(problem, base, x), [f.x], self.bounds(problem, base)
             )
-            f = EffectFit(self.parameters_of(x), new, len(x), x)
+            f = EffectFit(self.parameters_of(x), new, len(x), x, problem.last_status)
         return f
 
     def parameters_of(self, x):
@@ -93,6 +108,9 @@ class EdgeForces(Effect):
         "edge (ploughing) forces: Kte, Kre, Kae refitted (the forces per unit edge length that do "
         "not grow with the chip)"
     )
+
+    def physical_bounds(self, problem):
+        return {k: EDGE_RANGE_N_PER_MM for k in self.parameters}
 
     def starts(self, problem, spec):
         return [np.asarray(spec.coefficients[3:], float)]
@@ -114,6 +132,9 @@ class SizeEffect(Effect):
         "chip-size effect: cutting forces grow as h_ref·(h/h_ref)^p instead of h (p < 1: thin "
         "chips cut relatively harder; h_ref the geometric mean feed per tooth of the bundle)"
     )
+
+    def physical_bounds(self, problem):
+        return {"chip_exponent": CHIP_EXPONENT_RANGE}
 
     def starts(self, problem, spec):
         return [np.array([0.8]), np.array([1.2])]
@@ -166,6 +187,9 @@ class StructuralMode(Effect):
                 best.append((problem.rms(s), f, z))
         best.sort()
         return [np.array([f, z]) for _, f, z in best[:2]]
+
+    def physical_bounds(self, problem):
+        return {"damping_ratio": DAMPING_RANGE}
 
     def bounds(self, problem, spec):
         lo, hi = self._range(problem)

@@ -293,6 +293,33 @@ class ForceProblem(Problem):
         th = self.angles(spec, i)
         return (th.max() - th.min()) / (2 * np.pi), th
 
+    noise_assumption = (
+        "the residual changes little between neighbouring samples (second differences) where an "
+        "experiment spans fewer than 2 revolutions"
+    )
+
+    def repeat_noise(self, spec):
+        """When every experiment spans ≥ 2 revolutions each angle is measured once per revolution: the
+        scatter about the revolution-synchronous mean (:meth:`noise_estimate`) is a repeats estimate."""
+        n_all = 0
+        for i in range(len(self.experiments)):
+            revs, th = self._revolutions(spec, i)
+            if not (revs >= 2.0 and int(min(1024, th.size / max(revs, 1e-9))) >= 8):
+                return 0.0, 0
+            n_all += th.size - int(min(1024, th.size / max(revs, 1e-9)))
+        return self.noise_estimate(spec), n_all
+
+    def structure_covariates(self, spec):
+        """Components fx, fy, fz; covariates the angle of flute 1 (deg, harmonics of the revolution),
+        the time or sample index within the experiment (t), the feed per tooth."""
+        ang, t, feed = [], [], []
+        for i, e in enumerate(self.experiments):
+            ang.append(np.degrees(np.mod(self.angles(spec, i), 2 * np.pi)))
+            t.append(e.times - e.times[0] if e.time_based else np.arange(len(e.forces), dtype=float))
+            feed.append(np.full(len(e.forces), e.feed_per_tooth))
+        return ["fx", "fy", "fz"], {"angle": np.concatenate(ang), "t": np.concatenate(t),
+                                    "feed": np.concatenate(feed)}
+
     def noise_estimate(self, spec) -> float:
         """Part of the measurement no angle-synchronous model can explain [N]: the samples of every
         experiment that spans ≥ 2 revolutions are put in angular bins (as many per revolution as it has

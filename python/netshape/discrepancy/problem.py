@@ -36,6 +36,36 @@ class Problem:
     def with_nuisance(self, spec, values):
         return spec
 
+    # --- noise and structure ---------------------------------------------------------------------
+    #: the assumption behind :meth:`noise_estimate` (stated in the diagnosis when it is used)
+    noise_assumption = "the residual's scatter after a model-free smoother is noise"
+
+    def repeat_noise(self, spec) -> tuple[float, int]:
+        """(σ, dof) from points measured more than once; (0, 0) when the bundle has none."""
+        return 0.0, 0
+
+    def noise_info(self, spec) -> tuple[float, str, str]:
+        """(σ, source, assumption) in order of preference: ``repeats`` (points measured more than once),
+        ``stated`` (the manifest's [noise]), ``estimated`` (:meth:`noise_estimate`)."""
+        from .structure import MIN_REPEAT_DOF
+
+        sig, dof = self.repeat_noise(spec)
+        if dof >= MIN_REPEAT_DOF and sig > 0:
+            return sig, "repeats", (
+                f"pooled scatter of repeated points about their means ({dof} degrees of freedom per component)"
+            )
+        stated = getattr(getattr(self, "bundle", None), "noise", {}) or {}
+        if "sigma" in stated:
+            return float(stated["sigma"]), "stated", "the instrument uncertainty stated in the manifest's [noise]"
+        return self.noise_estimate(spec), "estimated", self.noise_assumption
+
+    def structure_covariates(self, spec) -> tuple[list, dict]:
+        """(component names, {covariate name: (n,) values over all points}) searched for unexplained
+        structure; the default: the sample order only."""
+        n = sum(m.shape[0] for m in self.measured)
+        c = self.measured[0].shape[1]
+        return [f"c{j}" for j in range(c)], {"order": np.arange(n, dtype=float)}
+
     # --- residuals ---------------------------------------------------------------------------------
     def predict(self, spec) -> list:
         raise NotImplementedError
@@ -110,9 +140,14 @@ class Problem:
                     xtol=1e-8,
                     ftol=1e-8,
                 )
-                res_x, cost = res.x, float(res.cost)
+                res_x, cost, status = res.x, float(res.cost), int(res.status)
+            if z0.size == 0:
+                status = 1
             if best is None or cost < best[0]:
-                best = (cost, res_x[:p].copy(), spec_of(res_x))
+                best = (cost, res_x[:p].copy(), spec_of(res_x), status)
+        #: SciPy's status of the kept start: > 0 converged (gtol, ftol, xtol), 0 max_nfev reached,
+        #: -1 improper input (read by the workflow, issue 37 item 7)
+        self.last_status = best[3]
         return best[1], best[2]
 
     def folds(self) -> list:
@@ -132,13 +167,17 @@ class Problem:
 
     def cv_rms(self, make_spec, x0, bounds) -> float:
         """Held-out rms: for each fold the parameters x of ``make_spec`` are fitted on the training
-        points (from x0) and predict the test points."""
+        points (from x0: the workflow passes the effect's start on the model without it, never the
+        all-data optimum) and predict the test points. ``self.last_cv_not_converged``: the number of
+        folds whose fit did not converge."""
         sq, cnt = 0.0, 0
+        self.last_cv_not_converged = 0
         for train, test in self.folds():
             try:
-                x, s = self.least_squares(make_spec, [x0], bounds, train=train, max_nfev=8 * (len(x0) + 1))
+                x, s = self.least_squares(make_spec, [x0], bounds, train=train, max_nfev=30 * (len(x0) + 1))
             except ValueError:
                 return math.inf
+            self.last_cv_not_converged += self.last_status <= 0
             r = self.residuals(s)
             for ri, ti in zip(r, test):
                 sq += float(np.sum(ri[ti] ** 2))

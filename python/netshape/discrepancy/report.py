@@ -145,6 +145,33 @@ def plot_covariate(diagnosis, covariate: str, label: str = ""):
     return fig
 
 
+def plot_unexplained(diagnosis, max_rows: int = 6):
+    """One row per ``unexplained`` finding (at most ``max_rows``): the final residual of its component
+    against its covariate (points) and its mean in 60 bins (line), the finding in the title."""
+    p = diagnosis.problem
+    comps, covs = p.structure_covariates(diagnosis.spec_after)
+    r = np.concatenate(p.residuals(diagnosis.spec_after))
+    found = diagnosis.unexplained[:max_rows]
+    fig, axes = _figure(len(found), 1, (9.0, 2.6))
+    for ax, fnd in zip((a[0] for a in axes), found):
+        v = np.asarray(covs[fnd["covariate"]], float)
+        y = r[:, comps.index(fnd["component"])]
+        ax.plot(v, y, ".", ms=1.5, color="0.6")
+        edges = np.linspace(v.min(), v.max(), 61)
+        idx = np.clip(np.digitize(v, edges) - 1, 0, 59)
+        cnt = np.bincount(idx, minlength=60)
+        mean = np.bincount(idx, y, minlength=60) / np.maximum(cnt, 1)
+        ok = cnt > 0
+        ax.plot(((edges[:-1] + edges[1:]) / 2)[ok], mean[ok], color="tab:red", lw=1.0)
+        extra = f", period {fnd['period']:.4g}" if "period" in fnd else (f", at {fnd['at']:.4g}" if "at" in fnd else "")
+        ax.set_title(f"{fnd['component']}: {fnd['form']} against {fnd['covariate']}{extra}, rms {fnd['rms']:.3g} {p.unit}",
+                     fontsize=9)
+        ax.set_xlabel(fnd["covariate"])
+        ax.set_ylabel(f"{fnd['component']} residual [{p.unit}]")
+    fig.tight_layout()
+    return fig
+
+
 def write_report(diagnosis, out_dir) -> list:
     """Write residuals.png, one <effect>.png per added effect (or the first candidate's covariate
     when none was added) and index.html into ``out_dir`` (created if missing). Returns the paths."""
@@ -171,6 +198,9 @@ def write_report(diagnosis, out_dir) -> list:
                 f"Residual against {eff.covariate}, where {name} shows",
             )
         )
+    if diagnosis.unexplained:
+        figs.append(("unexplained.png", plot_unexplained(diagnosis),
+                     "Unexplained structure: the final residual against where it was found"))
     for fname, fig, _ in figs:
         atomic_save_figure(fig, out / fname, dpi=90)
         written.append(out / fname)
@@ -180,18 +210,40 @@ def write_report(diagnosis, out_dir) -> list:
     def f(v):
         return "—" if v is None or (isinstance(v, float) and not math.isfinite(v)) else f"{v:.4g}"
 
+    def status(c):
+        if c.get("rejected"):
+            return html.escape(c["rejected"])
+        if c.get("converged") is False:
+            return "fit not converged"
+        return "ok"
+
     rows = "".join(
         f"<tr><td>{html.escape(c['effect'])}</td><td>{f(c['rms'])}</td><td>{f(c['cv_rms'])}</td>"
-        f"<td>{f(c['bic'])}</td></tr>"
+        f"<td>{f(c['bic'])}</td><td>{status(c)}</td></tr>"
         for c in d.candidates
     )
+    un_rows = "".join(
+        f"<tr><td>{html.escape(x['component'])}</td><td>{html.escape(x['covariate'])}</td>"
+        f"<td>{html.escape(x['form'])}</td><td>{f(x.get('period'))}</td><td>{f(x['rms'])}</td></tr>"
+        for x in getattr(d, "unexplained", [])
+    )
+    if un_rows:
+        unexplained = ("<h2>Unexplained structure (after the added effects)</h2><table><tr><th>component</th>"
+                       f"<th>covariate</th><th>form</th><th>period</th><th>rms [{u}]</th></tr>{un_rows}</table>")
+    elif d.rms_after <= 1.1 * d.noise_estimate:
+        unexplained = "<p>The residual is consistent with the noise.</p>"
+    else:
+        unexplained = "<p>The residual exceeds the noise, but no trend, step or period was located.</p>"
     eff_rows = (
         "".join(
             f"<tr><td>{html.escape(e['effect'])}</td><td>{html.escape(json.dumps(e['parameters']))}</td>"
             f"<td>{f(e['rms_after'])}</td></tr>"
             for e in d.effects
         )
-        or "<tr><td colspan=3>no missing effect found</td></tr>"
+        or "<tr><td colspan=3>"
+        + ("no missing effect found" if d.rms_after <= 1.1 * d.noise_estimate and not getattr(d, "unexplained", [])
+           else "no catalogue effect added")
+        + "</td></tr>"
     )
     notes = "".join(f"<li>{html.escape(n)}</li>" for n in d.notes)
     skipped = "".join(f"<li>{html.escape(k)}: {html.escape(v)}</li>" for k, v in d.skipped.items())
@@ -201,11 +253,12 @@ def write_report(diagnosis, out_dir) -> list:
 <style>body{{font-family:sans-serif;max-width:1000px;margin:2em auto}}table{{border-collapse:collapse}}
 td,th{{border:1px solid #ccc;padding:2px 8px}}img{{max-width:100%}}</style></head><body>
 <h1>Discrepancy diagnosis ({html.escape(d.kind)})</h1>
-<p>rms before {f(d.rms_before)} {u}, after {f(d.rms_after)} {u}; noise estimate {f(d.noise_estimate)} {u}.</p>
+<p>rms before {f(d.rms_before)} {u}, after {f(d.rms_after)} {u}; noise estimate {f(d.noise_estimate)} {u} (source: {html.escape(getattr(d, "noise_source", ""))}).</p>
 <h2>Effects added</h2><table>
 <tr><th>effect</th><th>parameters</th><th>rms after [{u}]</th></tr>{eff_rows}</table>
 <h2>Candidates (first round)</h2><table>
-<tr><th>effect</th><th>rms [{u}]</th><th>held-out rms [{u}]</th><th>BIC</th></tr>{rows}</table>
+<tr><th>effect</th><th>rms [{u}]</th><th>held-out rms [{u}]</th><th>BIC</th><th>status</th></tr>{rows}</table>
+{unexplained}
 <h2>Where the residual was systematic (before)</h2>
 <pre>{html.escape(json.dumps(_plain(d.localisation), indent=1))}</pre>
 <h2>Experiments</h2><pre>{html.escape(json.dumps(_plain(d.experiments), indent=1))}</pre>

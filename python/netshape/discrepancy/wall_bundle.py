@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from ._manifest import Bundle, _check_keys, _experiment_head, _fail, _mode, _number, _read_csv
+from ._manifest import Bundle, _check_keys, _noise_table, _experiment_head, _fail, _mode, _number, _read_csv
 
 
 
@@ -168,7 +168,8 @@ def _same_tool(tool_out: dict, c, we: str) -> None:
 def _load_wall(doc: dict, root: Path, where: str) -> Bundle:
     from netshape import deflection as _defl
 
-    _check_keys(doc, ("kind", "tool", "model", "experiment"), where)
+    _check_keys(doc, ("kind", "tool", "model", "experiment", "noise"), where)
+    noise = _noise_table(doc, "sigma_mm", where)
     exps = doc.get("experiment")
     if not isinstance(exps, list) or not exps:
         raise _fail(where, "no [[experiment]] tables")
@@ -226,4 +227,4 @@ def _load_wall(doc: dict, root: Path, where: str) -> Bundle:
             WallExperiment(file=str(path), feed_per_tooth=c, axial_depth=ap, radial_depth=ae, mode=mode,
                            side=side, x=cols["x_mm"], z=z, errors=cols["error_mm"][:, None], spindle_rpm=rpm)
         )
-    return Bundle(kind="wall_error", path=str(root), model=model_out, experiments=out, tool=tool_out)
+    return Bundle(kind="wall_error", path=str(root), model=model_out, experiments=out, tool=tool_out, noise=noise)

@@ -192,6 +192,20 @@ class WallProblem(Problem):
         e = self.experiments[i]
         return np.lexsort((e.x, self._z[i]))
 
+    noise_assumption = (
+        "the residual changes little between neighbouring points along x at one height (robust second "
+        "differences): structure with a period of a few point spacings would be read as noise"
+    )
+
+    def structure_covariates(self, spec):
+        """Component error; covariates x, z [mm], the revolution phase (deg) and the normal force [N]."""
+        return ["error"], {
+            "x": np.concatenate([np.asarray(e.x, float) for e in self.experiments]),
+            "z": np.concatenate(self._z),
+            "revolution_phase": np.concatenate([self.revolution_phase(i) for i in range(len(self.experiments))]),
+            "normal_force": np.concatenate(self._fn),
+        }
+
     def noise_estimate(self, spec) -> float:
         """Robust second-difference noise of the model residual along x within each height z [mm]."""
         num, den = 0.0, 0
@@ -248,6 +262,13 @@ class WallProblem(Problem):
         return out
 
 
+# Physical ranges (issue 37 item 4); a fit at or beyond one is rejected as implausible.
+#: stiffness of the holder/spindle spring at the tool [N/µm]
+HOLDER_STIFFNESS_RANGE_N_PER_UM = (0.2, 2000.0)
+#: radial runout of the cutter [mm]
+RUNOUT_MAX_MM = 0.1
+
+
 class HolderCompliance(Effect):
     name, kind = "holder_compliance", "wall_error"
     parameters = ("stiffness_N_per_um", "compliance_um_per_N")
@@ -256,6 +277,9 @@ class HolderCompliance(Effect):
         "a translational spring k at the holder/spindle: the tool translates rigidly by F/k, "
         "e = e₀ − (F·n)/k with F the force at the instant the wall is generated"
     )
+
+    def physical_bounds(self, problem):
+        return {"stiffness_N_per_um": HOLDER_STIFFNESS_RANGE_N_PER_UM}
 
     def starts(self, problem, spec):
         return [np.array([0.05])]
@@ -279,6 +303,9 @@ class WallRunout(Effect):
         "cutter runout: flute j cuts at radius R + rho·cos(lambda − j·2π/N); the wall is the deepest "
         "arc left by the flute passes, e = e₀ − max(r_j − d²/2R_j)"
     )
+
+    def physical_bounds(self, problem):
+        return {"rho_mm": (-1e-9, RUNOUT_MAX_MM)}
 
     def starts(self, problem, spec):
         rho0 = max(2.0 * problem.rms(spec), 1e-3)

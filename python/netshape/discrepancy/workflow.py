@@ -19,6 +19,8 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
+
 from .bundle import Bundle, load_bundle
 from .catalogue import catalogue
 
@@ -52,6 +54,9 @@ class Diagnosis:
     problem: Any = None
     spec_before: Any = None
     spec_after: Any = None
+    noise_source: str = "estimated"
+    noise_assumption: str = ""
+    unexplained: list = field(default_factory=list)
 
     @property
     def effect(self) -> str | None:
@@ -73,6 +78,9 @@ class Diagnosis:
                 "rms_after": self.rms_after,
                 "noise_estimate": self.noise_estimate,
                 "candidates": [dict(c) for c in self.candidates],
+                "noise_source": self.noise_source,
+                "noise_assumption": self.noise_assumption,
+                "unexplained": [dict(f) for f in self.unexplained],
             }
         )
 
@@ -80,15 +88,29 @@ class Diagnosis:
         u = self.unit
         lines = [
             f"{self.kind}: rms {self.rms_before:.4g} {u} before, {self.rms_after:.4g} {u} after, "
-            f"noise {self.noise_estimate:.4g} {u}"
+            f"noise {self.noise_estimate:.4g} {u} ({self.noise_source})"
         ]
-        if not self.effects:
+        if not self.effects and self.rms_after <= NOISE_FACTOR * self.noise_estimate and not self.unexplained:
             lines.append("no missing effect found")
+        elif not self.effects:
+            lines.append("no catalogue effect found; the residual is not noise")
         for e in self.effects:
             p = ", ".join(
                 f"{k} = {v:.4g}" if isinstance(v, float) else f"{k} = {v}" for k, v in e["parameters"].items()
             )
             lines.append(f"  + {e['effect']} ({p}): rms {e['rms_after']:.4g} {u}")
+        seen = set()
+        for r in self.rounds:
+            for c in r:
+                if c.get("rejected") and c["effect"] not in seen:
+                    seen.add(c["effect"])
+                    lines.append(f"  - {c['effect']} not added: {c['rejected']}")
+        for f in self.unexplained:
+            extra = f", period {f['period']:.4g}" if "period" in f else (f", at {f['at']:.4g}" if "at" in f else "")
+            lines.append(
+                f"  ? unexplained: {f['component']} {f['form']} against {f['covariate']}{extra}: "
+                f"rms {f['rms']:.4g} {u}"
+            )
         lines += [f"note: {n}" for n in self.notes]
         return "\n".join(lines)
 
@@ -135,13 +157,14 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
     spec0 = spec
     k_nuis = len(problem.nuisance_experiments())
     rms_before = problem.rms(spec)
-    noise = problem.noise_estimate(spec)
+    noise, noise_source, noise_assumption = problem.noise_info(spec)
     loc = problem.localise(spec)
     added, rounds, chain = [], [], []
     k_total = k_nuis
     rms_cur = rms_before
     cv_cur = rms_before
     bic_cur = problem.bic(spec, k_total)
+    fit_notes = []
     while cat and len(added) < max_effects:
         if rounds and rms_cur <= NOISE_FACTOR * noise:
             break
@@ -154,14 +177,29 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
                 continue
             base = problem.with_nuisance(spec, problem.nuisance_of(fit.spec))
             make, x0, bnd = eff.refit(problem, base, fit)
-            cv = problem.cv_rms(make, x0, bnd)
+            cv = problem.cv_rms(make, _null_start(eff, problem, base, x0), bnd)
+            cv_bad = getattr(problem, "last_cv_not_converged", 0)
             rms = problem.rms(fit.spec)
             bic = problem.bic(fit.spec, k_total + fit.k)
-            round_.append({"effect": name, "rms": rms, "cv_rms": cv, "bic": bic, "_fit": fit})
+            c = {"effect": name, "rms": rms, "cv_rms": cv, "bic": bic, "_fit": fit,
+                 "converged": fit.status is None or fit.status > 0, "cv_folds_not_converged": int(cv_bad)}
+            if not c["converged"]:
+                fit_notes.append(
+                    f"{name}: the fit did not converge (least_squares status {fit.status}"
+                    + (": max_nfev reached)" if fit.status == 0 else ")")
+                )
+            why = eff.implausible(problem, fit, x0, bnd)
+            if why:
+                c["rejected"] = f"implausible: {why}"
+            round_.append(c)
         rounds.append(round_)
         if rms_cur <= NOISE_FACTOR * noise:
             break
-        ok = [c for c in round_ if c["bic"] < bic_cur - BIC_MARGIN and c["cv_rms"] < (1 - CV_MARGIN) * cv_cur]
+        ok = [
+            c
+            for c in round_
+            if "rejected" not in c and c["bic"] < bic_cur - BIC_MARGIN and c["cv_rms"] < (1 - CV_MARGIN) * cv_cur
+        ]
         if not ok:
             break
         best = min(ok, key=lambda c: c["bic"])
@@ -175,6 +213,11 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
             chain, spec = _joint_refit(
                 problem, problem.with_nuisance(spec0, problem.nuisance_of(spec)), chain
             )
+            if getattr(problem, "last_status", 1) <= 0:
+                fit_notes.append(
+                    f"the joint refit of {', '.join(e['effect'] for e in added)} did not converge "
+                    f"(least_squares status {problem.last_status})"
+                )
             for entry, (eff, f) in zip(added, chain):
                 entry["parameters"] = f.parameters
             rms_cur = problem.rms(spec)
@@ -182,17 +225,40 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
             added[-1]["rms_after"] = rms_cur
         del cat[best["effect"]]
     clean = [[{k: v for k, v in c.items() if k != "_fit"} for c in r] for r in rounds]
-    notes = list(getattr(problem, "notes", []))
-    if not added:
+    notes = list(getattr(problem, "notes", [])) + fit_notes
+    # The residual is consistent with the noise only when its rms is within NOISE_FACTOR of it *and*
+    # no trend, step or period stands out of it (a 0.8 µm drift under 1 µm of noise passes the first
+    # test alone): the structure search runs whenever the noise is known.
+    unexplained = []
+    if noise > 0:
+        from .structure import find_structure
+
+        comps, covs = problem.structure_covariates(spec)
+        r = np.concatenate(problem.residuals(spec))
+        unexplained = find_structure(r, comps, covs, noise)
+    if noise_source == "estimated":
+        notes.append(f"noise estimated from the residual (no repeats, no [noise] in the manifest): assumes {noise_assumption}")
+    if not added and rms_before <= NOISE_FACTOR * noise and not unexplained:
+        notes.append("no missing effect found (the residual is consistent with the noise)")
+    elif not added and rms_before <= NOISE_FACTOR * noise:
         notes.append(
-            "no missing effect found"
-            + (" (the residual is consistent with the noise)" if rms_before <= NOISE_FACTOR * noise else "")
+            f"no catalogue effect added: the residual's rms ({rms_before:.4g} {problem.unit}) is near the noise "
+            f"({noise:.4g} {problem.unit}) but holds structure (see unexplained)"
+        )
+    elif not added:
+        notes.append(
+            f"no catalogue effect explains the residual ({rms_before:.4g} {problem.unit} against noise "
+            f"{noise:.4g} {problem.unit}): something the catalogue does not hold remains"
+            + (" (see unexplained)" if unexplained else "")
         )
     elif rms_cur > NOISE_FACTOR * noise:
         notes.append(
             f"the residual after the added effects ({rms_cur:.4g} {problem.unit}) is still above the "
             f"noise ({noise:.4g} {problem.unit}): something the catalogue does not hold remains"
+            + (" (see unexplained)" if unexplained else "")
         )
+    elif unexplained:
+        notes.append("the residual after the added effects still holds structure (see unexplained)")
     return Diagnosis(
         kind=bundle.kind,
         effects=added,
@@ -210,7 +276,23 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
         problem=problem,
         spec_before=spec0,
         spec_after=spec,
+        noise_source=noise_source,
+        noise_assumption=noise_assumption,
+        unexplained=unexplained,
     )
+
+
+def _null_start(eff, problem, base, x_fit):
+    """Start of the cross-validation folds: the effect's first start on the model without it (its
+    parameters at their no-effect or catalogue default values), never the all-data optimum
+    ``x_fit``, which has seen the test points. Falls back to ``x_fit`` only when the effect's starts
+    do not match its refit parameters (a user effect with its own refit)."""
+    try:
+        x = np.atleast_1d(np.asarray(eff.starts(problem, base)[0], float))
+    except Exception:  # noqa: BLE001 (a user effect without starts)
+        return x_fit
+    x_fit = np.atleast_1d(np.asarray(x_fit, float))
+    return x if x.shape == x_fit.shape else x_fit
 
 
 def _joint_refit(problem, base, chain):
@@ -241,7 +323,7 @@ def _joint_refit(problem, base, chain):
     new = []
     for (eff, fit), sl in zip(chain, parts):
         full = np.concatenate([fit.x[: fit.x.size - (sl.stop - sl.start)], z[sl]])
-        new.append((eff, EffectFit(eff.parameters_of(full), spec, fit.k, full)))
+        new.append((eff, EffectFit(eff.parameters_of(full), spec, fit.k, full, problem.last_status)))
     return new, spec
 
 

@@ -404,3 +404,79 @@ def wall_contour_bundle(folder, *, holder_stiffness=None, runout=None, noise=1e-
                      "spindle_rpm": CONTOUR_RPM, "spacing_mm": 0.5})
     write_manifest(folder, "wall_error", {"model": WALL_MODEL}, exps)
     return folder
+
+
+# --- structured residuals (issue 37): a big grid, random or ordered measuring, extra errors -------
+
+
+def structured_volumetric_bundle(
+    folder,
+    *,
+    extra=None,
+    noise=1e-3,
+    seed=0,
+    order="random",
+    grid=(57, 7, 3),
+    seconds_per_point=6.0,
+    repeats=0,
+    stated=None,
+    squareness=None,
+    thermal=None,
+):
+    """One experiment on a ``grid`` over x ∈ [−200, 200], y ∈ [−150, 150], z ∈ [−200, 0] mm, measured in
+    ``order`` ("random", "x": X fastest, then Y, Z, "y": Y fastest, or "x-slowest": Z fastest, X
+    slowest, so x grows with time), tool length 100 mm, the
+    known model VOL_MODEL plus: ``extra`` a list of
+    ("periodic", component, covariate, amplitude [mm], period) | ("step", component, covariate, height,
+    at) | ("trend", component, covariate, slope [mm per unit]), covariates x, y, z [mm] or t [s];
+    ``squareness`` {EC0Y…: µrad}; ``thermal`` (axis, amplitude, τ). ``repeats``: that many more
+    passes over every point (ISO 230-2 style, same order, both approach directions alternate by pass).
+    ``stated``: write [noise] sigma_mm. Noise Gaussian σ = ``noise`` [mm]."""
+    from netshape.machine import machine_from_dict, tip_error
+
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    rng = np.random.default_rng(seed)
+    nx, ny, nz = grid
+    X, Y, Z = np.meshgrid(np.linspace(-200, 200, nx), np.linspace(-150, 150, ny), np.linspace(-200, 0, nz),
+                          indexing="ij")
+    if order == "y":
+        pts = np.column_stack([a.transpose(2, 0, 1).ravel() for a in (X, Y, Z)])
+    elif order == "x-slowest":  # X steps once per line: position along x grows with time
+        pts = np.column_stack([a.ravel() for a in (X, Y, Z)])
+    else:
+        pts = np.column_stack([a.transpose(2, 1, 0).ravel() for a in (X, Y, Z)])
+    if order == "random":
+        pts = pts[rng.permutation(len(pts))]
+    dirs = np.ones(len(pts))
+    if repeats:
+        pts = np.concatenate([pts] * (repeats + 1))
+        dirs = np.concatenate([np.full(len(dirs), 1.0 if k % 2 == 0 else -1.0) for k in range(repeats + 1)])
+    t = seconds_per_point * np.arange(len(pts))
+    doc = {"tool_chain": ["Z"], "workpiece_chain": ["Y", "X"], "tool": {"length_mm": 100.0},
+           "squareness": {k + "_rad": v * 1e-6 for k, v in (squareness or {}).items()}, "spindle": {},
+           "axes": {"X": {"polynomials": {}}, "Y": {"polynomials": {}}, "Z": {"polynomials": {}}}}
+    for k, v in VOL_MODEL.items():
+        doc["axes"][k[2]]["polynomials"][k + ("_mm" if k[1] in "XYZ" else "_rad")] = list(v)
+    e = np.array(tip_error(machine_from_dict(doc), pts))
+    cov = {"x": pts[:, 0], "y": pts[:, 1], "z": pts[:, 2], "t": t}
+    for term in extra or ():
+        form, comp, c = term[:3]
+        j = "xyz".index(comp[-1])
+        v = cov[c]
+        if form == "periodic":
+            e[:, j] += term[3] * np.sin(2 * np.pi * v / term[4] + 0.7)
+        elif form == "step":
+            e[:, j] += term[3] * (v > term[4])
+        elif form == "trend":
+            e[:, j] += term[3] * (v - v.mean())
+    if thermal is not None:
+        e[:, "XYZ".index(thermal[0])] += thermal[1] * (1 - np.exp(-t / thermal[2]))
+    e += rng.normal(0, noise, e.shape)
+    write_csv(folder / "grid.csv", ["x_mm", "y_mm", "z_mm", "ex_mm", "ey_mm", "ez_mm", "t_s", "direction"],
+              np.column_stack([pts, e, t, dirs]))
+    tables = {"machine": MACHINE, "model": VOL_MODEL}
+    if stated is not None:
+        tables["noise"] = {"sigma_mm": stated}
+    write_manifest(folder, "volumetric_error", tables, [{"file": "grid.csv", "tool_length_mm": 100.0}])
+    return folder
