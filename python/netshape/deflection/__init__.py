@@ -342,6 +342,15 @@ def compensate_path(setup: PathSetup, *, scheme: str = "integrated", level: str 
                     tolerance: float = 5e-4, discount: float = 1.0, max_iterations: int = 50,
                     anderson_depth: int = 5) -> DeflectionCompensationResult:
     """Run a compensation scheme on the contour (C++ compensate_deflection)."""
+    o = compensation_options(setup, scheme=scheme, level=level, tolerance=tolerance, discount=discount,
+                             max_iterations=max_iterations, anderson_depth=anderson_depth)
+    return compensate_deflection(setup.model, setup.cutter, setup.stock, setup.nominal, o)
+
+
+def compensation_options(setup: PathSetup, *, scheme: str, level: str, tolerance: float, discount: float,
+                         max_iterations: int, anderson_depth: int, active=None) -> DeflectionCompensationOptions:
+    """The C++ options of a compensation of ``setup``'s contour (``active``: per point, see
+    DeflectionCompensationOptions.active)."""
     o = DeflectionCompensationOptions()
     o.scheme = _comp.deflection_scheme_from_string(scheme)
     o.level = _comp.reference_level_from_string(level)
@@ -349,8 +358,10 @@ def compensate_path(setup: PathSetup, *, scheme: str = "integrated", level: str 
     o.discount = float(discount)
     o.max_iterations = int(max_iterations)
     o.anderson_depth = int(anderson_depth)
+    if active is not None:
+        o.active = np.asarray(active, dtype=np.int32)
     o.path = setup.options
-    return compensate_deflection(setup.model, setup.cutter, setup.stock, setup.nominal, o)
+    return o
 
 
 def path_table(r: PathWallErrors, nominal: np.ndarray) -> dict:
@@ -486,7 +497,8 @@ __all__ = [
     "KLINE_DEVOR_SETS", "Cantilever", "DeflectionCompensationOptions", "DeflectionCompensationResult",
     "DeflectionModel", "DeflectionScheme", "DeflectionWorkspace", "InertiaModel", "LoadModel", "PathOptions",
     "PathSetup", "PathWallErrors", "ReferenceLevel", "WallErrors", "WallSide", "compensate_deflection",
-    "compensate_path", "compensated_blocks", "compensated_program", "contour_of", "cut_levels", "deflection_at", "disk_forces",
+    "compensate_path", "compensated_blocks", "compensation_options", "contour_samples",
+    "compensated_program", "contour_of", "cut_levels", "deflection_at", "disk_forces",
     "generation_angle", "load_stock", "make_model", "max_force", "max_wall_error", "model_for_cutter",
     "one_d_compensation", "parse_coefficients", "path_table", "path_wall_errors", "predict_path",
     "second_moment", "setup_path", "steady_wall", "wall_errors", "wall_normals",

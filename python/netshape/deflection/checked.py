@@ -110,7 +110,7 @@ def compensate_checked(setup, *, scheme: str = "accelerated", level: str = "midd
     point of the ``density``-times denser drawing, whether its wall is a final wall (None: computed
     from ``later_program`` — the program whose later moves may cut the wall, default the setup's
     program — whose block b is the setup program's block b − ``block_offset``)."""
-    from . import compensated_blocks, contour_samples
+    from . import compensated_blocks, compensation_options, contour_samples
 
     lv = _LEVELS.index(level)
     arc_tol = tolerance if arc_tolerance is None else arc_tolerance
@@ -133,15 +133,9 @@ def compensate_checked(setup, *, scheme: str = "accelerated", level: str = "midd
     best = None  # (largest written-program error on final walls, + 1 when not converged; result)
     while True:
         rounds += 1
-        o = _comp.DeflectionCompensationOptions()
-        o.scheme = _comp.deflection_scheme_from_string(scheme)
-        o.level = _comp.reference_level_from_string(level)
-        o.tolerance = float(tolerance)
-        o.discount = float(discount)
-        o.max_iterations = int(max_iterations)
-        o.anderson_depth = int(anderson_depth)
-        o.active = p_final[selected].astype(np.int32)
-        o.path = opt
+        o = compensation_options(setup, scheme=scheme, level=level, tolerance=tolerance, discount=discount,
+                                 max_iterations=max_iterations, anderson_depth=anderson_depth,
+                                 active=p_final[selected])
         nominal = p_pts[selected]
         res = _comp.compensate_deflection(setup.model, setup.cutter, setup.stock, nominal, o)
         sub = replace(setup, nominal=nominal, owner=p_owner[selected])

@@ -171,3 +171,14 @@ def square_gcode(half: float, overlap: float, recut: float = 0.0, z: float = -2.
         feed_word = ""
     lines += ["G0 Z10", "M30", ""]
     return "\n".join(lines)
+
+
+def flat_cutter(diameter: float):
+    """The flat end mill of these cases: 4 flutes, 30° helix, 20 mm flutes, stick-out 5 D, carbide."""
+    import netshape as ns
+
+    c = ns.cutter.Cutter.flat_end(diameter, 4, math.radians(30.0))
+    c.flute_length = 20.0
+    c.stick_out = 5.0 * diameter
+    c.youngs_modulus = 600e3
+    return c

@@ -14,7 +14,6 @@ never worse than the program as written.
 from __future__ import annotations
 
 import json
-import math
 
 import numpy as np
 import pytest
@@ -25,17 +24,13 @@ from netshape.cli import main
 from netshape.deflection import walls
 from netshape.deflection.checked import compensate_checked
 
-from pocket_cases import Pocket, pocket_gcode, stock_bounds
+from pocket_cases import flat_cutter, Pocket, pocket_gcode, stock_bounds
 
 CUT = dict(coefficients="leekunhwee_flat_slot", rpm=8000, spacing=0.5, side="right", profile_levels=0)
 
 
 def _cutter(diameter: float):
-    c = ns.cutter.Cutter.flat_end(diameter, 4, math.radians(30.0))
-    c.flute_length = 20.0
-    c.stick_out = 5.0 * diameter
-    c.youngs_modulus = 600e3
-    return c
+    return flat_cutter(diameter)
 
 
 @pytest.mark.parametrize("rotation", [0.0, 30.0])

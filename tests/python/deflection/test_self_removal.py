@@ -37,7 +37,7 @@ import pytest
 
 import netshape as ns
 from netshape import deflection as d
-from pocket_cases import Pocket, pocket_gcode, square_gcode, stock_bounds
+from pocket_cases import flat_cutter, Pocket, pocket_gcode, square_gcode, stock_bounds
 
 H = 0.1          # Z-map spacing [mm]
 SPACING = 0.5    # largest distance between path points [mm]
@@ -49,11 +49,7 @@ POCKET_IDS = [f"D{a}-{b}rings-so{c:g}-{e:g}deg" for a, b, c, e in POCKETS]
 
 
 def _cutter(diameter: float):
-    c = ns.cutter.Cutter.flat_end(diameter, 4, math.radians(30.0))
-    c.flute_length = 20.0
-    c.stick_out = 5.0 * diameter
-    c.youngs_modulus = 600e3
-    return c
+    return flat_cutter(diameter)
 
 
 def _block(lo, hi):

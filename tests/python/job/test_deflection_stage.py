@@ -4,7 +4,6 @@ tool the model cannot take is reported (figures null, not zero)."""
 
 from __future__ import annotations
 
-import math
 import shutil
 import sys
 
