@@ -1,7 +1,7 @@
 """Wall-error prediction and deflection compensation throughput (path points per second, each
 scheme) of netshape's C++ core against a plain NumPy implementation of the same model, in one run.
 
-Case: the straight cut across arc-preshaped stock of examples/deflection_seeds000.py (Cho & Suh
+Case: the straight cut across arc-preshaped stock of examples/deflection_cho_suh.py (Cho & Suh
 1993 §5: D 25 mm, 4 flutes, 60°, stick-out 250 mm, A 2.5 mm, f 0.0127 mm), 0.5 mm point spacing.
 
 The NumPy reference evaluates the same path model: per point the engagement scan (720 angles,
@@ -47,7 +47,7 @@ POCKET_POINTS = (500, 2000, 8000)
 
 
 def _example():
-    spec = importlib.util.spec_from_file_location("ex", os.path.join(HERE, "..", "examples", "deflection_seeds000.py"))
+    spec = importlib.util.spec_from_file_location("ex", os.path.join(HERE, "..", "examples", "deflection_cho_suh.py"))
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
     return mod

@@ -103,7 +103,7 @@ def main(argv=None) -> int:
     print(f"load average {os.getloadavg()[0]:.2f} (1 min)")
     print(f"{'machine':<26} {'points':<8} {'C++ M pts/s (cpu)':>18} {'(wall)':>8} {'NumPy M pts/s':>14} "
           f"{'ratio':>7} {'evals/pt':>9} {'max |C++ − NumPy| mm':>21} {'max residual mm':>16}")
-    for name in ("seeds003_hmc.toml", "vmc.toml"):
+    for name in ("hmc_yang_kweon.toml", "vmc.toml"):
         m = ns.machine.load_machine(ROOT / "examples" / "machines" / name)
         lo = np.array([ax.travel_min for ax in m.axes])
         hi = np.array([ax.travel_max for ax in m.axes])

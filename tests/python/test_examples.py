@@ -26,10 +26,10 @@ def _floats(text: str) -> list[float]:
 
 
 @pytest.mark.slow
-def test_force_ball_seeds001(tmp_path):
+def test_force_ball_kim_cho(tmp_path):
     """Kim et al. ball-end model: the pass beside a wall read from a Z-map gives the steady up-milling
     mean force of the same width (issue 24's agreement) within 5 % of the in-plane resultant."""
-    out = _run(tmp_path, "force_ball_seeds001.py", "--spacing", "0.1")
+    out = _run(tmp_path, "force_ball_kim_cho.py", "--spacing", "0.1")
     line = next(ln for ln in out.splitlines() if ln.startswith("pass beside the wall"))
     zx, zy, sx, sy = _floats(line)
     assert abs(zx - sx) + abs(zy - sy) <= 0.05 * (abs(sx) + abs(sy))
@@ -37,10 +37,10 @@ def test_force_ball_seeds001(tmp_path):
 
 
 @pytest.mark.slow
-def test_posture_seeds004(tmp_path):
+def test_posture_park(tmp_path):
     """The default impeller: the normal posture collides somewhere, the final postures nowhere, and the
     smoothing lowers the largest posture change of MC-space."""
-    out = _run(tmp_path, "posture_seeds004.py", "--points", "24")
+    out = _run(tmp_path, "posture_park.py", "--points", "24")
     counts = {m[0]: (int(m[1]), float(m[2])) for m in
               re.findall(r"(raw|mc|final):\s+(\d+) colliding postures, largest change ([\d.]+)", out)}
     assert counts["raw"][0] > 0 and counts["mc"][0] == 0 and counts["final"][0] == 0
@@ -50,8 +50,8 @@ def test_posture_seeds004(tmp_path):
 
 
 @pytest.mark.slow
-def test_motion_seeds002(tmp_path):
-    _run(tmp_path, "motion_seeds002.py")
+def test_lookahead_lee(tmp_path):
+    _run(tmp_path, "lookahead_lee.py")
     assert list(tmp_path.glob("*.png")) and (tmp_path / "summary.json").is_file()
 
 

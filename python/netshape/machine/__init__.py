@@ -2,7 +2,7 @@
 tool-tip error relative to the workpiece (Yang & Kweon §2, §4; C++ netshape::machine).
 
     import netshape as ns
-    m = ns.machine.load_machine("examples/machines/seeds003_hmc.toml")
+    m = ns.machine.load_machine("examples/machines/hmc_yang_kweon.toml")
     e = ns.machine.tip_error(m, points)              # (n, 3) mm, exact product of transforms
     emap = ns.machine.grid_error_map(m, (9, 9, 5))    # Yang & Kweon eq. 16 over the workspace
     fig = ns.machine.plot_error_map(emap)             # Yang & Kweon Fig. 6

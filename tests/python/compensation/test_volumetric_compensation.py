@@ -11,7 +11,7 @@ import pytest
 import netshape as ns
 
 ROOT = Path(__file__).resolve().parents[3]
-HMC = ROOT / "examples" / "machines" / "seeds003_hmc.toml"
+HMC = ROOT / "examples" / "machines" / "hmc_yang_kweon.toml"
 VMC = ROOT / "examples" / "machines" / "vmc.toml"
 
 

@@ -187,8 +187,8 @@ def test_cli_predict_and_compensate(tmp_path, capsys):
 
 @pytest.mark.slow
 def test_example_runs(tmp_path):
-    """examples/deflection_seeds000.py --quick runs, writes its plot and meets the done-when figures."""
-    proc = subprocess.run([sys.executable, str(REPO / "examples" / "deflection_seeds000.py"), str(tmp_path),
+    """examples/deflection_cho_suh.py --quick runs, writes its plot and meets the done-when figures."""
+    proc = subprocess.run([sys.executable, str(REPO / "examples" / "deflection_cho_suh.py"), str(tmp_path),
                            "--quick"], capture_output=True, text=True, timeout=600,
                           env=dict(os.environ, MPLBACKEND="Agg"))
     assert proc.returncode == 0, proc.stderr

@@ -89,7 +89,7 @@ def test_mean_slot_force_closed_form_equals_simulation():
     assert sim[0] < 0 < sim[1]
 
 
-def test_seeds001_table1_fit_recovers_published_set():
+def test_kim_cho_table1_fit_recovers_published_set():
     """Kim et al. §4.2 (Table 1): slot tests over a_p 0.3–6 mm and f 0.01–0.075 mm/tooth. Mean forces
     synthesised by simulating the published set over a revolution, then fitted: the coefficients and
     exponents come back."""

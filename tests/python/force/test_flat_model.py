@@ -20,7 +20,7 @@ def model(mode="slot", ae=10.0, dz=0.02, helix=30.0, c=0.1, k=K, R=5.0, ap=3.0, 
                            engagement=e, linear_edge=nf.LinearEdgeCoefficients(**k), disk_height=dz)
 
 
-def test_seeds000_helix_lag():
+def test_cho_suh_helix_lag():
     """Cho & Suh §5: D = 25 mm, 60° helix, A = 2.5 mm; the lag at mid depth z = 1.25 mm is
     z·tanβ/R = 9.92° (the paper prints 9.915°)."""
     m = nf.FlatEndModel(radius=12.5, helix=math.radians(60), axial_depth=2.5)

@@ -1,4 +1,4 @@
-"""`netshape volumetric` and examples/volumetric_seeds003.py run end to end (small sizes)."""
+"""`netshape volumetric` and examples/volumetric_yang_kweon.py run end to end (small sizes)."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import netshape as ns
 from netshape.cli import main
 
 ROOT = Path(__file__).resolve().parents[3]
-HMC = ROOT / "examples" / "machines" / "seeds003_hmc.toml"
+HMC = ROOT / "examples" / "machines" / "hmc_yang_kweon.toml"
 VMC = ROOT / "examples" / "machines" / "vmc.toml"
 
 
@@ -73,8 +73,8 @@ def test_cli_grid_syntax(capsys):
     assert "--grid = 3,3" in capsys.readouterr().err
 
 
-def test_example_volumetric_seeds003(tmp_path):
-    mod = runpy.run_path(str(ROOT / "examples" / "volumetric_seeds003.py"))
+def test_example_volumetric_yang_kweon(tmp_path):
+    mod = runpy.run_path(str(ROOT / "examples" / "volumetric_yang_kweon.py"))
     s = mod["run"](tmp_path, n=9)
     assert s["after_um"][1] <= 1e-6  # ≤ 1e-9 mm
     assert 10.0 < s["before_um"][0] < s["before_um"][1] < 2000.0

@@ -13,7 +13,7 @@ MACHINES = ROOT / "examples" / "machines"
 
 
 def test_example_machines_load():
-    hmc = ns.machine.load_machine(MACHINES / "seeds003_hmc.toml")
+    hmc = ns.machine.load_machine(MACHINES / "hmc_yang_kweon.toml")
     assert list(hmc.tool_chain) == [0, 1] and list(hmc.workpiece_chain) == [2]
     assert hmc.axes[0].errors[0].kind == ns.machine.ErrorFunction.Kind.polynomial
     vmc = ns.machine.load_machine(MACHINES / "vmc.toml")

@@ -10,7 +10,7 @@ import pytest
 import netshape as ns
 
 ROOT = Path(__file__).resolve().parents[3]
-HMC = ROOT / "examples" / "machines" / "seeds003_hmc.toml"
+HMC = ROOT / "examples" / "machines" / "hmc_yang_kweon.toml"
 AXES = "XYZ"
 
 
@@ -139,7 +139,7 @@ def test_pitch_error_gives_abbe_error_proportional_to_offset():
     np.testing.assert_allclose(errs, [-eps * 50, -eps * 100, -eps * 200], rtol=1e-12)
 
 
-def test_seeds003_eq9_terms():
+def test_yang_kweon_eq9_terms():
     """Single components of the Yang & Kweon HMC give the terms of eq. (9) and (11) (first order):
     ΔW_x ∋ (T_z + L + Oxy_z)·ε_yx, (T_z + L)·ε_yy, −(T_y + Oxy_y + y)·ε_zx, −y·S_xy and
     −(T_z + L + Ozx_z + Oxy_z − z_table)·ε_yz; ΔW_z ∋ −(T_x + Oxy_x)·ε_yx. The paper's table (Z) is
@@ -210,6 +210,6 @@ def test_error_map_and_plots():
         ns.machine.tip_error(m, [[np.nan, 0, 0]])
 
 
-def test_seeds003_symbol_map_is_one_to_one():
+def test_yang_kweon_symbol_map_is_one_to_one():
     names = [v[0] for v in ns.machine.SEEDS003_SYMBOLS.values()]
     assert len(names) == len(set(names)) == 9 + 9 + 3 + 2

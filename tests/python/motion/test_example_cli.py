@@ -12,7 +12,7 @@ from netshape.cli import main
 
 
 def _load_example(repo_root):
-    spec = importlib.util.spec_from_file_location("motion_seeds002", repo_root / "examples" / "motion_seeds002.py")
+    spec = importlib.util.spec_from_file_location("lookahead_lee", repo_root / "examples" / "lookahead_lee.py")
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
     return mod

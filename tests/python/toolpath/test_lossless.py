@@ -2,7 +2,7 @@
 commands (comments, M/S/T words, G4 dwells, G43/G49, G54-G59.3, G61/G64, G40, G80, M0/M1, M2/M30)
 read back from the output equals the sequence read from the input, for the plain writer and for the
 volumetric post-processor with a zero-error machine (motion reproduced to 1e-9 mm) and a real one
-(examples/machines/seeds003_hmc.toml, motion compensated). Programs: every readable program in
+(examples/machines/hmc_yang_kweon.toml, motion compensated). Programs: every readable program in
 ../shared/data/gcode and a seeded random corpus (hypothesis, derandomized)."""
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from netshape.cli import main as cli_main
 
 tpm = ns.toolpath
 REPO = Path(__file__).resolve().parents[3]
-HMC = REPO / "examples" / "machines" / "seeds003_hmc.toml"
+HMC = REPO / "examples" / "machines" / "hmc_yang_kweon.toml"
 PROGRAMS = ["3D_Chips.ngc", "cds.ngc", "arcspiral.ngc", "tort.ngc"]
 # puts the shared programs inside the HMC's travel (X 0-800, Y 0-600, Z 0-500 mm)
 HMC_OFFSETS = {"G54": (400.0, 300.0, 250.0), "G55": (380.0, 280.0, 240.0)}

@@ -1,10 +1,10 @@
 """Lee & Lee §4 reproduced: feed profiles of the right-angle blocks (Fig. 12) and of the three
 semicircles (Fig. 14 f) and the per-axis profiles (Fig. 15), as PNG, with every corner rule compared.
 
-    python examples/motion_seeds002.py [--out DIR]
+    python examples/lookahead_lee.py [--out DIR]
 
 The paper gives no coordinates, radii, acceleration or periods; the reconstruction is in
-netshape/motion/seeds002.py and docs/motion.md (radii 30/10/5 mm, 39/22/16 chords, Acc = 450 mm/s²,
+netshape/motion/lookahead_lee.py and docs/motion.md (radii 30/10/5 mm, 39/22/16 chords, Acc = 450 mm/s²,
 Ts1 = 0.4 ms, Ts2 = 0.1 ms, allowable speed difference 100 mm/min).
 """
 
@@ -18,7 +18,7 @@ import numpy as np
 
 import netshape.motion as nm
 from netshape._atomic import atomic_save_figure, atomic_write
-from netshape.motion import seeds002 as s
+from netshape.motion import lookahead_lee as s
 from netshape.motion.plots import plot_profiles
 
 
@@ -75,7 +75,7 @@ def run(out: Path) -> dict:
 
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--out", default="out/motion_seeds002", help="output folder (PNG + summary.json)")
+    p.add_argument("--out", default="out/lookahead_lee", help="output folder (PNG + summary.json)")
     args = p.parse_args(argv)
     summary = run(Path(args.out))
     print(json.dumps(summary, indent=2))

@@ -14,7 +14,7 @@ paths, the wall error before and after, the cutting width and the forces. The §
 (D = 7 mm, 4 flutes, 33.7°, 70 mm, A = 2 mm, 600 rpm, 5/7/10 mm/min) gives the trend of the wall
 error with the cutting width (Fig. 4).
 
-    python examples/deflection_seeds000.py OUTDIR [--quick]
+    python examples/deflection_cho_suh.py OUTDIR [--quick]
 
 Writes OUTDIR/<case>.png, OUTDIR/experiment_trend.png and OUTDIR/summary.json; prints the figures.
 """

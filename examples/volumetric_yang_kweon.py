@@ -1,9 +1,9 @@
 """Yang & Kweon's flow (Fig. 4; docs/references.md): NURBS design surface → CL points on its offset surface →
 volumetric error before compensation → compensated CL data → volumetric error after.
 
-    python examples/volumetric_seeds003.py [--out DIR] [--n 41] [--machine examples/machines/seeds003_hmc.toml]
+    python examples/volumetric_yang_kweon.py [--out DIR] [--n 41] [--machine examples/machines/hmc_yang_kweon.toml]
 
-Writes into DIR (default ./volumetric_seeds003_out): fig6_error_map.png, fig7_offset_before_x1.png,
+Writes into DIR (default ./volumetric_yang_kweon_out): fig6_error_map.png, fig7_offset_before_x1.png,
 fig7_offset_before_x10.png, fig8_error_after.png, fig10_before_after_x10.png, nominal.ngc,
 compensated.ngc and summary.json; prints the before/after ranges next to the paper's
 (241.176–885.645 µm before, 6e-9–12.4e-9 µm after). The machine's error values are ours (the paper
@@ -44,7 +44,7 @@ def design_surface() -> ns.geometry.NurbsSurface:
     return ns.geometry.NurbsSurface(3, 3, knots, knots, cps, w)
 
 
-def run(out: Path, n: int = 41, machine_path: Path = HERE / "machines" / "seeds003_hmc.toml",
+def run(out: Path, n: int = 41, machine_path: Path = HERE / "machines" / "hmc_yang_kweon.toml",
         offset: float = 5.0, chord_tolerance: float = 0.001, tolerance: float = 1e-11) -> dict:
     """Run the flow; ``tolerance`` is the compensation residual for the CL points [mm] (1e-11 mm, the
     order of the paper's 6e-9–12.4e-9 µm; the library default is 1e-9 mm)."""
@@ -116,9 +116,9 @@ def run(out: Path, n: int = 41, machine_path: Path = HERE / "machines" / "seeds0
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--out", type=Path, default=Path("volumetric_seeds003_out"))
+    ap.add_argument("--out", type=Path, default=Path("volumetric_yang_kweon_out"))
     ap.add_argument("--n", type=int, default=41, help="CL grid points per parameter direction")
-    ap.add_argument("--machine", type=Path, default=HERE / "machines" / "seeds003_hmc.toml")
+    ap.add_argument("--machine", type=Path, default=HERE / "machines" / "hmc_yang_kweon.toml")
     a = ap.parse_args(argv)
     s = run(a.out, a.n, a.machine)
     print(f"{s['machine']}: {s['cl_points']} CL points")

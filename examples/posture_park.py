@@ -8,7 +8,7 @@ the postures along the path, re-checks them against the blades and repairs any t
 a blade. Prints the collision counts and the largest posture change per stage; writes the postures as
 CSV, a B/C machine program, and PNGs of one point's C-space and of the angles along the path.
 
-    PYTHONPATH=python python examples/posture_seeds004.py [--out DIR] [--points N]
+    PYTHONPATH=python python examples/posture_park.py [--out DIR] [--points N]
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ from netshape import posture as npost
 
 def main(argv: list[str] | None = None) -> dict:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--out", type=Path, default=Path("out/posture_seeds004"), help="output folder")
+    p.add_argument("--out", type=Path, default=Path("out/posture_park"), help="output folder")
     p.add_argument("--points", type=int, default=40, help="cutter-contact points along the passage")
     args = p.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)

@@ -9,7 +9,7 @@ Prints the mean forces of the steady cuts and, for the side pass of the program,
 against the steady side cut of the same width (they agree once the pass is under way); writes
 ball_forces.png.
 
-    PYTHONPATH=python python examples/force_ball_seeds001.py [--out DIR] [--spacing MM]
+    PYTHONPATH=python python examples/force_ball_kim_cho.py [--out DIR] [--spacing MM]
 """
 
 from __future__ import annotations
@@ -53,7 +53,7 @@ def steady(mode: str, ae: float | None = None, xi: float = 0.0):
 
 def main(argv: list[str] | None = None) -> dict:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--out", type=Path, default=Path("out/force_ball_seeds001"), help="output folder")
+    p.add_argument("--out", type=Path, default=Path("out/force_ball_kim_cho"), help="output folder")
     p.add_argument("--spacing", type=float, default=0.1, help="Z-map node spacing [mm]")
     args = p.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)

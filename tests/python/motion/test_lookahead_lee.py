@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import netshape.motion as nm
-from netshape.motion import seeds002 as s
+from netshape.motion import lookahead_lee as s
 
 
 def _plan(points, feed_mm_min, rule="paper", **kw):
@@ -69,3 +69,15 @@ def test_every_rule_runs_the_semicircles(rule):
     assert tr.stats["end_error_mm"] == 0.0
     tol = 0.01 if rule == "blend" else 1e-9
     assert tr.stats["max_path_deviation_mm"] <= tol
+
+
+def test_old_module_name_is_a_deprecated_alias():
+    """`netshape.motion.seeds002` still imports for one release, warns, and names the new module."""
+    import importlib
+    import sys
+
+    sys.modules.pop("netshape.motion.seeds002", None)
+    with pytest.warns(DeprecationWarning, match="netshape.motion.lookahead_lee"):
+        old = importlib.import_module("netshape.motion.seeds002")
+    assert old.semicircle_program is s.semicircle_program
+    assert old.ACC == s.ACC and old.CHORDS == s.CHORDS
