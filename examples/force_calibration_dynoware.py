@@ -1,8 +1,10 @@
 """Calibrate the linear edge-force model on real dynamometer recordings and show how well it
 reproduces them over time.
 
-Data: ../shared/data/leekunhwee-flat-slot (Kistler DynoWare CSV, 10 kHz; 2-flute flat end mill,
-full slot, a_p = 3 mm, 6000 rpm, f_t = 0.025 … 0.125 mm/tooth). Read by path, never copied.
+Data: the leekunhwee-flat-slot recordings (Kistler DynoWare CSV, 10 kHz; 2-flute flat end mill,
+full slot, a_p = 3 mm, 6000 rpm, f_t = 0.025 … 0.125 mm/tooth), not shipped with netshape: download the
+CSV files of github.com/leekunhwee/ForceCalculation (Jianhui Li) into a folder and pass it as --data.
+Read by path, never copied.
 
 Steps
 1. read each recording and map the dynamometer channels to forces ON THE CUTTER in the cutting
@@ -47,13 +49,16 @@ def conditions(path: Path) -> tuple[float, float]:
 
 def main(argv=None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--data", type=Path, default=DEFAULT_DATA)
+    ap.add_argument("--data", type=Path, default=DEFAULT_DATA,
+                    help="folder of the leekunhwee-flat-slot DynoWare CSV files "
+                         "(github.com/leekunhwee/ForceCalculation)")
     ap.add_argument("--out", type=Path, default=Path("force_calibration_out"))
     ap.add_argument("--revolutions", type=int, default=4, help="revolutions plotted and phase-fitted")
     args = ap.parse_args(argv)
     files = sorted(args.data.glob("*.csv"), key=lambda p: conditions(p)[1])
     if not files:
-        raise SystemExit(f"no CSV files in {args.data}")
+        raise SystemExit(f"--data = {args.data}: no CSV files (download the leekunhwee-flat-slot recordings "
+                         "of github.com/leekunhwee/ForceCalculation and pass their folder)")
     args.out.mkdir(parents=True, exist_ok=True)
     recs, feeds, means = [], [], []
     for p in files:

@@ -61,8 +61,8 @@ LinearEdgeCoefficientSet linear_edge_coefficient_set(const std::string& name) {
     s.name = name;
     s.coefficients = {958.8, 251.1, 146.4, 15.8, 19.4, 18.2};
     s.source =
-        "reference regression of the leekunhwee-flat-slot DynoWare recordings (README of "
-        "shared/data/leekunhwee-flat-slot): 2-flute flat end mill, slot, a_p = 3 mm, 6000 rpm";
+        "reference regression of the leekunhwee-flat-slot DynoWare recordings (Jianhui Li's slot cuts, "
+        "README of github.com/leekunhwee/ForceCalculation): 2-flute flat end mill, slot, a_p = 3 mm, 6000 rpm";
     return s;
   }
   throw std::invalid_argument("coefficient_set = " + name +

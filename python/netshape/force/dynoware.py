@@ -1,4 +1,5 @@
-"""Reader for Kistler DynoWare CSV exports (the format of ../shared/data/leekunhwee-flat-slot).
+"""Reader for Kistler DynoWare CSV exports (the format of the leekunhwee-flat-slot recordings: Jianhui
+Li's slot cuts with a 2-flute flat end mill, published at github.com/leekunhwee/ForceCalculation).
 
 Layout: header lines ``key:,value`` (DynoWare version, file names, ``Sampling rate [Hz]:,10000``,
 ``Measuring time [s]``, ``Samples per channel`` …), then a line of channel names
