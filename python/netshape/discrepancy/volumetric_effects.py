@@ -118,6 +118,52 @@ class VolumetricProblem(Problem):
         return m
 
     def predict(self, spec):
+        """The model's tip errors, each (n, 3) [mm], in the measurement's frame: the machine model
+        (:meth:`machine_predict`) plus the registered frame (:meth:`frame_of`), fitted to the data
+        with every evaluation (its six parameters enter linearly and are profiled out)."""
+        pred = self.machine_predict(spec)
+        omega, T = self.frame_of(spec, pred)
+        return [p + np.cross(omega, e.points) + T for p, e in zip(pred, self.experiments)]
+
+    def frame_of(self, spec, pred=None):
+        """The registered measurement frame (ω [rad] (3,), T [mm] (3,)): the data are e_model +
+        ω × p + T. ISO 230-1 convention, X primary and Y secondary reference: ω is chosen so that the
+        straightness slopes of X (ey and ez against x) and of Y in z (ez against y) are zero, i.e.
+        from the residual e − e_model by least squares on ez = tz − ωy·x + ωx·y, then
+        ey + ωx·z = ty + ωz·x, then ex − (ωy·z − ωz·y) = tx. The other three cross slopes (ex against
+        y and z, ey against z) stay for the squareness EC0Y, EB0Z, EA0Z; a rotation about Z therefore
+        never hides a squareness, and ey = c·x (data aligned to Y: the axes at 90° − c) reads as
+        ωz = c, EC0Y = −c (netshape.machine: EC0Y > 0 gives ex = −EC0Y·y, the axes at 90° + EC0Y)."""
+        if pred is None:
+            pred = self.machine_predict(spec)
+        r = np.concatenate([m - p for m, p in zip(self.measured, pred)])
+        P = np.concatenate([e.points for e in self.experiments])
+        if not np.all(np.isfinite(r)) or P.shape[0] < 4:
+            return np.zeros(3), np.zeros(3)
+        one = np.ones(len(P))
+        x, y, z = P.T
+
+        def ls(cols, v):
+            A = np.column_stack(cols)
+            keep = np.ptp(A, axis=0) > 0
+            keep[0] = True
+            c = np.zeros(A.shape[1])
+            c[keep] = np.linalg.lstsq(A[:, keep], v, rcond=None)[0]
+            return c
+
+        tz, c_x, c_y = ls([one, x, y], r[:, 2])
+        wy, wx = -c_x, c_y
+        ty, wz = ls([one, x], r[:, 1] + wx * z)
+        (tx,) = ls([one], r[:, 0] - (wy * z - wz * y))
+        return np.array([wx, wy, wz]), np.array([tx, ty, tz])
+
+    def frame(self, spec) -> dict:
+        """The registered frame as reported: {rotation_urad: [rx, ry, rz], translation_mm: [tx, ty, tz]}."""
+        omega, T = self.frame_of(spec)
+        return {"rotation_urad": [float(v) * 1e6 for v in omega], "translation_mm": [float(v) for v in T]}
+
+    def machine_predict(self, spec):
+        """The machine model's tip errors without the measurement frame, each (n, 3) [mm]."""
         out = []
         for e in self.experiments:
             p = np.array(tip_error(self.machine(spec, e.tool_length), e.points))

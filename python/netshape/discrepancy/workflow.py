@@ -57,6 +57,9 @@ class Diagnosis:
     noise_source: str = "estimated"
     noise_assumption: str = ""
     unexplained: list = field(default_factory=list)
+    #: the registered measurement frame after the added effects (volumetric bundles; None otherwise):
+    #: {rotation_urad: [rx, ry, rz], translation_mm: [tx, ty, tz]}
+    frame: dict | None = None
 
     @property
     def effect(self) -> str | None:
@@ -81,6 +84,7 @@ class Diagnosis:
                 "noise_source": self.noise_source,
                 "noise_assumption": self.noise_assumption,
                 "unexplained": [dict(f) for f in self.unexplained],
+                "frame": dict(self.frame) if self.frame is not None else None,
             }
         )
 
@@ -110,6 +114,13 @@ class Diagnosis:
             lines.append(
                 f"  ? unexplained: {f['component']} {f['form']} against {f['covariate']}{extra}: "
                 f"rms {f['rms']:.4g} {u}"
+            )
+        if self.frame is not None:
+            r, t = self.frame["rotation_urad"], self.frame["translation_mm"]
+            lines.append(
+                "  frame (ISO 230-1, X primary, Y secondary): rotation ["
+                + ", ".join(f"{v:.3g}" for v in r) + "] µrad, translation ["
+                + ", ".join(f"{v:.3g}" for v in t) + f"] {u}"
             )
         lines += [f"note: {n}" for n in self.notes]
         return "\n".join(lines)
@@ -279,6 +290,7 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
         noise_source=noise_source,
         noise_assumption=noise_assumption,
         unexplained=unexplained,
+        frame=problem.frame(spec) if hasattr(problem, "frame") else None,
     )
 
 
