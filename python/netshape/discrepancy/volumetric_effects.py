@@ -264,6 +264,18 @@ class VolumetricProblem(Problem):
             "tool_length": [np.full(len(e.points), e.tool_length) for e in self.experiments],
         }
 
+    def covariate_vectors(self) -> dict:
+        """{catalogue covariate: {name: (n,) values}} over all points, for the identifiability check
+        (:func:`workflow.identifiability`)."""
+        out = {"position": {a: np.concatenate([e.points[:, i] for e in self.experiments]) for i, a in enumerate("xyz")},
+               "tool_length": {"tool_length": np.concatenate(
+                   [np.full(len(e.points), e.tool_length) for e in self.experiments])}}
+        if all(e.times is not None for e in self.experiments):
+            out["time"] = {"t": np.concatenate([e.times for e in self.experiments])}
+        if all(e.directions is not None for e in self.experiments):
+            out["direction"] = {"direction": np.concatenate([e.directions for e in self.experiments])}
+        return out
+
     def experiment_notes(self, spec) -> list:
         return [{"file": e.file, "tool_length_mm": e.tool_length} for e in self.experiments]
 
