@@ -18,7 +18,8 @@ A user adds an effect by subclassing :class:`Effect` and calling :func:`register
         def starts(self, problem, spec):
             return [np.zeros(1)]
         def apply(self, problem, spec, x):
-            add = lambda exp, pts: np.outer(np.ones(len(pts)), [x[0] * 1e-3, 0, 0])
+            first = problem.experiments[0].file  # the probe shifted along X after the first experiment
+            add = lambda exp, pts: np.outer(np.ones(len(pts)), [x[0] * 1e-3 * (exp.file != first), 0, 0])
             return dataclasses.replace(spec, additive=spec.additive + (add,))
         def parameters_of(self, x):
             return {"dx_um": float(x[0])}

@@ -1,6 +1,6 @@
 """Volumetric-error bundles: the machine's known ISO 230-1 components synthesised by netshape.machine
 (exact product of homogeneous transforms, C++), extended by the catalogue entries ``squareness``,
-``scale_error``, ``thermal_drift``, ``spindle_tilt`` and ``backlash``.
+``scale_error``, ``thermal_drift``, ``spindle_tilt``, ``backlash`` and ``cyclic_error``.
 
 Parameters (units in the names):
 
@@ -13,7 +13,10 @@ Parameters (units in the names):
 * spindle_tilt: ``tilt_a_urad``, ``tilt_b_urad`` about X and Y (its error grows with the tool length,
   so the bundle needs experiments with different ``tool_length_mm`` to tell it from an offset);
 * backlash: the moving ``axis`` lands ``reversal_um``/2 further along its approach direction,
-  e_axis += direction·reversal/2 (needs ``direction``).
+  e_axis += direction·reversal/2 (needs ``direction``);
+* cyclic_error: a ball-screw's periodic positioning error of ``axis`` against its own position,
+  e_axis += amplitude·sin(2π·pos_axis/period + phase), ``period_mm``, ``amplitude_mm``,
+  ``phase_deg`` (needs ≥ 8 distinct positions along the axis).
 """
 
 from __future__ import annotations
@@ -43,18 +46,23 @@ THERMAL_MAX_MM = 0.2
 TILT_MAX_URAD = 1000.0
 #: reversal (backlash) [µm]
 BACKLASH_MAX_UM = 200.0
+#: cyclic (ball-screw periodic) error amplitude [mm]
+CYCLIC_MAX_MM = 0.1
 
 
 @dataclass(frozen=True)
 class VolumetricSpec:
     """A volumetric-error model: ``model`` ((name, coefficients) pairs by ISO 230-1 name, as in the
     bundle: mm or rad, position in mm); ``thermal`` ((axis, amplitude [mm], τ [s]), …); ``backlash``
-    ((axis, reversal [mm]), …); ``additive`` callables (experiment, points (n, 3)) → (n, 3) [mm]."""
+    ((axis, reversal [mm]), …); ``cyclic`` ((axis, a [mm], b [mm], period [mm]), …: e_axis +=
+    a·sin(2π·pos/period) + b·cos(2π·pos/period)); ``additive`` callables (experiment, points (n, 3))
+    → (n, 3) [mm]."""
 
     model: tuple
     thermal: tuple = ()
     backlash: tuple = ()
     additive: tuple = ()
+    cyclic: tuple = ()
 
     def get(self, name, default=None):
         return dict(self.model).get(name, default)
@@ -110,6 +118,52 @@ class VolumetricProblem(Problem):
         return m
 
     def predict(self, spec):
+        """The model's tip errors, each (n, 3) [mm], in the measurement's frame: the machine model
+        (:meth:`machine_predict`) plus the registered frame (:meth:`frame_of`), fitted to the data
+        with every evaluation (its six parameters enter linearly and are profiled out)."""
+        pred = self.machine_predict(spec)
+        omega, T = self.frame_of(spec, pred)
+        return [p + np.cross(omega, e.points) + T for p, e in zip(pred, self.experiments)]
+
+    def frame_of(self, spec, pred=None):
+        """The registered measurement frame (ω [rad] (3,), T [mm] (3,)): the data are e_model +
+        ω × p + T. ISO 230-1 convention, X primary and Y secondary reference: ω is chosen so that the
+        straightness slopes of X (ey and ez against x) and of Y in z (ez against y) are zero, i.e.
+        from the residual e − e_model by least squares on ez = tz − ωy·x + ωx·y, then
+        ey + ωx·z = ty + ωz·x, then ex − (ωy·z − ωz·y) = tx. The other three cross slopes (ex against
+        y and z, ey against z) stay for the squareness EC0Y, EB0Z, EA0Z; a rotation about Z therefore
+        never hides a squareness, and ey = c·x (data aligned to Y: the axes at 90° − c) reads as
+        ωz = c, EC0Y = −c (netshape.machine: EC0Y > 0 gives ex = −EC0Y·y, the axes at 90° + EC0Y)."""
+        if pred is None:
+            pred = self.machine_predict(spec)
+        r = np.concatenate([m - p for m, p in zip(self.measured, pred)])
+        P = np.concatenate([e.points for e in self.experiments])
+        if not np.all(np.isfinite(r)) or P.shape[0] < 4:
+            return np.zeros(3), np.zeros(3)
+        one = np.ones(len(P))
+        x, y, z = P.T
+
+        def ls(cols, v):
+            A = np.column_stack(cols)
+            keep = np.ptp(A, axis=0) > 0
+            keep[0] = True
+            c = np.zeros(A.shape[1])
+            c[keep] = np.linalg.lstsq(A[:, keep], v, rcond=None)[0]
+            return c
+
+        tz, c_x, c_y = ls([one, x, y], r[:, 2])
+        wy, wx = -c_x, c_y
+        ty, wz = ls([one, x], r[:, 1] + wx * z)
+        (tx,) = ls([one], r[:, 0] - (wy * z - wz * y))
+        return np.array([wx, wy, wz]), np.array([tx, ty, tz])
+
+    def frame(self, spec) -> dict:
+        """The registered frame as reported: {rotation_urad: [rx, ry, rz], translation_mm: [tx, ty, tz]}."""
+        omega, T = self.frame_of(spec)
+        return {"rotation_urad": [float(v) * 1e6 for v in omega], "translation_mm": [float(v) for v in T]}
+
+    def machine_predict(self, spec):
+        """The machine model's tip errors without the measurement frame, each (n, 3) [mm]."""
         out = []
         for e in self.experiments:
             p = np.array(tip_error(self.machine(spec, e.tool_length), e.points))
@@ -117,6 +171,10 @@ class VolumetricProblem(Problem):
                 p[:, _AXES.index(axis)] += amp * (1.0 - np.exp(-e.times / tau))
             for axis, rev in spec.backlash:
                 p[:, _AXES.index(axis)] += 0.5 * rev * e.directions
+            for axis, a, b, period in spec.cyclic:
+                i = _AXES.index(axis)
+                w = 2.0 * np.pi * e.points[:, i] / period
+                p[:, i] += a * np.sin(w) + b * np.cos(w)
             for add in spec.additive:
                 p = p + add(e, e.points)
             out.append(p)
@@ -205,6 +263,18 @@ class VolumetricProblem(Problem):
             "direction": [e.directions for e in self.experiments],
             "tool_length": [np.full(len(e.points), e.tool_length) for e in self.experiments],
         }
+
+    def covariate_vectors(self) -> dict:
+        """{catalogue covariate: {name: (n,) values}} over all points, for the identifiability check
+        (:func:`workflow.identifiability`)."""
+        out = {"position": {a: np.concatenate([e.points[:, i] for e in self.experiments]) for i, a in enumerate("xyz")},
+               "tool_length": {"tool_length": np.concatenate(
+                   [np.full(len(e.points), e.tool_length) for e in self.experiments])}}
+        if all(e.times is not None for e in self.experiments):
+            out["time"] = {"t": np.concatenate([e.times for e in self.experiments])}
+        if all(e.directions is not None for e in self.experiments):
+            out["direction"] = {"direction": np.concatenate([e.directions for e in self.experiments])}
+        return out
 
     def experiment_notes(self, spec) -> list:
         return [{"file": e.file, "tool_length_mm": e.tool_length} for e in self.experiments]
@@ -386,5 +456,138 @@ class Backlash(_PerAxis):
         return {"axis": axis, "reversal_um": float(x[0])}
 
 
-for _e in (Squareness(), ScaleError(), ThermalDrift(), SpindleTilt(), Backlash()):
+def _axis_levels(problem, i):
+    return np.unique(np.round(np.concatenate([e.points[:, i] for e in problem.experiments]), 6))
+
+
+def _period_range(problem, i):
+    """(low, high) periods [mm] a grid along axis i can show: 2 median level spacings (Nyquist) to
+    half the axis' range (two full cycles)."""
+    lv = _axis_levels(problem, i)
+    return 2.0 * float(np.median(np.diff(lv))), 0.5 * float(lv[-1] - lv[0])
+
+
+def _periodogram(pos, r, lo, hi):
+    """Least-squares (Lomb-Scargle) periodogram of r against pos over periods (lo, hi) [mm]: the
+    sinusoid a·sin + b·cos (+ mean) that lowers the residual sum of squares most, on a frequency grid
+    of spacing 1/(4·range) refined ×40 around its peak. Returns (period, a, b)."""
+    span = float(pos.max() - pos.min())
+    yc = r - r.mean()
+
+    def best(freqs):
+        out = (-1.0, None, 0.0, 0.0)
+        for f in freqs:
+            w = 2 * np.pi * pos * f
+            A = np.column_stack([np.sin(w), np.cos(w)])
+            A = A - A.mean(axis=0)
+            c, *_ = np.linalg.lstsq(A, yc, rcond=None)
+            d = float(yc @ (A @ c))
+            if d > out[0]:
+                out = (d, f, float(c[0]), float(c[1]))
+        return out
+
+    df = 1.0 / (4.0 * span)
+    d, f, a, b = best(np.arange(1.0 / hi, 1.0 / lo, df))
+    if f is None:
+        return None
+    fine = f + np.linspace(-df, df, 41)
+    d2, f2, a2, b2 = best(fine[(fine > 1.0 / hi) & (fine < 1.0 / lo)])
+    if f2 is not None and d2 > d:
+        f, a, b = f2, a2, b2
+    return 1.0 / f, a, b
+
+
+class CyclicError(_PerAxis):
+    name, kind = "cyclic_error", "volumetric_error"
+    parameters = ("axis", "period_mm", "amplitude_mm", "phase_deg")
+    covariate = "position"
+    description = (
+        "periodic positioning error of one axis against its own position (ball-screw pitch, encoder "
+        "interpolation): amplitude·sin(2π·pos/period + phase); period from the residual's periodogram"
+    )
+
+    def applicable(self, problem):
+        if max(_axis_levels(problem, i).size for i in range(3)) < 8:
+            return "no axis has 8 distinct positions (too few to see a period)"
+        return None
+
+    def physical_bounds(self, problem):
+        """amplitude below CYCLIC_MAX_MM; the period within what the grid can show (see
+        :func:`_period_range`; the optimiser is held there too, so a fit ending at it is rejected)."""
+        return {"amplitude_mm": (0.0, CYCLIC_MAX_MM)}
+
+    def implausible(self, problem, fit, x=None, bounds=None):
+        why = super().implausible(problem, fit)
+        if why or x is None or bounds is None:
+            return why
+        P, (lo, hi) = float(np.atleast_1d(x)[-1]), (float(bounds[0][-1]), float(bounds[1][-1]))
+        if not lo * (1 + 1e-6) < P < hi * (1 - 1e-6):
+            return f"period_mm = {P:.4g} ended at the edge of what the grid shows ({lo:.4g}, {hi:.4g})"
+        return None
+
+    def _starts_axis(self, problem, spec, axis):
+        """[a, b, period]: from zero amplitude at the periodogram's period (first: the start of the
+        cross-validation folds), then at the periodogram's amplitude."""
+        i = _AXES.index(axis)
+        lo, hi = _period_range(problem, i)
+        if not hi > lo:
+            return None
+        r = np.concatenate(problem.residuals(spec))[:, i]
+        pos = np.concatenate([e.points[:, i] for e in problem.experiments])
+        pg = _periodogram(pos, r, lo, hi)
+        if pg is None:
+            return None
+        P, a, b = pg
+        return [np.array([0.0, 0.0, P]), np.array([a, b, P])]
+
+    def starts(self, problem, spec):
+        axis = getattr(self, "_axis", None) or _AXES[
+            int(np.argmax([_axis_levels(problem, i).size for i in range(3)]))]
+        return self._starts_axis(problem, spec, axis) or [np.array([0.0, 0.0, 1.0])]
+
+    def _bounds_axis(self, problem, axis):
+        lo, hi = _period_range(problem, _AXES.index(axis))
+        return (np.array([-np.inf, -np.inf, lo]), np.array([np.inf, np.inf, hi]))
+
+    def fit(self, problem, spec, train=None):
+        best = None
+        for axis in _AXES:
+            if _axis_levels(problem, _AXES.index(axis)).size < 8:
+                continue
+            starts = self._starts_axis(problem, spec, axis)
+            if starts is None:
+                continue
+            bnd = self._bounds_axis(problem, axis)
+            x, s = problem.least_squares(
+                lambda x, a=axis: self.apply_axis(problem, spec, a, x), starts, bnd, train=train
+            )
+            cost = problem.rms(s, train)
+            if best is None or cost < best[0]:
+                best = (cost, axis, x, s, getattr(problem, "last_status", None))
+        if best is None:
+            raise ValueError("no axis has a period range (2 spacings < half the range)")
+        _, axis, x, s, status = best
+        self._axis = axis  # the cross-validation folds start on this axis' periodogram
+        return EffectFit(
+            self.parameters_of_axis(axis, x), s, len(x) + 1, np.concatenate([[_AXES.index(axis)], x]), status
+        )
+
+    def refit(self, problem, spec, fit):
+        axis = _AXES[int(round(fit.x[0]))]
+        return (lambda x: self.apply_axis(problem, spec, axis, x)), fit.x[1:], self._bounds_axis(problem, axis)
+
+    def apply_axis(self, problem, spec, axis, x):
+        return dataclasses.replace(spec, cyclic=spec.cyclic + ((axis, float(x[0]), float(x[1]), float(x[2])),))
+
+    def parameters_of_axis(self, axis, x):
+        a, b, P = (float(v) for v in x)
+        return {
+            "axis": axis,
+            "period_mm": P,
+            "amplitude_mm": math.hypot(a, b),
+            "phase_deg": math.degrees(math.atan2(b, a)) % 360.0,
+        }
+
+
+for _e in (Squareness(), ScaleError(), ThermalDrift(), SpindleTilt(), Backlash(), CyclicError()):
     register_effect(_e, replace=True)

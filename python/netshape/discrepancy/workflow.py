@@ -30,6 +30,19 @@ BIC_MARGIN = 10.0
 CV_MARGIN = 0.01
 #: the residual counts as noise when its rms is within this factor of the noise estimate.
 NOISE_FACTOR = 1.10
+#: two covariates "move together" above this |correlation| (issue 37 item 5).
+CONFOUND_CORR = 0.95
+#: two candidates explain the residual equally when their BICs differ by less than this.
+EQUAL_BIC = 2.0
+#: the measurement that separates an effect on this covariate from one on another
+SEPARATE_BY = {
+    "time": "measure in random order (or repeat the grid later), so time does not follow position",
+    "position": "measure in random order, so position does not follow time",
+    "tool_length": "add an experiment with another tool length",
+    "direction": "approach every point from both directions",
+    "feed": "add a second feed",
+    "angle": "record more revolutions",
+}
 
 
 @dataclass
@@ -57,6 +70,11 @@ class Diagnosis:
     noise_source: str = "estimated"
     noise_assumption: str = ""
     unexplained: list = field(default_factory=list)
+    #: candidates the bundle cannot tell apart: [{effects, reason, measure}]
+    ambiguous: list = field(default_factory=list)
+    #: the registered measurement frame after the added effects (volumetric bundles; None otherwise):
+    #: {rotation_urad: [rx, ry, rz], translation_mm: [tx, ty, tz]}
+    frame: dict | None = None
 
     @property
     def effect(self) -> str | None:
@@ -81,6 +99,8 @@ class Diagnosis:
                 "noise_source": self.noise_source,
                 "noise_assumption": self.noise_assumption,
                 "unexplained": [dict(f) for f in self.unexplained],
+                "frame": dict(self.frame) if self.frame is not None else None,
+                "ambiguous": [dict(a) for a in self.ambiguous],
             }
         )
 
@@ -110,6 +130,15 @@ class Diagnosis:
             lines.append(
                 f"  ? unexplained: {f['component']} {f['form']} against {f['covariate']}{extra}: "
                 f"rms {f['rms']:.4g} {u}"
+            )
+        for a in self.ambiguous:
+            lines.append(f"  ! ambiguous: {', '.join(a['effects'])}: {a['reason']}; to separate them: {a['measure']}")
+        if self.frame is not None:
+            r, t = self.frame["rotation_urad"], self.frame["translation_mm"]
+            lines.append(
+                "  frame (ISO 230-1, X primary, Y secondary): rotation ["
+                + ", ".join(f"{v:.3g}" for v in r) + "] µrad, translation ["
+                + ", ".join(f"{v:.3g}" for v in t) + f"] {u}"
             )
         lines += [f"note: {n}" for n in self.notes]
         return "\n".join(lines)
@@ -165,6 +194,7 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
     cv_cur = rms_before
     bic_cur = problem.bic(spec, k_total)
     fit_notes = []
+    ambiguous = []
     while cat and len(added) < max_effects:
         if rounds and rms_cur <= NOISE_FACTOR * noise:
             break
@@ -193,6 +223,9 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
                 c["rejected"] = f"implausible: {why}"
             round_.append(c)
         rounds.append(round_)
+        for a in identifiability(problem, cat, round_, bic_cur):
+            if all(a["effects"] != b["effects"] for b in ambiguous):
+                ambiguous.append(a)
         if rms_cur <= NOISE_FACTOR * noise:
             break
         ok = [
@@ -279,7 +312,54 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
         noise_source=noise_source,
         noise_assumption=noise_assumption,
         unexplained=unexplained,
+        frame=problem.frame(spec) if hasattr(problem, "frame") else None,
+        ambiguous=ambiguous,
     )
+
+
+def identifiability(problem, cat, round_, bic_cur) -> list:
+    """Candidates of one round the bundle cannot tell apart (issue 37 item 5):
+
+    * an effect that lowers the BIC by more than BIC_MARGIN (added, rejected or not) and works on a
+      covariate that moves with another effect's (|corr| > CONFOUND_CORR between any of their values,
+      from ``problem.covariate_vectors()``): the two cannot be told apart by this bundle;
+    * two candidates that both qualify and whose BICs differ by less than EQUAL_BIC.
+
+    Returns [{effects, reason, measure}]."""
+    out = []
+    vecs = problem.covariate_vectors() if hasattr(problem, "covariate_vectors") else {}
+    strong = [c for c in round_ if c["bic"] < bic_cur - BIC_MARGIN]
+    for c in strong:
+        cov_c = cat[c["effect"]].covariate
+        for other, cov_o in sorted({(n, e.covariate) for n, e in cat.items()}):
+            if other == c["effect"] or cov_o == cov_c or cov_c not in vecs or cov_o not in vecs:
+                continue
+            best = None
+            for na, va in vecs[cov_c].items():
+                for nb, vb in vecs[cov_o].items():
+                    if np.std(va) == 0 or np.std(vb) == 0:
+                        continue
+                    r = abs(float(np.corrcoef(va, vb)[0, 1]))
+                    if r > CONFOUND_CORR and (best is None or r > best[0]):
+                        best = (r, na, nb)
+            if best is None:
+                continue
+            a = {"effects": sorted([c["effect"], other]),
+                 "reason": f"{best[1]} and {best[2]} move together (|corr| = {best[0]:.3f})",
+                 "measure": SEPARATE_BY.get(cov_c, f"vary {cov_c} independently of {cov_o}")}
+            if all(a["effects"] != b["effects"] for b in out):
+                out.append(a)
+    ok = sorted((c for c in strong if "rejected" not in c), key=lambda c: c["bic"])
+    for c in ok[1:]:
+        if c["bic"] - ok[0]["bic"] < EQUAL_BIC:
+            e0, e1 = cat[ok[0]["effect"]], cat[c["effect"]]
+            out.append({"effects": sorted([ok[0]["effect"], c["effect"]]),
+                        "reason": f"they explain the residual equally (ΔBIC = {c['bic'] - ok[0]['bic']:.2f})",
+                        "measure": SEPARATE_BY.get(e0.covariate if e0.covariate != e1.covariate else "",
+                                                   f"vary {e0.covariate} and {e1.covariate} independently")
+                        if e0.covariate != e1.covariate else
+                        f"measure where {ok[0]['effect']} and {c['effect']} predict different errors"})
+    return out
 
 
 def _null_start(eff, problem, base, x_fit):

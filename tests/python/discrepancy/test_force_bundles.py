@@ -150,7 +150,8 @@ def test_to_dict_keys(runout_diagnosis):
         "noise_estimate",
         "candidates",
     ]
-    assert list(out)[8:] == ["noise_source", "noise_assumption", "unexplained"]
+    assert list(out)[8:] == ["noise_source", "noise_assumption", "unexplained", "frame", "ambiguous"]
+    assert out["frame"] is None  # the registered frame is a volumetric bundle's
     assert out["noise_source"] == "repeats"  # 3 revolutions per experiment: each angle measured 3 times
     assert out["kind"] == "cutting_force"
     assert set(out["parameters"]) == {"rho_mm", "lambda_deg"}

