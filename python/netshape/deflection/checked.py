@@ -110,7 +110,7 @@ def compensate_checked(setup, *, scheme: str = "accelerated", level: str = "midd
     point of the ``density``-times denser drawing, whether its wall is a final wall (None: computed
     from ``later_program`` — the program whose later moves may cut the wall, default the setup's
     program — whose block b is the setup program's block b − ``block_offset``)."""
-    from . import compensated_blocks, compensation_options, contour_samples
+    from . import compensation_options
 
     lv = _LEVELS.index(level)
     arc_tol = tolerance if arc_tolerance is None else arc_tolerance
@@ -139,12 +139,8 @@ def compensate_checked(setup, *, scheme: str = "accelerated", level: str = "midd
         nominal = p_pts[selected]
         res = _comp.compensate_deflection(setup.model, setup.cutter, setup.stock, nominal, o)
         sub = replace(setup, nominal=nominal, owner=p_owner[selected])
-        blocks, origin = compensated_blocks(sub, np.asarray(res.positions, dtype=float), arc_tolerance=arc_tol)
-        written = setup.program.with_blocks(blocks, origin)
-        # the written program at `density` times its own sample density: every written block in at
-        # least `density` pieces
-        w_pts = contour_samples(written, setup.spacing, density)[0]
-        check = check_against_drawing(setup.model, setup.cutter, setup.stock, w_pts, d_pts, final, setup.side, opt)
+        blocks, origin, check = _write_and_check(sub, np.asarray(res.positions, dtype=float), d_pts, final,
+                                                 density, arc_tol)
         out = CheckedCompensation(res, sub, blocks, origin, check, before, rounds, final, lv, float(tolerance))
         b_ref = np.interp(check.s, before.s, np.abs(before.error[:, lv]))
         a_ref = np.abs(check.error[:, lv])
@@ -173,8 +169,6 @@ def compensate_checked(setup, *, scheme: str = "accelerated", level: str = "midd
 def _never_worse(out: CheckedCompensation, d_pts, density: int, arc_tol: float) -> CheckedCompensation:
     """Where the written program is worse than the uncompensated one between samples, halve the offsets
     of the samples on either side (six times at most, then zero them), write and check again."""
-    from . import compensated_blocks, contour_samples
-
     setup, res = out.setup, out.result
     nominal = np.asarray(setup.nominal, dtype=float)
     normals = np.asarray(res.normals, dtype=float)
@@ -190,11 +184,21 @@ def _never_worse(out: CheckedCompensation, d_pts, density: int, arc_tol: float) 
             C[k - 1:k + 1] = 0.0 if attempt == 6 else 0.5 * C[k - 1:k + 1]
         positions = nominal.copy()
         positions[:, :2] += C[:, None] * normals
-        blocks, origin = compensated_blocks(setup, positions, arc_tolerance=arc_tol)
-        written = setup.program.with_blocks(blocks, origin)
-        w_pts = contour_samples(written, setup.spacing, density)[0]
-        check = check_against_drawing(setup.model, setup.cutter, setup.stock, w_pts, d_pts, out.final, setup.side,
-                                      setup.options)
+        blocks, origin, check = _write_and_check(setup, positions, d_pts, out.final, density, arc_tol)
         out = CheckedCompensation(res, setup, blocks, origin, check, out.before, out.rounds, out.final, out.level,
                                   out.tolerance)
     return out
+
+
+def _write_and_check(setup, positions, d_pts, final, density: int, arc_tol: float):
+    """The compensated moves through ``positions`` and their check against the drawing ``d_pts``: the
+    written program at ``density`` times its own sample density (every written block in at least
+    ``density`` pieces). Returns (blocks, origin, DrawingCheck)."""
+    from . import compensated_blocks, contour_samples
+
+    blocks, origin = compensated_blocks(setup, positions, arc_tolerance=arc_tol)
+    written = setup.program.with_blocks(blocks, origin)
+    w_pts = contour_samples(written, setup.spacing, density)[0]
+    check = check_against_drawing(setup.model, setup.cutter, setup.stock, w_pts, d_pts, final, setup.side,
+                                  setup.options)
+    return blocks, origin, check
