@@ -22,8 +22,9 @@ from pathlib import Path
 import numpy as np
 
 from . import stages as st
-from .stage_deflection import stage_deflection
 from .spec import Job
+from .stage_deflection import stage_deflection
+from .warnings import outside_travel
 
 
 class StageFailed(Exception):
@@ -215,11 +216,20 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
     if p["volumetric"]:
         def _volumetric():
             m = st.load_job_machine(job)
-            return m, st.stage_volumetric(job, m, st.machine_frame_toolpath(prog))
+            tp_m = st.machine_frame_toolpath(prog)
+            return m, st.stage_volumetric(job, m, tp_m), outside_travel(m, tp_m)
 
-        machine, vol = S.run("volumetric", _volumetric)
-        status["volumetric"] = "ok"
-        if c["volumetric"]:
+        machine, vol, outside = S.run("volumetric", _volumetric)
+        warnings.extend(outside)
+        # outside the travel the machine's error is extrapolated and compensation would be refused
+        status["volumetric"] = "outside_travel" if outside else "ok"
+        if c["volumetric"] and outside:
+            S.times["volumetric_compensation"] = 0.0
+            if S.bar is not None:
+                S.bar.update(1)
+            vol.after_mm, vol.s_after_mm = vol.before_mm, vol.s_before_mm
+            vol.report = {"status": "skipped", "reason": outside[0]["message"]}
+        elif c["volumetric"]:
             target_machine = st.machine_frame_toolpath(target_prog)
             vol = S.run("volumetric_compensation", st.stage_volumetric_compensation, job, machine,
                         target_machine, vol)
@@ -251,6 +261,8 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
     applied = job.compensations
     if defl is not None and defl.compensated is None and "deflection" in applied:
         applied = [a for a in applied if a != "deflection"]
+    if vol is not None and vol.compensated is None and "volumetric" in applied:
+        applied = [a for a in applied if a != "volumetric"]
     stem = job.program.stem
     files = {"summary": "summary.json", "report": "report.html"}
     if compensated_program is not None:

@@ -227,23 +227,10 @@ def stage_cut(job: Job, stock0, prog: Program, warnings: list | None = None):
                                             f"Z{b.end[2]:g} removes {st.removed_volume:.3g} mm^3 of stock"})
         done = i + 1
     if warnings is not None:
-        _feed_warnings(job, blocks, warnings)
+        from .warnings import tool_shorter_than_cut
+
+        tool_shorter_than_cut(job, blocks, warnings)
     return z, removed
-
-
-def _feed_warnings(job: Job, blocks, warnings: list) -> None:
-    """Cuts deeper below the stock top than the tool sticks out (a feed move without a feed is refused
-    by the reader already)."""
-    top = job.stock["max_mm"][2] if job.stock.get("max_mm") is not None else None
-    stick = job.tool.get("stick_out_mm")
-    if top is not None and stick:
-        deep = [b for b in blocks if int(b.kind) != 0 and top - min(b.start[2], b.end[2]) > float(stick)]
-        if deep:
-            b = deep[0]
-            warnings.append({"kind": "tool_shorter_than_cut", "line": int(b.line),
-                             "message": f"line {b.line} cuts {top - min(b.start[2], b.end[2]):g} mm below the stock "
-                                        f"top, more than the tool's stick-out {float(stick):g} mm (the holder would "
-                                        "hit the stock)"})
 
 
 # ---------------------------------------------------------------------------------------------- forces
