@@ -45,6 +45,8 @@ double Planner::end_time() const noexcept {
   return (s.finished_ && s.frozen_ == s.tail_) ? s.t_frozen_end_ : -1.0;
 }
 
+double Planner::frozen_time() const noexcept { return state_->t_frozen_end_; }
+
 long Planner::blocks_pushed() const noexcept { return state_->pushed_; }
 const char* Planner::last_error() const noexcept { return state_->error_; }
 const AxisLimits& Planner::limits() const noexcept { return state_->limits_; }
