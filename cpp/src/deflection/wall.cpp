@@ -36,6 +36,8 @@ void DeflectionModel::validate() const {
   beam.validate();
   NETSHAPE_CHECK(beam.length >= force.axial_depth, "stick_out", beam.length,
                  "must not be shorter than the axial depth of cut [mm]");
+  NETSHAPE_CHECK_FINITE("holder_compliance", holder_compliance);
+  NETSHAPE_CHECK(holder_compliance >= 0.0, "holder_compliance", holder_compliance, "must be ≥ 0 [mm/N]");
 }
 
 void DeflectionWorkspace::reset(const DeflectionModel& model) {
@@ -115,12 +117,13 @@ void disk_forces(const DeflectionModel& model, DeflectionWorkspace& ws, double t
 Vec2 deflection_from_forces(const DeflectionModel& model, const DeflectionWorkspace& ws, double z) {
   const double L = model.beam.length;
   const double x = L - z;
+  const double fx = ws.forces().col(0).sum(), fy = ws.forces().col(1).sum();
   if (model.load == LoadModel::resultant) {
     const double l = L - 0.5 * model.force.axial_depth;
-    const double g = model.beam.influence(x, l);
-    return Vec2(ws.forces().col(0).sum() * g, ws.forces().col(1).sum() * g);
+    const double g = model.beam.influence(x, l) + model.holder_compliance;
+    return Vec2(fx * g, fy * g);
   }
-  double dx = 0.0, dy = 0.0;
+  double dx = model.holder_compliance * fx, dy = model.holder_compliance * fy;
   for (int i = 0; i < ws.disks(); ++i) {
     const double g = model.beam.influence(x, L - ws.heights()[i]);
     dx += ws.forces()(i, 0) * g;
