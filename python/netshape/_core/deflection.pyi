@@ -208,6 +208,14 @@ class DeflectionModel:
         ...
     def validate(self) -> None:
         ...
+    @property
+    def holder_compliance(self) -> float:
+        """
+        clamp/holder compliance [mm/N]: the tool also translates by holder_compliance * F
+        """
+    @holder_compliance.setter
+    def holder_compliance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
 class DeflectionWorkspace:
     @typing.overload
     def __init__(self) -> None:
