@@ -36,46 +36,50 @@ _HEADER = re.compile(r"^\s*\[")
 
 def apply_to_tool(diagnosis, text: str, *, source: str | None = None, now: _dt.datetime | None = None) -> str:
     """``text`` (a tool TOML or a bundle manifest with ``[tool]``) with the diagnosis' tool terms."""
-    doc = _parse(text, "tool TOML")
-    table = "tool" if isinstance(doc.get("tool"), dict) else None
-    old = doc.get("tool", {}) if table else doc
-    values = {}
-    for e in _effects(diagnosis, TOOL_EFFECTS, "tool"):
-        p = e["parameters"]
-        if e["effect"] == "holder_compliance":
-            base = _float(old.get("holder_compliance_um_per_N", 0.0), "holder_compliance_um_per_N")
-            values["holder_compliance_um_per_N"] = (base + _float(p["compliance_um_per_N"], "compliance_um_per_N"),
-                                                    e["effect"])
-        else:
-            values["runout_rho_mm"] = (_float(p["rho_mm"], "rho_mm"), e["effect"])
-            values["runout_lambda_deg"] = (_float(p["lambda_deg"], "lambda_deg"), e["effect"])
-    return _write(text, doc, table, values, _label(diagnosis, source, now))
+    return _apply(diagnosis, text, "tool", TOOL_EFFECTS, _tool_terms, _label(diagnosis, source, now))
 
 
 def apply_to_coefficients(diagnosis, text: str, *, source: str | None = None,
                           now: _dt.datetime | None = None) -> str:
     """``text`` (a coefficient TOML or a cutting-force manifest with ``[model]``) with the diagnosis'
     coefficient terms."""
-    doc = _parse(text, "coefficients TOML")
-    table = "model" if isinstance(doc.get("model"), dict) else None
-    old = doc.get("model", {}) if table else doc
+    return _apply(diagnosis, text, "model", COEFFICIENT_EFFECTS, _coefficient_terms,
+                  _label(diagnosis, source, now))
+
+
+def _tool_terms(diagnosis, effect: str, p: dict, old: dict) -> dict:
+    """{key: value} of one tool effect; ``old`` the table's current keys."""
+    if effect == "holder_compliance":
+        base = _float(old.get("holder_compliance_um_per_N", 0.0), "holder_compliance_um_per_N")
+        return {"holder_compliance_um_per_N": base + _float(p["compliance_um_per_N"], "compliance_um_per_N")}
+    return {"runout_rho_mm": _float(p["rho_mm"], "rho_mm"), "runout_lambda_deg": _float(p["lambda_deg"], "lambda_deg")}
+
+
+def _coefficient_terms(diagnosis, effect: str, p: dict, old: dict) -> dict:
+    """{key: value} of one coefficient effect; ``old`` the table's current keys."""
+    if effect == "edge_forces":
+        return {k: _float(p[k], k) for k in ("Kte_N_per_mm", "Kre_N_per_mm", "Kae_N_per_mm")}
+    href = old.get("reference_chip_mm", p.get("reference_chip_mm"))
+    if href is None:
+        href = getattr(getattr(diagnosis, "problem", None), "h_ref", None)
+    if href is None:
+        raise ValueError("size_effect: reference_chip_mm unknown (give the Diagnosis object, or a file "
+                         "that has reference_chip_mm)")
+    return {"chip_exponent": _float(p["chip_exponent"], "chip_exponent"),
+            "reference_chip_mm": _float(href, "reference_chip_mm")}
+
+
+def _apply(diagnosis, text: str, table_name: str, names: tuple, terms, label: str) -> str:
+    """The effects ``names`` of the diagnosis written into ``table_name`` of ``text`` (a manifest) or its
+    top level (a tool or coefficient file), ``terms`` giving each effect's keys."""
+    target = "tool" if table_name == "tool" else "coefficients"
+    doc = _parse(text, f"{target} TOML")
+    table = table_name if isinstance(doc.get(table_name), dict) else None
+    old = doc.get(table_name, {}) if table else doc
     values = {}
-    for e in _effects(diagnosis, COEFFICIENT_EFFECTS, "coefficients"):
-        p = e["parameters"]
-        if e["effect"] == "edge_forces":
-            for k in ("Kte_N_per_mm", "Kre_N_per_mm", "Kae_N_per_mm"):
-                values[k] = (_float(p[k], k), e["effect"])
-            continue
-        values["chip_exponent"] = (_float(p["chip_exponent"], "chip_exponent"), e["effect"])
-        href = old.get("reference_chip_mm", p.get("reference_chip_mm"))
-        if href is None:
-            problem = getattr(diagnosis, "problem", None)
-            href = getattr(problem, "h_ref", None)
-        if href is None:
-            raise ValueError("size_effect: reference_chip_mm unknown (give the Diagnosis object, or a file "
-                             "that has reference_chip_mm)")
-        values["reference_chip_mm"] = (_float(href, "reference_chip_mm"), e["effect"])
-    return _write(text, doc, table, values, _label(diagnosis, source, now))
+    for e in _effects(diagnosis, names, target):
+        values.update({k: (v, e["effect"]) for k, v in terms(diagnosis, e["effect"], e["parameters"], old).items()})
+    return _write(text, doc, table, values, label)
 
 
 # --- helpers -----------------------------------------------------------------------------------------
