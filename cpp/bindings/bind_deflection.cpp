@@ -50,6 +50,7 @@ void bind_deflection(py::module_& m) {
       .def_readwrite("smooth_edges", &DeflectionModel::smooth_edges)
       .def_readwrite("holder_compliance", &DeflectionModel::holder_compliance,
                      "clamp/holder compliance [mm/N]: the tool also translates by holder_compliance * F")
+      .def_readwrite("chip", &DeflectionModel::chip, "runout and chip-size effect of the element chips")
       .def("validate", &DeflectionModel::validate);
   py::class_<DeflectionWorkspace>(m, "DeflectionWorkspace")
       .def(py::init<>())

@@ -106,10 +106,11 @@ def make_model(*, diameter: float, flutes: int, helix_deg: float, stick_out: flo
                feed_per_tooth: float, ap: float, ae: float | None = None, mode: str = "down",
                coefficients="cho_suh_example", inertia: str = "square", load: str = "distributed",
                disk_height: float = 0.05, smooth_edges: bool = True,
-               holder_compliance: float = 0.0) -> DeflectionModel:
+               holder_compliance: float = 0.0, chip=None) -> DeflectionModel:
     """A validated :class:`DeflectionModel` for a steady cut (mm, MPa, degrees for the helix).
     ``coefficients``: text for :func:`parse_coefficients` or a coefficient object;
-    ``holder_compliance`` [mm/N] the clamp/holder spring in series with the cantilever."""
+    ``holder_compliance`` [mm/N] the clamp/holder spring in series with the cantilever; ``chip`` a
+    netshape.force.RunoutSizeEffect (runout and chip-size effect of the element chips) or None."""
     d = _check_positive("diameter", diameter)
     _check_positive("stick_out", stick_out)
     if not isinstance(youngs_modulus, (int, float)) or not math.isfinite(youngs_modulus) or youngs_modulus <= 0:
@@ -147,6 +148,8 @@ def make_model(*, diameter: float, flutes: int, helix_deg: float, stick_out: flo
     m.load = _d.load_model_from_string(load)
     m.smooth_edges = bool(smooth_edges)
     m.holder_compliance = float(holder_compliance)
+    if chip is not None:
+        m.chip = chip
     m.validate()
     return m
 

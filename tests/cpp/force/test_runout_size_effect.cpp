@@ -105,3 +105,26 @@ TEST_CASE("holder compliance translates the tool by c·F at every height") {
   bad.holder_compliance = -1.0;
   CHECK_THROWS_AS(bad.validate(), std::invalid_argument);
 }
+
+TEST_CASE("the deflection model's disk forces carry the same runout and size effect") {
+  deflection::DeflectionModel d;
+  d.force = cut();
+  d.beam = deflection::Cantilever::tool(10.0, 40.0, 600e3, deflection::InertiaModel::square);
+  d.smooth_edges = false;  // elements in or out by their centre, as the force kernel
+  for (const RunoutSizeEffect e : {RunoutSizeEffect{0.01, deg2rad(40.0), 1.0, 0.0},
+                                   RunoutSizeEffect{0.006, deg2rad(200.0), 0.8, 0.05}}) {
+    d.chip = e;
+    deflection::DeflectionWorkspace ws(d);
+    const VectorXd th = rotation_angles(60);
+    const Points3 F = flat_end_forces_extended(d.force, e, th);
+    double worst = 0.0, peak = 0.0;
+    for (Eigen::Index a = 0; a < th.size(); ++a) {
+      disk_forces(d, ws, th[a]);
+      const Vec2 s(ws.forces().col(0).sum(), ws.forces().col(1).sum());
+      worst = std::max(worst, (s - F.row(a).head<2>().transpose()).norm());
+      peak = std::max(peak, s.norm());
+    }
+    // the disk loop evaluates the power law exactly, the force kernel its interpolant (2 %)
+    CHECK(worst <= (e.chip_exponent == 1.0 ? 1e-9 : 0.02) * peak);
+  }
+}

@@ -27,6 +27,7 @@
 #include "netshape/core/types.hpp"
 #include "netshape/deflection/cantilever.hpp"
 #include "netshape/force/flat_end_model.hpp"
+#include "netshape/force/runout_size_effect.hpp"
 
 namespace netshape::deflection {
 
@@ -55,6 +56,10 @@ struct DeflectionModel {
   /// Clamp/holder compliance [mm/N] ≥ 0 (cutter::Cutter::holder_compliance): a spring in series with
   /// the cantilever, so the tool also translates rigidly by holder_compliance·F, F the total force.
   double holder_compliance = 0.0;
+  /// Runout and chip-size effect of the element chips (force::RunoutSizeEffect, the same chip as
+  /// force::flat_end_forces_extended, the power law evaluated exactly): flute j's chip
+  /// h_j = c·sin φ + r_j − r_{j−1}, no force where h_j ≤ 0, cutting terms h_ref·(h_j/h_ref)^p.
+  force::RunoutSizeEffect chip{};
 
   /// force.validate(), beam.validate(), and beam.length ≥ force.axial_depth (a stick-out shorter than
   /// the cut cannot cut it); throws std::invalid_argument naming the field.
