@@ -71,3 +71,17 @@ def test_force_calibration_dynoware(tmp_path, shared_data):
                           capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stderr[-2000:]
     assert list(tmp_path.glob("*.png"))
+
+
+@pytest.mark.slow
+def test_deflection_learning_cut(tmp_path):
+    """Issue 43 item 4: the diagnosed holder compliance is within 10 % of the machine's, and the part
+    compensated with the updated tool is as good as with the machine's own tool and better than with the
+    original one (rms at mid depth over the final wall)."""
+    out = _run(tmp_path, "deflection_learning_cut.py", "--quick")
+    found = float(re.search(r"compliance ([\d.]+) µm/N", out).group(1))
+    assert abs(found - 0.12) <= 0.012
+    rms = {m[0]: float(m[1]) for m in re.findall(r"machine, (.+?): wall error at mid depth .*? rms ([\d.]+)", out)}
+    best = rms["machine's own tool (the best possible)"]
+    assert rms["updated tool"] <= best + 0.1 * (rms["original tool"] - best)
+    assert (tmp_path / "tool_updated.toml").read_text().count("holder_compliance_um_per_N") == 1

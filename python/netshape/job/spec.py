@@ -28,7 +28,7 @@ COMPENSATIONS = ("deflection", "volumetric")
 _TOP = {"name", "program", "output", "tool", "stock", "offsets", "coefficients", "machine", "limits",
         "cutting", "predict", "compensate", "report", "grid", "start_mm", "clearance_mm"}
 _TOOL_KEYS = {"file", "kind", "diameter_mm", "corner_radius_mm", "flutes", "helix_deg", "flute_length_mm",
-              "stick_out_mm", "youngs_modulus_MPa"}
+              "stick_out_mm", "youngs_modulus_MPa", "holder_compliance_um_per_N", "runout_rho_mm", "runout_lambda_deg"}
 _STOCK_KEYS = {"file", "min_mm", "max_mm", "spacing_mm", "heights", "pre_cut"}
 _PRE_CUT_KEYS = {"program", "tool"}
 _MACHINE_KEYS = {"file", "error_scale"}

@@ -176,6 +176,46 @@ def force_bundle(
     return folder
 
 
+# --- round trips (issue 43): the model of an updated manifest against the hidden truth ---------
+
+
+def manifest_force_model(manifest: dict, mode, ae, c):
+    """(FlatEndModel, RunoutSizeEffect): the C++ forward model of a parsed cutting-force manifest's tool
+    and model at one condition."""
+    from netshape import force as _f
+
+    t, k = manifest["tool"], manifest["model"]
+    eng = _f.AngularEngagement.from_mode(_f.milling_mode_from_string(mode), t["diameter_mm"] / 2,
+                                        ae if mode != "slot" else 0.0)
+    lin = _f.LinearEdgeCoefficients(*(k[n] for n in ("Ktc_N_per_mm2", "Krc_N_per_mm2", "Kac_N_per_mm2",
+                                                    "Kte_N_per_mm", "Kre_N_per_mm", "Kae_N_per_mm")))
+    model = _f.FlatEndModel(radius=t["diameter_mm"] / 2, flutes=t["flutes"], helix=np.radians(t["helix_deg"]),
+                           axial_depth=AP, feed_per_tooth=c, engagement=eng, linear_edge=lin, disk_height=0.01)
+    ext = _f.RunoutSizeEffect(runout_rho=t.get("runout_rho_mm", 0.0),
+                             runout_lambda=np.radians(t.get("runout_lambda_deg", 0.0)),
+                             chip_exponent=k.get("chip_exponent", 1.0), reference_chip=k.get("reference_chip_mm", 0.0))
+    return model, ext
+
+
+def model_force_error(manifest: dict, hidden: dict) -> float:
+    """rms of (the manifest's model − the hidden truth of force_bundle(**hidden)) forces over CONDITIONS,
+    one revolution [N]."""
+    from netshape import force as _f
+
+    th = np.linspace(0, 2 * np.pi, 240, endpoint=False)
+    h_ref = float(np.exp(np.mean(np.log([c for _, _, c in CONDITIONS]))))
+    truth = dict(MODEL)
+    if "edges" in hidden:
+        truth.update(zip(("Kte_N_per_mm", "Kre_N_per_mm", "Kae_N_per_mm"), hidden["edges"]))
+    err = []
+    for mode, ae, c in CONDITIONS:
+        ref = oracle_forces(th, feed=c, mode=mode, ae=ae, coefficients=truth, runout=hidden.get("runout"),
+                            exponent=hidden.get("exponent"), h_ref=h_ref)
+        model, ext = manifest_force_model(manifest, mode, ae, c)
+        err.append(_f.flat_end_forces_extended(model, ext, th) - ref)
+    return float(np.sqrt(np.mean(np.square(err))))
+
+
 # --- volumetric --------------------------------------------------------------------------------------
 
 MACHINE = {"tool_side": ["Z"], "workpiece_side": ["Y", "X"], "tool_length_mm": 100.0}
