@@ -217,6 +217,7 @@ void bind_motion(py::module_& m) {
       .def_readwrite("lookahead", &PlanOptions::lookahead)
       .def_readwrite("allowable_speed_difference", &PlanOptions::allowable_speed_difference)
       .def_readwrite("tolerance", &PlanOptions::tolerance)
+      .def_readwrite("corner_tolerance", &PlanOptions::corner_tolerance)
       .def_readwrite("junction_deviation", &PlanOptions::junction_deviation)
       .def_readwrite("square_corner_velocity", &PlanOptions::square_corner_velocity)
       .def_readwrite("junction_accel", &PlanOptions::junction_accel)
