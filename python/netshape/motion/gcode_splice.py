@@ -109,8 +109,8 @@ def _unchanged(new: dict, k: int, prog: dict, b: int, fmt: str) -> bool:
     kind = int(new["kind"][k])
     if kind != int(prog["kind"][b]) or (kind == 2 and fmt != "arcs") or kind == 3:
         return False
-    same_end = np.array_equal(np.asarray(new["end"][k]), np.asarray(prog["end"][b]))
-    return same_end and (kind != 2 or np.array_equal(np.asarray(new["start"][k]), np.asarray(prog["start"][b])))
+    same = lambda key: np.array_equal(np.asarray(new[key][k]), np.asarray(prog[key][b]))  # noqa: E731
+    return same("end") and (kind != 2 or same("start"))
 
 
 def spliced_gcode_lines(text: str, program: dict, frame_shift, new: dict, first, fmt: str = "arcs", *,
@@ -140,8 +140,9 @@ def spliced_gcode_lines(text: str, program: dict, frame_shift, new: dict, first,
         words, comments = _words(raw)
         own = blocks_of.get(ln, [])
         news = [k for b in own for k in news_of.get(b, [])]
-        if not own or (len(news) == len(own) and all(
-                len(news_of.get(b, [])) == 1 and _unchanged(new, news_of[b][0], program, b, fmt) for b in own)):
+        as_written = len(news) == len(own) and all(
+            len(news_of.get(b, [])) == 1 and _unchanged(new, news_of[b][0], program, b, fmt) for b in own)
+        if not own or as_written:
             if pending and words:
                 out.append(modal.restore())
                 pending = False

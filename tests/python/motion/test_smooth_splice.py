@@ -35,9 +35,9 @@ def written(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     (tmp_path / "p.ngc").write_text(_program())
     (tmp_path / "m.var").write_text(VAR)
-    assert main(["plan", "p.ngc", "--vmax", "250", "--amax", "3000", "--rule", "smooth", "--tolerance", "0.01",
-                 "--json", "o.json", "--var", "m.var", "--smoothed-gcode", "s.ngc", "--smoothed-format", "g1",
-                 "--chord-tolerance", "0.001"]) == 0
+    assert main(["plan", "p.ngc", "--vmax", "250", "--amax", "3000", "--rule", "smooth",
+                 "--tolerance", "0.01", "--json", "o.json", "--var", "m.var", "--smoothed-gcode", "s.ngc",
+                 "--smoothed-format", "g1", "--chord-tolerance", "0.001"]) == 0
     return tmp_path
 
 
