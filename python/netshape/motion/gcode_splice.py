@@ -134,7 +134,9 @@ def spliced_gcode_lines(text: str, program: dict, frame_shift, new: dict, first,
     for k, b in enumerate(first):
         news_of.setdefault(int(b), []).append(k)
     modal = _Modal()
-    out = [f"(netshape smooth: micro-segment runs replaced within the contour tolerance, form {fmt})"]
+    chorded = "cubics outside the XY plane" + (" and every arc" if fmt == "g1" else "")
+    out = [f"(netshape smooth: micro-segment runs replaced within the contour tolerance, form {fmt}; "
+           f"{chorded} as G1 chords within {chord_tolerance:g} mm)"]
     pending = False  # written moves since the last line kept as written: restore the modal state first
     for ln, raw in enumerate(text.splitlines(), start=1):
         words, comments = _words(raw)
