@@ -89,6 +89,7 @@ void PlannerState::reset() noexcept {
   next_sample_ = 0;
   t_frozen_end_ = v_frozen_end_ = 0;
   have_last_ = false;
+  last_cubic_ = false;
   last_point_ = Vec3::Zero();
   error_ = "";
 }
