@@ -30,7 +30,8 @@ Seeds 0, 2, 4, … are the tuning half (thresholds may be chosen on them), 1, 3,
 Scores per bundle: `exact` — the effects added are exactly the hidden one (with its axis where it has
 one), or none for a control; `false` — an effect other than the hidden one is added (or any, on a
 control); `missed` — the hidden effect is not added and nothing else is. `ambiguous` counts false
-namings the workflow itself flagged (`ambiguous` lists the named effect). The parameter error (exact
+namings the workflow itself flagged (`ambiguous` lists the named effect); `ambiguous raised` the bundles
+with any `ambiguous` entry. The parameter error (exact
 recoveries only) is relative to the hidden effect's size: runout |ρ̂e^{iλ̂} − ρe^{iλ}|/ρ; vectors
 (squareness, scale, tilt) ‖v̂ − v‖/‖v‖; edge forces the largest |K̂ − K|/|K − K_model|; chip exponent
 |p̂ − p|/(1 − p); the others the largest relative error of their parameters.
@@ -259,17 +260,19 @@ def score(kind, seed, tmp):
     named = [(e["effect"], e["parameters"]) for e in d.effects]
     names = [n for n, _ in named]
     exact, false = classify(effect, truth, named)
-    flagged = false and any(set(names) & set(a["effects"]) for a in d.to_dict().get("ambiguous") or [])
+    amb = d.to_dict().get("ambiguous") or []
+    flagged = false and any(set(names) & set(a["effects"]) for a in amb)
     perr = parameter_error(effect, named[0][1], truth, variant) if exact and effect else None
     return {"kind": kind, "seed": seed, "effect": effect or "none", "variant": variant, "named": names,
             "exact": exact, "false": false, "missed": not exact and not false, "ambiguous": flagged,
+            "any_ambiguous": bool(amb),
             "perr": perr, "params": named[0][1] if named else None, "truth": truth}
 
 
 def table(rows) -> str:
     """The markdown table of the rows: per kind, per effect and a total line per kind."""
     out = ["| kind | hidden effect | bundles | exact | false naming | missed | params within 10 % | "
-           "param error median / max |", "|---|---|---|---|---|---|---|---|"]
+           "param error median / max | `ambiguous` raised |", "|---|---|---|---|---|---|---|---|---|"]
     groups = defaultdict(list)
     for r in rows:
         groups[(r["kind"], r["effect"])].append(r)
@@ -288,7 +291,8 @@ def table(rows) -> str:
             label = f"**{eff}**" if eff == "all" else eff
             fal = f"{fa} ({100 * fa / n:.0f} %)" + (f", {amb} flagged ambiguous" if amb else "")
             out.append(f"| {kind} | {label} | {n} | {ex} ({100 * ex / n:.0f} %) | {fal} | "
-                       f"{sum(r['missed'] for r in rs)} | {within} | {errs} |")
+                       f"{sum(r['missed'] for r in rs)} | {within} | {errs} | "
+                       f"{sum(r.get('any_ambiguous', False) for r in rs)} |")
     return "\n".join(out)
 
 

@@ -32,7 +32,7 @@ def test_quick_families_table(capsys):
         assert f"| {kind} | **all** | 3 | 3 (100 %) | 0 (0 %) | 0 | 2/2 |" in out
     header = "| kind | hidden effect | bundles | exact | false naming | missed |"
     lines = out[out.index(header):].strip().splitlines()
-    assert len(lines) == 2 + 3 * 4 and all(line.count("|") == 9 for line in lines)
+    assert len(lines) == 2 + 3 * 4 and all(line.count("|") == 10 for line in lines)
     # the scorer: another effect, or the right one on another axis, is a false naming
     assert bench.classify(None, {}, []) == (True, False)
     assert bench.classify(None, {}, [("squareness", {})]) == (False, True)
