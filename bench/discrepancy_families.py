@@ -41,6 +41,7 @@ from __future__ import annotations
 
 import argparse
 import cmath
+import json
 import math
 import sys
 import tempfile
@@ -108,6 +109,12 @@ def hidden(kind: str, seed: int):
     raise AssertionError(effect)
 
 
+def variant_index(kind: str, seed: int) -> int:
+    """0 or 1: the CSV form or measuring order of bundle ``seed``, alternating with each pass through
+    the kind's effects, so every effect meets both in each half."""
+    return (seed // 2 // len(EFFECTS[kind])) % 2
+
+
 def force_case(folder, seed, effect, p):
     rng = np.random.default_rng([370, seed])
     kw = {}
@@ -119,7 +126,7 @@ def force_case(folder, seed, effect, p):
         kw["exponent"] = p["chip_exponent"]
     elif effect == "structural_mode":
         kw["mode"] = (p["frequency_hz"], p["damping_ratio"])
-    form = ("angle", "time")[seed // 2 % 2 ^ seed // (2 * len(EFFECTS["cutting_force"])) % 2]
+    form = ("angle", "time")[variant_index("cutting_force", seed)]
     return g.force_bundle(folder, noise=float(rng.uniform(1.0, 3.0)), form=form, per_rev=120, seed=seed,
                           phase0=float(rng.uniform(0, 2 * math.pi)), tool=FORCE_TOOL, **kw), form
 
@@ -139,7 +146,7 @@ def volumetric_case(folder, seed, effect, p):
         kw["backlash"] = (p["axis"], p["reversal_um"])
     elif effect == "cyclic_error":
         kw["cyclic"] = (p["axis"], p["amplitude_mm"], p["period_mm"], p["phase_deg"])
-    order = ("serpentine", "random")[seed // 2 % 2 ^ seed // (2 * len(EFFECTS["volumetric_error"])) % 2]
+    order = ("serpentine", "random")[variant_index("volumetric_error", seed)]
     frame = (rng.uniform(-50, 50, 3), rng.uniform(-0.01, 0.01, 3))
     return g.volumetric_bundle(folder, noise=float(rng.uniform(5e-4, 1.5e-3)), seed=seed, grid=(21, 5, 3),
                                order=order, seconds_per_point=10.0, frame=frame, **kw), order
@@ -180,7 +187,7 @@ def wall_case(folder, seed, effect, p):
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     rng = np.random.default_rng([372, seed])
-    form = ("x", "xz")[seed // 2 % 2 ^ seed // (2 * len(EFFECTS["wall_error"])) % 2]
+    form = ("x", "xz")[variant_index("wall_error", seed)]
     t = g.WALL_TOOL
     R, N = t["diameter_mm"] / 2, t["flutes"]
     kb = math.tan(math.radians(t["helix_deg"])) / R
@@ -303,11 +310,19 @@ def main(argv=None):
     ap.add_argument("--half", choices=("check", "tune", "all"), default="check")
     ap.add_argument("--kinds", default=",".join(EFFECTS), help="comma-separated kinds")
     ap.add_argument("--verbose", action="store_true", help="one line per bundle")
+    ap.add_argument("--first", type=int, default=0, help="start at this seed (to split a run)")
+    ap.add_argument("--rows-out", help="also write the rows to this JSON file")
+    ap.add_argument("--merge", nargs="+", help="print the table of these --rows-out files, run nothing")
     args = ap.parse_args(argv)
+    if args.merge:
+        rows = [r for f in args.merge for r in json.loads(Path(f).read_text())]
+        print(table(rows))
+        return rows
     if args.quick:
         seeds = [1, 3, 5]
     else:
-        seeds = [s for s in range(args.per_kind) if args.half == "all" or s % 2 == (args.half == "check")]
+        seeds = [s for s in range(args.first, args.per_kind)
+                 if args.half == "all" or s % 2 == (args.half == "check")]
     rows, t0, c0 = [], time.perf_counter(), time.process_time()
     with tempfile.TemporaryDirectory() as tmp:
         for kind in args.kinds.split(","):
@@ -321,6 +336,8 @@ def main(argv=None):
     print(f"\n{half} half, seeds {seeds[0]}…{seeds[-1]} ({len(seeds)} per kind), "
           f"{time.perf_counter() - t0:.0f} s wall, {time.process_time() - c0:.0f} s CPU\n")
     print(table(rows))
+    if args.rows_out:
+        Path(args.rows_out).write_text(json.dumps(rows, default=float))
     return rows
 
 

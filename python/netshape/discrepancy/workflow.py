@@ -30,8 +30,7 @@ BIC_MARGIN = 10.0
 CV_MARGIN = 0.01
 #: the residual counts as noise when its rms is within this factor of the noise estimate.
 NOISE_FACTOR = 1.10
-#: two covariates "move together" above this |correlation|, as a share of the largest their values
-#: allow (:func:`together`; issue 37 item 5).
+#: two covariates "move together" above this |correlation| (issue 37 item 5).
 CONFOUND_CORR = 0.95
 #: two candidates explain the residual equally when their BICs differ by less than this.
 EQUAL_BIC = 2.0
@@ -318,24 +317,12 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
     )
 
 
-def together(a, b) -> tuple:
-    """How closely two covariates (n,) move together: (|corr| / its largest value for these two sets
-    of values, |corr|). The largest correlation two samples can reach, whatever their pairing, is
-    that of their sorted values (the Fréchet–Hoeffding bound; the smallest: one sorted against the
-    other reversed). So a ramp in time against 3 equally spaced levels of z measured one level after
-    another scores 1, though their correlation cannot exceed √(8/9) = 0.943."""
-    r = float(np.corrcoef(a, b)[0, 1])
-    sa, sb = np.sort(a), np.sort(b)
-    bound = float(np.corrcoef(sa, sb if r >= 0 else sb[::-1])[0, 1])
-    return min(abs(r) / abs(bound), 1.0), abs(r)
-
-
 def identifiability(problem, cat, round_, bic_cur) -> list:
     """Candidates of one round the bundle cannot tell apart (issue 37 item 5):
 
     * an effect that lowers the BIC by more than BIC_MARGIN (added, rejected or not) and works on a
-      covariate that moves with another effect's (:func:`together` > CONFOUND_CORR between any of their
-      values, from ``problem.covariate_vectors()``): the two cannot be told apart by this bundle;
+      covariate that moves with another effect's (|corr| > CONFOUND_CORR between any of their values,
+      from ``problem.covariate_vectors()``): the two cannot be told apart by this bundle;
     * two candidates that both qualify and whose BICs differ by less than EQUAL_BIC.
 
     Returns [{effects, reason, measure}]."""
@@ -352,14 +339,13 @@ def identifiability(problem, cat, round_, bic_cur) -> list:
                 for nb, vb in vecs[cov_o].items():
                     if np.std(va) == 0 or np.std(vb) == 0:
                         continue
-                    r = together(va, vb)
-                    if r[0] > CONFOUND_CORR and (best is None or r[0] > best[0]):
-                        best = (*r, na, nb)
+                    r = abs(float(np.corrcoef(va, vb)[0, 1]))
+                    if r > CONFOUND_CORR and (best is None or r > best[0]):
+                        best = (r, na, nb)
             if best is None:
                 continue
             a = {"effects": sorted([c["effect"], other]),
-                 "reason": f"{best[2]} and {best[3]} move together (|corr| = {best[1]:.3f}, "
-                           f"{100 * best[0]:.0f} % of the largest their values allow)",
+                 "reason": f"{best[1]} and {best[2]} move together (|corr| = {best[0]:.3f})",
                  "measure": SEPARATE_BY.get(cov_c, f"vary {cov_c} independently of {cov_o}")}
             if all(a["effects"] != b["effects"] for b in out):
                 out.append(a)

@@ -10,7 +10,7 @@ import json
 import numpy as np
 
 import netshape.discrepancy as nd
-from netshape.discrepancy.workflow import identifiability, together
+from netshape.discrepancy.workflow import identifiability
 
 from generators import structured_volumetric_bundle
 
@@ -53,17 +53,3 @@ def test_equal_bic_is_ambiguous():
     assert amb["effects"] == ["a", "b"] and "ΔBIC = 1.00" in amb["reason"] and "random order" in amb["measure"]
     assert identifiability(P(), cat, [{"effect": "a", "bic": -100.0}, {"effect": "b", "bic": -90.0}], 0.0) == []
     assert np.isfinite(round_[0]["bic"])
-
-
-def test_together_is_relative_to_what_the_values_allow():
-    """A ramp in time against 3 equally spaced z levels measured one after another: |corr| = √(8/9) =
-    0.943, the most these two sets of values can reach, so they move together (score 1); shuffled or
-    alternating they do not."""
-    t = np.arange(300.0)
-    z = np.repeat([-200.0, -100.0, 0.0], 100)
-    score, r = together(t, z)
-    assert abs(r - np.sqrt(8 / 9)) < 1e-3 and score > 0.999
-    assert together(t, -z)[0] > 0.999
-    assert together(t, np.random.default_rng(0).permutation(z))[0] < 0.3
-    assert together(t, np.tile([-200.0, -100.0, 0.0], 100))[0] < 0.1
-    assert together(t, 2 * t + 1) == (1.0, 1.0)
