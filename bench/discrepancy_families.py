@@ -5,15 +5,16 @@ exact-effect recovery, false naming and parameter error per kind and per effect.
     PYTHONPATH=python python bench/discrepancy_families.py [--quick] [--per-kind 60] [--half check|tune|all]
 
 Seeds 0, 2, 4, … are the tuning half (thresholds may be chosen on them), 1, 3, 5, … the check half
-(reported). Bundle s hides effect number (s // 2) mod (effects + 1), so both halves hold every effect.
+(reported). Bundle s hides effect number (s // 2) mod (effects + 1), so both halves hold every effect;
+the CSV form or measuring order (below) alternates with each pass through the effects.
 
 * cutting_force: a 10 mm 3-flute 30° flat end mill, the 4 experiments of the test generators (slots at
-  0.04 and 0.1 mm, up 0.07, down 0.13), 3 revolutions of 120 samples, noise 1–3 N, angle_deg or time_s
-  (alternating). Forces from the NumPy element sum of the generators (not the fitted C++ kernel), a mode
+  0.04 and 0.1 mm, up 0.07, down 0.13), 3 revolutions of 120 samples, noise 1–3 N, angle_deg or time_s.
+  Forces from the NumPy element sum of the generators (not the fitted C++ kernel), a mode
   by simulating the 2nd-order system in time. Hidden: runout ρ 3–10 µm at λ 0–360°; edge forces each
   ×0.4–0.7 or ×1.5–2.5; chip exponent p 0.6–0.85; a mode of 800–2000 Hz, ζ 0.02–0.08.
 * volumetric_error: two experiments (tool lengths 100 and 220 mm) of a 21 × 5 × 3 grid, 10 s per point,
-  X-fastest serpentine or random order (alternating), both with t_s and direction; noise 0.5–1.5 µm;
+  X-fastest serpentine or random order, both with t_s and direction; noise 0.5–1.5 µm;
   the data in a random measuring frame (rotation ≤ 50 µrad, translation ≤ 10 µm per axis). Geometric
   errors from netshape.machine, the rest written out in the generators. Hidden: squareness 15–60 µrad
   on one to three of EC0Y, EB0Z, EA0Z; scale 10–40 µm/m on one to three axes; thermal drift on a random
@@ -21,7 +22,7 @@ Seeds 0, 2, 4, … are the tuning half (thresholds may be chosen on them), 1, 3,
   cyclic error on X, 2–6 µm, period 45–150 mm.
 * wall_error: three steady cuts (down a_e 0.5 mm at 0.15 mm, down 1.0 at 0.2, up 0.5 at 0.25; a_p 4 mm;
   6 mm 3-flute 30° carbide, 30 mm stick-out), the wall over 2 mm every 10 µm, x_mm,error_mm at z = 2 or
-  x_mm,z_mm,error_mm at 5 heights (alternating); noise 0.5–1.5 µm. The manifest names steady straight
+  x_mm,z_mm,error_mm at 5 heights; noise 0.5–1.5 µm. The manifest names steady straight
   cuts; the data come from another model: the Z-map sweep along a straight program
   (netshape.deflection.predict_path), the clamp spring loaded by the element-sum force at each height's
   generating instant, runout as exact circles of the flute passes. Hidden: holder spring 5–30 N/µm;
@@ -172,7 +173,8 @@ def wall_zmap(folder: Path, mode: str, ae: float, c: float):
     (folder / "zmap.ngc").write_text(f"G21 G90 G17\nS8000 M3\nG0 {xs[0]} Y{y} Z5\nG1 Z-4 F600\n"
                                      f"G1 {xs[1]} F{c * N * rpm}\nG0 Z10\nM30\n")
     setup = d.setup_path(ns.toolpath.read_gcode(folder / "zmap.ngc"),
-                         ns.cutter.load_cutter(folder / "zmap_tool.toml"), d.load_stock(folder / "zmap_stock.toml"),
+                         ns.cutter.load_cutter(folder / "zmap_tool.toml"),
+                         d.load_stock(folder / "zmap_stock.toml"),
                          coefficients=g.WALL_MODEL["coefficients"], rpm=rpm, spacing=0.5, profile_levels=21)
     r = d.predict_path(setup)
     nominal = np.asarray(setup.nominal)
@@ -211,7 +213,8 @@ def wall_case(folder, seed, effect, p):
         E += rng.normal(0.0, noise, E.shape)
         name = f"wall{i + 1}.csv"
         if form == "xz":
-            g.write_csv(folder / name, ["x_mm", "z_mm", "error_mm"], np.column_stack([X.ravel(), Z.ravel(), E.ravel()]))
+            g.write_csv(folder / name, ["x_mm", "z_mm", "error_mm"],
+                        np.column_stack([X.ravel(), Z.ravel(), E.ravel()]))
         else:
             g.write_csv(folder / name, ["x_mm", "error_mm"], np.column_stack([x, E[0]]))
         exps.append({"file": name, "feed_per_tooth_mm": c, "axial_depth_mm": g.WALL_AP, "radial_depth_mm": ae,
@@ -233,8 +236,9 @@ def parameter_error(effect, got: dict, truth: dict, variant: str) -> float:
     if effect == "runout":
         z = cmath.rect(truth["rho_mm"], math.radians(truth["lambda_deg"]))
         shifts = range(FORCE_TOOL["flutes"]) if variant == "time" else (0,)
-        return min(abs(cmath.rect(got["rho_mm"], math.radians(got["lambda_deg"] + 360.0 * k / FORCE_TOOL["flutes"]))
-                       - z) for k in shifts) / abs(z)
+        pitch = 360.0 / FORCE_TOOL["flutes"]
+        return min(abs(cmath.rect(got["rho_mm"], math.radians(got["lambda_deg"] + k * pitch)) - z)
+                   for k in shifts) / abs(z)
     if effect in ("squareness", "scale_error", "spindle_tilt"):
         v, w = np.array([got[k] for k in truth]), np.array(list(truth.values()))
         if effect == "scale_error":  # reported: the axis' whole linear term, the model's included
@@ -246,7 +250,8 @@ def parameter_error(effect, got: dict, truth: dict, variant: str) -> float:
         return abs(got["chip_exponent"] - truth["chip_exponent"]) / (1 - truth["chip_exponent"])
     keys = {"structural_mode": ("frequency_hz", "damping_ratio"),
             "thermal_drift": ("amplitude_mm", "time_constant_s"), "backlash": ("reversal_um",),
-            "cyclic_error": ("period_mm", "amplitude_mm"), "holder_compliance": ("stiffness_N_per_um",)}[effect]
+            "cyclic_error": ("period_mm", "amplitude_mm"),
+            "holder_compliance": ("stiffness_N_per_um",)}[effect]
     return max(_rel(got[k], truth[k]) for k in keys)
 
 
@@ -306,7 +311,8 @@ def table(rows) -> str:
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="3 bundles per kind (seeds 1, 3, 5), < 60 s")
-    ap.add_argument("--per-kind", type=int, default=100, help="bundles per kind, both halves (default 100)")
+    ap.add_argument("--per-kind", type=int, default=100,
+                    help="seeds --first … this − 1 per kind, both halves (default 100)")
     ap.add_argument("--half", choices=("check", "tune", "all"), default="check")
     ap.add_argument("--kinds", default=",".join(EFFECTS), help="comma-separated kinds")
     ap.add_argument("--verbose", action="store_true", help="one line per bundle")

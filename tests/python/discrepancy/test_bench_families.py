@@ -40,4 +40,5 @@ def test_quick_families_table(capsys):
     assert bench.classify("backlash", {"axis": "X"}, [("backlash", {"axis": "Y"})]) == (False, True)
     assert bench.classify("thermal_drift", {"axis": "Z"}, [("scale_error", {})]) == (False, True)
     assert bench.classify("runout", {}, []) == (False, False)
-    assert abs(bench.parameter_error("backlash", {"reversal_um": 5.5}, {"reversal_um": 5.0}, "") - 0.1) < 1e-12
+    err = bench.parameter_error("backlash", {"reversal_um": 5.5}, {"reversal_um": 5.0}, "")
+    assert abs(err - 0.1) < 1e-12
