@@ -43,7 +43,7 @@ time_constant_s = 1200.0
 """
 PART = "G21 G90 G17\nG0 X-150 Y-100 Z-60\nG1 F400\n" + "".join(
     f"G1 X{150 if i % 2 == 0 else -150}\nG1 Y{-100 + 25 * (i + 1)}\n" for i in range(8)
-) + "G3 X-110 Y140 I0 J20\nG1 X0 Y0\nM30\n"
+) + "G3 X-150 Y140 I0 J20\nG1 X0 Y0\nM30\n"
 
 
 def real_machine(out: Path) -> Path:

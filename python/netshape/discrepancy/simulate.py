@@ -101,3 +101,33 @@ def program_tip_errors(truth, commanded, nominal) -> np.ndarray:
         last[b.line] = np.asarray(b.end, float)
     c = np.array([last[b.line] for b in nb], float)
     return c + np.asarray(_m.tip_error(m, c)) + state_error(m, d, t) - nom
+
+
+def _rms(e) -> float:
+    e = np.asarray(e, float)
+    return float(np.sqrt(np.mean(np.sum(e * e, axis=1)))) if len(e) else 0.0
+
+
+def closed_loop(truth, machine, folder, program, *, seed: int = 0, chord_tolerance: float = 5e-4,
+                **grid) -> dict:
+    """One round of the learning loop on a virtual machine: measure the grid on ``truth`` (TOML,
+    :func:`measure_grid` with ``grid``), diagnose it against ``machine`` (TOML), write the updated
+    machine to ``folder/machine_updated.toml``, diagnose again against it, and run ``program`` (a
+    Toolpath) compensated with either machine on the truth. Returns {diagnosis, again, updated,
+    error_original_mm, error_updated_mm} (rms over the block ends of the tip error, mm)."""
+    from netshape.compensation import compensate_program
+    from netshape.machine import load_machine
+
+    from .workflow import diagnose
+
+    folder = Path(folder)
+    bundle = measure_grid(truth, folder / "bundle", model=machine, seed=seed, **grid)
+    d = diagnose(bundle, machine=machine)
+    updated = folder / "machine_updated.toml"
+    updated.write_text(d.apply(Path(machine)))
+    again = diagnose(bundle, machine=updated)
+    err = {}
+    for key, m in (("error_original_mm", machine), ("error_updated_mm", updated)):
+        cmd, _ = compensate_program(load_machine(m), program, chord_tolerance=chord_tolerance)
+        err[key] = _rms(program_tip_errors(truth, cmd, program))
+    return {"diagnosis": d, "again": again, "updated": updated, **err}

@@ -22,6 +22,7 @@ import datetime
 import math
 
 from netshape.machine.description import _ANGLE_UNITS, _LENGTH_UNITS
+from netshape.machine.provenance import MARK
 
 from .toml_text import TomlText
 
@@ -30,8 +31,6 @@ _AXES = "XYZ"
 _CONSTANT_KEYS = {"EC0Y": ("squareness", "EC0Y_rad"), "EB0Z": ("squareness", "EB0Z_rad"),
                   "EA0Z": ("squareness", "EA0Z_rad"), "spindle_tilt_a": ("spindle", "tilt_a_rad"),
                   "spindle_tilt_b": ("spindle", "tilt_b_rad")}
-#: marks the comment lines this module writes (read back by :func:`machine_terms`)
-MARK = "netshape diagnose"
 
 
 def _num(v: float) -> str:

@@ -337,7 +337,8 @@ def load_job_machine(job: Job):
 
 
 def scale_machine_errors(m, s: float) -> None:
-    """Multiply every geometric error of ``m`` (the 18 error motions, squareness, spindle tilt) by ``s``."""
+    """Multiply every error of ``m`` (the 18 error motions, squareness, spindle tilt, cyclic amplitudes,
+    backlash, thermal drift amplitudes) by ``s``."""
     axes = []
     for ax in m.axes:
         funcs = []
@@ -349,9 +350,12 @@ def scale_machine_errors(m, s: float) -> None:
                 f.values = [s * v for v in f.values]
             funcs.append(f)
         ax.errors = funcs
+        ax.cyclic = [type(t)(amplitude=s * t.amplitude, period=t.period, phase=t.phase) for t in ax.cyclic]
+        ax.backlash = s * ax.backlash
         axes.append(ax)
     m.axes = axes
     m.ec0y, m.eb0z, m.ea0z = s * m.ec0y, s * m.eb0z, s * m.ea0z
+    m.thermal = [type(t)(axis=t.axis, amplitude=s * t.amplitude, time_constant=t.time_constant) for t in m.thermal]
     m.spindle_tilt_a, m.spindle_tilt_b = s * m.spindle_tilt_a, s * m.spindle_tilt_b
 
 

@@ -15,6 +15,7 @@ S_yz → EA0Z, S_zx → −EB0Z, ε_xs/ε_ys → spindle_tilt_a/b, L → tool_le
 from __future__ import annotations
 
 from .._core import machine as _m
+from .provenance import machine_terms
 from .description import AXES, iso_names, load_machine, machine_from_dict, read_error_table
 from .volumetric_map import (
     ErrorMap,
@@ -85,7 +86,7 @@ __all__ = [
     "AXES", "Axis", "Component", "CyclicTerm", "ThermalDrift", "actual_path", "approach_directions",
     "state_error", "ErrorFunction", "ErrorMap", "Machine", "Order", "OutOfRange",
     "SEEDS003_SYMBOLS", "Side", "actual_points", "compare_orders", "component_name", "error_map",
-    "grid_error_map", "grid_points", "ideal_machine", "iso_names", "load_machine", "machine_from_dict",
+    "grid_error_map", "grid_points", "ideal_machine", "iso_names", "load_machine", "machine_terms", "machine_from_dict",
     "plot_error_map", "plot_surface_error", "program_error_map", "program_points", "read_error_table",
     "rotation_zyx", "tip_error", "volumetric_error",
 ]

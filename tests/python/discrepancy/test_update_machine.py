@@ -10,16 +10,14 @@ machine, run on the truth, keeps ≤ 10 % of the tip error the original machine'
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
 
 import netshape.discrepancy as nd
 from netshape import toolpath
 from netshape.cli import main
-from netshape.compensation import compensate_program
-from netshape.discrepancy.simulate import measure_grid, program_tip_errors
-from netshape.discrepancy.update_machine import MARK
+from netshape.discrepancy.simulate import closed_loop, measure_grid
 from netshape.machine import load_machine
+from netshape.machine.provenance import MARK
 
 BASE = """\
 # test VMC: head Z, saddle Y, table X
@@ -76,35 +74,23 @@ def _truth(tmp_path, effect):
     return p
 
 
-def _program_error(machine_file, truth, nominal):
-    out, _ = compensate_program(load_machine(machine_file), nominal, chord_tolerance=5e-4)
-    e = program_tip_errors(truth, out, nominal)
-    return float(np.sqrt(np.mean(np.sum(e * e, axis=1))))
-
-
 @pytest.mark.parametrize("effect", sorted(HIDDEN))
 def test_round_trip(tmp_path, effect):
     """The thresholds are the issue's: effect named, null after the update, ≥ 90 % of the program
     error removed (the numbers of every effect are in docs/discrepancy.md)."""
     base = tmp_path / "machine.toml"
     base.write_text(BASE)
-    truth = _truth(tmp_path, effect)
-    bundle = measure_grid(truth, tmp_path / "bundle", model=base, seed=3)
-    d = nd.diagnose(bundle, machine=base)
-    assert d.effect == effect, d.summary()
-    new_text = d.apply(base)
-    assert new_text != BASE and f"# {MARK} {bundle}" in new_text
-    kept = [line for line in BASE.splitlines() if line.strip()]
-    changed = {line for line in kept if line not in new_text.splitlines()}
-    assert len(changed) <= 2, changed  # only the keys the diagnosis changed were rewritten
-    new = tmp_path / "machine_new.toml"
-    new.write_text(new_text)
-    again = nd.diagnose(bundle, machine=new)
-    assert again.effect is None, again.summary()
     nominal = toolpath.parse_gcode(PROGRAM, source="zigzag.ngc")
-    before = _program_error(base, truth, nominal)
-    after = _program_error(new, truth, nominal)
-    assert after <= 0.1 * before, (before, after)
+    r = closed_loop(_truth(tmp_path, effect), base, tmp_path, nominal, seed=3)
+    d = r["diagnosis"]
+    assert d.effect == effect, d.summary()
+    new_text = r["updated"].read_text()
+    assert f"# {MARK} {tmp_path / 'bundle'}" in new_text
+    kept = [line for line in BASE.splitlines() if line.strip()]
+    changed = [line for line in kept if line not in new_text.splitlines()]
+    assert len(changed) <= 2, changed  # only the keys the diagnosis changed were rewritten
+    assert r["again"].effect is None, r["again"].summary()
+    assert r["error_updated_mm"] <= 0.1 * r["error_original_mm"], (r["error_original_mm"], r["error_updated_mm"])
 
 
 def test_apply_without_effect_returns_the_text(tmp_path):
