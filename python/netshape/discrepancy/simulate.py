@@ -109,11 +109,12 @@ def _rms(e) -> float:
 
 
 def closed_loop(truth, machine, folder, program, *, seed: int = 0, chord_tolerance: float = 5e-4,
-                **grid) -> dict:
+                effects=None, **grid) -> dict:
     """One round of the learning loop on a virtual machine: measure the grid on ``truth`` (TOML,
     :func:`measure_grid` with ``grid``), diagnose it against ``machine`` (TOML), write the updated
     machine to ``folder/machine_updated.toml``, diagnose again against it, and run ``program`` (a
-    Toolpath) compensated with either machine on the truth. Returns {diagnosis, again, updated,
+    Toolpath) compensated with either machine on the truth. ``effects``: the catalogue entries both
+    diagnoses consider (default all). Returns {diagnosis, again, updated,
     error_original_mm, error_updated_mm} (rms over the block ends of the tip error, mm)."""
     from netshape.compensation import compensate_program
     from netshape.machine import load_machine
@@ -122,10 +123,10 @@ def closed_loop(truth, machine, folder, program, *, seed: int = 0, chord_toleran
 
     folder = Path(folder)
     bundle = measure_grid(truth, folder / "bundle", model=machine, seed=seed, **grid)
-    d = diagnose(bundle, machine=machine)
+    d = diagnose(bundle, machine=machine, effects=effects)
     updated = folder / "machine_updated.toml"
     updated.write_text(d.apply(Path(machine)))
-    again = diagnose(bundle, machine=updated)
+    again = diagnose(bundle, machine=updated, effects=effects)
     err = {}
     for key, m in (("error_original_mm", machine), ("error_updated_mm", updated)):
         cmd, _ = compensate_program(load_machine(m), program, chord_tolerance=chord_tolerance)

@@ -454,6 +454,23 @@ def check_tip_errors(job: Job, pts: np.ndarray, e: np.ndarray) -> None:
     raise ValueError(f"machine.file = {str(job.machine)!r}: gives {what}")
 
 
+def state_offsets(machine, tp, pts: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """Backlash and thermal drift (n, 3) [mm] at points ``pts`` sampled along the feed moves of ``tp`` at
+    feed-path distances ``s`` [mm] (sample_segments): each axis' approach direction along the samples
+    (steps below 1 µm ignored: a compensation's own corrections), the program time interpolated in the
+    feed-path distance between the feed blocks' ends (block_end_times, programmed feeds)."""
+    if not machine.has_state_errors() or len(pts) == 0:
+        return np.zeros_like(pts)
+    from netshape import machine as nm
+    from netshape._core import compensation as _c
+
+    t_end = np.asarray(_c.block_end_times(tp), dtype=float)
+    feed = [i for i, b in enumerate(tp.blocks) if b.kind.name != "rapid"]
+    dist = np.cumsum([tp.blocks[i].length() for i in feed])
+    t = np.interp(s, np.concatenate([[0.0], dist]), np.concatenate([[0.0], t_end[feed]]))
+    return nm.state_error(machine, nm.approach_directions(pts, [1.0, 1.0, 1.0], 1e-3), t)
+
+
 def stage_volumetric(job: Job, machine, tp_machine) -> VolumetricResult:
     """Volumetric error along the feed moves: at points every ``cutting.error_spacing_mm`` the actual tip
     p + e(p) and its distance to the nominal path (machine frame)."""
@@ -463,7 +480,7 @@ def stage_volumetric(job: Job, machine, tp_machine) -> VolumetricResult:
     pts, s = sample_segments(a, b, job.cutting["error_spacing_mm"])
     if len(pts) == 0:
         raise ValueError(f"program = {str(job.program)!r}: no feed moves to predict the volumetric error of")
-    e = nm.tip_error(machine, pts)
+    e = nm.tip_error(machine, pts) + state_offsets(machine, tp_machine, pts, s)
     check_tip_errors(job, pts, e)
     dev = distance_to_path(pts + e, a, b, job.cutting["error_spacing_mm"])
     return VolumetricResult(s_before_mm=s, before_mm=dev, points_mm=pts, error_vectors_mm=e)
@@ -480,7 +497,7 @@ def stage_volumetric_compensation(job: Job, machine, tp_machine, vol: Volumetric
     a, b = feed_segments(tp_machine)
     ca, cb = feed_segments(comp)
     pts, s = sample_segments(ca, cb, job.cutting["error_spacing_mm"])
-    actual = pts + nm.tip_error(machine, pts)
+    actual = pts + nm.tip_error(machine, pts) + state_offsets(machine, comp, pts, s)
     vol.after_mm = distance_to_path(actual, a, b, job.cutting["error_spacing_mm"])
     vol.s_after_mm = s
     vol.compensated = comp
