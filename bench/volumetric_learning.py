@@ -8,7 +8,7 @@ program compensated with either machine is run on the truth.
 
 Prints per case: the effect named, the effect the re-diagnosis names (should be none), and the rms
 tip error at the program's block ends left by the original and by the updated machine [µm].
---quick: one size and one seed per effect (the CI size).
+--quick: one size and one seed per effect (the CI size); --sizes 0.5,2 --seeds 1 a part of the family.
 """
 
 from __future__ import annotations
@@ -51,8 +51,11 @@ EFFECTS = ("squareness", "scale_error", "spindle_tilt", "backlash", "cyclic_erro
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--sizes", type=lambda v: [float(x) for x in v.split(",")], default=[0.5, 1.0, 2.0],
+                    help="size factors of the hidden effects (default 0.5,1,2)")
+    ap.add_argument("--seeds", type=lambda v: [int(x) for x in v.split(",")], default=[0, 1, 2])
     args = ap.parse_args()
-    sizes, seeds = ((1.0,), (0,)) if args.quick else ((0.5, 1.0, 2.0), (0, 1, 2))
+    sizes, seeds = ((1.0,), (0,)) if args.quick else (args.sizes, args.seeds)
     nominal = toolpath.parse_gcode(PROGRAM, source="zigzag.ngc")
     base = DEMO.read_text()
     print(f"{'effect':14s} {'size':>5s} {'seed':>4s}  {'named':14s} {'after':8s} {'orig um':>8s} {'upd um':>8s} "
