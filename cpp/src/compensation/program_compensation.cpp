@@ -134,13 +134,15 @@ struct Segments {
 };
 
 // Adaptive halving: every segment whose actual path (commanded points interpolated, moved by e) leaves
-// the nominal segment by more than tol at t = ¼, ½ or ¾ is split at its nominal midpoint, whose
+// the nominal segment by more than tol at t = ¼, ½ or ¾, or that is longer than max_length (a quarter
+// of the shortest cyclic period: three checks cannot see a sine longer segments span), is split at its
+// nominal midpoint, whose
 // commanded point is compensated; all pending pieces are handled together, left halves then right
 // halves. Returns per segment the interior commanded points in path order; `worst` gets the largest
 // accepted deviation.
 std::vector<std::vector<Vec3>> subdivide(const Machine& machine, MachineData& data, Compensator& comp,
-                                         const Segments& s, double tol, int max_depth, const std::string& source,
-                                         double& worst) {
+                                         const Segments& s, double tol, double max_length, int max_depth,
+                                         const std::string& source, double& worst) {
   const std::size_t n = s.a.size();
   std::vector<std::vector<std::pair<double, Vec3>>> interior(n);
   std::vector<std::size_t> seg(n);
@@ -158,7 +160,7 @@ std::vector<std::vector<Vec3>> subdivide(const Machine& machine, MachineData& da
         const Vec3 act = c + machine::tip_error(machine, data, c) + (OA[k] + t * (OB[k] - OA[k]));
         dev = std::max(dev, point_segment_distance(act, A[k], B[k]));
       }
-      if (dev > tol)
+      if (dev > tol || (B[k] - A[k]).norm() > max_length)
         bad.push_back(k);
       else
         worst = std::max(worst, dev);
@@ -350,7 +352,11 @@ ProgramResult compensate_program(const Machine& machine, const toolpath::Toolpat
   }
   if (!owner.empty()) {
     double worst = 0.0;
-    const auto interior = subdivide(machine, data, comp, segs, tol, options.max_halvings, source, worst);
+    double max_length = std::numeric_limits<double>::infinity();
+    for (const machine::Axis& ax : machine.axes)
+      for (const machine::CyclicTerm& c : ax.cyclic) max_length = std::min(max_length, 0.25 * c.period);
+    const auto interior =
+        subdivide(machine, data, comp, segs, tol, max_length, options.max_halvings, source, worst);
     report.max_path_deviation = std::max(report.max_path_deviation, worst);
     for (std::size_t k = 0; k < owner.size(); ++k) {
       const std::size_t i = owner[k];

@@ -13,7 +13,8 @@
 /// - rapids move to their compensated ends;
 /// - a line becomes one or more lines: each output segment is halved until the actual path between
 ///   compensated points, checked at ¼, ½ and ¾ of it, stays within `chord_tolerance` of the nominal
-///   line (at most `max_halvings` times);
+///   line and, on a machine with cyclic terms, it is no longer than a quarter of the shortest period
+///   (at most `max_halvings` times);
 /// - an arc stays a (moved) arc when the moved arc's actual path, checked at max(8, n) points with
 ///   n = toolpath::chord_count(r, sweep, chord_tolerance / 2), stays within `chord_tolerance` of the
 ///   nominal arc and the moved arc does not change the difference of its end radii by more than
