@@ -85,3 +85,19 @@ def test_deflection_learning_cut(tmp_path):
     best = rms["machine's own tool (the best possible)"]
     assert rms["updated tool"] <= best + 0.1 * (rms["original tool"] - best)
     assert (tmp_path / "tool_updated.toml").read_text().count("holder_compliance_um_per_N") == 1
+
+
+@pytest.mark.slow
+def test_volumetric_learning(tmp_path):
+    """Issue 43 item 4: the learning loop on a machine finds the three hidden errors, the re-diagnosis
+    against the learned machine finds nothing, and the learned machine's compensation leaves < 10 % of
+    the demo machine's tip error on the real machine."""
+    import json
+
+    out = _run(tmp_path, "volumetric_learning.py")
+    s = json.loads((tmp_path / "summary.json").read_text())
+    assert {e["effect"] for e in s["effects"]} == {"backlash", "cyclic_error", "thermal_drift"}, out
+    assert s["re_diagnosis_effect"] is None
+    err = s["tip_error_rms_um"]
+    assert err["learned machine"] < 0.1 * err["demo machine"]
+    assert "backlash_um" in (tmp_path / "machine_learned.toml").read_text()

@@ -290,6 +290,10 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
     if forces is not None:
         summary["forces"] = {"max_peak_resultant_N": float(np.max(forces.peak_resultant, initial=0.0)),
                              "samples": int(len(forces.peak_resultant))}
+    if machine is not None:
+        from netshape.machine import machine_terms
+
+        summary["machine"] = {"file": str(job.machine), "terms": machine_terms(job.machine)}
     if vol is not None and vol.report:
         summary["volumetric_compensation"] = {k: v for k, v in vol.report.items() if isinstance(v, (int, float, str))}
 
