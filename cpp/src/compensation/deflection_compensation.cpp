@@ -127,8 +127,8 @@ DeflectionCompensationResult compensate_deflection(const DeflectionModel& model,
   res.normals = wall_normals(nominal, po.side);
   const double eps = options.tolerance, lam = options.discount;
 
-  NETSHAPE_CHECK(options.active.size() == 0 || options.active.size() == n, "active.size", options.active.size(),
-                 "must be 0 or the number of path points");
+  const Eigen::Index n_active = options.active.size();
+  NETSHAPE_CHECK(n_active == 0 || n_active == n, "active.size", n_active, "must be 0 or the number of path points");
   // A corner point (the path turns there by more than corner_turn) starts the wall of the move out of
   // it; the offset its own engagement asks for (the turn's, one instant) cannot be written without
   // over- or undercutting the wall that follows it, so it takes the offset of the point after it and

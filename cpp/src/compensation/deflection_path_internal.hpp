@@ -159,17 +159,20 @@ inline void size_result(PathWallErrors& r, Eigen::Index n, int profile_levels) {
 /// The polyline turns by more than this at a corner [rad] (30°): more than a sampled arc does.
 inline constexpr double corner_turn = pi / 6.0;
 
+/// True at an inner point i where the polyline turns by more than corner_turn.
+inline bool is_corner(const Eigen::Ref<const Points3>& p, Eigen::Index i) {
+  if (i <= 0 || i + 1 >= p.rows()) return false;
+  const Vec2 in(p(i, 0) - p(i - 1, 0), p(i, 1) - p(i - 1, 1));
+  const Vec2 out(p(i + 1, 0) - p(i, 0), p(i + 1, 1) - p(i, 1));
+  if (in.norm() <= 1e-12 || out.norm() <= 1e-12) return false;
+  return in.normalized().dot(out.normalized()) < std::cos(corner_turn);
+}
+
 /// Unit tangent of the nominal polyline at i in XY: the central difference, one-sided at the ends. At a
 /// corner (the move out of i turns by more than corner_turn from the move into it) it is the outgoing
 /// move's direction: a corner point starts the wall of the move it starts (a finish pass that begins
 /// where its lead-in ends), so its wall normal and cutting frame are that move's, not the bisector's,
 /// which would put the corner's wall point beside both walls and its offset across them.
-inline bool is_corner(const Eigen::Ref<const Points3>& p, Eigen::Index i) {
-  if (i <= 0 || i + 1 >= p.rows()) return false;
-  const Vec2 in(p(i, 0) - p(i - 1, 0), p(i, 1) - p(i - 1, 1)), out(p(i + 1, 0) - p(i, 0), p(i + 1, 1) - p(i, 1));
-  return in.norm() > 1e-12 && out.norm() > 1e-12 && in.normalized().dot(out.normalized()) < std::cos(corner_turn);
-}
-
 inline Vec2 nominal_tangent(const Eigen::Ref<const Points3>& p, Eigen::Index i) {
   const Eigen::Index n = p.rows();
   const Eigen::Index a = i > 0 ? i - 1 : 0, b = i + 1 < n ? i + 1 : n - 1;

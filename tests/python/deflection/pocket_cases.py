@@ -36,7 +36,7 @@ class Pocket:
     rotation_deg: float = 0.0
     centre: tuple[float, float] = (0.0, 0.0)
     feed: float = 900.0          # [mm/min]
-    lead_in: float = 0.0         # the finish loop starts and ends this far along +X from its −Y side's middle
+    lead_in: float = 0.0         # [mm] the finish loop's start along +X from its −Y side's middle
 
     def validate(self) -> None:
         r = 0.5 * self.tool_diameter

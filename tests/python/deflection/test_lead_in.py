@@ -29,7 +29,8 @@ from pocket_cases import flat_cutter, Pocket, pocket_gcode, stock_bounds
 
 def test_corner_takes_the_outgoing_moves_normal():
     # a diagonal lead-in, then a straight wall along +X, then an arc sampled at 10° steps
-    arc = [(10.0 + 5.0 * math.sin(a), 5.0 - 5.0 * math.cos(a)) for a in np.radians(np.arange(10.0, 91.0, 10.0))]
+    angles = np.radians(np.arange(10.0, 91.0, 10.0))
+    arc = [(10.0 + 5.0 * math.sin(a), 5.0 - 5.0 * math.cos(a)) for a in angles]
     pts = np.array([(-2.0, 5.0), (-1.0, 2.5), (0.0, 0.0), (5.0, 0.0), (10.0, 0.0), *arc])
     pts = np.c_[pts, np.full(len(pts), -2.0)]
     n = np.asarray(d.wall_normals(pts, d.WallSide.right))
