@@ -27,10 +27,7 @@ Points2 wall_normals(const Eigen::Ref<const Points3>& nominal, WallSide side) {
   Points2 out(n, 2);
   const double s = side == WallSide::left ? 1.0 : -1.0;
   for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Index a = i > 0 ? i - 1 : 0, b = i + 1 < n ? i + 1 : n - 1;
-    Vec2 t(nominal(b, 0) - nominal(a, 0), nominal(b, 1) - nominal(a, 1));
-    if (t.norm() < 1e-12) t = Vec2(nominal(i, 0) - nominal(a, 0), nominal(i, 1) - nominal(a, 1));
-    t.normalize();
+    const Vec2 t = nominal_tangent(nominal, i);
     out(i, 0) = -s * t.y();
     out(i, 1) = s * t.x();
   }

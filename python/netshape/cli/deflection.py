@@ -202,7 +202,7 @@ def _final_wall(setup, r):
     normals = np.asarray(wall_normals(setup.nominal, setup.side))
     remains = walls.wall_remains_points(setup.program, setup.owner, setup.nominal, normals, np.asarray(r.depth),
                                         setup.cutter.radius)
-    return walls.final_wall_points(setup.owner, remains, np.asarray(r.engaged))
+    return walls.final_wall_points(setup.owner, remains, walls.generates_wall(r, setup.side))
 
 
 def _pieces(setup, final):
