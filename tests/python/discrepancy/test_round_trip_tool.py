@@ -86,7 +86,13 @@ def _pocket_walls(cutter, truth_cutter):
     normals = d.wall_normals(truth.nominal, truth.side)
     honest = d.path_wall_errors(truth.model, truth.cutter, truth.stock, truth.nominal, normals,
                                 np.asarray(comp.offsets), truth.options)
-    on = (np.asarray(honest.engaged) > 0) & (np.arange(n) > n // 2)  # the finish loop
+    # the finish loop, without its corner points (a turn of more than 30°: the compensation gives them
+    # the next point's offset and does not target their own error)
+    xy = np.asarray(truth.nominal)[:, :2]
+    d_in, d_out = np.diff(xy, axis=0)[:-1], np.diff(xy, axis=0)[1:]
+    cos = np.sum(d_in * d_out, axis=1) / (np.linalg.norm(d_in, axis=1) * np.linalg.norm(d_out, axis=1))
+    corner = np.r_[False, cos < np.cos(np.radians(30.0)), False]
+    on = (np.asarray(honest.engaged) > 0) & (np.arange(n) > n // 2) & ~corner
     return np.asarray(honest.error)[on, 1]
 
 
