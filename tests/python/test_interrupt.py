@@ -11,7 +11,6 @@ import subprocess
 import sys
 import textwrap
 import time
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -20,7 +19,11 @@ from netshape import _core
 from netshape.cutter import Cutter
 from netshape.stock import ZMap
 
-ROOT = Path(__file__).resolve().parents[2]
+
+def _env() -> dict:
+    """The environment of a child Python that imports the same netshape as this one (the installed
+    package, or the source tree a development run put on the path)."""
+    return dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p))
 
 
 def _lines(n: int, seed: int = 1):
@@ -93,7 +96,7 @@ def test_ctrl_c_stops_a_long_sweep_in_cpp_promptly():
             sys.exit(3)
         print("finished", flush=True)
     """)
-    env = dict(os.environ, PYTHONPATH=str(ROOT / "python") + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    env = _env()
     proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True, env=env)
     try:
         assert proc.stdout.readline().strip() == "go"
@@ -108,7 +111,7 @@ def test_ctrl_c_stops_a_long_sweep_in_cpp_promptly():
 
 def test_ctrl_c_during_a_job_exits_130_and_writes_nothing(tmp_path):
     out_dir = tmp_path / "demo"
-    env = dict(os.environ, PYTHONPATH=str(ROOT / "python") + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    env = _env()
     proc = subprocess.Popen([sys.executable, "-m", "netshape", "demo", "--out", str(out_dir), "--quiet"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
     try:
