@@ -74,6 +74,12 @@ class _Stages:
             self.bar.update(1)
         return out
 
+    def skip(self, name: str) -> None:
+        """A stage of the list that has nothing to do in this run: no time, the bar moves on."""
+        self.times[name] = 0.0
+        if self.bar is not None:
+            self.bar.update(1)
+
     def sub_progress(self, name: str, total: int, unit: str):
         """A callable ``f(done)`` that shows the progress inside a long stage on a second bar (None when
         quiet or when the stage is short)."""
@@ -224,9 +230,7 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
         # outside the travel the machine's error is extrapolated and compensation would be refused
         status["volumetric"] = "outside_travel" if outside else "ok"
         if c["volumetric"] and outside:
-            S.times["volumetric_compensation"] = 0.0
-            if S.bar is not None:
-                S.bar.update(1)
+            S.skip("volumetric_compensation")
             vol.after_mm, vol.s_after_mm = vol.before_mm, vol.s_before_mm
             vol.report = {"status": "skipped", "reason": outside[0]["message"]}
         elif c["volumetric"]:
@@ -245,9 +249,7 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
         traj_c = (S.run("feed_plan_compensated", st.stage_feed_plan, job, compensated_program[0])
                   if compensated_program is not None else None)
         if traj_c is None:
-            S.times["feed_plan_compensated"] = 0.0
-            if S.bar is not None:
-                S.bar.update(1)
+            S.skip("feed_plan_compensated")
 
     # ---- summary
     errors = {
