@@ -70,10 +70,53 @@ def _default(obj: Any) -> Any:
     return plain
 
 
+#: Lists longer than this are written one item per line, each item compact (see :func:`dumps_json`).
+LONG_LIST = 64
+
+
+def _compact(obj: Any) -> str:
+    return json.dumps(obj, allow_nan=False, default=_default)
+
+
+def _indented(obj: Any, indent: str, level: int, out: list[str]) -> None:
+    """``json.dumps(obj, indent=len(indent))`` into ``out``, except that each item of a list longer than
+    LONG_LIST is one compact line (C encoder): a 2·10⁶-point map is written in seconds, not minutes."""
+    obj = _plain(obj)
+    if isinstance(obj, dict) and obj:
+        pad = "\n" + indent * (level + 1)
+        out.append("{")
+        for i, (k, v) in enumerate(obj.items()):
+            if not isinstance(k, str):
+                k = json.loads(_compact({k: 0}))  # json's own key conversion (numbers, bools, None)
+                k = next(iter(k))
+            out.append(("," if i else "") + pad + _compact(k) + ": ")
+            _indented(v, indent, level + 1, out)
+        out.append("\n" + indent * level + "}")
+    elif isinstance(obj, (list, tuple)) and obj:
+        pad = "\n" + indent * (level + 1)
+        out.append("[")
+        long = len(obj) > LONG_LIST
+        for i, v in enumerate(obj):
+            out.append(("," if i else "") + pad)
+            if long:
+                out.append(_compact(v))
+            else:
+                _indented(v, indent, level + 1, out)
+        out.append("\n" + indent * level + "]")
+    else:
+        out.append(_compact(obj))
+
+
 def dumps_json(obj: Any, *, indent: int | None = 2, cause: str | None = None) -> str:
-    """Strict JSON text of ``obj`` (NumPy values as numbers/lists); refuses NaN/±inf (module docstring)."""
+    """Strict JSON text of ``obj`` (NumPy values as numbers/lists); refuses NaN/±inf (module docstring).
+    With ``indent``, as ``json.dumps(indent=...)`` except that every item of a list longer than
+    ``LONG_LIST`` items is one compact line."""
     try:
-        return json.dumps(obj, indent=indent, allow_nan=False, default=_default)
+        if indent is None:
+            return _compact(obj)
+        out: list[str] = []
+        _indented(obj, " " * indent, 0, out)
+        return "".join(out)
     except ValueError:  # json's "Out of range float values": find and name the number
         check_finite(obj, cause)
         raise

@@ -36,3 +36,25 @@ def test_nothing_is_written_when_a_number_is_not_finite(tmp_path):
     assert list(tmp_path.iterdir()) == []
     write_json(out, {"r": 1.0})
     assert out.read_text() == '{\n  "r": 1.0\n}\n'
+
+
+@pytest.mark.parametrize("doc", [
+    {"a": 1, "b": [1, 2, {"c": None, "d": []}], "e": {}, "f": "x\u00e9", "g": {1: 2, 2.5: 3, True: 1, None: 0}},
+    [1.5, -0.0, 1e300, 3], {"p": [[1, 2, 3]] * 10}, "s", 1, None, [], {}, {"z": list(range(64))},
+])
+def test_short_documents_are_laid_out_as_json_dumps_does(doc):
+    assert dumps_json(doc) == json.dumps(doc, indent=2)
+    assert dumps_json(doc, indent=1) == json.dumps(doc, indent=1)
+
+
+def test_a_long_list_has_one_compact_item_per_line_and_reads_back_equal():
+    doc = {"n": 3, "points": [{"xyz": [i, 0.5 * i, -i], "e": np.array([0.1 * i])} for i in range(1000)]}
+    text = dumps_json(doc)
+    lines = text.splitlines()
+    assert len(lines) == 1000 + 5
+    assert lines[4] == '    {"xyz": [1, 0.5, -1], "e": [0.1]},'
+    back = json.loads(text)
+    assert back["points"][999] == {"xyz": [999, 499.5, -999], "e": [99.9]}
+    doc["points"][500]["xyz"][1] = math.nan
+    with pytest.raises(NonFiniteResult, match=r"points\[500\]\.xyz\[1\] = nan"):
+        dumps_json(doc)
