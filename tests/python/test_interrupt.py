@@ -11,6 +11,7 @@ import subprocess
 import sys
 import textwrap
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -18,6 +19,8 @@ import pytest
 from netshape import _core
 from netshape.cutter import Cutter
 from netshape.stock import ZMap
+
+REPO = Path(__file__).resolve().parents[2]
 
 
 def _env() -> dict:
@@ -62,6 +65,36 @@ def test_an_exception_from_the_callback_stops_the_loop_and_the_next_call_runs_wh
     assert stats.moves == 50
 
 
+def test_a_volumetric_compensation_reports_and_stops_when_asked(tmp_path):
+    from netshape.compensation.volumetric import compensate_program
+    from netshape.machine import load_machine
+
+    rng = np.random.default_rng(3)
+    pts = np.c_[rng.uniform(-240, 240, (4000, 2)), rng.uniform(-300, -100, 4000)]
+    ngc = tmp_path / "long.ngc"
+    ngc.write_text("G21 G90 G17 G94\nG54\n" + "".join(f"G1 X{x:.3f} Y{y:.3f} Z{z:.3f} F3000\n"
+                                                       for x, y, z in pts) + "M30\n")
+    machine = load_machine(REPO / "examples" / "machines" / "vmc.toml")
+    calls = []
+
+    class Stop(Exception):
+        pass
+
+    def callback(what, done, total):
+        calls.append((what, done, total))
+        raise Stop
+
+    _core.set_progress(callback)
+    try:
+        with pytest.raises(Stop):
+            compensate_program(machine, ngc, chord_tolerance=1e-3)
+    finally:
+        _core.set_progress(None)
+    assert calls and calls[0][0] == "volumetric compensation" and calls[0][2] == 0 and calls[0][1] > 0
+    _, report = compensate_program(machine, ngc, chord_tolerance=1e-3)  # nothing left behind
+    assert report.blocks_in >= 4000
+
+
 def test_progress_context_shows_a_bar_per_stage_and_removes_the_callback(capsys):
     from netshape._progress import progress
 
@@ -82,6 +115,8 @@ def test_ctrl_c_stops_a_long_sweep_in_cpp_promptly():
         from netshape import _core
         from netshape.cutter import Cutter
         from netshape.stock import ZMap
+
+REPO = Path(__file__).resolve().parents[2]
         rng = np.random.default_rng(1)
         n = 100000
         a = np.c_[rng.uniform(0, 200, (n, 2)), np.full(n, 5.0)]

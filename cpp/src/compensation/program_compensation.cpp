@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "netshape/core/error.hpp"
+#include "netshape/core/progress.hpp"
 #include "netshape/machine/synthesis.hpp"
 #include "program_state.hpp"
 
@@ -151,9 +152,12 @@ std::vector<std::vector<Vec3>> subdivide(const Machine& machine, MachineData& da
   std::vector<Vec3> A = s.a, B = s.b, AC = s.ac, BC = s.bc, OA = s.oa, OB = s.ob;
   worst = 0.0;
   static constexpr double ts[3] = {0.25, 0.5, 0.75};
+  core::Progress progress("volumetric compensation", 0);  // pieces checked; their number is unknown
+  std::size_t checked = 0;
   for (int depth = 0; depth <= max_depth && !seg.empty(); ++depth) {
     std::vector<std::size_t> bad;
     for (std::size_t k = 0; k < seg.size(); ++k) {
+      progress.tick(++checked);
       double dev = 0.0;
       for (double t : ts) {
         const Vec3 c = AC[k] + t * (BC[k] - AC[k]);
@@ -339,7 +343,11 @@ ProgramResult compensate_program(const Machine& machine, const toolpath::Toolpat
   std::vector<std::size_t> owner;
   for (std::size_t i = 0; i < n; ++i) {
     if (blocks[i].kind != MotionKind::line) continue;
-    segs.push(blocks[i].start, blocks[i].end, s_cmd[i], e_cmd[i], sp.off_start[i], sp.off_end[i], lines[i]);
+    // the first block leaves the uncompensated initial position: it is followed from where the tip
+    // actually stands there, the only line a controller starting there can follow
+    const Vec3 from = i == 0 ? Vec3(s_cmd[0] + machine::tip_error(machine, data, s_cmd[0]) + sp.off_start[0])
+                             : blocks[i].start;
+    segs.push(from, blocks[i].end, s_cmd[i], e_cmd[i], sp.off_start[i], sp.off_end[i], lines[i]);
     owner.push_back(i);
   }
   for (std::size_t a = 0; a < split_arc.size(); ++a) {

@@ -126,6 +126,24 @@ def test_post_processed_program_lands_on_the_nominal_path(tmp_path, seed):
     assert _distance_to_path(ns.machine.actual_points(m, samples0), poly).max() > 10 * tol
 
 
+def test_a_first_feed_move_from_the_initial_position_is_followed_from_where_the_tip_stands(tmp_path):
+    # the program's first move is a G1 from the reader's initial position (0, 0, 0), which is not a
+    # programmed point and stays uncompensated: the move is followed from the tip's actual position there
+    m = ns.machine.load_machine(VMC)
+    src = tmp_path / "in.ngc"
+    src.write_text("G21 G90 G17 G94\nG1 X100 Y50 Z-200 F3000\nG1 X-100 Y-50 Z-150\nM30\n")
+    out = tmp_path / "out.ngc"
+    tol = 0.001
+    ns.compensation.compensate_gcode(m, src, out, chord_tolerance=tol)
+    comp = ns.toolpath.read_gcode(out)
+    start = ns.machine.actual_points(m, np.zeros((1, 3)))[0]
+    corners = np.array([start, [100.0, 50.0, -200.0], [-100.0, -50.0, -150.0]])
+    poly = [("line", (corners[0], corners[1])), ("line", (corners[1], corners[2]))]
+    pts = np.array([b.point_at(s) for b in comp.blocks for s in np.linspace(0.0, 1.0, 9)])
+    assert _distance_to_path(ns.machine.actual_points(m, pts), poly).max() <= tol + 1e-6
+    assert np.linalg.norm(start) > 10 * tol  # the uncompensated start is off the nominal origin
+
+
 def test_small_error_arcs_are_kept_as_arcs(tmp_path):
     doc = {"tool_chain": ["X", "Y"], "workpiece_chain": ["Z"], "tool": {"length_mm": 100.0},
            "axes": {"X": {"polynomials": {"EXX_mm": [0.0, 2e-6]}}}}
