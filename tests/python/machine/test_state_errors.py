@@ -117,7 +117,7 @@ def test_cyclic_error_between_the_checked_points():
     """Pieces are no longer than a quarter of the cyclic period: sampled every 0.25 mm, the actual path of
     the compensated zig-zag stays within the chord tolerance of the nominal one (before that rule the
     final 148 mm diagonal passed the checks at ¼, ½, ¾ and was 3.5 µm off between them)."""
-    from netshape.job.stages import distance_to_path, feed_segments, sample_segments
+    from netshape.job.stage_volumetric import distance_to_path, feed_segments, sample_segments
 
     doc = {**DOC, "thermal": [], "axes": {**DOC["axes"], "X": {**DOC["axes"]["X"], "backlash_um": 0.0},
                                            "Y": {}}}
