@@ -166,12 +166,13 @@ def stage_feed_plan(job: Job, tp):
     lim = job.limits
     jerk = lim.get("jmax_mm_s3", [math.inf] * 3)
     limits = nmo.AxisLimits(lim["vmax_mm_s"], lim["amax_mm_s2"], jerk)
-    options = nmo.make_options(lim["rule"], ts1=lim["ts1_s"], ts2=lim["ts2_s"], lookahead=lim["lookahead"],
-                               tolerance=lim["tolerance_mm"])
     from netshape._budget import MAX_PLAN_SAMPLES
 
+    # the options as keywords: "smooth" (smoothing, then blend) is a rule of plan, not of the planner
     try:
-        return nmo.plan(tp, limits, options, with_deviation=False, max_samples=MAX_PLAN_SAMPLES)
+        return nmo.plan(tp, limits, with_deviation=False, max_samples=MAX_PLAN_SAMPLES, rule=lim["rule"],
+                        ts1=lim["ts1_s"], ts2=lim["ts2_s"], lookahead=lim["lookahead"],
+                        tolerance=lim["tolerance_mm"])
     except ValueError as exc:  # the planner's own bound, reached where the estimate before the run was low
         if str(exc).startswith("max_samples = "):
             raise ValueError(f"{job.source}: limits: the feed plan needs more than {MAX_PLAN_SAMPLES} fine samples "
