@@ -8,7 +8,6 @@ coordinates, program point + active work offset (G54–G59 from the job), with t
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -18,21 +17,12 @@ from .spec import WORK_OFFSETS, Job
 
 @dataclass
 class Program:
-    """The job's program: blocks in work coordinates (G54 frame) and per block the offset to machine
-    coordinates [mm]."""
+    """The job's program in its own coordinates, and the job's work offsets. Its frames are operations
+    of the tool path (netshape.toolpath.Toolpath.to_machine / to_program): machine coordinates are
+    program point + the offset in force at the block (its G54…G59 word, the job's values)."""
 
     toolpath: object                 # netshape.toolpath.Toolpath, program coordinates, feeds scaled
-    offset_index: np.ndarray         # (n,) index into WORK_OFFSETS of the offset active at each block
-    offsets: np.ndarray              # (6, 3) work offsets [mm]
-    lines: np.ndarray                # (n,) source line of each block
-
-    def block_offsets(self) -> np.ndarray:
-        """(n, 3) offset program → machine of each block [mm]."""
-        return self.offsets[self.offset_index]
-
-    @property
-    def uses_one_offset(self) -> bool:
-        return len(np.unique(self.offset_index)) <= 1
+    offsets: np.ndarray              # (9, 3) work offsets G54…G59.3 [mm] (G59.1–G59.3 zero: refused)
 
 
 def active_work_offsets(path) -> np.ndarray:
@@ -47,17 +37,23 @@ def work_offsets_per_line(tp, source) -> np.ndarray:
     G54…G59 word takes effect on its own line). G59.1–G59.3 are refused: the job has no values for them."""
     from netshape import toolpath as tpm
 
+    _refuse_unknown_offsets(tp, source)
     last_line = max([b.line for b in tp.blocks] + [c.line for c in tp.commands] + [0])
     states = np.zeros(last_line + 1, dtype=np.int64)
     for c in tp.commands:
-        if c.kind != tpm.CommandKind.work_offset:
-            continue
-        k = int(c.value)
-        if k >= len(WORK_OFFSETS):
+        if c.kind == tpm.CommandKind.work_offset:
+            states[c.line:] = int(c.value)
+    return states
+
+
+def _refuse_unknown_offsets(tp, source) -> None:
+    """ValueError ``SOURCE:LINE: G59.1: …`` for a work offset the job has no key for (G59.1–G59.3)."""
+    from netshape import toolpath as tpm
+
+    for c in tp.commands:
+        if c.kind == tpm.CommandKind.work_offset and int(c.value) >= len(WORK_OFFSETS):
             raise ValueError(f"{source}:{c.line}: {c.text}: this work offset has no key in the job "
                              "(offsets.G54_mm … G59_mm)")
-        states[c.line:] = k
-    return states
 
 
 def _copy_block(tpm, b):
@@ -65,22 +61,6 @@ def _copy_block(tpm, b):
     for a in ("kind", "start", "end", "center", "clockwise", "plane", "turns", "feed", "spindle_rpm", "tool", "line"):
         setattr(nb, a, getattr(b, a))
     return nb
-
-
-def shift_toolpath(tp, delta: np.ndarray):
-    """A copy of ``tp`` with block ``i`` moved by ``delta[i]`` [mm] (start, end and arc centre)."""
-    from netshape import toolpath as tpm
-
-    out = []
-    for b, d in zip(tp.blocks, np.asarray(delta, dtype=float)):
-        nb = _copy_block(tpm, b)
-        nb.start = np.asarray(b.start) + d
-        nb.end = np.asarray(b.end) + d
-        nb.center = np.asarray(b.center) + d
-        out.append(nb)
-    # one new block per old one: the program's non-motion records (comments, M/S/T words, dwells,
-    # work offsets) keep their places
-    return tp.with_blocks(out, list(range(len(out))))
 
 
 def read_program(path):
@@ -96,8 +76,8 @@ def read_program(path):
 
 
 def stage_program(job: Job) -> Program:
-    """Read the program (arcs kept), scale its feeds by ``cutting.feed_scale`` and find the work offset
-    of every block."""
+    """Read the program (arcs kept), scale its feeds by ``cutting.feed_scale``, place its first move's
+    start (:func:`_with_start`) and refuse work offsets the job has no values for."""
     from netshape import toolpath as tpm
 
     tp = read_program(job.program)
@@ -112,11 +92,10 @@ def stage_program(job: Job) -> Program:
             blocks.append(nb)
         tp = tp.with_blocks(blocks, list(range(len(blocks))))
     tp = _with_start(job, tp)
-    lines = np.array([b.line for b in tp.blocks], dtype=np.int64)
-    per_line = work_offsets_per_line(tp, job.program)
-    idx = per_line[np.clip(lines, 0, len(per_line) - 1)]
-    offsets = np.array([job.offsets[g] for g in WORK_OFFSETS], dtype=float)
-    return Program(toolpath=tp, offset_index=idx, offsets=offsets, lines=lines)
+    _refuse_unknown_offsets(tp, job.program)
+    offsets = np.zeros((9, 3))
+    offsets[:len(WORK_OFFSETS)] = [job.offsets[g] for g in WORK_OFFSETS]
+    return Program(toolpath=tp, offsets=offsets)
 
 
 def _with_start(job: Job, tp):
@@ -142,57 +121,23 @@ def _with_start(job: Job, tp):
 
 
 def stock_frame_toolpath(prog: Program):
-    """The program in the stock's frame (G54 work coordinates)."""
-    if prog.uses_one_offset and prog.offset_index[0] == 0:
-        return prog.toolpath
-    return shift_toolpath(prog.toolpath, prog.block_offsets() - prog.offsets[0])
+    """The program in the stock's frame (G54 work coordinates): machine coordinates less the G54 offset,
+    a tool path that carries those offsets (``to_program`` brings a transform of it back)."""
+    return prog.toolpath.to_machine(prog.offsets - prog.offsets[0])
 
 
 def machine_frame_toolpath(prog: Program):
-    """The program in machine coordinates (program point + active work offset)."""
-    return shift_toolpath(prog.toolpath, prog.block_offsets())
+    """The program in machine coordinates (program point + the work offset in force)."""
+    return prog.toolpath.to_machine(prog.offsets)
 
 
-def to_program_frame(tp_machine, prog: Program):
-    """Blocks in machine coordinates back into the program's coordinates, block by block with the work
-    offset active at the block's source line."""
-    per_line = np.zeros(int(prog.lines.max()) + 2, dtype=np.int64)
-    per_line[prog.lines] = prog.offset_index
-    lines = np.array([b.line for b in tp_machine.blocks], dtype=np.int64)
-    idx = per_line[np.clip(lines, 0, len(per_line) - 1)]
-    return shift_toolpath(tp_machine, -prog.offsets[idx]), idx
-
-
-def write_program_text(tp, idx: np.ndarray, header: str) -> str:
-    """G-code of ``tp`` (program coordinates) with the program's non-motion records (comments, M/S/T
-    words, dwells, G54–G59) at their places. A tool path without records (built by hand) is written in
-    runs of one work offset, each with its G54–G59 word, so each runs under the offset it was written
-    for."""
+def write_program_text(tp, header: str) -> str:
+    """G-code of ``tp`` (program coordinates or a frame that carries its offsets) with the program's
+    non-motion records (comments, M/S/T words, dwells, G54–G59) at their places; G54 named after the
+    header when the program selects no offset before its first block (netshape.toolpath.format_gcode)."""
     from netshape import toolpath as tpm
 
-    blocks = tp.blocks
-    if len(blocks) == 0 or len(tp.commands) > 0:
-        # the program's own records carry its G54-G59 words at their places
-        return tpm.format_gcode(tp, header_comment=header)
-    cuts = [0] + [i for i in range(1, len(blocks)) if idx[i] != idx[i - 1]] + [len(blocks)]
-    parts = []
-    for r, (i0, i1) in enumerate(zip(cuts[:-1], cuts[1:])):
-        sub = tpm.Toolpath()
-        sub.blocks = blocks[i0:i1]
-        text = tpm.format_gcode(sub, header_comment=header if r == 0 else "")
-        lines = text.splitlines()
-        if r > 0:  # drop the repeated header lines and program end of the later runs
-            lines = [ln for ln in lines if ln.strip() and not ln.startswith(("(", "%"))]
-            lines = [ln for ln in lines if not re.fullmatch(r"\s*G21 G90 G17 G94( G91\.1)?\s*", ln)]
-        # each run names its work offset, as the original program selected it
-        k = 0
-        while k < len(lines) and (lines[k].startswith(("(", "%")) or lines[k].startswith("G21")):
-            k += 1
-        lines.insert(k, WORK_OFFSETS[int(idx[i0])])
-        if r < len(cuts) - 2:
-            lines = [ln for ln in lines if ln.strip() not in ("M30", "M2", "%")]
-        parts.extend(lines)
-    return "\n".join(parts) + "\n"
+    return tpm.format_gcode(tp, header_comment=header, work_offset_word=True)
 
 
 def _sub_toolpath(tp, blocks):

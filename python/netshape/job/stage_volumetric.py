@@ -64,24 +64,6 @@ def feed_segments(tp, chord_tolerance: float = 1e-4) -> tuple[np.ndarray, np.nda
     return np.asarray(a, dtype=float), np.asarray(b, dtype=float)
 
 
-def sample_segments(a: np.ndarray, b: np.ndarray, spacing: float) -> tuple[np.ndarray, np.ndarray]:
-    """Points every ≤ ``spacing`` mm along the segments (ends included) and their path distance [mm]."""
-    if len(a) == 0:
-        return np.zeros((0, 3)), np.zeros(0)
-    L = np.linalg.norm(b - a, axis=1)
-    n = np.maximum(1, np.ceil(L / spacing).astype(np.int64))
-    seg = np.repeat(np.arange(len(a)), n)
-    first = np.concatenate([[0], np.cumsum(n)[:-1]])
-    k = np.arange(seg.size) - np.repeat(first, n)
-    t = k / np.repeat(n, n)
-    pts = a[seg] + t[:, None] * (b[seg] - a[seg])
-    s0 = np.concatenate([[0.0], np.cumsum(L)[:-1]])
-    s = s0[seg] + t * L[seg]
-    pts = np.vstack([pts, b[-1:]])
-    s = np.concatenate([s, [s0[-1] + L[-1]]])
-    return pts, s
-
-
 def distance_to_path(points: np.ndarray, a: np.ndarray, b: np.ndarray, spacing: float) -> np.ndarray:
     """Distance [mm] of each point to the polyline segments (a[i], b[i]): candidate segments from a
     k-d tree of points every ``spacing`` mm along them, then the exact point-to-segment distance."""
@@ -145,7 +127,7 @@ def check_tip_errors(job: Job, pts: np.ndarray, e: np.ndarray) -> None:
 
 def state_offsets(machine, tp, pts: np.ndarray, s: np.ndarray, departing: bool = False) -> np.ndarray:
     """Backlash and thermal drift (n, 3) [mm] at points ``pts`` sampled along the feed moves of ``tp`` at
-    feed-path distances ``s`` [mm] (sample_segments): each axis' direction along the samples, arriving
+    feed-path distances ``s`` [mm] (Toolpath.sample): each axis' direction along the samples, arriving
     at the point (or ``departing`` from it; steps below 1 µm ignored: a compensation's own corrections),
     the program time interpolated in the feed-path distance between the feed blocks' ends
     (block_end_times, programmed feeds)."""
@@ -189,7 +171,7 @@ def stage_volumetric(job: Job, machine, tp_machine) -> VolumetricResult:
     from netshape import machine as nm
 
     a, b = feed_segments(tp_machine)
-    pts, s = sample_segments(a, b, job.cutting["error_spacing_mm"])
+    pts, s = tp_machine.sample(job.cutting["error_spacing_mm"])
     if len(pts) == 0:
         raise ValueError(f"program = {str(job.program)!r}: no feed moves to predict the volumetric error of")
     check_tip_errors(job, pts, nm.tip_error(machine, pts))
@@ -205,8 +187,7 @@ def stage_volumetric_compensation(job: Job, machine, tp_machine, vol: Volumetric
 
     comp, report = nc.compensate_program(machine, tp_machine, job.compensate["chord_tolerance_mm"])
     a, b = feed_segments(tp_machine)
-    ca, cb = feed_segments(comp)
-    pts, s = sample_segments(ca, cb, job.cutting["error_spacing_mm"])
+    pts, s = comp.sample(job.cutting["error_spacing_mm"])
     vol.after_mm, _ = state_deviation(machine, comp, pts, s, a, b, job.cutting["error_spacing_mm"])
     vol.s_after_mm = s
     vol.compensated = comp
