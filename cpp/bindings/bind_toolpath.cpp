@@ -7,6 +7,7 @@
 
 #include "default_types.hpp"
 #include "netshape/toolpath/block_arrays.hpp"
+#include "netshape/toolpath/frames.hpp"
 #include "netshape/toolpath/gcode_reader.hpp"
 #include "netshape/toolpath/gcode_writer.hpp"
 
@@ -234,6 +235,21 @@ void bind_toolpath(py::module_& m) {
       .def("summary", &Toolpath::summary)
       .def("split_arcs", &Toolpath::split_arcs, py::arg("chord_tolerance"),
            "A copy with every arc replaced by chords within chord_tolerance [mm].")
+      .def("work_offset_index", &work_offset_index,
+           "(n,) index 0…8 (G54…G59.3) of the work offset in force at each block (0 before any G54…).")
+      .def("block_offsets", &block_offsets,
+           "(n, 3) float64 offset program → machine at each block [mm]: work_offsets row in force + tool length.")
+      .def("to_machine", &to_machine, py::arg("offsets"),
+           "A copy in machine coordinates: each block moved by the work offset (rows of offsets, (9, 3) [mm]) "
+           "and tool length in force; carries offsets as work_offsets.")
+      .def("to_program", &to_program,
+           "A copy in program coordinates: each block moved back by the offset in force (work_offsets zero).")
+      .def("sample", [](const Toolpath& t, double spacing, bool feeds_only, double chord_tolerance) {
+        Samples smp = sample(t, spacing, feeds_only, chord_tolerance);
+        return py::make_tuple(std::move(smp.points), std::move(smp.s));
+      }, py::arg("spacing"), py::arg("feeds_only") = true, py::arg("chord_tolerance") = 1e-4,
+           "(points (m, 3) [mm], s (m,) [mm]): points every <= spacing along the moves (feed moves only when "
+           "feeds_only; arcs as chords within chord_tolerance), s the distance along them.")
       .def("__len__", [](const Toolpath& t) { return t.blocks.size(); })
       .def("__getitem__", [](const Toolpath& t, py::ssize_t i) {
         const auto n = static_cast<py::ssize_t>(t.blocks.size());
@@ -283,7 +299,9 @@ void bind_toolpath(py::module_& m) {
       .def_readwrite("chord_tolerance", &WriterOptions::chord_tolerance, "[mm]")
       .def_readwrite("decimals", &WriterOptions::decimals, "-1: shortest exact form; else fixed decimals")
       .def_readwrite("absolute_arc_centers", &WriterOptions::absolute_arc_centers)
-      .def_readwrite("header_comment", &WriterOptions::header_comment);
+      .def_readwrite("header_comment", &WriterOptions::header_comment)
+      .def_readwrite("work_offset_word", &WriterOptions::work_offset_word,
+                     "write G54 after the header when no work offset is selected before the first block");
 
   const auto dflt = py::arg_v("options", ReaderOptions{}, "ReaderOptions()");
   m.def("read_gcode", [](const std::string& path, const ReaderOptions& o) {

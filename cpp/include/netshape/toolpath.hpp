@@ -5,3 +5,4 @@
 #include "netshape/toolpath/gcode_reader.hpp"
 #include "netshape/toolpath/gcode_writer.hpp"
 #include "netshape/toolpath/block_arrays.hpp"
+#include "netshape/toolpath/frames.hpp"

@@ -1,6 +1,7 @@
 // G-code writer: modal output, shortest exact numbers (std::to_chars), arcs as G2/G3 or chords.
 #include "netshape/toolpath/gcode_writer.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -94,6 +95,12 @@ void write_gcode(const Toolpath& tp, std::ostream& os, const WriterOptions& opt)
     os << '(' << c << ")\n";
   }
   os << "G21 G90 G17 G94 " << (opt.absolute_arc_centers ? "G90.1" : "G91.1") << '\n';
+  if (opt.work_offset_word) {
+    const bool selected_first = std::any_of(tp.commands.begin(), tp.commands.end(), [](const Command& c) {
+      return c.kind == CommandKind::work_offset && c.before == 0;
+    });
+    if (!selected_first) os << "G54\n";
+  }
   // Block coordinates are in the tool path's frame (program + work offset + tool length); `off` is the
   // offset the commands written so far put in force, subtracted from every written coordinate.
   int coord_system = 0;

@@ -440,15 +440,35 @@ class Toolpath:
         ...
     def __repr__(self) -> str:
         ...
+    def block_offsets(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (n, 3) float64 offset program → machine at each block [mm]: work_offsets row in force + tool length.
+        """
+    def sample(self, spacing: typing.SupportsFloat | typing.SupportsIndex, feeds_only: bool = True, chord_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]]:
+        """
+        (points (m, 3) [mm], s (m,) [mm]): points every <= spacing along the moves (feed moves only when feeds_only; arcs as chords within chord_tolerance), s the distance along them.
+        """
     def split_arcs(self, chord_tolerance: typing.SupportsFloat | typing.SupportsIndex) -> Toolpath:
         """
         A copy with every arc replaced by chords within chord_tolerance [mm].
         """
     def summary(self) -> Summary:
         ...
+    def to_machine(self, offsets: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[9, 3]"]) -> Toolpath:
+        """
+        A copy in machine coordinates: each block moved by the work offset (rows of offsets, (9, 3) [mm]) and tool length in force; carries offsets as work_offsets.
+        """
+    def to_program(self) -> Toolpath:
+        """
+        A copy in program coordinates: each block moved back by the offset in force (work_offsets zero).
+        """
     def with_blocks(self, blocks: collections.abc.Sequence[Block], origin: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex]) -> Toolpath:
         """
         A copy with new blocks; origin[i] = index of the block new block i came from (commands follow).
+        """
+    def work_offset_index(self) -> list[int]:
+        """
+        (n,) index 0…8 (G54…G59.3) of the work offset in force at each block (0 before any G54…).
         """
     @property
     def blocks(self) -> list[Block]:
@@ -569,6 +589,14 @@ class WriterOptions:
         """
     @decimals.setter
     def decimals(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def work_offset_word(self) -> bool:
+        """
+        write G54 after the header when no work offset is selected before the first block
+        """
+    @work_offset_word.setter
+    def work_offset_word(self, arg0: bool) -> None:
         ...
 def block_bounds(block: Block) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]]:
     ...

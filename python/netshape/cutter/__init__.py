@@ -32,6 +32,7 @@ import math
 import os
 
 from .._atomic import atomic_write
+from .._config import load_toml, number
 from .._core import cutter as _cutter
 
 
@@ -43,12 +44,6 @@ _KEYS = ("kind", "diameter_mm", "corner_radius_mm", "flutes", "helix_deg", "flut
          "youngs_modulus_MPa", "shank_diameter_mm", "shank_length_mm", "holder_diameter_mm", "holder_length_mm",
          "holder_compliance_um_per_N", "runout_rho_mm", "runout_lambda_deg")
 _REQUIRED = ("kind", "diameter_mm", "flutes", "helix_deg", "flute_length_mm", "stick_out_mm")
-
-
-def _number(key: str, value) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise ValueError(f"{key} = {value!r}: must be a finite number")
-    return float(value)
 
 
 def cutter_from_dict(d: dict, *, source: str = "cutter") -> Cutter:
@@ -66,9 +61,9 @@ def cutter_from_dict(d: dict, *, source: str = "cutter") -> Cutter:
         raise ValueError(f"kind = {kind_name!r}: must be \"flat\", \"ball\" or \"bull\"")
     c = Cutter()
     c.kind = _cutter.cutter_kind_from_string(kind_name)  # ValueError naming the value
-    c.radius = 0.5 * _number("diameter_mm", d["diameter_mm"])
+    c.radius = 0.5 * number(None, "diameter_mm", d["diameter_mm"])
     if "corner_radius_mm" in d:
-        c.corner_radius = _number("corner_radius_mm", d["corner_radius_mm"])
+        c.corner_radius = number(None, "corner_radius_mm", d["corner_radius_mm"])
     else:
         c.corner_radius = c.radius if c.kind == CutterKind.ball else 0.0
     flutes = d["flutes"]
@@ -81,20 +76,20 @@ def cutter_from_dict(d: dict, *, source: str = "cutter") -> Cutter:
         except ValueError as exc:
             raise ValueError(str(exc).replace(str(near), str(flutes))) from None
     c.flutes = flutes  # 1..64: checked by validate() below
-    c.helix = math.radians(_number("helix_deg", d["helix_deg"]))
-    c.flute_length = _number("flute_length_mm", d["flute_length_mm"])
-    c.stick_out = _number("stick_out_mm", d["stick_out_mm"])
+    c.helix = math.radians(number(None, "helix_deg", d["helix_deg"]))
+    c.flute_length = number(None, "flute_length_mm", d["flute_length_mm"])
+    c.stick_out = number(None, "stick_out_mm", d["stick_out_mm"])
     if "youngs_modulus_MPa" in d:
-        c.youngs_modulus = _number("youngs_modulus_MPa", d["youngs_modulus_MPa"])
+        c.youngs_modulus = number(None, "youngs_modulus_MPa", d["youngs_modulus_MPa"])
     if "holder_compliance_um_per_N" in d:
-        v = _number("holder_compliance_um_per_N", d["holder_compliance_um_per_N"])
+        v = number(None, "holder_compliance_um_per_N", d["holder_compliance_um_per_N"])
         if v < 0:
             raise ValueError(f"holder_compliance_um_per_N = {v!r}: must be ≥ 0 [µm/N]")
         c.holder_compliance = 1e-3 * v
     if "runout_rho_mm" in d:
-        c.runout_rho = _number("runout_rho_mm", d["runout_rho_mm"])
+        c.runout_rho = number(None, "runout_rho_mm", d["runout_rho_mm"])
     if "runout_lambda_deg" in d:
-        c.runout_lambda = math.radians(_number("runout_lambda_deg", d["runout_lambda_deg"]))
+        c.runout_lambda = math.radians(number(None, "runout_lambda_deg", d["runout_lambda_deg"]))
     c.validate()  # ValueError "cutter.<field> = value: requirement"
     return c
 
@@ -123,9 +118,7 @@ def _cutter_kind_name(k) -> str:
 
 def load_cutter(path: str | os.PathLike) -> Cutter:
     """Read a cutter from a TOML file. Unknown keys and bad values raise ValueError naming key and value."""
-    from .._text import read_toml
-
-    data = read_toml(path)
+    data = load_toml(path)
     try:
         return cutter_from_dict(data, source=os.fspath(path))
     except ValueError as exc:

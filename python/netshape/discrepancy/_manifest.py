@@ -13,6 +13,8 @@ from typing import Any
 
 import numpy as np
 
+from netshape._config import number
+
 
 @dataclass
 class Bundle:
@@ -35,16 +37,12 @@ def _fail(where: str, msg: str) -> ValueError:
 
 
 def _number(table: dict, key: str, where: str, *, positive: bool = False, default: Any = None) -> float:
+    """``table[key]`` read by netshape._config.number (``default`` when missing and given)."""
     if key not in table:
         if default is not None:
             return default
         raise _fail(where, f"missing key {key!r}")
-    v = table[key]
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-        raise _fail(where, f"{key} = {v!r}: must be a finite number")
-    if positive and v <= 0:
-        raise _fail(where, f"{key} = {v!r}: must be positive")
-    return float(v)
+    return number(where, key, table[key], positive=positive)
 
 
 def _noise_table(doc: dict, key: str, where: str) -> dict:

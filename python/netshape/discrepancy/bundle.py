@@ -373,9 +373,9 @@ def load_bundle(path: str | os.PathLike) -> Bundle:
     manifest = p if p.is_file() else p / "manifest.toml"
     if not manifest.is_file():
         raise FileNotFoundError(2, "No such file or directory", str(manifest))
-    from netshape._text import read_toml
+    from netshape._config import load_toml
 
-    doc = read_toml(manifest)
+    doc = load_toml(manifest)
     kind = doc.get("kind")
     where = str(manifest)
     if kind not in KINDS:

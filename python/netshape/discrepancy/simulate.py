@@ -35,9 +35,9 @@ def serpentine(lo, hi, counts) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _machine(path: Path, tool_length: float | None = None):
-    from netshape._text import read_toml
+    from netshape._config import load_toml
 
-    doc = read_toml(path)
+    doc = load_toml(path)
     if tool_length is not None:
         doc = copy.deepcopy(doc)
         doc.setdefault("tool", {})["length_mm"] = float(tool_length)

@@ -24,9 +24,10 @@ bundle, so a size effect from a dict needs ``reference_chip_mm`` in the file or 
 from __future__ import annotations
 
 import datetime as _dt
-import math
 import re
 import tomllib
+
+from netshape._config import number
 
 #: catalogue effects whose parameters live in the tool TOML / in the coefficient TOML
 TOOL_EFFECTS = ("holder_compliance", "runout")
@@ -93,9 +94,7 @@ def _parse(text: str, what: str) -> dict:
 
 
 def _float(v, name: str) -> float:
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-        raise ValueError(f"{name} = {v!r}: must be a finite number")
-    return float(v)
+    return number(None, name, v)
 
 
 def _effects(diagnosis, names: tuple, target: str) -> list:

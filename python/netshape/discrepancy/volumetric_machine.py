@@ -28,12 +28,12 @@ class MachineModel:
     """The machine file ``path`` (parsed once) as a volumetric model."""
 
     def __init__(self, path: str | os.PathLike, bundle=None):
-        from netshape._text import read_toml
+        from netshape._config import load_toml
 
         self.path = Path(path)
         if not self.path.is_file():
             raise FileNotFoundError(2, "No such file or directory", str(self.path))
-        self.doc = read_toml(self.path)
+        self.doc = load_toml(self.path)
         self.base = _desc.machine_from_dict(self.doc, self.path.parent, str(self.path))
         if bundle is not None:
             ts = [_AXES[k] for k in self.base.tool_chain]

@@ -161,7 +161,7 @@ def make_problem(bundle: Bundle, machine=None):
 
         return ForceProblem(bundle)
     if bundle.kind == "volumetric_error":
-        from .volumetric_effects import VolumetricProblem
+        from .volumetric_problem import VolumetricProblem
 
         return VolumetricProblem(bundle, machine)
     if bundle.kind == "wall_error":

@@ -136,9 +136,9 @@ def save_toml(shape: NurbsCurve | NurbsSurface, path: str | Path) -> None:
 
 
 def load_toml(path: str | Path) -> NurbsCurve | NurbsSurface:
-    from .._text import read_toml
+    from netshape._config import load_toml as read_document
 
-    return _from_file(read_toml(path), path)
+    return _from_file(read_document(path), path)
 
 
 def to_geomdl(shape: NurbsCurve | NurbsSurface):

@@ -21,6 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
+from . import program as pg
+from . import stage_volumetric as sv
 from . import stages as st
 from .spec import Job
 from .stage_deflection import stage_deflection
@@ -183,7 +185,7 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
     p, c = job.predict, job.compensate
     status: dict[str, str] = {}
 
-    prog = S.run("program", st.stage_program, job)
+    prog = S.run("program", pg.stage_program, job)
     stock0 = S.run("stock", st.stage_stock, job)
     warnings: list[dict] = []  # trouble met while running: {"kind", "line", "message"}
     zfinal, removed = S.run("cut", st.stage_cut, job, stock0, prog, warnings)
@@ -202,28 +204,19 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
         status["deflection"] = defl.status
         if defl.available and defl.after_mm is None:
             defl.after_mm = defl.before_mm  # program not changed for deflection: the same error after
-    # the program handed to the volumetric stage: deflection-compensated where that was applied
-    target_g54 = defl.compensated if (defl is not None and defl.compensated is not None) else None
-    if target_g54 is not None:
-        # deflection compensation works in the G54 frame: each block back into the frame of the work
-        # offset its source line runs under
-        per_line = np.zeros(int(prog.lines.max()) + 2, dtype=np.int64)
-        per_line[prog.lines] = prog.offset_index
-        t_lines = np.array([b.line for b in target_g54.blocks], np.int64)
-        t_idx = per_line[np.clip(t_lines, 0, len(per_line) - 1)]
-        target_prog = st.Program(toolpath=st.shift_toolpath(target_g54, prog.offsets[0] - prog.offsets[t_idx]),
-                                 offset_index=t_idx, offsets=prog.offsets, lines=t_lines)
-    else:
-        target_prog = prog
+    # the program handed to the volumetric stage (program coordinates): deflection-compensated where that
+    # was applied (it works in the stock's frame, whose offsets the tool path carries)
+    target = defl.compensated.to_program() if (defl is not None and defl.compensated is not None) else None
+    target_prog = pg.Program(toolpath=target, offsets=prog.offsets) if target is not None else prog
 
     vol = None
     machine = None
-    compensated_program = None   # (Toolpath in program frame, offset index per block)
+    compensated_program = None   # Toolpath, program coordinates
     if p["volumetric"]:
         def _volumetric():
-            m = st.load_job_machine(job)
-            tp_m = st.machine_frame_toolpath(prog)
-            return m, st.stage_volumetric(job, m, tp_m), outside_travel(m, tp_m)
+            m = sv.load_job_machine(job)
+            tp_m = pg.machine_frame_toolpath(prog)
+            return m, sv.stage_volumetric(job, m, tp_m), outside_travel(m, tp_m)
 
         machine, vol, outside = S.run("volumetric", _volumetric)
         warnings.extend(outside)
@@ -234,19 +227,19 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
             vol.after_mm, vol.s_after_mm = vol.before_mm, vol.s_before_mm
             vol.report = {"status": "skipped", "reason": outside[0]["message"]}
         elif c["volumetric"]:
-            target_machine = st.machine_frame_toolpath(target_prog)
-            vol = S.run("volumetric_compensation", st.stage_volumetric_compensation, job, machine,
+            target_machine = pg.machine_frame_toolpath(target_prog)
+            vol = S.run("volumetric_compensation", sv.stage_volumetric_compensation, job, machine,
                         target_machine, vol)
-            compensated_program = st.to_program_frame(vol.compensated, target_prog)
+            compensated_program = vol.compensated.to_program()
         else:
             vol.after_mm, vol.s_after_mm = vol.before_mm, vol.s_before_mm
-    if compensated_program is None and target_g54 is not None:
-        compensated_program = (target_prog.toolpath, target_prog.offset_index)
+    if compensated_program is None and target is not None:
+        compensated_program = target
 
     traj = traj_c = None
     if p["feed_plan"]:
         traj = S.run("feed_plan", st.stage_feed_plan, job, prog.toolpath)
-        traj_c = (S.run("feed_plan_compensated", st.stage_feed_plan, job, compensated_program[0])
+        traj_c = (S.run("feed_plan_compensated", st.stage_feed_plan, job, compensated_program)
                   if compensated_program is not None else None)
         if traj_c is None:
             S.skip("feed_plan_compensated")
@@ -304,12 +297,11 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
         from netshape._atomic import atomic_path, atomic_save_figure, atomic_write
 
         if compensated_program is not None:
-            tp, idx = compensated_program
             header = (f"netshape compensated {job.program.name}: {' then '.join(applied)}; "
                       f"run with the work offsets of the original")
             with atomic_write(folder / files["compensated_program"], "w", encoding=tpm.gcode_encoding(job.program),
                               errors="replace") as fh:
-                fh.write(st.write_program_text(tp, idx, header))
+                fh.write(pg.write_program_text(compensated_program, header))
         if job.report["zmap_stl"]:
             with atomic_path(folder / "zmap.stl") as tmp:
                 zfinal.to_stl(tmp)

@@ -10,14 +10,16 @@ against the current directory.
 from __future__ import annotations
 
 import copy
-import math
 import os
 import re
 from dataclasses import dataclass, field
+from functools import partial
 from pathlib import Path
 from typing import Any
 
+from netshape import _config as cfg
 from netshape._budget import MAX_STL_TRIANGLES, MAX_ZMAP_NODES
+from netshape.motion import PLAN_RULES
 
 #: Work offsets a program may select; the job gives each as ``G54_mm = [x, y, z]``.
 WORK_OFFSETS = ("G54", "G55", "G56", "G57", "G58", "G59")
@@ -39,7 +41,6 @@ _COMP_KEYS = {"deflection", "volumetric", "chord_tolerance_mm", "deflection_sche
               "deflection_unconverged"}
 _REPORT_KEYS = {"dpi", "zmap_stl", "plots"}
 _COEFF_KEYS = ("Ktc", "Krc", "Kac", "Kte", "Kre", "Kae")
-_RULES = ("paper", "vector", "per-axis", "junction-deviation", "blend")
 
 
 class JobError(ValueError):
@@ -84,61 +85,15 @@ class Job:
         return [c for c in COMPENSATIONS if self.compensate.get(c)]
 
 
-def _err(src: str, key: str, value: Any, why: str) -> JobError:
-    shown = "" if value is _MISSING else f" = {value!r}"
-    return JobError(f"{src}: {key}{shown}: {why}")
-
-
-_MISSING = object()
-
-
-def _check_keys(src: str, where: str, table: Any, known: set) -> dict:
-    if not isinstance(table, dict):
-        raise _err(src, where, table, "must be a table")
-    for k in table:
-        if k not in known:
-            name = f"{where}.{k}" if where else k
-            raise _err(src, name, table[k], f"unknown key (known: {', '.join(sorted(known))})")
-    return table
-
-
-def _number(src: str, key: str, v: Any, *, positive: bool = False, nonneg: bool = False) -> float:
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-        raise _err(src, key, v, "must be a finite number")
-    if positive and v <= 0:
-        raise _err(src, key, v, "must be positive")
-    if nonneg and v < 0:
-        raise _err(src, key, v, "must be ≥ 0")
-    return float(v)
-
-
-def _vec3(src: str, key: str, v: Any) -> list[float]:
-    if not isinstance(v, list) or len(v) != 3:
-        raise _err(src, key, v, "must be a list of 3 numbers [x, y, z] in mm")
-    return [_number(src, f"{key}[{i}]", x) for i, x in enumerate(v)]
-
-
-def _bool(src: str, key: str, v: Any) -> bool:
-    if not isinstance(v, bool):
-        raise _err(src, key, v, "must be true or false")
-    return v
-
-
-def _path(src: str, base: Path, key: str, v: Any, *, must_exist: bool = True) -> Path:
-    if not isinstance(v, str) or not v:
-        raise _err(src, key, v, "must be a file path (string)")
-    p = Path(v)
-    if not p.is_absolute():
-        p = base / p
-    if must_exist and not p.is_file():
-        raise _err(src, key, v, f"no such file ({p})")
-    return p
-
-
-def _read_toml(path: Path, src_for_errors: str) -> dict:
-    from netshape._text import read_toml
-
-    return read_toml(path, src_for_errors)
+# the shared field readers (netshape._config), raising JobError
+_err = partial(cfg.field_error, error=JobError)
+_MISSING = cfg.MISSING
+_check_keys = partial(cfg.check_keys, error=JobError)
+_number = partial(cfg.number, error=JobError)
+_vec3 = partial(cfg.vec3, error=JobError)
+_bool = partial(cfg.boolean, error=JobError)
+_path = partial(cfg.file_path, error=JobError)
+_read_toml = cfg.load_toml
 
 
 def _tool(src: str, base: Path, where: str, v: Any) -> dict:
@@ -294,9 +249,7 @@ def _limits(src: str, v: Any) -> dict:
             raise _err(src, f"limits.{key}", x, "must be a number or a list of 3 numbers")
         out[key] = [_number(src, f"limits.{key}", y, positive=True) for y in vals]
     if "rule" in t:
-        if t["rule"] not in _RULES:
-            raise _err(src, "limits.rule", t["rule"], f"must be one of {', '.join(_RULES)}")
-        out["rule"] = t["rule"]
+        out["rule"] = cfg.one_of(src, "limits.rule", t["rule"], PLAN_RULES, error=JobError)
     for key in ("tolerance_mm", "ts1_s", "ts2_s"):
         if key in t:
             out[key] = _number(src, f"limits.{key}", t[key], positive=True)

@@ -10,7 +10,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .spec import Job
-from .stages import Program, _sub_toolpath, coefficients_for, make_cutter, stock_frame_toolpath
+from .program import Program, _sub_toolpath, stock_frame_toolpath
+from .stages import coefficients_for, make_cutter
 
 
 @dataclass

@@ -341,7 +341,7 @@ def load_machine(path: str | os.PathLike) -> _m.Machine:
     p = Path(path)
     if not p.exists():
         raise FileNotFoundError(2, "No such file or directory", str(p))
-    from .._text import read_toml
+    from netshape._config import load_toml
 
-    doc = read_toml(p)
+    doc = load_toml(p)
     return machine_from_dict(doc, p.parent, str(p))

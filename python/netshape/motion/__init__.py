@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._core import motion as _m
+from .._core import toolpath as _tp
 
 AxisLimits = _m.AxisLimits
 PlanOptions = _m.PlanOptions
@@ -125,6 +126,12 @@ def blocks_to_arrays(blocks) -> dict:
     n = len(blocks)
     if n == 0:
         raise ValueError("blocks = []: the program has no motion blocks")
+    if all(type(b) is _tp.Block for b in blocks):  # the toolpath's own blocks: columns built in C++
+        cols = _tp.BlockArrays.from_blocks(blocks).to_dict()
+        return dict(kind=cols["kind"].astype(np.int32), start=cols["start"].copy(), end=cols["end"].copy(),
+                    center=cols["center"].copy(), clockwise=cols["clockwise"].astype(np.int32),
+                    plane=cols["plane"].astype(np.int32), turns=cols["turns"].astype(np.int32),
+                    feed=cols["feed"].copy())
     out = dict(kind=np.empty(n, np.int32), start=np.empty((n, 3)), end=np.empty((n, 3)), center=np.empty((n, 3)),
                clockwise=np.empty(n, np.int32), plane=np.empty(n, np.int32), turns=np.empty(n, np.int32),
                feed=np.empty(n))

@@ -21,18 +21,10 @@ from __future__ import annotations
 import math
 import os
 
+from .._config import load_toml, number
 from .._core import motion as _m
 
 _KEYS = (("vmax_mm_s", "velocity"), ("amax_mm_s2", "acceleration"), ("jmax_mm_s3", "jerk"))
-
-
-def _number(path, where, value) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ValueError(f"{path}: {where} = {value!r}: must be a number")
-    v = float(value)
-    if not (v > 0 and math.isfinite(v)):
-        raise ValueError(f"{path}: {where} = {value!r}: must be positive and finite")
-    return v
 
 
 def limits_from_dict(doc: dict, path: str = "<limits>") -> _m.AxisLimits:
@@ -47,9 +39,9 @@ def limits_from_dict(doc: dict, path: str = "<limits>") -> _m.AxisLimits:
             if isinstance(v, list):
                 if len(v) != 3:
                     raise ValueError(f"{path}: limits.{key} = {v!r}: must be a number or a list of 3 numbers")
-                vals[name] = [_number(path, f"limits.{key}[{i}]", x) for i, x in enumerate(v)]
+                vals[name] = [number(path, f"limits.{key}[{i}]", x, positive=True) for i, x in enumerate(v)]
             else:
-                vals[name] = [_number(path, f"limits.{key}", v)] * 3
+                vals[name] = [number(path, f"limits.{key}", v, positive=True)] * 3
     axes = doc.get("axes", {})
     if not isinstance(axes, dict):
         raise ValueError(f"{path}: axes must be a table")
@@ -59,7 +51,7 @@ def limits_from_dict(doc: dict, path: str = "<limits>") -> _m.AxisLimits:
             continue
         for key, name in _KEYS:
             if key in tab:
-                vals[name][i] = _number(path, f"axes.{ax}.{key}", tab[key])
+                vals[name][i] = number(path, f"axes.{ax}.{key}", tab[key], positive=True)
     for key, name in _KEYS[:2]:
         for i, ax in enumerate("xyz"):
             if vals[name][i] is None:
@@ -71,7 +63,5 @@ def limits_from_dict(doc: dict, path: str = "<limits>") -> _m.AxisLimits:
 def read_limits(path: str | os.PathLike) -> _m.AxisLimits:
     """Read AxisLimits from a TOML file; ValueError naming the file and key on bad content."""
     p = os.fspath(path)
-    from .._text import read_toml
-
-    doc = read_toml(p)
+    doc = load_toml(p)
     return limits_from_dict(doc, p)

@@ -237,9 +237,9 @@ def load_impeller(path: str | os.PathLike | None = None) -> Impeller:
     """The impeller of a TOML file of :class:`ImpellerParams` keys (None: the defaults)."""
     if path is None:
         return make_impeller()
-    from .._text import read_toml
+    from netshape._config import load_toml
 
-    data = read_toml(path)
+    data = load_toml(path)
     return make_impeller(impeller_params_from_dict(data, source=os.fspath(path)))
 
 

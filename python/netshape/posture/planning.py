@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from .._atomic import atomic_path, atomic_write
+from .._config import load_toml, number
 from .._core import posture as _p
 
 
@@ -20,12 +21,6 @@ CSV_COLUMNS = ("s_mm", "tip_x_mm", "tip_y_mm", "tip_z_mm", "axis_i", "axis_j", "
 
 #: Cutter TOML keys of the assembly beyond the cutter's own (lengths measured from the tip).
 ASSEMBLY_KEYS = ("shank_diameter_mm", "shank_length_mm", "holder_diameter_mm", "holder_length_mm")
-
-
-def _number(source: str, key: str, value) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise ValueError(f"{source}: {key} = {value!r}: must be a finite number")
-    return float(value)
 
 
 def assembly_from_dict(d: dict, *, source: str = "tool") -> _p.CutterAssembly:
@@ -41,10 +36,10 @@ def assembly_from_dict(d: dict, *, source: str = "tool") -> _p.CutterAssembly:
             raise ValueError(f"{source}: {key}: missing (posture planning needs {', '.join(ASSEMBLY_KEYS)})")
     a = _p.CutterAssembly()
     a.ball_radius = cutter.radius
-    a.shank_radius = 0.5 * _number(source, "shank_diameter_mm", d["shank_diameter_mm"])
-    a.shank_length = _number(source, "shank_length_mm", d["shank_length_mm"])
-    a.holder_radius = 0.5 * _number(source, "holder_diameter_mm", d["holder_diameter_mm"])
-    a.holder_length = _number(source, "holder_length_mm", d["holder_length_mm"])
+    a.shank_radius = 0.5 * number(source, "shank_diameter_mm", d["shank_diameter_mm"])
+    a.shank_length = number(source, "shank_length_mm", d["shank_length_mm"])
+    a.holder_radius = 0.5 * number(source, "holder_diameter_mm", d["holder_diameter_mm"])
+    a.holder_length = number(source, "holder_length_mm", d["holder_length_mm"])
     try:
         a.validate()
     except ValueError as exc:
@@ -52,15 +47,9 @@ def assembly_from_dict(d: dict, *, source: str = "tool") -> _p.CutterAssembly:
     return a
 
 
-def _load_toml(path) -> dict:
-    from .._text import read_toml
-
-    return read_toml(path)
-
-
 def load_tool(path: str | os.PathLike) -> _p.CutterAssembly:
     """Cutter assembly from a cutter TOML file with the assembly keys (see :func:`assembly_from_dict`)."""
-    return assembly_from_dict(_load_toml(path), source=os.fspath(path))
+    return assembly_from_dict(load_toml(path), source=os.fspath(path))
 
 
 def default_assembly() -> _p.CutterAssembly:
@@ -86,13 +75,13 @@ def kinematics_from_dict(d: dict, *, source: str = "machine") -> _p.Kinematics:
         c = d["table_centre_mm"]
         if not isinstance(c, list) or len(c) != 3:
             raise ValueError(f"{source}: table_centre_mm = {c!r}: must be [x, y, z] [mm]")
-        k.table_centre = np.array([_number(source, "table_centre_mm", v) for v in c])
+        k.table_centre = np.array([number(source, "table_centre_mm", v) for v in c])
     if "pivot_length_mm" in d:
-        k.pivot_length = _number(source, "pivot_length_mm", d["pivot_length_mm"])
+        k.pivot_length = number(source, "pivot_length_mm", d["pivot_length_mm"])
     if "tilt_min_deg" in d:
-        k.tilt_min = math.radians(_number(source, "tilt_min_deg", d["tilt_min_deg"]))
+        k.tilt_min = math.radians(number(source, "tilt_min_deg", d["tilt_min_deg"]))
     if "tilt_max_deg" in d:
-        k.tilt_max = math.radians(_number(source, "tilt_max_deg", d["tilt_max_deg"]))
+        k.tilt_max = math.radians(number(source, "tilt_max_deg", d["tilt_max_deg"]))
     try:
         k.validate()
     except ValueError as exc:
@@ -102,7 +91,7 @@ def kinematics_from_dict(d: dict, *, source: str = "machine") -> _p.Kinematics:
 
 def load_kinematics(path: str | os.PathLike) -> _p.Kinematics:
     """Machine kinematics from a TOML file (see :func:`kinematics_from_dict`)."""
-    return kinematics_from_dict(_load_toml(path), source=os.fspath(path))
+    return kinematics_from_dict(load_toml(path), source=os.fspath(path))
 
 
 def machine_gcode(kinematics: _p.Kinematics, tips, axes, *, feed_mm_per_min: float = 1000.0,

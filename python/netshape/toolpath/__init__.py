@@ -333,6 +333,7 @@ def format_gcode(
     decimals: int = -1,
     absolute_arc_centers: bool = False,
     header_comment: str = "",
+    work_offset_word: bool = False,
 ) -> str:
     """G-code text of ``toolpath`` (mm, G90, modal; see :func:`write_gcode`)."""
     opt = WriterOptions()
@@ -341,6 +342,7 @@ def format_gcode(
     opt.decimals = int(decimals)
     opt.absolute_arc_centers = bool(absolute_arc_centers)
     opt.header_comment = str(header_comment)
+    opt.work_offset_word = bool(work_offset_word)
     return _tp.format_gcode(toolpath, opt)
 
 
@@ -353,6 +355,7 @@ def write_gcode(
     decimals: int = -1,
     absolute_arc_centers: bool = False,
     header_comment: str = "",
+    work_offset_word: bool = False,
     encoding: str = "utf-8",
 ) -> None:
     """Write ``toolpath`` as G-code to ``path``, whole or not at all (temporary file + rename).
@@ -365,6 +368,8 @@ def write_gcode(
     force subtracted). ``decimals=-1`` writes the shortest numbers that read back exactly, so read ->
     write -> read gives the same blocks and the same commands. ``encoding``: that of the program the
     tool path was read from (:func:`gcode_encoding`), so its comments are written back byte for byte.
+    ``work_offset_word``: write G54 after the header when no work offset is selected before the first
+    block, so the program names the frame its coordinates are in.
     """
     text = format_gcode(
         toolpath,
@@ -373,6 +378,7 @@ def write_gcode(
         decimals=decimals,
         absolute_arc_centers=absolute_arc_centers,
         header_comment=header_comment,
+        work_offset_word=work_offset_word,
     )
     with atomic_write(path, "w", encoding=encoding, errors="replace") as fh:
         fh.write(text)

@@ -14,6 +14,7 @@ import netshape
 from netshape.job import job_from_dict, run_job
 from netshape.job import stage_deflection as sd
 from netshape.job import stages as st
+from netshape.job.program import stage_program
 
 from .conftest import DEMO
 
@@ -125,5 +126,5 @@ def test_ball_end_mill_is_reported_not_available(tmp_path, monkeypatch):
     job = _job(tmp_path)
     job.tool = dict(job.tool, kind="ball", corner_radius_mm=3.0)
     job.coefficients = "kim_zas_ball12"
-    res = sd.stage_deflection(job, st.stage_stock(job), st.stage_program(job), compensate=True)
+    res = sd.stage_deflection(job, st.stage_stock(job), stage_program(job), compensate=True)
     assert not res.available and "flat end mill" in res.reason

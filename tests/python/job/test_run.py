@@ -140,7 +140,7 @@ def test_failed_stage_is_named_and_writes_nothing_half(tmp_path, capsys, monkeyp
     """A stage that fails (here the volumetric compensation, made to raise) stops the run naming that
     stage and leaves no report, summary or temporary file; the CLI prints one line. (A program outside
     the machine's travel is a warning, not a failure: test_run_warnings.py.)"""
-    from netshape.job import stages
+    from netshape.job import stage_volumetric as stages
 
     def refuse(*args, **kwargs):
         raise ValueError("compensated axis Z = 5.0 mm is outside its travel [-450, 0] mm")
@@ -190,7 +190,7 @@ def test_example_job_api_runs(tmp_path, capsys):
 def test_program_switching_work_offsets_is_compensated_in_each_frame(tmp_path):
     """A program that cuts under G54, then under G55: the compensated program switches offsets at the
     same place, and read back with the job's offsets every nominal point is reached in the machine."""
-    from netshape.job.stages import active_work_offsets
+    from netshape.job.program import active_work_offsets
 
     d = _demo_copy(tmp_path)
     (d / "two.ngc").write_text(
@@ -228,9 +228,10 @@ def test_demo_program_clears_the_drawn_pocket():
     cut from the pre-shaped stock: every Z-map node 0.3 mm inside the drawn outline is at the floor,
     every node 0.3 mm outside it is untouched stock (no island left, no gouge)."""
     from netshape.job import stages as st
+    from netshape.job.program import stage_program
 
     job = load_job(DEMO / "job.toml")
-    prog = st.stage_program(job)
+    prog = stage_program(job)
     z, removed = st.stage_cut(job, st.stage_stock(job), prog)
     xs, ys = ns.stock.node_coordinates(z)
     X, Y = np.meshgrid(xs, ys)
@@ -248,9 +249,10 @@ def test_force_stage_in_chunks_cuts_the_same_stock(monkeypatch):
     Z-map carried over: the material it removes equals the plain sweep's, and the forces match those of
     one call to within the sampling restart at chunk starts."""
     from netshape.job import stages as st
+    from netshape.job.program import stage_program
 
     job = load_job(DEMO / "job.toml")
-    prog = st.stage_program(job)
+    prog = stage_program(job)
     stock0 = st.stage_stock(job)
     _, removed = st.stage_cut(job, stock0, prog)
     whole = st.stage_forces(job, stock0, prog)

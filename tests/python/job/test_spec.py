@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from netshape.job import JobError, job_from_dict, load_job, set_dotted
-from netshape.job.stages import active_work_offsets
+from netshape.job.program import active_work_offsets
 
 if sys.version_info >= (3, 11):
     import tomllib

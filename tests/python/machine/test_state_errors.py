@@ -117,7 +117,7 @@ def test_cyclic_error_between_the_checked_points():
     """Pieces are no longer than a quarter of the cyclic period: sampled every 0.25 mm, the actual path of
     the compensated zig-zag stays within the chord tolerance of the nominal one (before that rule the
     final 148 mm diagonal passed the checks at ¼, ½, ¾ and was 3.5 µm off between them)."""
-    from netshape.job.stages import distance_to_path, feed_segments, sample_segments
+    from netshape.job.stage_volumetric import distance_to_path, feed_segments
 
     doc = {**DOC, "thermal": [], "axes": {**DOC["axes"], "X": {**DOC["axes"]["X"], "backlash_um": 0.0},
                                            "Y": {}}}
@@ -125,6 +125,6 @@ def test_cyclic_error_between_the_checked_points():
     nominal = toolpath.parse_gcode(ZIGZAG, source="z.ngc")
     out, _ = compensate_program(m, nominal, chord_tolerance=1e-3)
     a, b = feed_segments(nominal)
-    pts, _ = sample_segments(*feed_segments(out), 0.25)
+    pts, _ = out.sample(0.25)
     dev = distance_to_path(pts + np.asarray(tip_error(m, pts)), a, b, 0.25)
     assert dev.max() <= 1.05e-3, dev.max()

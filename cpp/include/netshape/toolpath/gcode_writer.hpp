@@ -24,6 +24,9 @@ struct WriterOptions {
   int decimals = -1;               ///< -1: shortest form that reads back exactly; 0…12: fixed decimals
   bool absolute_arc_centers = false;  ///< G90.1 absolute I/J/K (exact centres) instead of G91.1 offsets
   std::string header_comment;      ///< written as a "( … )" comment on the first line when not empty
+  /// When no work_offset command precedes the first block, write "G54" after the "G21 …" line: the
+  /// program then names the frame its coordinates are in (G54 is the one in force at the start).
+  bool work_offset_word = false;
   void validate() const;
 };
 
