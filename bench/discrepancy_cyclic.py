@@ -1,4 +1,4 @@
-"""Whether cyclic_error (netshape/discrepancy/volumetric_effects.py) is named when a ball-screw
+"""Whether cyclic_error (netshape/discrepancy/volumetric_catalogue.py) is named when a ball-screw
 cyclic error is there, and only then (issue 37 item 3).
 
     PYTHONPATH=python python bench/discrepancy_cyclic.py

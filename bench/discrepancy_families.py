@@ -27,6 +27,11 @@ the CSV form or measuring order (below) alternates with each pass through the ef
   (netshape.deflection.predict_path), the clamp spring loaded by the element-sum force at each height's
   generating instant, runout as exact circles of the flute passes. Hidden: holder spring 5–30 N/µm;
   runout ρ 2–8 µm at λ 0–360°.
+* volumetric_ordered (not run by default: --kinds volumetric_ordered): the volumetric bundles with one
+  experiment (tool length 100 mm) measured X fastest (serpentine), so time follows position. Hidden: a
+  drift linear in time on a random axis, 2–8 µm/h (thermal_drift in its linear form, parameter
+  rate_mm_per_h); scale error; squareness (ranges as above). A drift is expected to be named and
+  reported `ambiguous` with the position effect that imitates it.
 
 Scores per bundle: `exact` — the effects added are exactly the hidden one (with its axis where it has
 one), or none for a control; `false` — an effect other than the hidden one is added (or any, on a
@@ -65,7 +70,11 @@ EFFECTS = {
     "volumetric_error": (None, "squareness", "scale_error", "thermal_drift", "spindle_tilt", "backlash",
                          "cyclic_error"),
     "wall_error": (None, "holder_compliance", "runout"),
+    # one experiment measured X fastest: time follows position (thermal_drift here: a linear drift)
+    "volumetric_ordered": (None, "thermal_drift", "scale_error", "squareness"),
 }
+#: the kinds run by default (and by --quick)
+KINDS = ("cutting_force", "volumetric_error", "wall_error")
 
 
 def hidden(kind: str, seed: int):
@@ -95,6 +104,8 @@ def hidden(kind: str, seed: int):
     if effect == "scale_error":
         v = np.where(on, signs * u(10.0, 40.0, 3), 0.0)  # hidden, on top of the model's EXX, EYY, EZZ
         return effect, dict(zip(("EXX_um_per_m", "EYY_um_per_m", "EZZ_um_per_m"), v))
+    if effect == "thermal_drift" and kind == "volumetric_ordered":
+        return effect, {"axis": "XYZ"[rng.integers(3)], "rate_mm_per_h": signs[0] * u(2e-3, 8e-3)}
     if effect == "thermal_drift":
         return effect, {"axis": "XYZ"[rng.integers(3)], "amplitude_mm": signs[0] * u(5e-3, 15e-3),
                         "time_constant_s": u(300.0, 3000.0)}
@@ -132,13 +143,17 @@ def force_case(folder, seed, effect, p):
                           phase0=float(rng.uniform(0, 2 * math.pi)), tool=FORCE_TOOL, **kw), form
 
 
-def volumetric_case(folder, seed, effect, p):
+def volumetric_case(folder, seed, effect, p, kind="volumetric_error"):
     rng = np.random.default_rng([371, seed])
     kw = {}
+    if kind == "volumetric_ordered":
+        kw = {"experiments": 1, "lengths": (100.0,)}
     if effect == "squareness":
         kw["squareness"] = {k[:4]: v for k, v in p.items() if v}
     elif effect == "scale_error":
         kw["scale"] = {k[:3]: v for k, v in p.items() if v}
+    elif effect == "thermal_drift" and "rate_mm_per_h" in p:
+        kw["drift"] = (p["axis"], p["rate_mm_per_h"] / 3600.0)
     elif effect == "thermal_drift":
         kw["thermal"] = (p["axis"], p["amplitude_mm"], p["time_constant_s"])
     elif effect == "spindle_tilt":
@@ -147,7 +162,9 @@ def volumetric_case(folder, seed, effect, p):
         kw["backlash"] = (p["axis"], p["reversal_um"])
     elif effect == "cyclic_error":
         kw["cyclic"] = (p["axis"], p["amplitude_mm"], p["period_mm"], p["phase_deg"])
-    order = ("serpentine", "random")[variant_index("volumetric_error", seed)]
+    order = "serpentine"
+    if kind == "volumetric_error":
+        order = ("serpentine", "random")[variant_index(kind, seed)]
     frame = (rng.uniform(-50, 50, 3), rng.uniform(-0.01, 0.01, 3))
     return g.volumetric_bundle(folder, noise=float(rng.uniform(5e-4, 1.5e-3)), seed=seed, grid=(21, 5, 3),
                                order=order, seconds_per_point=10.0, frame=frame, **kw), order
@@ -223,7 +240,8 @@ def wall_case(folder, seed, effect, p):
     return folder, form
 
 
-CASES = {"cutting_force": force_case, "volumetric_error": volumetric_case, "wall_error": wall_case}
+CASES = {"cutting_force": force_case, "volumetric_error": volumetric_case, "wall_error": wall_case,
+         "volumetric_ordered": lambda *a: volumetric_case(*a, kind="volumetric_ordered")}
 
 
 def _rel(a, b):
@@ -248,6 +266,10 @@ def parameter_error(effect, got: dict, truth: dict, variant: str) -> float:
         return max(abs(got[k] - truth[k]) / abs(truth[k] - g.MODEL[k]) for k in EDGE_KEYS)
     if effect == "size_effect":
         return abs(got["chip_exponent"] - truth["chip_exponent"]) / (1 - truth["chip_exponent"])
+    if effect == "thermal_drift" and "rate_mm_per_h" in truth:
+        return _rel(got["rate_mm_per_h"], truth["rate_mm_per_h"]) if "rate_mm_per_h" in got else math.inf
+    if effect == "thermal_drift" and "amplitude_mm" not in got:
+        return math.inf  # an exponential drift reported as linear
     keys = {"structural_mode": ("frequency_hz", "damping_ratio"),
             "thermal_drift": ("amplitude_mm", "time_constant_s"), "backlash": ("reversal_um",),
             "cyclic_error": ("period_mm", "amplitude_mm"),
@@ -314,7 +336,8 @@ def main(argv=None):
     ap.add_argument("--per-kind", type=int, default=100,
                     help="seeds --first … this − 1 per kind, both halves (default 100)")
     ap.add_argument("--half", choices=("check", "tune", "all"), default="check")
-    ap.add_argument("--kinds", default=",".join(EFFECTS), help="comma-separated kinds")
+    ap.add_argument("--kinds", default=",".join(KINDS),
+                    help=f"comma-separated kinds of {', '.join(EFFECTS)}")
     ap.add_argument("--verbose", action="store_true", help="one line per bundle")
     ap.add_argument("--first", type=int, default=0, help="start at this seed (to split a run)")
     ap.add_argument("--rows-out", help="also write the rows to this JSON file")

@@ -109,8 +109,10 @@ def _common(p) -> None:
     p.add_argument("--rpm", type=a.positive("--rpm", "rev/min"), required=True, metavar="RPM",
                    help="spindle speed [rev/min]")
     p.add_argument("--coefficients", type=a.parsed("--coefficients", _coefficients), required=True,
-                   metavar="NAME|K=V,...",
-                   help="named set, Ktc=...,Krc=...,Kac=...,Kte=...,Kre=...,Kae=... or KT=...,KR=...")
+                   metavar="NAME|K=V,...|FILE.toml",
+                   help="named set, Ktc=...,Krc=...,Kac=...,Kte=...,Kre=...,Kae=..., KT=...,KR=... or a "
+                        "coefficient TOML (Ktc_N_per_mm2 ... Kae_N_per_mm, optional chip_exponent, "
+                        "reference_chip_mm: the chip-size effect)")
 
 
 def _coefficients(text: str):
@@ -135,10 +137,12 @@ def run_wall(args) -> int:
     # values by load_cutter)
     if args.tool:
         from netshape.cutter import load_cutter
+        from netshape.deflection.chip import chip_of
 
         c = load_cutter(args.tool)
         diameter, flutes, helix = 2 * c.radius, c.flutes, math.degrees(c.helix)
         stick, e, holder = c.stick_out, c.youngs_modulus, c.holder_compliance
+        runout = chip_of(None, cutter=c)[1]  # the tool's runout in the element chips
         for name in ("diameter", "flutes", "helix", "stick_out", "youngs_modulus"):
             if getattr(args, name) is not None:
                 raise CliError(f"--{name.replace('_', '-')} = {getattr(args, name):g}: give either --tool "
@@ -150,7 +154,7 @@ def run_wall(args) -> int:
         if missing:
             raise CliError(f"{missing[0]}: required without --tool")
         diameter, flutes, helix, stick, e = args.diameter, args.flutes, args.helix, args.stick_out, args.youngs_modulus
-        holder = 0.0
+        holder, runout = 0.0, None
     if stick < args.ap:
         raise CliError(f"--stick-out = {stick:g}: shorter than the axial depth --ap = {args.ap:g} [mm]")
     if args.mode != "slot" and args.ae is None:
@@ -160,7 +164,7 @@ def run_wall(args) -> int:
     model = d.make_model(diameter=diameter, flutes=flutes, helix_deg=helix, stick_out=stick, youngs_modulus=e,
                          feed_per_tooth=args.feed_per_tooth, ap=args.ap, ae=args.ae, mode=args.mode,
                          coefficients=args.coefficients, inertia=args.inertia, load=args.load,
-                         holder_compliance=holder)
+                         holder_compliance=holder, chip=runout)
     res = d.steady_wall(model, args.mode, levels=args.levels)
     res.update({"mode": args.mode, "load": args.load, "inertia": args.inertia, "rpm": args.rpm})
     # a cantilever's deflection grows with stick-out³ / (E · D⁴): the tool's numbers are the cause

@@ -72,13 +72,19 @@ _LEVELS = ("bottom", "middle", "top")
 def parse_coefficients(text: str):
     """``NAME`` (a linear edge set of netshape.force or a Kline–DeVor set of :data:`KLINE_DEVOR_SETS`),
     ``Ktc=…,Krc=…,Kac=…,Kte=…,Kre=…,Kae=…`` (linear edge) or ``KT=…,KR=…`` (Kline–DeVor, paper eq. 1)
-    → LinearEdgeCoefficients or KlineDevorCoefficients. ValueError names the bad item."""
+    → LinearEdgeCoefficients or KlineDevorCoefficients; a path ending in ``.toml``: a coefficient file
+    with the chip-size effect (:func:`netshape.deflection.chip.load_coefficients`) →
+    SizeEffectCoefficients. ValueError names the bad item."""
     from netshape.force.simulate import parse_coefficients as parse_linear
     from netshape.force.simulate import parse_named_values
 
     if not isinstance(text, str) or not text.strip():
         raise ValueError(f"coefficients = {text!r}: expected a set name, Ktc=…,… or KT=…,KR=…")
     t = text.strip()
+    if t.lower().endswith(".toml") and "=" not in t:
+        from .chip import load_coefficients
+
+        return load_coefficients(t)
     if "=" not in t:
         if t in KLINE_DEVOR_SETS:
             kt, kr = KLINE_DEVOR_SETS[t]
@@ -110,7 +116,8 @@ def make_model(*, diameter: float, flutes: int, helix_deg: float, stick_out: flo
     """A validated :class:`DeflectionModel` for a steady cut (mm, MPa, degrees for the helix).
     ``coefficients``: text for :func:`parse_coefficients` or a coefficient object;
     ``holder_compliance`` [mm/N] the clamp/holder spring in series with the cantilever; ``chip`` a
-    netshape.force.RunoutSizeEffect (runout and chip-size effect of the element chips) or None."""
+    netshape.force.RunoutSizeEffect (runout and chip-size effect of the element chips) or None;
+    coefficients with a size effect (:class:`chip.SizeEffectCoefficients`) add theirs to it."""
     d = _check_positive("diameter", diameter)
     _check_positive("stick_out", stick_out)
     if not isinstance(youngs_modulus, (int, float)) or not math.isfinite(youngs_modulus) or youngs_modulus <= 0:
@@ -126,7 +133,10 @@ def make_model(*, diameter: float, flutes: int, helix_deg: float, stick_out: flo
         _check_positive("ae", ae)
         if ae > d:
             raise ValueError(f"ae = {ae!r}: must not exceed the diameter {d!r} [mm]")
+    from .chip import chip_of
+
     k = parse_coefficients(coefficients) if isinstance(coefficients, str) else coefficients
+    k, chip = chip_of(k, chip)
     m = DeflectionModel()
     fm = m.force
     fm.radius = 0.5 * d
@@ -156,15 +166,17 @@ def make_model(*, diameter: float, flutes: int, helix_deg: float, stick_out: flo
 
 def model_for_cutter(cutter, *, feed_per_tooth: float, coefficients, inertia: str = "square",
                      load: str = "distributed", ap: float = 1.0, disk_height: float = 0.05) -> DeflectionModel:
-    """A model from a netshape.cutter.Cutter (flat end mill): D, N, β, stick-out, E and the holder
-    compliance from the cutter."""
+    """A model from a netshape.cutter.Cutter (flat end mill): D, N, β, stick-out, E, the holder
+    compliance and the runout from the cutter (the size effect from ``coefficients``)."""
+    from .chip import chip_of
+
     if str(cutter.kind).split(".")[-1] != "flat":
         raise ValueError(f"tool kind = {str(cutter.kind).split('.')[-1]}: the deflection model needs a flat end mill")
     return make_model(diameter=2 * cutter.radius, flutes=cutter.flutes, helix_deg=math.degrees(cutter.helix),
                       stick_out=cutter.stick_out, youngs_modulus=cutter.youngs_modulus,
                       feed_per_tooth=feed_per_tooth, ap=ap, ae=2 * cutter.radius, mode="slot",
                       coefficients=coefficients, inertia=inertia, load=load, disk_height=disk_height,
-                      holder_compliance=cutter.holder_compliance)
+                      holder_compliance=cutter.holder_compliance, chip=chip_of(None, cutter=cutter)[1])
 
 
 def steady_wall(model: DeflectionModel, mode: str, levels: int = 21) -> dict:

@@ -26,7 +26,7 @@ from . import force_effects as _force_effects  # noqa: F401  (registers the cutt
 from . import volumetric_effects as _volumetric_effects  # noqa: F401  (registers the volumetric catalogue)
 from . import wall_effects as _wall_effects  # noqa: F401  (registers the wall-error catalogue)
 from .force_effects import ForceProblem, ForceSpec
-from .volumetric_problem import VolumetricProblem, VolumetricSpec
+from .volumetric_effects import VolumetricProblem, VolumetricSpec
 from .wall_effects import WallProblem, WallSpec
 from .workflow import Diagnosis, diagnose, make_problem
 

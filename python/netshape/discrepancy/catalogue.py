@@ -121,6 +121,14 @@ class Effect:
         )
         return EffectFit(self.parameters_of(x), new, len(x), x, getattr(problem, "last_status", None))
 
+    def fold_start(self, problem, spec, x):
+        """Start of a held-out fold's fit of the :meth:`refit` parameters shaped like ``x``: the
+        effect's first start on ``spec``, the model without it (computed under the fold's
+        ``problem.fit_mask``, so a start read from the data sees the fitting points only); None when
+        the first start has another shape (the fold then starts from ``x``)."""
+        s = np.atleast_1d(np.asarray(self.starts(problem, spec)[0], float))
+        return s if s.shape == np.shape(x) else None
+
     def refit(self, problem, spec, fit: EffectFit) -> tuple:
         """(make_spec, x0, bounds) to refit this effect on part of the points (cross-validation),
         starting from ``fit``; discrete choices of the fit stay fixed."""

@@ -184,7 +184,7 @@ class StructuralMode(Effect):
         for f in np.geomspace(lo, hi, 30):
             for z in (0.03, 0.12):
                 s = dataclasses.replace(spec, mode=(float(f), z))
-                best.append((problem.rms(s), f, z))
+                best.append((problem.fit_rms(s), f, z))
         best.sort()
         return [np.array([f, z]) for _, f, z in best[:2]]
 

@@ -24,6 +24,10 @@ class Problem:
     unit = ""
     experiments: list
     measured: list
+    #: the points a fit may see, one boolean mask per experiment (None: all). Set while a held-out
+    #: fold is fitted and evaluated: what a model fits from the data besides its parameters (the
+    #: volumetric frame, start values read off the residual) is then fitted on these points only.
+    fit_mask: list | None = None
 
     # --- nuisance parameters (none by default) ---------------------------------------------------
     def nuisance_experiments(self) -> list:
@@ -84,6 +88,10 @@ class Problem:
         cnt = sum(ri.size for ri in r)
         return math.sqrt(sq / max(cnt, 1))
 
+    def fit_rms(self, spec) -> float:
+        """rms over the points a fit may see (:attr:`fit_mask`)."""
+        return self.rms(spec, self.fit_mask)
+
     def bic(self, spec, k: int) -> float:
         """n·ln(RSS/n) + k·ln n over all residual values (n = points × 3)."""
         n = self.n_values()
@@ -93,8 +101,14 @@ class Problem:
     # --- fitting -----------------------------------------------------------------------------------
     def least_squares(self, make_spec, starts, bounds, train=None, max_nfev=None):
         """Fit internal parameters x of ``make_spec(x)`` (→ spec) by SciPy ``least_squares`` (trf)
-        from each start; with ``train`` None the nuisance parameters are fitted jointly. Returns
-        (x, spec) of the smallest cost."""
+        from each start; with ``train`` None the nuisance parameters are fitted jointly, else the fit
+        sees the ``train`` points only (:attr:`fit_mask`). Returns (x, spec) of the smallest cost."""
+        if train is not None and self.fit_mask is None:
+            self.fit_mask = train
+            try:
+                return self.least_squares(make_spec, starts, bounds, train, max_nfev)
+            finally:
+                self.fit_mask = None
         nuis = self.nuisance_experiments() if train is None else []
         best = None
         for x0 in starts:
@@ -167,18 +181,24 @@ class Problem:
 
     def cv_rms(self, make_spec, x0, bounds) -> float:
         """Held-out rms: for each fold the parameters x of ``make_spec`` are fitted on the training
-        points (from x0: the workflow passes the effect's start on the model without it, never the
-        all-data optimum) and predict the test points. ``self.last_cv_not_converged``: the number of
-        folds whose fit did not converge."""
+        points and predict the test points. ``x0``: the start, or a callable evaluated per fold (the
+        workflow passes the effect's start on the model without it, never the all-data optimum).
+        While a fold is fitted and evaluated :attr:`fit_mask` is its training points.
+        ``self.last_cv_not_converged``: the number of folds whose fit did not converge."""
         sq, cnt = 0.0, 0
         self.last_cv_not_converged = 0
         for train, test in self.folds():
+            self.fit_mask = train
             try:
-                x, s = self.least_squares(make_spec, [x0], bounds, train=train, max_nfev=30 * (len(x0) + 1))
+                start = np.atleast_1d(np.asarray(x0() if callable(x0) else x0, float))
+                x, s = self.least_squares(make_spec, [start], bounds, train=train,
+                                          max_nfev=30 * (start.size + 1))
+                r = self.residuals(s)
             except ValueError:
                 return math.inf
+            finally:
+                self.fit_mask = None
             self.last_cv_not_converged += self.last_status <= 0
-            r = self.residuals(s)
             for ri, ti in zip(r, test):
                 sq += float(np.sum(ri[ti] ** 2))
                 cnt += int(ti.sum()) * ri.shape[1]

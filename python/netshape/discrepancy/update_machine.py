@@ -9,7 +9,8 @@ against this machine, ``diagnose(bundle, machine=FILE)``):
   key's own unit); a component the machine gives by a table is refused (edit the table);
 * backlash: ``[axes.K] backlash_um`` (+ the reversal found);
 * cyclic error: a new ``[[axes.K.cyclic]]`` (period_mm, amplitude_mm, phase_deg);
-* thermal drift: a new ``[[thermal]]`` (axis, amplitude_mm, time_constant_s).
+* thermal drift: a new ``[[thermal]]`` (axis, amplitude_mm, time_constant_s; or axis, rate_mm_per_h
+  for a drift linear over the measurement).
 
 Every key written has a comment line above it naming the diagnosis (bundle, effect, UTC time).
 Everything else in the text stays as it was; the result is parsed and loaded as a machine before it
@@ -46,7 +47,8 @@ def _effect_of(diagnosis, name: str) -> str:
 
 def changes(diagnosis) -> list:
     """[(kind, data)] the diagnosis changed: ("model", name, delta coefficients), ("backlash", axis,
-    reversal mm), ("cyclic", axis, a mm, b mm, period mm), ("thermal", axis, amplitude mm, τ s)."""
+    reversal mm), ("cyclic", axis, a mm, b mm, period mm), ("thermal", axis, rate mm/s, k = 1/τ 1/s;
+    k = 0: a linear drift)."""
     before, after = diagnosis.spec_before, diagnosis.spec_after
     out = []
     b0, a0 = dict(before.model), dict(after.model)
@@ -105,9 +107,10 @@ def apply_to_machine(diagnosis, text: str, source: str = "<machine>", stamp: str
                      f"amplitude_mm = {_num(math.hypot(a, b))}\n"
                      f"phase_deg = {_num(math.degrees(math.atan2(b, a)) % 360.0)}\n")
         elif kind == "thermal":
-            axis, amp, tau = ch[1:]
-            t.append(f"# {who}: thermal_drift along {axis}\n[[thermal]]\naxis = \"{axis}\"\n"
-                     f"amplitude_mm = {_num(amp)}\ntime_constant_s = {_num(tau)}\n")
+            axis, rate, k = ch[1:]
+            form = (f"rate_mm_per_h = {_num(rate * 3600.0)}\n" if k == 0.0 else
+                    f"amplitude_mm = {_num(rate / k)}\ntime_constant_s = {_num(1.0 / k)}\n")
+            t.append(f"# {who}: thermal_drift along {axis}\n[[thermal]]\naxis = \"{axis}\"\n{form}")
     out = t.text()
     try:
         machine_from_dict(loads_toml(out, source), base_dir, source)

@@ -67,7 +67,15 @@ def contour_wall_model(e, model: dict):
     try:
         stock = load_stock(e.stock)
         prog = read_gcode(e.program)
-        setup = d.setup_path(prog, e.cutter, stock, coefficients=model["coefficients"], rpm=e.spindle_rpm,
+        # e₀ is the linear chip's: this model holds runout as the marks of the flute passes (above),
+        # so the tool file's runout is kept out of the chip loads of the deflection
+        cutter = e.cutter
+        if cutter.runout_rho:
+            from netshape.cutter import cutter_from_dict, cutter_to_dict
+
+            keep = {k: v for k, v in cutter_to_dict(cutter).items() if not k.startswith("runout")}
+            cutter = cutter_from_dict(keep)
+        setup = d.setup_path(prog, cutter, stock, coefficients=model["coefficients"], rpm=e.spindle_rpm,
                              spacing=e.spacing, inertia=model["inertia"], load=model["load"], side=e.side,
                              profile_levels=PROFILE_LEVELS)
         r = d.predict_path(setup)

@@ -161,7 +161,7 @@ def make_problem(bundle: Bundle, machine=None):
 
         return ForceProblem(bundle)
     if bundle.kind == "volumetric_error":
-        from .volumetric_problem import VolumetricProblem
+        from .volumetric_effects import VolumetricProblem
 
         return VolumetricProblem(bundle, machine)
     if bundle.kind == "wall_error":
@@ -207,7 +207,9 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4, machine=None) -> Dia
     added, rounds, chain = [], [], []
     k_total = k_nuis
     rms_cur = rms_before
-    cv_cur = rms_before
+    # the held-out rms of the model as it is: what it fits besides effect parameters (the volumetric
+    # frame) is fitted on each fold's fitting points, as in every candidate's folds
+    cv_cur = problem.cv_rms(lambda x: spec, np.zeros(0), (np.zeros(0), np.zeros(0)))
     bic_cur = problem.bic(spec, k_total)
     fit_notes = []
     ambiguous = []
@@ -239,7 +241,7 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4, machine=None) -> Dia
                 c["rejected"] = f"implausible: {why}"
             round_.append(c)
         rounds.append(round_)
-        for a in identifiability(problem, cat, round_, bic_cur):
+        for a in identifiability(problem, cat, round_, bic_cur, spec):
             if all(a["effects"] != b["effects"] for b in ambiguous):
                 ambiguous.append(a)
         if rms_cur <= NOISE_FACTOR * noise:
@@ -334,18 +336,28 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4, machine=None) -> Dia
     )
 
 
-def identifiability(problem, cat, round_, bic_cur) -> list:
+def identifiability(problem, cat, round_, bic_cur, spec=None) -> list:
     """Candidates of one round the bundle cannot tell apart (issue 37 item 5):
 
     * an effect that lowers the BIC by more than BIC_MARGIN (added, rejected or not) and works on a
       covariate that moves with another effect's (|corr| > CONFOUND_CORR between any of their values,
       from ``problem.covariate_vectors()``): the two cannot be told apart by this bundle;
+    * two such effects on different covariates whose fitted errors agree (with ``spec``, the model
+      of the round, on a problem with covariate vectors): the change each makes to the prediction
+      over all points, the other's refitted frame included, has |corr| > CONFOUND_CORR with the
+      other's. Covariates can move together jointly where no pair does (time measured X fastest
+      over three z levels follows z and y together: |corr(t, z)| ≤ 0.943 alone);
     * two candidates that both qualify and whose BICs differ by less than EQUAL_BIC.
 
     Returns [{effects, reason, measure}]."""
     out = []
     vecs = problem.covariate_vectors() if hasattr(problem, "covariate_vectors") else {}
     strong = [c for c in round_ if c["bic"] < bic_cur - BIC_MARGIN]
+
+    def add(a):
+        if all(a["effects"] != b["effects"] for b in out):
+            out.append(a)
+
     for c in strong:
         cov_c = cat[c["effect"]].covariate
         for other, cov_o in sorted({(n, e.covariate) for n, e in cat.items()}):
@@ -361,11 +373,27 @@ def identifiability(problem, cat, round_, bic_cur) -> list:
                         best = (r, na, nb)
             if best is None:
                 continue
-            a = {"effects": sorted([c["effect"], other]),
+            add({"effects": sorted([c["effect"], other]),
                  "reason": f"{best[1]} and {best[2]} move together (|corr| = {best[0]:.3f})",
-                 "measure": SEPARATE_BY.get(cov_c, f"vary {cov_c} independently of {cov_o}")}
-            if all(a["effects"] != b["effects"] for b in out):
-                out.append(a)
+                 "measure": SEPARATE_BY.get(cov_c, f"vary {cov_c} independently of {cov_o}")})
+    if spec is not None and vecs:
+        base = np.concatenate(problem.predict(spec)).ravel()
+        change = {c["effect"]: np.concatenate(problem.predict(c["_fit"].spec)).ravel() - base
+                  for c in strong if "_fit" in c}
+        names = sorted(change)
+        for i, a in enumerate(names):
+            for b in names[i + 1:]:
+                ca, cb = cat[a].covariate, cat[b].covariate
+                na, nb = np.linalg.norm(change[a]), np.linalg.norm(change[b])
+                if ca == cb or na == 0 or nb == 0:
+                    continue
+                r = abs(float(change[a] @ change[b])) / (na * nb)
+                if r > CONFOUND_CORR:
+                    cov = ca if ca in ("time", "tool_length", "direction") else cb
+                    add({"effects": [a, b],
+                         "reason": f"their fitted errors agree (|corr| = {r:.3f}): {ca} and {cb} move "
+                                   f"together in this bundle",
+                         "measure": SEPARATE_BY.get(cov, f"vary {ca} independently of {cb}")})
     ok = sorted((c for c in strong if "rejected" not in c), key=lambda c: c["bic"])
     for c in ok[1:]:
         if c["bic"] - ok[0]["bic"] < EQUAL_BIC:
@@ -380,16 +408,20 @@ def identifiability(problem, cat, round_, bic_cur) -> list:
 
 
 def _null_start(eff, problem, base, x_fit):
-    """Start of the cross-validation folds: the effect's first start on the model without it (its
-    parameters at their no-effect or catalogue default values), never the all-data optimum
-    ``x_fit``, which has seen the test points. Falls back to ``x_fit`` only when the effect's starts
-    do not match its refit parameters (a user effect with its own refit)."""
-    try:
-        x = np.atleast_1d(np.asarray(eff.starts(problem, base)[0], float))
-    except Exception:  # noqa: BLE001 (a user effect without starts)
-        return x_fit
+    """Start of the cross-validation folds, a callable evaluated per fold (under the fold's
+    ``problem.fit_mask``): :meth:`Effect.fold_start`, the effect's start on the model without it,
+    never the all-data optimum ``x_fit``, which has seen the test points. Falls back to ``x_fit``
+    only when the effect has no start of the refit's shape (a user effect with its own refit)."""
     x_fit = np.atleast_1d(np.asarray(x_fit, float))
-    return x if x.shape == x_fit.shape else x_fit
+
+    def start():
+        try:
+            x = eff.fold_start(problem, base, x_fit)
+        except Exception:  # noqa: BLE001 (a user effect without starts)
+            return x_fit
+        return x_fit if x is None else np.atleast_1d(np.asarray(x, float))
+
+    return start
 
 
 def _joint_refit(problem, base, chain):

@@ -226,11 +226,17 @@ def _coefficients(src: str, v: Any):
                        "or give Ktc=…,Krc=…,Kac=…,Kte=…,Kre=…,Kae=…)")
         return v
     if isinstance(v, dict):
-        known = {f"{k}_N_mm2" for k in _COEFF_KEYS[:3]} | {f"{k}_N_mm" for k in _COEFF_KEYS[3:]}
+        known = ({f"{k}_N_mm2" for k in _COEFF_KEYS[:3]} | {f"{k}_N_mm" for k in _COEFF_KEYS[3:]}
+                 | {"chip_exponent", "reference_chip_mm"})
         _check_keys(src, "coefficients", v, known)
         if not v:
             raise _err(src, "coefficients", v, "empty table")
-        return {k: _number(src, f"coefficients.{k}", x) for k, x in v.items()}
+        out = {k: _number(src, f"coefficients.{k}", x) for k, x in v.items()}
+        if "chip_exponent" in out and not 0.0 < out["chip_exponent"] <= 2.0:
+            raise _err(src, "coefficients.chip_exponent", out["chip_exponent"], "must be in (0, 2]")
+        if "reference_chip_mm" in out and not out["reference_chip_mm"] > 0.0:
+            raise _err(src, "coefficients.reference_chip_mm", out["reference_chip_mm"], "must be > 0 [mm]")
+        return out
     raise _err(src, "coefficients", v, "must be a named set, a string Ktc=…,… or a table of values")
 
 

@@ -95,17 +95,23 @@ def stage_cut(job: Job, stock0, prog: Program, warnings: list | None = None):
 
 
 def coefficients_for(job: Job, cutter):
-    """Force coefficients of the job for its cutter (linear edge for flat/bull, the ball model for ball)."""
+    """Force coefficients of the job for its cutter (linear edge for flat/bull, the ball model for ball;
+    with a ``chip_exponent`` ≠ 1 in the table: netshape.deflection.chip.SizeEffectCoefficients)."""
     from netshape import force as nf
     from netshape.cutter import CutterKind
 
     c = job.coefficients
     is_ball = cutter.kind == CutterKind.ball
     if isinstance(c, dict):
-        vals = {k.split("_")[0].lower(): v for k, v in c.items()}
+        from netshape.deflection.chip import SIZE_EFFECT_KEYS, SizeEffectCoefficients
+
+        vals = {k.split("_")[0].lower(): v for k, v in c.items() if k not in SIZE_EFFECT_KEYS}
         if is_ball:
             raise ValueError("coefficients: a ball end mill takes a named ball set (e.g. kim_zas_ball12)")
-        return nf.LinearEdgeCoefficients(**vals)
+        k = nf.LinearEdgeCoefficients(**vals)
+        if c.get("chip_exponent", 1.0) != 1.0:
+            return SizeEffectCoefficients(k, c["chip_exponent"], c.get("reference_chip_mm", 0.0))
+        return k
     if "=" in c:
         if is_ball:
             raise ValueError(f"coefficients = {c!r}: a ball end mill takes a named ball set (e.g. kim_zas_ball12)")
@@ -130,9 +136,11 @@ def stage_forces(job: Job, stock0, prog: Program, progress=None):
     called with the blocks done after each call). Returns a ProgramForceResult."""
     from netshape.force import ProgramForceResult, simulate_program
 
+    from netshape.deflection.chip import chip_of
+
     cutter = make_cutter(job.tool)
     c = job.cutting
-    coeffs = coefficients_for(job, cutter)
+    coeffs = chip_of(coefficients_for(job, cutter))[0]  # the Z-map force simulation is the linear model's
     tp = stock_frame_toolpath(prog)
     blocks = list(tp.blocks)
     z = stock0.copy()

@@ -52,3 +52,20 @@ def outside_travel(machine, tp_machine) -> list[dict]:
     if count > len(out):
         out[-1]["message"] += f"; {count - len(out)} more moves leave the travel"
     return out
+
+
+def forces_without_chip_extension(job, blocks) -> list[dict]:
+    """The tool's runout or the coefficients' chip-size effect, which the program forces (the Z-map
+    force simulation, the linear edge-force model) leave out; the deflection stage includes them."""
+    coeffs = job.coefficients if isinstance(job.coefficients, dict) else {}
+    what = []
+    if job.tool.get("runout_rho_mm"):
+        what.append(f"runout {float(job.tool['runout_rho_mm']):g} mm")
+    if coeffs.get("chip_exponent", 1.0) != 1.0:
+        what.append(f"chip_exponent {coeffs['chip_exponent']:g}")
+    cut = [b for b in blocks if int(b.kind) != 0]
+    if not what or not cut:
+        return []
+    return [{"kind": "forces_without_chip_extension", "line": int(cut[0].line),
+             "message": f"the program forces leave out the {' and the '.join(what)} (the Z-map force "
+                        "simulation uses the linear edge-force model); the deflection stage includes them"}]

@@ -37,6 +37,9 @@ Format (docs/machine.md has a full example)::
     axis = "Z"
     amplitude_mm = 0.01             # or amplitude_um
     time_constant_s = 1800.0
+    [[thermal]]                     # a drift linear in time: rate·t (instead of amplitude and τ)
+    axis = "Y"
+    rate_mm_per_h = 0.002
 
 Table columns: the axis position first (``X_mm``), then ISO 230-1 component names of that axis with
 a unit suffix: ``_mm`` or ``_um`` for EXX EYX EZX, ``_rad``, ``_urad`` or ``_arcsec`` for EAX EBX ECX.
@@ -200,16 +203,30 @@ def _cyclic(value: Any, where: str) -> list:
     return out
 
 
+#: τ [s] that holds a drift linear in time: rate·t is the τ → ∞ limit of amplitude·(1 − exp(−t/τ))
+#: at amplitude = rate·τ; C++ evaluates −amplitude·expm1(−t/τ), which is rate·t to rounding for t ≪ τ
+LINEAR_DRIFT_TIME_CONSTANT_S = 1e12
+
+
 def _thermal(value: Any, where: str) -> list:
     out = []
     for i, t in enumerate(_tables(value, where)):
         w = f"{where}[{i}]"
-        _check_keys(t, {"axis", "amplitude_mm", "amplitude_um", "time_constant_s"}, w)
+        _check_keys(t, {"axis", "amplitude_mm", "amplitude_um", "time_constant_s", "rate_mm_per_h"}, w)
         axis = t.get("axis")
         if not isinstance(axis, str) or axis.upper() not in AXES:
             raise ValueError(f"{w}.axis = {axis!r}: must be \"X\", \"Y\" or \"Z\"")
+        if "rate_mm_per_h" in t:
+            given = sorted({"amplitude_mm", "amplitude_um", "time_constant_s"} & set(t))
+            if given:
+                raise ValueError(f"{w}: rate_mm_per_h (a linear drift) and {given[0]} cannot both be given")
+            rate = _finite(t["rate_mm_per_h"], f"{w}.rate_mm_per_h") / 3600.0
+            tau = LINEAR_DRIFT_TIME_CONSTANT_S
+            out.append(_m.ThermalDrift(axis=AXES.index(axis.upper()), amplitude=rate * tau,
+                                       time_constant=tau))
+            continue
         if "time_constant_s" not in t:
-            raise ValueError(f"{w}: missing time_constant_s")
+            raise ValueError(f"{w}: missing time_constant_s (or rate_mm_per_h for a linear drift)")
         tau = _finite(t["time_constant_s"], f"{w}.time_constant_s")
         if not tau > 0:
             raise ValueError(f"{w}.time_constant_s = {tau}: must be > 0")

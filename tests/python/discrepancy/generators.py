@@ -254,9 +254,11 @@ def volumetric_bundle(
     seconds_per_point=20.0,
     cyclic=None,
     frame=None,
+    drift=None,
 ):
     """Write a volumetric_error bundle. Hidden: ``squareness`` {EC0Y, EB0Z, EA0Z: µrad}, ``scale``
-    {EXX/EYY/EZZ: µm/m}, ``thermal`` (axis, amplitude [mm], τ [s]), ``tilt`` (a, b) [µrad],
+    {EXX/EYY/EZZ: µm/m}, ``thermal`` (axis, amplitude [mm], τ [s]), ``drift`` (axis, rate [mm/s]: a
+    drift linear in time), ``tilt`` (a, b) [µrad],
     ``backlash`` (axis, reversal [µm]), ``cyclic`` (axis, amplitude [mm], period [mm], phase [deg]: that
     axis' error A·sin(2π·pos/period + phase)), ``frame`` (rotation ω [µrad] (3,), translation T [mm] (3,):
     the data in a measuring frame, e + ω × p + T); noise [mm]. Experiments use the tool lengths
@@ -302,6 +304,8 @@ def volumetric_bundle(
             e += np.cross(np.asarray(frame[0], float) * 1e-6, pts) + np.asarray(frame[1], float)
         if thermal is not None:
             e[:, "XYZ".index(thermal[0])] += thermal[1] * (1 - np.exp(-t / thermal[2]))
+        if drift is not None:
+            e[:, "XYZ".index(drift[0])] += drift[1] * t
         if backlash is not None:
             e[:, "XYZ".index(backlash[0])] += 0.5 * backlash[1] * 1e-3 * dirs
         e += rng.normal(0, noise, e.shape)

@@ -1,6 +1,7 @@
 """Issue 37 item 7: fits checked. SciPy least_squares' status is read (non-converged fits are
 reported in the candidate and the notes), and the cross-validation folds start from the model
-without the effect, not from the all-data optimum."""
+without the effect, not from the all-data optimum; what a fold fits besides the effect's parameters
+(the volumetric frame, start values read off the residual) sees its fitting points only."""
 
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ import pytest
 import netshape.discrepancy as nd
 from netshape.discrepancy.catalogue import EffectFit
 
-from generators import volumetric_bundle
+from generators import force_bundle, structured_volumetric_bundle, volumetric_bundle
 
 
 class ProbeOffset(nd.Effect):
@@ -89,7 +90,8 @@ def test_cv_folds_start_from_the_model_without_the_effect(offset_bundle, monkeyp
     orig = nd.VolumetricProblem.cv_rms
 
     def spy(self, make_spec, x0, bounds):
-        starts.append(np.array(x0, float))
+        if callable(x0):  # an effect's start, evaluated per fold on the fold's fitting points
+            starts.append(np.array(x0(), float))
         return orig(self, make_spec, x0, bounds)
 
     monkeypatch.setattr(nd.VolumetricProblem, "cv_rms", spy)
@@ -100,4 +102,38 @@ def test_cv_folds_start_from_the_model_without_the_effect(offset_bundle, monkeyp
         nd.unregister_effect("volumetric_error", "probe_offset_t")
     assert d.effect == "probe_offset_t" and abs(d.parameters["dx_um"] - 4.0) < 0.2
     assert np.array_equal(starts[0], [0.0])  # probe offset: 0, not the fitted 4 µm
-    assert starts[1][0] == 0.0  # thermal drift: amplitude 0 (no drift)
+    assert starts[1][0] == 0.0  # thermal drift: rate 0 (no drift)
+
+
+def test_held_out_points_shape_neither_the_frame_nor_the_starts(tmp_path):
+    """A fold's held-out points spoiled (volumetric: 1 mm added; forces: a 2400 Hz mode's response
+    ×100 added) change neither the fold's registered frame nor the start values read off the
+    residual (cyclic_error's periodogram, structural_mode's frequency scan); over all points they do.
+    Before, all three were fitted on all points."""
+    from netshape.discrepancy.force_catalogue import StructuralMode
+    from netshape.discrepancy.volumetric_effects import CyclicError
+
+    b = structured_volumetric_bundle(tmp_path / "v", extra=[("periodic", "ex", "x", 4e-3, 40.0)],
+                                     grid=(33, 4, 2))
+    fb = force_bundle(tmp_path / "f", mode=(1500.0, 0.05))
+
+    def volumetric(p, s):
+        return (*p.frame_of(s), *CyclicError()._starts_axis(p, s, "X"))
+
+    def other_mode(p, s):  # 100 × the response of another mode
+        return [100.0 * (o - q) for o, q in zip(p.predict(dataclasses.replace(s, mode=(2400.0, 0.03))),
+                                                p.predict(s))]
+
+    for problem, read, spoil in [
+        (nd.make_problem(nd.load_bundle(b)), volumetric, lambda p, s: [np.ones_like(m) for m in p.measured]),
+        (nd.make_problem(nd.load_bundle(fb)), lambda p, s: StructuralMode().starts(p, s), other_mode),
+    ]:
+        s = problem.initial_spec()
+        train, test = problem.folds()[0]
+        problem.fit_mask = train
+        before = read(problem, s)
+        problem.measured = [m + np.where(t[:, None], d, 0.0)
+                            for m, t, d in zip(problem.measured, test, spoil(problem, s))]
+        assert all(np.allclose(u, v, rtol=1e-9, atol=1e-12) for u, v in zip(before, read(problem, s)))
+        problem.fit_mask = None
+        assert not all(np.allclose(u, v, rtol=1e-6, atol=1e-9) for u, v in zip(before, read(problem, s)))

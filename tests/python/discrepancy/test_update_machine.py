@@ -58,6 +58,8 @@ HIDDEN = {
     "backlash": ([("origin_mm = [0.0, 0.0, 80.0]", "origin_mm = [0.0, 0.0, 80.0]\nbacklash_um = 8.0")], ""),
     "cyclic_error": ([], "[[axes.X.cyclic]]\nperiod_mm = 80.0\namplitude_um = 4.0\nphase_deg = 30.0\n"),
     "thermal_drift": ([], '[[thermal]]\naxis = "Z"\namplitude_mm = 0.012\ntime_constant_s = 900.0\n'),
+    # a drift linear over the measurement: named and written as its rate (issue 37)
+    "thermal_drift linear": ([], '[[thermal]]\naxis = "Y"\nrate_mm_per_h = 0.006\n'),
 }
 
 #: a pocket floor zig-zag with X reversals, a Y step per pass, and an arc; F300 (mm/min): ~13 min
@@ -84,10 +86,14 @@ def test_round_trip(tmp_path, effect):
     base = tmp_path / "machine.toml"
     base.write_text(BASE)
     nominal = toolpath.parse_gcode(PROGRAM, source="zigzag.ngc")
-    r = closed_loop(_truth(tmp_path, effect), base, tmp_path, nominal, seed=3, effects=[effect])
+    name = effect.split()[0]
+    r = closed_loop(_truth(tmp_path, effect), base, tmp_path, nominal, seed=3, effects=[name])
     d = r["diagnosis"]
-    assert d.effect == effect, d.summary()
+    assert d.effect == name, d.summary()
     new_text = r["updated"].read_text()
+    if effect.endswith("linear"):
+        assert abs(d.parameters["rate_mm_per_h"] - 0.006) < 3e-4, d.parameters
+        assert "rate_mm_per_h = " in new_text and "time_constant_s" not in new_text
     assert f"# {MARK} {tmp_path / 'bundle'}" in new_text
     kept = [line for line in BASE.splitlines() if line.strip()]
     changed = [line for line in kept if line not in new_text.splitlines()]
