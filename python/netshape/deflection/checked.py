@@ -35,7 +35,7 @@ class CheckedCompensation:
     samples, ``blocks``/``origin`` the written moves (see ``compensated_blocks``), ``check`` the written
     program against the drawing at ``density``× the samples, ``before`` the uncompensated program's
     check on the same drawing, ``rounds`` the compensations run, ``final`` the final-wall flag of each
-    dense drawing sample."""
+    dense drawing sample, ``active`` which of the setup's samples are compensated (final walls)."""
 
     result: object
     setup: object
@@ -47,6 +47,7 @@ class CheckedCompensation:
     final: np.ndarray
     level: int
     tolerance: float
+    active: np.ndarray | None = None
 
     @property
     def after_mm(self) -> dict:
@@ -141,9 +142,11 @@ def compensate_checked(setup, *, scheme: str = "accelerated", level: str = "midd
         nominal = p_pts[selected]
         res = _comp.compensate_deflection(setup.model, setup.cutter, setup.stock, nominal, o)
         sub = replace(setup, nominal=nominal, owner=p_owner[selected])
+        active = p_final[selected]
         blocks, origin, check = _write_and_check(sub, np.asarray(res.positions, dtype=float), d_pts, final,
-                                                 density, arc_tol)
-        out = CheckedCompensation(res, sub, blocks, origin, check, before, rounds, final, lv, float(tolerance))
+                                                 density, arc_tol, active)
+        out = CheckedCompensation(res, sub, blocks, origin, check, before, rounds, final, lv, float(tolerance),
+                                  active)
         b_ref = np.interp(check.s, before.s, np.abs(before.error[:, lv]))
         a_ref = np.abs(check.error[:, lv])
         bad = check.final & ((a_ref > tolerance) | (a_ref > b_ref + 0.01 * tolerance))
@@ -186,19 +189,21 @@ def _never_worse(out: CheckedCompensation, d_pts, density: int, arc_tol: float) 
             C[k - 1:k + 1] = 0.0 if attempt == 6 else 0.5 * C[k - 1:k + 1]
         positions = nominal.copy()
         positions[:, :2] += C[:, None] * normals
-        blocks, origin, check = _write_and_check(setup, positions, d_pts, out.final, density, arc_tol)
+        blocks, origin, check = _write_and_check(setup, positions, d_pts, out.final, density, arc_tol,
+                                                 out.active)
         out = CheckedCompensation(res, setup, blocks, origin, check, out.before, out.rounds, out.final, out.level,
-                                  out.tolerance)
+                                  out.tolerance, out.active)
     return out
 
 
-def _write_and_check(setup, positions, d_pts, final, density: int, arc_tol: float):
-    """The compensated moves through ``positions`` and their check against the drawing ``d_pts``: the
-    written program at ``density`` times its own sample density (every written block in at least
-    ``density`` pieces). Returns (blocks, origin, DrawingCheck)."""
+def _write_and_check(setup, positions, d_pts, final, density: int, arc_tol: float, active=None):
+    """The compensated moves through ``positions`` (``active``: the compensated samples, see
+    ``compensated_blocks``) and their check against the drawing ``d_pts``: the written program at
+    ``density`` times its own sample density (every written block in at least ``density`` pieces).
+    Returns (blocks, origin, DrawingCheck)."""
     from . import compensated_blocks, contour_samples
 
-    blocks, origin = compensated_blocks(setup, positions, arc_tolerance=arc_tol)
+    blocks, origin = compensated_blocks(setup, positions, arc_tolerance=arc_tol, active=active)
     written = setup.program.with_blocks(blocks, origin)
     w_pts = contour_samples(written, setup.spacing, density)[0]
     check = check_against_drawing(setup.model, setup.cutter, setup.stock, w_pts, d_pts, final, setup.side,
