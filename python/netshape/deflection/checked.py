@@ -35,7 +35,8 @@ class CheckedCompensation:
     samples, ``blocks``/``origin`` the written moves (see ``compensated_blocks``), ``check`` the written
     program against the drawing at ``density``× the samples, ``before`` the uncompensated program's
     check on the same drawing, ``rounds`` the compensations run, ``final`` the final-wall flag of each
-    dense drawing sample, ``active`` which of the setup's samples are compensated (final walls)."""
+    dense drawing sample, ``active`` which of the setup's samples are compensated (final walls),
+    ``offsets`` the offsets written at them [mm] (None: the result's)."""
 
     result: object
     setup: object
@@ -48,6 +49,7 @@ class CheckedCompensation:
     level: int
     tolerance: float
     active: np.ndarray | None = None
+    offsets: np.ndarray | None = None
 
     @property
     def after_mm(self) -> dict:
@@ -143,10 +145,12 @@ def compensate_checked(setup, *, scheme: str = "accelerated", level: str = "midd
         res = _comp.compensate_deflection(setup.model, setup.cutter, setup.stock, nominal, o)
         sub = replace(setup, nominal=nominal, owner=p_owner[selected])
         active = p_final[selected]
-        blocks, origin, check = _write_and_check(sub, np.asarray(res.positions, dtype=float), d_pts, final,
-                                                 density, arc_tol, active)
+        C = _entry_offsets(sub, res, active, lv, tolerance)
+        positions = nominal.copy()
+        positions[:, :2] += C[:, None] * np.asarray(res.normals, dtype=float)
+        blocks, origin, check = _write_and_check(sub, positions, d_pts, final, density, arc_tol, active)
         out = CheckedCompensation(res, sub, blocks, origin, check, before, rounds, final, lv, float(tolerance),
-                                  active)
+                                  active, C)
         b_ref = np.interp(check.s, before.s, np.abs(before.error[:, lv]))
         a_ref = np.abs(check.error[:, lv])
         bad = check.final & ((a_ref > tolerance) | (a_ref > b_ref + 0.01 * tolerance))
@@ -177,7 +181,7 @@ def _never_worse(out: CheckedCompensation, d_pts, density: int, arc_tol: float) 
     setup, res = out.setup, out.result
     nominal = np.asarray(setup.nominal, dtype=float)
     normals = np.asarray(res.normals, dtype=float)
-    C = np.asarray(res.offsets, dtype=float).copy()
+    C = np.asarray(res.offsets if out.offsets is None else out.offsets, dtype=float).copy()
     arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(nominal[:, 0]), np.diff(nominal[:, 1])))])
     for attempt in range(7):
         b = np.interp(out.check.s, out.before.s, np.abs(out.before.error[:, out.level]))
@@ -192,8 +196,31 @@ def _never_worse(out: CheckedCompensation, d_pts, density: int, arc_tol: float) 
         blocks, origin, check = _write_and_check(setup, positions, d_pts, out.final, density, arc_tol,
                                                  out.active)
         out = CheckedCompensation(res, setup, blocks, origin, check, out.before, out.rounds, out.final, out.level,
-                                  out.tolerance, out.active)
+                                  out.tolerance, out.active, C.copy())
     return out
+
+
+def _entry_offsets(setup, res, active, level: int, tolerance: float, iterations: int = 4) -> np.ndarray:
+    """The compensation's offsets with the first sample of each final wall (where ``active`` starts)
+    solved for its own error at ``level``, the other samples held (fixed-point steps C ← C + e, at most
+    ``iterations``). The C++ schemes tie a corner's offset to the next sample's, since at a corner
+    between two walls a polyline cannot follow the turn's one-instant engagement on both sides; where
+    the wall starts after a move written as programmed, the written program reaches the corner along
+    the offset (compensated_blocks), so the corner's own offset is written exactly there and the wall's
+    first stretch, still in the corner's engagement, ramps from it to the next sample's offset."""
+    C = np.asarray(res.offsets, dtype=float).copy()
+    active = np.asarray(active, dtype=bool)
+    entries = np.flatnonzero(active[1:] & ~active[:-1]) + 1
+    e = np.asarray(res.after.error, dtype=float)[:, level]
+    normals = np.asarray(res.normals, dtype=float)
+    for _ in range(iterations):
+        if not entries.size or np.max(np.abs(e[entries])) <= tolerance:
+            break
+        C[entries] += e[entries]  # e = −C − δ·n: δ held for the step
+        r = _comp.path_wall_errors(setup.model, setup.cutter, setup.stock, setup.nominal, normals, C,
+                                   setup.options)
+        e = np.asarray(r.error, dtype=float)[:, level]
+    return C
 
 
 def _write_and_check(setup, positions, d_pts, final, density: int, arc_tol: float, active=None):

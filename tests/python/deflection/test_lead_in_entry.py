@@ -97,3 +97,37 @@ def test_the_active_flags_must_match_the_points():
                         last=last, side=d.WallSide.right, options=None, owner=owner, spacing=0.5)
     with pytest.raises(ValueError, match="active"):
         d.compensated_blocks(setup, pts, active=np.ones(3, dtype=bool))
+
+
+def test_the_entry_corner_is_solved_for_its_own_error():
+    """The scheme ties a corner's offset to the next sample's; where the wall starts after the lead-in,
+    compensate_checked solves the corner for its own error instead (the written program reaches it along
+    the offset, so that offset is written exactly at the corner)."""
+    import math
+
+    from netshape.deflection.checked import _entry_offsets
+
+    from pocket_cases import flat_cutter
+
+    stock = ns.stock.ZMap(-6.0, 26.0, -10.0, 10.0, 0.2, 0.0, -10.0)
+    clear = ns.cutter.Cutter.flat_end(10.0, 3, math.radians(30.0))
+    clear.flute_length = 20.0
+    ns.stock.sweep(stock, clear, ns.toolpath.parse_gcode(  # material left below y = −1.5 only
+        "G21 G90 G17\nG0 X-12 Y3.5 Z5\nG1 Z-2 F200\nG1 X32 F800\nG0 Z5\n"))
+    prog = ns.toolpath.parse_gcode(PROGRAM.replace("G1 X10 Y0", "G1 X20 Y0").replace("G1 X12 Y5", ""))
+    setup = d.setup_path(prog, flat_cutter(6.0), stock, coefficients="leekunhwee_flat_slot", rpm=8000,
+                         spacing=0.5, side="right", profile_levels=0)
+    wall = np.flatnonzero(setup.owner == setup.first + 1)
+    active = np.zeros(len(setup.nominal), dtype=bool)
+    active[wall[0] - 1:] = True  # the corner (the lead-in's end) and the wall
+    o = d.compensation_options(setup, scheme="accelerated", level="middle", tolerance=5e-4, discount=1.0,
+                               max_iterations=50, anderson_depth=5, active=active)
+    res = d.compensate_deflection(setup.model, setup.cutter, setup.stock, setup.nominal, o)
+    corner = wall[0] - 1
+    tied = np.asarray(res.offsets)
+    assert tied[corner] == tied[corner + 1] and abs(res.after.error[corner, 1]) > 2e-3
+    C = _entry_offsets(setup, res, active, 1, 5e-4)
+    r = d.path_wall_errors(setup.model, setup.cutter, setup.stock, setup.nominal, np.asarray(res.normals), C,
+                           setup.options)
+    assert abs(r.error[corner, 1]) <= 5e-4
+    np.testing.assert_array_equal(np.delete(C, corner), np.delete(tied, corner))  # the others held
