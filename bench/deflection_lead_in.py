@@ -20,38 +20,23 @@ its status and the written-program points worse than the uncompensated program (
 from __future__ import annotations
 
 import argparse
-import math
 import os
 import sys
 import time
 
 import numpy as np
 
-import netshape as ns
-from netshape import deflection as d
 from netshape.deflection.checked import compensate_checked
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "tests", "python", "deflection"))
-from pocket_cases import flat_cutter, Pocket, pocket_gcode, stock_bounds  # noqa: E402
+from pocket_cases import lead_in_pocket  # noqa: E402
 
 
 def lead_in_setup(lead_in: float, rotation: float, pre_cut: float, corner_radius: float = 6.0,
                   grid: float = 0.2):
     """(pocket, program, PathSetup) of one case (module docstring)."""
-    p = Pocket(half_x=18, half_y=13, corner_radius=corner_radius, tool_diameter=6, stepover=2.5, rings=3,
-               lead_in=lead_in, z=-3.0, rotation_deg=rotation)
-    lo, hi = stock_bounds(p)
-    stock = ns.stock.ZMap(lo[0], hi[0], lo[1], hi[1], grid, hi[2], lo[2])
-    rough = ns.cutter.Cutter.flat_end(10.0, 3, math.radians(30.0))
-    rough.flute_length = 20.0
-    r = pre_cut - 5.0  # the roughing tool's centre circle
-    ns.stock.sweep(stock, rough, ns.toolpath.parse_gcode(
-        f"G21 G90 G17\nG0 X{r:g} Y0 Z5\nG1 Z{p.z:g} F200\nG2 X{r:g} Y0 I{-r:g} J0 F800\nG0 Z5\n"))
-    prog = ns.toolpath.parse_gcode(pocket_gcode(p))
-    setup = d.setup_path(prog, flat_cutter(p.tool_diameter), stock, coefficients="leekunhwee_flat_slot",
-                         rpm=8000, spacing=0.5, side="right", profile_levels=0)
-    return p, prog, setup
+    return lead_in_pocket(pre_cut, grid, lead_in=lead_in, rotation_deg=rotation, corner_radius=corner_radius)
 
 
 def family(n: int, seed: int) -> list[dict]:
