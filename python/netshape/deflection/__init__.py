@@ -403,7 +403,7 @@ def max_wall_error(r: PathWallErrors) -> dict:
     return dict(zip(_LEVELS, map(float, e.max(axis=0))))
 
 
-def compensated_program(setup: PathSetup, positions: np.ndarray, *, arc_tolerance: float = 5e-4):
+def compensated_program(setup: PathSetup, positions: np.ndarray, *, arc_tolerance: float = 5e-4, active=None):
     """The program with its contour replaced by the compensated points ``positions`` (n, 3): along an XY
     arc block of the original, the longest runs of points that lie within ``arc_tolerance`` [mm] of one
     arc about the same centre (same direction, radius interpolated by angle between the run's ends, as
@@ -411,17 +411,25 @@ def compensated_program(setup: PathSetup, positions: np.ndarray, *, arc_toleranc
     through its points. Each new block carries the feed, spindle, tool and plane of the block its
     points came from; the blocks before and after the contour are kept, joined by a line where the
     compensated ends differ from the nominal ones. The program's non-motion records (comments, M/S/T
-    words, dwells, offsets) stay where they were relative to the moves they came with."""
-    new, origin = compensated_blocks(setup, positions, arc_tolerance=arc_tolerance)
+    words, dwells, offsets) stay where they were relative to the moves they came with.
+
+    ``active`` (n) bool, optional: the points that are compensated (final walls). Where the path passes
+    from a point written as programmed to a compensated one (a lead-in into the finish wall), it runs
+    to the compensated point's programmed position and then along its offset; where a compensated run
+    ends, it returns along the offset to the programmed position first. So no move written as
+    programmed (a lead-in, a lead-out) crosses the drawing's wall line next to the wall, and the wall's
+    offset starts and ends exactly where the final wall does."""
+    new, origin = compensated_blocks(setup, positions, arc_tolerance=arc_tolerance, active=active)
     return setup.program.with_blocks(new, origin)
 
 
-def compensated_blocks(setup: PathSetup, positions: np.ndarray, *, arc_tolerance: float = 5e-4):
+def compensated_blocks(setup: PathSetup, positions: np.ndarray, *, arc_tolerance: float = 5e-4, active=None):
     """The blocks of :func:`compensated_program` and, for each, the index of the program block it came
     from (non-decreasing): what ``Toolpath.with_blocks`` needs to keep the non-motion records in place."""
     blocks = list(setup.program.blocks)
     contour = blocks[setup.first:setup.last + 1]
-    nominal = setup.nominal
+    nominal = np.asarray(setup.nominal, dtype=float)
+    positions = np.asarray(positions, dtype=float)
     # the contour block each sampled point ends
     if setup.owner is not None and len(setup.owner) == len(nominal):
         owner = np.asarray(setup.owner, dtype=np.int64) - setup.first
@@ -430,6 +438,8 @@ def compensated_blocks(setup: PathSetup, positions: np.ndarray, *, arc_tolerance
         arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(nominal[:, 0]), np.diff(nominal[:, 1])))])
         scale = ends[-1] / arc[-1] if arc[-1] > 0 else 1.0
         owner = np.minimum(np.searchsorted(ends, arc * scale - 1e-9), len(contour) - 1)
+    if active is not None:
+        positions, owner = _enter_along_offsets(nominal, positions, owner, active)
     new = blocks[:setup.first]
     origin = list(range(setup.first))  # index of the original block each new block came from
     start = np.asarray(contour[0].start, dtype=float)
@@ -446,13 +456,16 @@ def compensated_blocks(setup: PathSetup, positions: np.ndarray, *, arc_tolerance
         blk = contour[bi]
         pts = positions[i - 1:j + 1]
         if int(blk.kind) == 2 and blk.turns == 1 and str(blk.plane).split(".")[-1] == "xy":
-            # greedy: the longest runs of points that stay within the tolerance of one arc
+            # greedy: the longest runs of points that stay within the tolerance of one arc; a run of two
+            # points is an arc too (its chord would cut inside the arc by its sagitta, 9 µm for 0.47 mm at
+            # R3), a line only where the ends are not on one arc (a move along the offset)
             a = 0
             while a < len(pts) - 1:
                 b = a + 1
                 while b + 1 < len(pts) and _fits_arc(blk, pts[a:b + 2], arc_tolerance):
                     b += 1
-                new.append(_arc(blk, pts[a], pts[b]) if b - a >= 2 else _line(blk, pts[a], pts[b]))
+                arc_ok = b - a >= 2 or _fits_arc(blk, pts[a:b + 1], arc_tolerance)
+                new.append(_arc(blk, pts[a], pts[b]) if arc_ok else _line(blk, pts[a], pts[b]))
                 origin.append(setup.first + int(bi))
                 a = b
         else:
@@ -467,6 +480,26 @@ def compensated_blocks(setup: PathSetup, positions: np.ndarray, *, arc_tolerance
     new.extend(blocks[setup.last + 1:])
     origin.extend(range(setup.last + 1, len(blocks)))
     return new, origin
+
+
+def _enter_along_offsets(nominal, positions, owner, active):
+    """``positions``/``owner`` with the programmed position of a compensated point inserted where the
+    compensation starts (before it) and ends (after it): the path from or to a point written as
+    programmed then reaches the compensated point along its offset (see compensated_program)."""
+    active = np.asarray(active, dtype=bool)
+    if len(active) != len(positions):
+        raise ValueError(f"active: {len(active)} flags for {len(positions)} points")
+    rows, own = [positions[0]], [owner[0]]
+    for i in range(1, len(positions)):
+        if active[i] and not active[i - 1] and np.linalg.norm(positions[i] - nominal[i]) > 1e-9:
+            rows.append(nominal[i])       # into the wall: to the programmed point, then along the offset
+            own.append(owner[i])
+        elif active[i - 1] and not active[i] and np.linalg.norm(positions[i - 1] - nominal[i - 1]) > 1e-9:
+            rows.append(nominal[i - 1])   # out of the wall: back along the offset first
+            own.append(owner[i])
+        rows.append(positions[i])
+        own.append(owner[i])
+    return np.vstack(rows), np.asarray(own, dtype=np.int64)
 
 
 def _fits_arc(blk, pts, tol: float) -> bool:

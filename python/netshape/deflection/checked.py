@@ -35,7 +35,8 @@ class CheckedCompensation:
     samples, ``blocks``/``origin`` the written moves (see ``compensated_blocks``), ``check`` the written
     program against the drawing at ``density``× the samples, ``before`` the uncompensated program's
     check on the same drawing, ``rounds`` the compensations run, ``final`` the final-wall flag of each
-    dense drawing sample."""
+    dense drawing sample, ``active`` which of the setup's samples are compensated (final walls),
+    ``offsets`` the offsets written at them [mm] (None: the result's)."""
 
     result: object
     setup: object
@@ -47,6 +48,8 @@ class CheckedCompensation:
     final: np.ndarray
     level: int
     tolerance: float
+    active: np.ndarray | None = None
+    offsets: np.ndarray | None = None
 
     @property
     def after_mm(self) -> dict:
@@ -141,9 +144,13 @@ def compensate_checked(setup, *, scheme: str = "accelerated", level: str = "midd
         nominal = p_pts[selected]
         res = _comp.compensate_deflection(setup.model, setup.cutter, setup.stock, nominal, o)
         sub = replace(setup, nominal=nominal, owner=p_owner[selected])
-        blocks, origin, check = _write_and_check(sub, np.asarray(res.positions, dtype=float), d_pts, final,
-                                                 density, arc_tol)
-        out = CheckedCompensation(res, sub, blocks, origin, check, before, rounds, final, lv, float(tolerance))
+        active = p_final[selected]
+        C = _entry_offsets(sub, res, active, lv, tolerance)
+        positions = nominal.copy()
+        positions[:, :2] += C[:, None] * np.asarray(res.normals, dtype=float)
+        blocks, origin, check = _write_and_check(sub, positions, d_pts, final, density, arc_tol, active)
+        out = CheckedCompensation(res, sub, blocks, origin, check, before, rounds, final, lv, float(tolerance),
+                                  active, C)
         b_ref = np.interp(check.s, before.s, np.abs(before.error[:, lv]))
         a_ref = np.abs(check.error[:, lv])
         bad = check.final & ((a_ref > tolerance) | (a_ref > b_ref + 0.01 * tolerance))
@@ -174,7 +181,7 @@ def _never_worse(out: CheckedCompensation, d_pts, density: int, arc_tol: float) 
     setup, res = out.setup, out.result
     nominal = np.asarray(setup.nominal, dtype=float)
     normals = np.asarray(res.normals, dtype=float)
-    C = np.asarray(res.offsets, dtype=float).copy()
+    C = np.asarray(res.offsets if out.offsets is None else out.offsets, dtype=float).copy()
     arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(nominal[:, 0]), np.diff(nominal[:, 1])))])
     for attempt in range(7):
         b = np.interp(out.check.s, out.before.s, np.abs(out.before.error[:, out.level]))
@@ -186,19 +193,44 @@ def _never_worse(out: CheckedCompensation, d_pts, density: int, arc_tol: float) 
             C[k - 1:k + 1] = 0.0 if attempt == 6 else 0.5 * C[k - 1:k + 1]
         positions = nominal.copy()
         positions[:, :2] += C[:, None] * normals
-        blocks, origin, check = _write_and_check(setup, positions, d_pts, out.final, density, arc_tol)
+        blocks, origin, check = _write_and_check(setup, positions, d_pts, out.final, density, arc_tol,
+                                                 out.active)
         out = CheckedCompensation(res, setup, blocks, origin, check, out.before, out.rounds, out.final, out.level,
-                                  out.tolerance)
+                                  out.tolerance, out.active, C.copy())
     return out
 
 
-def _write_and_check(setup, positions, d_pts, final, density: int, arc_tol: float):
-    """The compensated moves through ``positions`` and their check against the drawing ``d_pts``: the
-    written program at ``density`` times its own sample density (every written block in at least
-    ``density`` pieces). Returns (blocks, origin, DrawingCheck)."""
+def _entry_offsets(setup, res, active, level: int, tolerance: float, iterations: int = 4) -> np.ndarray:
+    """The compensation's offsets with the first sample of each final wall (where ``active`` starts)
+    solved for its own error at ``level``, the other samples held (fixed-point steps C ← C + e, at most
+    ``iterations``). The C++ schemes tie a corner's offset to the next sample's, since at a corner
+    between two walls a polyline cannot follow the turn's one-instant engagement on both sides; where
+    the wall starts after a move written as programmed, the written program reaches the corner along
+    the offset (compensated_blocks), so the corner's own offset is written exactly there and the wall's
+    first stretch, still in the corner's engagement, ramps from it to the next sample's offset."""
+    C = np.asarray(res.offsets, dtype=float).copy()
+    active = np.asarray(active, dtype=bool)
+    entries = np.flatnonzero(active[1:] & ~active[:-1]) + 1
+    e = np.asarray(res.after.error, dtype=float)[:, level]
+    normals = np.asarray(res.normals, dtype=float)
+    for _ in range(iterations):
+        if not entries.size or np.max(np.abs(e[entries])) <= tolerance:
+            break
+        C[entries] += e[entries]  # e = −C − δ·n: δ held for the step
+        r = _comp.path_wall_errors(setup.model, setup.cutter, setup.stock, setup.nominal, normals, C,
+                                   setup.options)
+        e = np.asarray(r.error, dtype=float)[:, level]
+    return C
+
+
+def _write_and_check(setup, positions, d_pts, final, density: int, arc_tol: float, active=None):
+    """The compensated moves through ``positions`` (``active``: the compensated samples, see
+    ``compensated_blocks``) and their check against the drawing ``d_pts``: the written program at
+    ``density`` times its own sample density (every written block in at least ``density`` pieces).
+    Returns (blocks, origin, DrawingCheck)."""
     from . import compensated_blocks, contour_samples
 
-    blocks, origin = compensated_blocks(setup, positions, arc_tolerance=arc_tol)
+    blocks, origin = compensated_blocks(setup, positions, arc_tolerance=arc_tol, active=active)
     written = setup.program.with_blocks(blocks, origin)
     w_pts = contour_samples(written, setup.spacing, density)[0]
     check = check_against_drawing(setup.model, setup.cutter, setup.stock, w_pts, d_pts, final, setup.side,

@@ -189,3 +189,28 @@ def flat_cutter(diameter: float):
     c.stick_out = 5.0 * diameter
     c.youngs_modulus = 600e3
     return c
+
+
+def lead_in_pocket(pre_cut: float | None = 12.0, grid: float = 0.2, **kw):
+    """(pocket, program, PathSetup) of a pocket finished after a diagonal lead-in (6 mm tool, 3 rings,
+    stepover 2.5 mm, half-widths 18 × 13 mm, corner R6, lead-in −4 mm, Z −3; ``kw`` overrides Pocket
+    fields) on a ``grid`` [mm] Z-map, pre-cut by a round roughing with a 10 mm tool down to the
+    contour's Z leaving a disc of radius ``pre_cut`` [mm] cleared (None: no pre-cut); 0.5 mm samples,
+    the right wall, leekunhwee_flat_slot at 8000 rpm."""
+    import netshape as ns
+    from netshape import deflection as d
+
+    p = Pocket(**{**dict(half_x=18, half_y=13, corner_radius=6, tool_diameter=6, stepover=2.5, rings=3,
+                         lead_in=-4.0, z=-3.0), **kw})
+    lo, hi = stock_bounds(p)
+    stock = ns.stock.ZMap(lo[0], hi[0], lo[1], hi[1], grid, hi[2], lo[2])
+    if pre_cut is not None:
+        rough = ns.cutter.Cutter.flat_end(10.0, 3, math.radians(30.0))
+        rough.flute_length = 20.0
+        r = pre_cut - 5.0  # the roughing tool's centre circle
+        ns.stock.sweep(stock, rough, ns.toolpath.parse_gcode(
+            f"G21 G90 G17\nG0 X{r:g} Y0 Z5\nG1 Z{p.z:g} F200\nG2 X{r:g} Y0 I{-r:g} J0 F800\nG0 Z5\n"))
+    prog = ns.toolpath.parse_gcode(pocket_gcode(p))
+    setup = d.setup_path(prog, flat_cutter(p.tool_diameter), stock, coefficients="leekunhwee_flat_slot",
+                         rpm=8000, spacing=0.5, side="right", profile_levels=0)
+    return p, prog, setup

@@ -19,12 +19,11 @@ import math
 import numpy as np
 import pytest
 
-import netshape as ns
 from netshape import deflection as d
 from netshape.deflection import walls
 from netshape.deflection.checked import compensate_checked
 
-from pocket_cases import flat_cutter, Pocket, pocket_gcode, stock_bounds
+from pocket_cases import lead_in_pocket
 
 
 def test_corner_takes_the_outgoing_moves_normal():
@@ -43,19 +42,8 @@ def test_corner_takes_the_outgoing_moves_normal():
 
 
 def _lead_in_pocket(pre_cut: bool, grid: float = 0.2, **kw):
-    p = Pocket(**{**dict(half_x=18, half_y=13, corner_radius=6, tool_diameter=6, stepover=2.5, rings=3,
-                         lead_in=-4.0, z=-3.0), **kw})
-    lo, hi = stock_bounds(p)
-    stock = ns.stock.ZMap(lo[0], hi[0], lo[1], hi[1], grid, hi[2], lo[2])
-    if pre_cut:  # round roughing with a 10 mm tool down to the contour's Z: a disc of radius 12 mm
-        rough = ns.cutter.Cutter.flat_end(10.0, 3, math.radians(30.0))
-        rough.flute_length = 20.0
-        ns.stock.sweep(stock, rough, ns.toolpath.parse_gcode(
-            f"G21 G90 G17\nG0 X7 Y0 Z5\nG1 Z{p.z:g} F200\nG2 X7 Y0 I-7 J0 F800\nG0 Z5\n"))
-    prog = ns.toolpath.parse_gcode(pocket_gcode(p))
-    setup = d.setup_path(prog, flat_cutter(p.tool_diameter), stock, coefficients="leekunhwee_flat_slot",
-                         rpm=8000, spacing=0.5, side="right", profile_levels=0)
-    return p, prog, setup
+    # pre-cut: round roughing down to the contour's Z, a disc of radius 12 mm
+    return lead_in_pocket(12.0 if pre_cut else None, grid, **kw)
 
 
 def test_lead_in_is_not_a_final_wall():
