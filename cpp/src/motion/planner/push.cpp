@@ -1,13 +1,13 @@
 // How a program block enters the planner: push() validates it, builds its node, and sets the junction
-// with the previous block by the corner rule (the blend rule's blends: planner_blend.cpp); the limits
+// with the previous block by the corner rule (the blend rule's blends: planner/blend.cpp); the limits
 // and pass record of a node; the last block's node cut into arc pieces once its end is known.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "netshape/motion/corner.hpp"
-#include "planner_geometry.hpp"
-#include "planner_state.hpp"
+#include "motion/planner/geometry.hpp"
+#include "motion/planner/state.hpp"
 
 namespace netshape::motion::detail {
 
@@ -381,7 +381,7 @@ void PlannerState::set_box_reach(PassRecord& x, const Vec3 (&U)[2], const Vec3 (
 
 // Arcs are cut into pieces of at most arc_piece_angle, each with its own bounds (the axis box is much
 // tighter on a short piece); the pieces after the first are appended. Cubic blocks:
-// split_cubic_block() (planner_cubic.cpp).
+// split_cubic_block() (planner/cubic.cpp).
 void PlannerState::split_last_block() noexcept {
   Node& p = node(tail_ - 1);
   if (p.extent == Extent::settled) return;

@@ -1,7 +1,7 @@
 #pragma once
 // The tolerance-band smoothing stage's runs (private, included by smoothing.cpp only, so everything
 // here has internal linkage): one run's spline fit pulled back into the tube until the check
-// (smoothing_check.hpp) passes.
+// (smoothing/check.hpp) passes.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -12,8 +12,8 @@
 #include "netshape/core/types.hpp"
 #include "netshape/motion/smoothing.hpp"
 #include "netshape/toolpath/block.hpp"
-#include "smoothing_check.hpp"
-#include "smoothing_spline.hpp"
+#include "motion/smoothing/check.hpp"
+#include "motion/smoothing/spline.hpp"
 
 namespace netshape::motion {
 namespace {
@@ -29,7 +29,7 @@ constexpr int sharp_reach = 8;      // they reach ±2·sharp_reach fit tolerance
 constexpr int fit_reach = 6;        // a round solves the control points this many spans around raised samples
 
 // Interior vertices of the polyline turning more than sharp_turn.
-std::vector<std::size_t> sharp_vertices(const std::vector<V2>& pts, const std::vector<double>& cum) {
+inline std::vector<std::size_t> sharp_vertices(const std::vector<V2>& pts, const std::vector<double>& cum) {
   std::vector<std::size_t> out;
   for (std::size_t i = 1; i + 1 < pts.size(); ++i) {
     const double l0 = cum[i] - cum[i - 1], l1 = cum[i + 1] - cum[i];
@@ -59,7 +59,7 @@ std::vector<std::size_t> sharp_vertices(const std::vector<V2>& pts, const std::v
 // only where the spline changed since the last check (CheckCache); where the check fails, the weights
 // of the samples within one mean segment are raised, a failing place between samples gets a sample of
 // its own, and the round repeats. False when the check still fails after max_refinements rounds.
-bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const SmoothOptions& opt,
+inline bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const SmoothOptions& opt,
              RunFit& out) {
   const std::size_t n = pts.size();  // vertices
   std::vector<double> cum(n, 0.0);
@@ -264,7 +264,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
           }
         };
         remap(sp.pb, std::array<double, 16>{});
-        remap(sp.pw, std::array<V2, 4>{});
+        remap(sp.pw, std::array<V2, 4>{V2::Zero(), V2::Zero(), V2::Zero(), V2::Zero()});
         remap(pen_band, std::array<double, 4>{});
         remap(cache.span_bound, -1.0);
         // the basis and the pieces of the spans a new knot reaches (knot j: spans j − 4..j + 3) and of
@@ -303,10 +303,6 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
     }
   }
   return false;
-}
-
-double turn_between(const Vec3& u1, const Vec3& u2) {
-  return std::atan2(u1.cross(u2).norm(), u1.dot(u2));
 }
 
 }  // namespace

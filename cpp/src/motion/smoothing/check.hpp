@@ -1,5 +1,5 @@
 #pragma once
-// The tolerance-band smoothing stage's check (private, included through smoothing_fit.hpp by
+// The tolerance-band smoothing stage's check (private, included through smoothing/fit.hpp by
 // smoothing.cpp only, so everything here has internal linkage): a run's spline as cubic Bézier pieces
 // and the two-way check of the spline against the run's polyline, with rigorous bounds.
 #include <algorithm>
@@ -10,7 +10,7 @@
 #include <Eigen/Core>
 
 #include "netshape/core/types.hpp"
-#include "smoothing_spline.hpp"
+#include "motion/smoothing/spline.hpp"
 
 namespace netshape::motion {
 namespace {
@@ -60,7 +60,7 @@ struct CheckCache {
 
 // In a check with the cache, the chords of a knot span whose bound is valid and the polyline segments
 // whose chords all lie in such spans keep their bounds.
-bool chain_check(const Spline& sp, const std::vector<V2>& pts, const SegTable& srows, const std::vector<double>& cum,
+inline bool chain_check(const Spline& sp, const std::vector<V2>& pts, const SegTable& srows, const std::vector<double>& cum,
                  const ParamMap& amap, double eps, double mean, CheckCache& cache, RunFit& out,
                  std::vector<double>& bad) {
   const std::size_t n = pts.size();
