@@ -24,15 +24,17 @@ bool lead_block(const ProgramView& v, const RunPlane& pl, long q, std::size_t e)
   if (q < 0 || q >= static_cast<long>(v.nb)) return false;
   const auto& b = program[static_cast<std::size_t>(q)];
   if (b.kind != MotionKind::line || b.length() <= opt.max_segment || b.feed != program[e].feed) return false;
-  if (std::abs(b.start[pl.ax.n] - pl.nval) > opt.plane_tolerance || std::abs(b.end[pl.ax.n] - pl.nval) > opt.plane_tolerance)
-    return false;
+  const int n = pl.ax.n;
+  const double tol = opt.plane_tolerance;
+  if (std::abs(b.start[n] - pl.nval) > tol || std::abs(b.end[n] - pl.nval) > tol) return false;
   const bool before = static_cast<std::size_t>(q) < e;
   const Vec3 joint = before ? program[e].start : program[e].end;
   if ((joint - (before ? b.end : b.start)).norm() > 1e-9) return false;
   const Vec3 u1 = before ? v.dir(static_cast<std::size_t>(q)) : v.dir(e);
   const Vec3 u2 = before ? v.dir(e) : v.dir(static_cast<std::size_t>(q));
   const double th = turn_between(u1, u2);
-  return th <= opt.max_turn || (th <= opt.max_fit_turn && !v.straight_side(static_cast<long>(e), before ? 1 : -1));
+  return th <= opt.max_turn ||
+         (th <= opt.max_fit_turn && !v.straight_side(static_cast<long>(e), before ? 1 : -1));
 }
 
 // The lines that lend the run [i, j) their parts next to its ends. lin / lout: the lending block or −1;
@@ -54,7 +56,8 @@ struct Leads {
   std::size_t lin_skip = 0, lout_skip = 0;
 };
 
-Leads choose_leads(const ProgramView& v, const RunPlane& pl, const StageOutput& out, std::size_t i, std::size_t j) {
+Leads choose_leads(const ProgramView& v, const RunPlane& pl, const StageOutput& out, std::size_t i,
+                   std::size_t j) {
   const auto& res = out.res;
   const auto mb = static_cast<std::size_t>(v.opt.min_blocks);
   Leads l;
@@ -115,9 +118,10 @@ RunSamples sample_run(const ProgramView& v, const RunPlane& pl, const StageOutpu
     double beside = 0;  // the tiny blocks kept between the corner and this line
     for (std::size_t q = i; q < i + l.lin_skip; ++q) beside += program[q].length();
     // (not inner: the line is the last new block, already shortened by what came before it)
-    const auto& prev = out.res.blocks;
-    double a = l.lin_inner ? v.lead_part(static_cast<std::size_t>(l.lin), beside, v.corner_need(i))
-                           : std::min({opt.lead_length, 0.5 * b.length(), (prev.back().end - prev.back().start).norm()});
+    const auto& blocks = out.res.blocks;
+    const double a = l.lin_inner ? v.lead_part(static_cast<std::size_t>(l.lin), beside, v.corner_need(i))
+                                 : std::min({opt.lead_length, 0.5 * b.length(),
+                                             (blocks.back().end - blocks.back().start).norm()});
     const Vec3 d = v.dir(static_cast<std::size_t>(l.lin));
     s.first3 = b.end - a * d;
     const int k = std::max(1, static_cast<int>(std::ceil(a / mean)));
@@ -188,7 +192,8 @@ void emit_run(const ProgramView& v, const RunPlane& pl, StageOutput& out, std::s
   // took every corner)
   for (std::size_t q = r0 + 1; q < r1; ++q)
     if (v.turn_at(q) > v.opt.max_turn) --res.corners_kept;
-  if (lead_in && turn_between(v.dir(static_cast<std::size_t>(l.lin)), v.dir(r0)) > v.opt.max_turn) --res.corners_kept;
+  if (lead_in && turn_between(v.dir(static_cast<std::size_t>(l.lin)), v.dir(r0)) > v.opt.max_turn)
+    --res.corners_kept;
   if (lead_out && turn_between(v.dir(r1 - 1), v.dir(static_cast<std::size_t>(l.lout))) > v.opt.max_turn)
     --res.corners_kept;
   if (lead_in) {  // the line before now ends where the curve starts

@@ -20,7 +20,9 @@ bool ProgramView::micro(std::size_t i) const {
   return b.kind == MotionKind::line && l > 1e-9 && l <= opt.max_segment;
 }
 
-Vec3 ProgramView::dir(std::size_t i) const { return ((program[i].end - program[i].start) / program[i].length()).eval(); }
+Vec3 ProgramView::dir(std::size_t i) const {
+  return ((program[i].end - program[i].start) / program[i].length()).eval();
+}
 
 double ProgramView::turn_at(std::size_t q) const {
   double& t = turn_memo_[q];
@@ -32,14 +34,13 @@ bool ProgramView::straight_pair(long a) const {
   if (a < 0 || a + 1 >= static_cast<long>(nb)) return false;
   const auto ua = static_cast<std::size_t>(a);
   const auto &b0 = program[ua], &b1 = program[ua + 1];
-  return b0.kind == MotionKind::line && b1.kind == MotionKind::line && b0.length() > 1e-9 && b1.length() > 1e-9 &&
-         (b1.start - b0.end).norm() <= 1e-9 && turn_at(ua + 1) < 1e-3;
+  return b0.kind == MotionKind::line && b1.kind == MotionKind::line && b0.length() > 1e-9 &&
+         b1.length() > 1e-9 && (b1.start - b0.end).norm() <= 1e-9 && turn_at(ua + 1) < 1e-3;
 }
 
 bool ProgramView::straight_side(long q, long step) const {
-  for (int k = 0; k < 3 && q >= 0 && q < static_cast<long>(nb) && program[static_cast<std::size_t>(q)].length() < lead_min;
-       ++k)
-    q += step;
+  auto tiny = [&](long b) { return program[static_cast<std::size_t>(b)].length() < lead_min; };
+  for (int k = 0; k < 3 && q >= 0 && q < static_cast<long>(nb) && tiny(q); ++k) q += step;
   return straight_pair(step > 0 ? q : q - 1);
 }
 
@@ -53,8 +54,8 @@ bool ProgramView::kept_corner(std::size_t q) const {
 double ProgramView::vertex_turn(std::size_t c) const {
   if (c == 0 || c >= nb) return 0.0;
   const auto &b0 = program[c - 1], &b1 = program[c];
-  if (b0.kind == MotionKind::rapid || b1.kind == MotionKind::rapid || b0.length() <= 1e-9 || b1.length() <= 1e-9 ||
-      (b1.start - b0.end).norm() > 1e-9)
+  if (b0.kind == MotionKind::rapid || b1.kind == MotionKind::rapid || b0.length() <= 1e-9 ||
+      b1.length() <= 1e-9 || (b1.start - b0.end).norm() > 1e-9)
     return 0.0;
   return turn_between(b0.tangent_at(1.0), b1.tangent_at(0.0));
 }
@@ -71,7 +72,9 @@ double ProgramView::lead_part(std::size_t q, double beside, double need) const {
   return std::min(a, std::max(0.1 * len, len + beside - need));
 }
 
-bool ProgramView::corner_at(std::size_t q, bool at_start) const { return vertex_turn(at_start ? q : q + 1) >= 1e-3; }
+bool ProgramView::corner_at(std::size_t q, bool at_start) const {
+  return vertex_turn(at_start ? q : q + 1) >= 1e-3;
+}
 
 bool ProgramView::lends(std::size_t q, std::size_t r) const {
   const std::size_t q0 = std::min(q, r), q1 = std::max(q, r);
@@ -79,7 +82,9 @@ bool ProgramView::lends(std::size_t q, std::size_t r) const {
          (q1 == q0 + 1 ? turn_at(q1) : turn_between(dir(q0), dir(q1))) <= 0.5 * opt.max_turn;
 }
 
-bool ProgramView::corner_lead(std::size_t q, std::size_t r) const { return corner_at(q, r > q) && lends(q, r); }
+bool ProgramView::corner_lead(std::size_t q, std::size_t r) const {
+  return corner_at(q, r > q) && lends(q, r);
+}
 
 std::size_t ProgramView::corner_skip(std::size_t q, int step, std::size_t room) const {
   if (!corner_at(q, step > 0)) return std::size_t{0};
@@ -153,9 +158,11 @@ RunPlane run_plane(const ProgramView& view, const RunSpan& run) {
     if (q < 0 || q >= static_cast<long>(view.nb)) return 7;
     const auto& b = program[static_cast<std::size_t>(q)];
     if (b.kind != MotionKind::line || b.feed != program[i].feed) return 7;
-    return plane_bits(origin, b.start, view.opt.plane_tolerance) & plane_bits(origin, b.end, view.opt.plane_tolerance);
+    const double tol = view.opt.plane_tolerance;
+    return plane_bits(origin, b.start, tol) & plane_bits(origin, b.end, tol);
   };
-  const int before = joined_line_bits(static_cast<long>(i) - 1), after = joined_line_bits(static_cast<long>(j));
+  const int before = joined_line_bits(static_cast<long>(i) - 1);
+  const int after = joined_line_bits(static_cast<long>(j));
   for (int m : {planes & before & after, planes & before, planes & after})
     if (m != 0) {
       planes = m;
