@@ -241,6 +241,16 @@ class PlannerState {
   void append(const Node& n) noexcept;
   /// The last node holds a whole block whose end is now known: cut arcs into pieces.
   void split_last_block() noexcept;
+  /// The geometry of the node of a line or arc block b (a cubic's is built by init_cubic_node): its
+  /// segment and bounds over the whole block (len: its length [mm]; in_place: nn is a ring slot that
+  /// may hold an older node's fields, each one the planner reads before the freeze is set).
+  void init_block_node(Node& nn, const toolpath::Block& b, long source, double len, bool in_place) noexcept;
+  /// The speed at a vertex turning theta > tangent_angle from the piece p to the new node nn by the
+  /// corner rule (u1, u2: unit tangents; amin: the moving axes' smallest acceleration; dk: the step of
+  /// the curvature vector in jerk mode; arc, cubic: the new block's kind) [mm/s], not yet capped by
+  /// the feeds; jump: the rule jumps the velocity there (vector, per-axis).
+  double kink_speed(const Node& p, const Node& nn, const Vec3& u1, const Vec3& u2, double theta, double amin,
+                    const Vec3& dk, bool arc, bool cubic, bool& jump) const noexcept;
   /// Piece k of m of a block cut into pieces (its geometry and bounds already set): speed cap and
   /// limits, the block's junction, window and curvature-step marks on its first / last piece, and the
   /// junction speed from the piece before (v_prev, updated to this piece's cap). minima: as set_limits.
