@@ -55,6 +55,9 @@ struct SmoothOptions {
   double lead_length = 2.0;   ///< longest part of an adjoining line a run's curve may use [mm]
   bool round_corners = true;  ///< replace the vertex between two program lines by an arc within fit_tolerance()
   double plane_tolerance = 1e-9;  ///< a run is planar when its normal coordinate varies less [mm]
+  /// runs in space (in no coordinate plane) are smoothed in pieces each within this share of the fit
+  /// tolerance of a plane (the rest of it is the fit's); 0 leaves them as programmed
+  double space_flatness = 0.5;
 
   /// Tolerance of the fitted curves (and corner arcs) against the polyline [mm].
   double fit_tolerance() const noexcept { return tolerance * fit_share; }

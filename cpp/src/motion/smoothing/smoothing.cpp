@@ -80,6 +80,15 @@ SmoothResult smooth_program(const std::vector<toolpath::Block>& program, const S
       continue;
     }
     const detail::RunSpan run = detail::find_run(view, i);
+    if (static_cast<long>(run.last - i) < opt.min_blocks && opt.space_flatness > 0) {
+      // in no coordinate plane: a run in space, fitted in pieces close to planes of their own
+      const std::size_t j = detail::find_space_run(view, i);
+      if (static_cast<long>(j - i) >= opt.min_blocks) {
+        detail::smooth_space_run(view, i, j, out);
+        i = j;
+        continue;
+      }
+    }
     if (static_cast<long>(run.last - i) < opt.min_blocks) {
       // too short to smooth; a micro-segment that is in no coordinate plane by itself (last == i) is
       // kept too, so every pass of this loop moves past at least one block

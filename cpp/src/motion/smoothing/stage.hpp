@@ -134,5 +134,17 @@ struct StageOutput {
 /// to a corner and a part shorter than min_blocks that fails are kept as programmed.
 void smooth_run(const ProgramView& view, const RunSpan& run, StageOutput& out);
 
+/// The end of a run of micro-segments in space from micro-segment i: one feed, joined end to end, no
+/// kept corner inside, at most `window` blocks, ending before a block where a planar run (find_run) of
+/// at least min_blocks starts, so planar runs stay as they are.
+std::size_t find_space_run(const ProgramView& view, std::size_t i);
+
+/// Smooth a run in space [first, last): cut into pieces each within `space_flatness` of a plane through
+/// its end points that holds the incoming tangent; each piece fitted in its plane within
+/// fit_tolerance() − (its largest distance from the plane) and checked both ways there (fit.hpp), so
+/// it is within fit_tolerance() of the polyline in space; consecutive pieces join with one tangent.
+/// A piece that fails is halved; blocks no piece of min_blocks takes are kept as programmed.
+void smooth_space_run(const ProgramView& view, std::size_t first, std::size_t last, StageOutput& out);
+
 }  // namespace detail
 }  // namespace netshape::motion
