@@ -117,7 +117,8 @@ inline std::vector<Sample> initial_samples(const std::vector<V2>& pts, const std
 // here) get 4× the weight, and a failing place between two samples more than mean/16 from both gets a
 // sample of its own (raised marks them for the next solve).
 inline void raise_failing(std::vector<double>& bad, const std::vector<V2>& pts,
-                          const std::vector<double>& cum, double mean, const Spline& sp, std::vector<Sample>& samples, std::vector<int>& span,
+                          const std::vector<double>& cum, double mean, const Spline& sp,
+                          std::vector<Sample>& samples, std::vector<int>& span,
                           std::vector<char>& raised) {
   const std::size_t n = pts.size();
   std::sort(bad.begin(), bad.end());
@@ -154,7 +155,8 @@ inline void raise_failing(std::vector<double>& bad, const std::vector<V2>& pts,
 // control points back as the insertions left them, up to rounding.
 template <class HoldEnds>
 void insert_knots(const std::vector<double>& mids, double pen, Spline& sp,
-                  std::vector<std::array<double, 4>>& pen_band, CheckCache& cache, std::vector<char>& changed, const HoldEnds& hold_ends) {
+                  std::vector<std::array<double, 4>>& pen_band, CheckCache& cache, std::vector<char>& changed,
+                  const HoldEnds& hold_ends) {
   const std::vector<double> t0 = sp.t;
   for (const double x : mids) sp.insert_knot(x);
   hold_ends();  // as the insertions left them, up to rounding
@@ -342,6 +344,43 @@ inline bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean
     }
   }
   return false;
+}
+
+// Append the cubic blocks of a fitted run to out: one per piece of rf, from `start` to `end` (the last
+// piece's end), each a chord block like `like` (kind line) with its inner control points (to3: the
+// fit's plane coordinates to space) and its source blocks, read through the arc lengths of the
+// polyline pts whose segment q comes from program block src[q].
+template <class To3>
+void append_pieces(detail::StageOutput& out, const toolpath::Block& like, const RunFit& rf,
+                   const std::vector<V2>& pts, const std::vector<long>& src, const Vec3& start,
+                   const Vec3& end, const To3& to3) {
+  auto& res = out.res;
+  std::vector<double> cum(pts.size(), 0.0);
+  for (std::size_t q = 1; q < pts.size(); ++q) cum[q] = cum[q - 1] + (pts[q] - pts[q - 1]).norm();
+  auto block_at = [&](double u) {
+    const long k = static_cast<long>(std::upper_bound(cum.begin(), cum.end(), u) - cum.begin()) - 1;
+    return src[static_cast<std::size_t>(std::clamp(k, 0L, static_cast<long>(src.size()) - 1))];
+  };
+  Vec3 cur = start;
+  for (std::size_t q = 0; q < rf.pieces.size(); ++q) {
+    const Piece& p = rf.pieces[q];
+    toolpath::Block b = like;  // the chord of the cubic piece
+    b.kind = toolpath::MotionKind::line;
+    b.start = cur;
+    b.end = q + 1 == rf.pieces.size() ? end : to3(p.b3);
+    if ((b.end - b.start).norm() <= 1e-12) continue;
+    res.blocks.push_back(b);
+    CubicControls cc;
+    cc.cubic = true;
+    cc.c1 = to3(p.b1);
+    cc.c2 = to3(p.b2);
+    res.controls.push_back(cc);
+    res.source_first.push_back(block_at(p.ua));
+    res.source_last.push_back(block_at(p.ub));
+    out.program_line.push_back(false);
+    out.tangent_join.push_back(3);
+    cur = b.end;
+  }
 }
 
 }  // namespace

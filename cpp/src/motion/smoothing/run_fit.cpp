@@ -204,38 +204,13 @@ void emit_run(const ProgramView& v, const RunPlane& pl, StageOutput& out, std::s
     out.start_override_block = static_cast<long>(j);
     out.start_override = s.last3;
   }
-  // parameter -> program block
-  std::vector<double> cum(s.pts.size(), 0.0);
-  for (std::size_t q = 1; q < s.pts.size(); ++q) cum[q] = cum[q - 1] + (s.pts[q] - s.pts[q - 1]).norm();
-  auto block_at = [&](double u) {
-    const long k = static_cast<long>(std::upper_bound(cum.begin(), cum.end(), u) - cum.begin()) - 1;
-    return s.src[static_cast<std::size_t>(std::clamp(k, 0L, static_cast<long>(s.src.size()) - 1))];
-  };
   if (l.lin_inner) {  // the tiny blocks kept at the corner, then block lin's first part up to the curve
     for (std::size_t q = i; q <= static_cast<std::size_t>(l.lin); ++q) out.keep(program, q);
     res.blocks.back().end = s.first3;
     out.tangent_join.back() |= 2;
   }
-  Vec3 cur = s.first3;
-  for (std::size_t q = 0; q < rf.pieces.size(); ++q) {
-    const Piece& p = rf.pieces[q];
-    toolpath::Block b = program[i];  // the chord of the cubic piece
-    b.kind = MotionKind::line;
-    b.start = cur;
-    b.end = q + 1 == rf.pieces.size() ? s.last3 : pl.to3(p.b3);
-    if ((b.end - b.start).norm() <= 1e-12) continue;
-    res.blocks.push_back(b);
-    CubicControls cc;
-    cc.cubic = true;
-    cc.c1 = pl.to3(p.b1);
-    cc.c2 = pl.to3(p.b2);
-    res.controls.push_back(cc);
-    res.source_first.push_back(block_at(p.ua));
-    res.source_last.push_back(block_at(p.ub));
-    out.program_line.push_back(false);
-    out.tangent_join.push_back(3);
-    cur = b.end;
-  }
+  append_pieces(out, program[i], rf, s.pts, s.src, s.first3, s.last3,
+                [&pl](const V2& p) { return pl.to3(p); });
   if (l.lout_inner) {  // block lout's last part from the curve, then the tiny blocks kept at the corner
     out.keep(program, static_cast<std::size_t>(l.lout));
     res.blocks.back().start = s.last3;

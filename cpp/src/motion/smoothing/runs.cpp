@@ -101,6 +101,11 @@ bool ProgramView::corner_end(std::size_t q, bool at_start) const {
   return vertex_turn(at_start ? q : q + 1) > opt.max_turn;
 }
 
+bool ProgramView::continues(std::size_t i, std::size_t j) const {
+  return program[j].feed == program[i].feed && (program[j].start - program[j - 1].end).norm() <= 1e-9 &&
+         !kept_corner(j);
+}
+
 long count_feed_corners(const ProgramView& view) {
   long corners = 0;
   long prev = -1;
@@ -136,11 +141,7 @@ RunSpan find_run(const ProgramView& view, std::size_t i) {
   const Vec3 origin = program[i].start;
   std::size_t j = i;
   while (j < view.nb && static_cast<long>(j - i) < view.opt.window && view.micro(j)) {
-    if (j > i) {
-      if (program[j].feed != program[i].feed) break;
-      if ((program[j].start - program[j - 1].end).norm() > 1e-9) break;
-      if (view.kept_corner(j)) break;
-    }
+    if (j > i && !view.continues(i, j)) break;
     const int m = planes & plane_bits(origin, program[j].end, view.opt.plane_tolerance);
     if (m == 0) break;
     planes = m;

@@ -66,8 +66,8 @@ std::size_t grow_piece(const ProgramView& v, std::size_t a, const Vec3& o, std::
 // Fit the piece [a, b) from p0 (on block a) to p1 (on block b − 1) in its frame, its end tangents t_in,
 // t_end where given; its cubic blocks appended to out, the unit tangent at its end in t_out. False
 // (nothing appended) when the fit fails its check.
-bool fit_piece(const ProgramView& v, std::size_t a, std::size_t b, const Vec3& p0, const Vec3& p1, const Frame& f,
-               double h, const Vec3* t_in, const Vec3* t_end, StageOutput& out, Vec3& t_out) {
+bool fit_piece(const ProgramView& v, std::size_t a, std::size_t b, const Vec3& p0, const Vec3& p1,
+               const Frame& f, double h, const Vec3* t_in, const Vec3* t_end, StageOutput& out, Vec3& t_out) {
   const auto& program = v.program;
   SmoothOptions o2 = v.opt;
   o2.tolerance = (v.opt.fit_tolerance() - h) / v.opt.fit_share;  // fit_tolerance() of o2: ε_fit − h
@@ -96,32 +96,7 @@ bool fit_piece(const ProgramView& v, std::size_t a, std::size_t b, const Vec3& p
   res.max_fit_deviation = std::max(res.max_fit_deviation, rf.bound + h);
   for (std::size_t q = a + 1; q < b; ++q)
     if (v.turn_at(q) > v.opt.max_turn) --res.corners_kept;
-  std::vector<double> cum(pts.size(), 0.0);
-  for (std::size_t q = 1; q < pts.size(); ++q) cum[q] = cum[q - 1] + (pts[q] - pts[q - 1]).norm();
-  auto block_at = [&](double u) {
-    const long k = static_cast<long>(std::upper_bound(cum.begin(), cum.end(), u) - cum.begin()) - 1;
-    return src[static_cast<std::size_t>(std::clamp(k, 0L, static_cast<long>(src.size()) - 1))];
-  };
-  Vec3 cur = p0;
-  for (std::size_t q = 0; q < rf.pieces.size(); ++q) {
-    const Piece& p = rf.pieces[q];
-    toolpath::Block blk = program[a];  // the chord of the cubic piece
-    blk.kind = toolpath::MotionKind::line;
-    blk.start = cur;
-    blk.end = q + 1 == rf.pieces.size() ? p1 : f.to3(p.b3);
-    if ((blk.end - blk.start).norm() <= 1e-12) continue;
-    res.blocks.push_back(blk);
-    CubicControls cc;
-    cc.cubic = true;
-    cc.c1 = f.to3(p.b1);
-    cc.c2 = f.to3(p.b2);
-    res.controls.push_back(cc);
-    res.source_first.push_back(block_at(p.ua));
-    res.source_last.push_back(block_at(p.ub));
-    out.program_line.push_back(false);
-    out.tangent_join.push_back(3);
-    cur = blk.end;
-  }
+  append_pieces(out, program[a], rf, pts, src, p0, p1, [&f](const V2& p) { return f.to3(p); });
   const Piece& last = rf.pieces.back();
   V2 tail = last.b3 - last.b2;
   if (!(tail.norm() > 0)) tail = last.b3 - last.b1;
@@ -135,11 +110,12 @@ bool fit_piece(const ProgramView& v, std::size_t a, std::size_t b, const Vec3& p
 bool joined_tangent(const ProgramView& v, std::size_t c, bool before, Vec3& t) {
   if (c == 0 || c >= v.nb) return false;
   const auto &b0 = v.program[c - 1], &b1 = v.program[c];
-  if (b0.kind == toolpath::MotionKind::rapid || b1.kind == toolpath::MotionKind::rapid || b0.length() <= 1e-9 ||
-      b1.length() <= 1e-9 || (b1.start - b0.end).norm() > 1e-9)
+  if (v.vertex_turn(c) > v.opt.max_turn || b0.kind == toolpath::MotionKind::rapid ||
+      b1.kind == toolpath::MotionKind::rapid || b0.length() <= 1e-9 || b1.length() <= 1e-9 ||
+      (b1.start - b0.end).norm() > 1e-9)
     return false;
   t = before ? b0.tangent_at(1.0) : b1.tangent_at(0.0);
-  return turn_between(b0.tangent_at(1.0), b1.tangent_at(0.0)) <= v.opt.max_turn;
+  return true;
 }
 
 // The frame of the last piece [a, last) from p0 to q through q holding the tangent t_end there and p0,
@@ -148,23 +124,18 @@ bool end_frame(const ProgramView& v, std::size_t a, const Vec3& p0, std::size_t 
                const Vec3& t_end, double h_max, Frame& f, double& h) {
   if (!frame_through(q, t_end, p0, f)) return false;
   h = 0;
-  for (std::size_t k = a; k + 1 < last && h <= h_max; ++k) h = std::max(h, std::abs(f.nrm.dot(v.program[k].end - q)));
+  for (std::size_t k = a; k + 1 < last && h <= h_max; ++k)
+    h = std::max(h, std::abs(f.nrm.dot(v.program[k].end - q)));
   return h <= h_max;
 }
 
 }  // namespace
 
 std::size_t find_space_run(const ProgramView& view, std::size_t i) {
-  const auto& program = view.program;
   const auto mb = static_cast<std::size_t>(view.opt.min_blocks);
   std::size_t j = i;
   while (j < view.nb && static_cast<long>(j - i) < view.opt.window && view.micro(j)) {
-    if (j > i) {
-      if (program[j].feed != program[i].feed) break;
-      if ((program[j].start - program[j - 1].end).norm() > 1e-9) break;
-      if (view.kept_corner(j)) break;
-      if (find_run(view, j).last - j >= mb) break;  // a planar run starts here
-    }
+    if (j > i && (!view.continues(i, j) || find_run(view, j).last - j >= mb)) break;  // (or planar)
     ++j;
   }
   return j;
@@ -218,8 +189,8 @@ void smooth_space_run(const ProgramView& view, std::size_t first, std::size_t la
       }
       break;
     }
-    if (b - a >= mb && fit_piece(view, a, b, p0, program[b - 1].end, f, h, have_t ? &t_in : nullptr, nullptr, out,
-                                 t_out)) {
+    const Vec3* t0 = have_t ? &t_in : nullptr;
+    if (b - a >= mb && fit_piece(view, a, b, p0, program[b - 1].end, f, h, t0, nullptr, out, t_out)) {
       t_in = t_out;
       have_t = true;
       a = b;

@@ -77,6 +77,9 @@ struct ProgramView {
   std::size_t corner_skip(std::size_t q, int step, std::size_t room) const;
   /// The vertex at q's start (at_start) or end joins another feed move turning more than max_turn.
   bool corner_end(std::size_t q, bool at_start) const;
+  /// Block j (> i) continues a run that starts at block i: the same feed, joined to block j − 1, no
+  /// kept corner between them.
+  bool continues(std::size_t i, std::size_t j) const;
 
  private:
   mutable std::vector<double> turn_memo_;  // turn_at per vertex, −1 until asked
