@@ -222,9 +222,11 @@ def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float
     """Tolerance-band smoothing of micro-segment runs (C++ ``netshape::motion::smooth``).
 
     Runs of line blocks each at most `max_segment` [mm] long, turning at most `max_turn` [rad] at every
-    vertex, with one feed and in one coordinate plane, are replaced by tangent-continuous arcs that
+    vertex, with one feed, are replaced by curvature-continuous cubic pieces (block kind 3) that
     follow a smoothing spline (penalty ``smoothing_length⁴·∫|s''|²``, `smoothing_length` [mm]) pulled back
-    into the tube, and stay within ``fit_share·tolerance`` [mm] of the polyline both ways (checked); a
+    into the tube, and stay within ``fit_share·tolerance`` [mm] of the polyline both ways (checked). A
+    run in one coordinate plane is fitted as one curve; a run in space (3-D moves) in pieces each close
+    to a plane of its own (within half the fit tolerance), joined with one tangent. A
     run borrows up to `lead_length` [mm] of an adjoining long line so that it joins it tangentially.
     Vertices turning more are corners, kept: the run ends there, and a vertex between two program lines
     becomes an arc within ``fit_share·tolerance`` (a corner made of several vertices around blocks

@@ -7,7 +7,7 @@
 #include <random>
 #include <string>
 
-#include "motion/cubic_record.hpp"
+#include "motion/kernels/cubic_record_kernels.hpp"
 #include "netshape/motion.hpp"
 
 using namespace netshape;

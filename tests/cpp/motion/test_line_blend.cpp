@@ -7,7 +7,7 @@
 #include <random>
 #include <string>
 
-#include "motion/line_blend.hpp"
+#include "motion/kernels/line_blend_kernels.hpp"
 #include "netshape/motion.hpp"
 
 using namespace netshape;

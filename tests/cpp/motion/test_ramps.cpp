@@ -11,9 +11,9 @@
 #include <random>
 #include <string>
 
-#include "motion/blend_bounds.hpp"
-#include "motion/cubic_record.hpp"
-#include "motion/planner_geometry.hpp"
+#include "motion/planner/blend_bounds.hpp"
+#include "motion/kernels/cubic_record_kernels.hpp"
+#include "motion/planner/geometry.hpp"
 #include "netshape/motion.hpp"
 
 using namespace netshape;

@@ -1,4 +1,4 @@
-// netshape::motion smoothing kernels (src/motion/smoothing_kernels.hpp): every copy gives the bits of the
+// netshape::motion smoothing kernels (src/motion/kernels/smoothing_kernels.hpp): every copy gives the bits of the
 // scalar definition, and the copy of the chosen instruction set the same bits as the baseline one.
 #include <doctest/doctest.h>
 
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "motion/smoothing_kernels.hpp"
+#include "motion/kernels/smoothing_kernels.hpp"
 
 using namespace netshape::motion;
 
@@ -93,7 +93,7 @@ TEST_CASE("smoothing kernels: power_basis gives the definition's bits in every c
 }
 
 namespace {
-// The definition: dist2() of point (x, y) to segment q (smoothing_spline.hpp), then the minima over
+// The definition: dist2() of point (x, y) to segment q (smoothing/spline.hpp), then the minima over
 // the window as the chain check's bounds fold them, one segment after the other.
 double dist2_def(double x, double y, const detail::SegRows& s, long q) {
   const double rx = x - s.ax[q], ry = y - s.ay[q];

@@ -29,13 +29,36 @@ def test_smooth_never_slower_than_blend(strategy, seed, eps):
 
 
 def test_nothing_smoothed_is_planned_as_blend():
-    """A 3-D micro-segment helix-like path that lies in no coordinate plane: no run, no corner arc,
-    so `smooth` gives the `blend` plan sample for sample."""
-    t = np.linspace(0.0, 6 * np.pi, 400)
-    pts = np.column_stack([20 * np.cos(t), 20 * np.sin(t), 0.5 * t + 0.2 * np.sin(5 * t)])
+    """A 3-D zigzag of 1.06 mm moves turning 157° at every vertex (each a kept corner, in no coordinate
+    plane): no run, no corner arc, so `smooth` gives the `blend` plan sample for sample."""
+    k = np.arange(200)
+    pts = np.column_stack([0.3 * k, k % 2, 0.2 * (k % 2)])
     arr = nm.polyline_arrays(pts, 200.0)
     b = nm.plan(arr, LIM, rule="blend", tolerance=0.01, with_deviation=False)
     s = nm.plan(arr, LIM, rule="smooth", tolerance=0.01)
     assert s.stats["runs_smoothed"] == 0 and s.stats["corners_rounded"] == 0
     assert s.stats["cycle_time_s"] == b.stats["cycle_time_s"]
     assert np.array_equal(s.position, b.position)
+
+
+@pytest.mark.parametrize("eps", [0.01, 0.03])
+def test_runs_in_space_are_smoothed(eps):
+    """A helix-like path of 0.5 mm moves in no coordinate plane (issue 39 item 1): fitted in pieces
+    close to planes of their own, checked within the fit tolerance both ways, faster than `blend`,
+    every sample within ε of the program and every axis within the box."""
+    t = np.linspace(0.0, 6 * np.pi, 800)
+    pts = np.column_stack([20 * np.cos(t), 20 * np.sin(t), 0.5 * t + 0.2 * np.sin(5 * t)])
+    arr = nm.polyline_arrays(pts, 200.0)
+    b = nm.plan(arr, LIM, rule="blend", tolerance=eps, with_deviation=False)
+    s = nm.plan(arr, LIM, rule="smooth", tolerance=eps)
+    assert s.stats["runs_smoothed"] > 0
+    assert s.stats["max_fit_deviation_mm"] <= 0.98 * eps * (1 + 1e-9)
+    assert s.stats["cycle_time_s"] < 0.95 * b.stats["cycle_time_s"]
+    assert s.stats["max_path_deviation_mm"] <= eps * (1 + 1e-9)
+    acc = np.abs(np.diff(s.position, 2, axis=0)).max() / s.stats["ts2_s"] ** 2
+    assert acc <= 3000.0 * 1.005
+    blocks, _, _, _ = nm.smooth_path(arr, eps)
+    cubic = np.flatnonzero(np.asarray(blocks["kind"]) == 3)
+    z = np.column_stack([blocks["start"][cubic, 2], blocks["ctrl"][cubic, 0, 2], blocks["ctrl"][cubic, 1, 2],
+                         blocks["end"][cubic, 2]])
+    assert np.ptp(z, axis=1).max() > 1e-3  # cubics in space, not in a coordinate plane

@@ -15,7 +15,14 @@
 /// polyline and every point of the polyline within it of the spline — with rigorous upper bounds from
 /// chord samples (below). A run that still fails after `max_refinements` rounds is cut at its sharpest
 /// interior vertex and both parts are tried again; a part shorter than `min_blocks` that fails is left
-/// as programmed. Vertices turning more than `max_turn` are corners: they end a run, except where a curve
+/// as programmed. A run in space (micro-segments in no coordinate plane, up to where a planar run
+/// starts) is cut into pieces, each within space_flatness·fit_tolerance() = h_max of a plane through
+/// its end points holding the tangent it starts with; a piece is fitted in its plane as above within
+/// fit_tolerance() − h (h: its vertices' largest distance from the plane), so it is within
+/// fit_tolerance() of the polyline in space both ways (the projection moves no point by more than h).
+/// Consecutive pieces share their tangent; a run's ends take the tangent of the feed move across them,
+/// or at a corner the end block's corner-side half stays a line. Vertices turning more than `max_turn`
+/// are corners: they end a run, except where a curve
 /// meets one turning at most `max_fit_turn` (not straight on both sides): the run's curve passes it. A
 /// straight run next to a corner stays as programmed. A vertex between two program lines (a corner
 /// between lines, a vertex of a run left as programmed) becomes a tangent arc inside it whose distance
@@ -55,6 +62,9 @@ struct SmoothOptions {
   double lead_length = 2.0;   ///< longest part of an adjoining line a run's curve may use [mm]
   bool round_corners = true;  ///< replace the vertex between two program lines by an arc within fit_tolerance()
   double plane_tolerance = 1e-9;  ///< a run is planar when its normal coordinate varies less [mm]
+  /// runs in space (in no coordinate plane) are smoothed in pieces each within this share of the fit
+  /// tolerance of a plane (the rest of it is the fit's); 0 leaves them as programmed
+  double space_flatness = 0.5;
 
   /// Tolerance of the fitted curves (and corner arcs) against the polyline [mm].
   double fit_tolerance() const noexcept { return tolerance * fit_share; }

@@ -1,4 +1,4 @@
-// The planner's cubic-record kernels (cubic_record.hpp): the array work over the pieces of a cubic
+// The planner's cubic-record kernels (kernels/cubic_record_kernels.hpp): the array work over the pieces of a cubic
 // block, one lane per piece, as wide as the instruction set being compiled (simd::native_width),
 // compiled once per instruction set by netshape_add_kernels. Only the record and plain doubles cross
 // between the kernels and the rest of the library, and the entry points are flattened, so nothing is
@@ -12,8 +12,8 @@
 #include <cmath>
 #include <limits>
 
-#include "motion/blend_bounds.hpp"
-#include "motion/cubic_record.hpp"
+#include "motion/planner/blend_bounds.hpp"
+#include "motion/kernels/cubic_record_kernels.hpp"
 
 namespace netshape::motion::detail::NETSHAPE_KERNEL_ISA {
 namespace {
@@ -24,7 +24,7 @@ using M = B::M;
 constexpr int W = simd::native_width;
 static_assert(CubicRecord::pieces % W == 0, "whole packets over the record's arrays");
 
-// One step of min_ratio()'s loop (planner_state.hpp): the fraction num/den replaces the best nb/db
+// One step of min_ratio()'s loop (planner/state.hpp): the fraction num/den replaces the best nb/db
 // where den > 0 and either none was taken yet (has false) or num·db < nb·den.
 NETSHAPE_SIMD_INLINE void ratio_step(D num, D den, D& nb, D& db, M& has) {
   const M better = B::lt(B::mul(num, db), B::mul(nb, den));
@@ -106,7 +106,7 @@ __attribute__((flatten)) void freeze(CubicRecord& r, const double* A, double ami
   }
 }
 
-// set_limits() of an axis-box piece and box_reach_both() (planner_push.cpp): den = U + 2L·max(K, 0),
+// set_limits() of an axis-box piece and box_reach_both() (planner/push.cpp): den = U + 2L·max(K, 0),
 // an = U − 2L·min(K, 0) per direction and axis, the three reciprocals from one division.
 __attribute__((flatten)) unsigned caps_reach(CubicRecord& r, double feed_cap, const double* V, const double* A) {
   const D zero = B::set(0.0), one = B::set(1.0), two = B::set(2.0), inf = B::set(std::numeric_limits<double>::infinity());

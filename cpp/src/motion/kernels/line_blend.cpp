@@ -1,4 +1,4 @@
-// The planner's line-blend kernels (line_blend.hpp): the array work of a corner blend between two
+// The planner's line-blend kernels (kernels/line_blend_kernels.hpp): the array work of a corner blend between two
 // lines, 4 lanes wide (one per piece), compiled once per instruction set by netshape_add_kernels.
 // Only plain doubles and Vec3 (no vectorisable Eigen type, whose alignment differs between the
 // copies) cross between the kernels and the rest of the library, and both entry points are flattened,
@@ -9,7 +9,7 @@
 #include <cmath>
 #include <limits>
 
-#include "motion/line_blend.hpp"
+#include "motion/kernels/line_blend_kernels.hpp"
 
 #if defined(__AVX512F__)
 // The blends are 4 lanes wide, which AVX2 already runs as one packet, and Eigen's AVX-512 packets fuse

@@ -6,7 +6,7 @@
 // a branch would not have changed is kept by a blend (not by adding zero, which turns −0 into +0).
 #include "core/simd.hpp"  // first: it wraps the intrinsic headers (see there)
 
-#include "motion/smoothing_kernels.hpp"
+#include "motion/kernels/smoothing_kernels.hpp"
 
 namespace netshape::motion::detail::NETSHAPE_KERNEL_ISA {
 namespace {

@@ -1,5 +1,5 @@
 #pragma once
-/// \file planner_state.hpp
+/// \file state.hpp
 /// Internal: the state of a motion::Planner, which holds one through a pointer. The ring of nodes
 /// (segments with their limits and, once frozen, their profiles), the pass records the look-ahead
 /// walks, the blend stores, and the operations on them; each planner_*.cpp file implements one
@@ -18,10 +18,10 @@
 #include <limits>
 #include <vector>
 
-#include "blend_bounds.hpp"
-#include "cubic_record.hpp"
-#include "line_blend.hpp"
-#include "planner_geometry.hpp"
+#include "motion/planner/blend_bounds.hpp"
+#include "motion/kernels/cubic_record_kernels.hpp"
+#include "motion/kernels/line_blend_kernels.hpp"
+#include "motion/planner/geometry.hpp"
 #include "netshape/motion/cubic.hpp"
 #include "netshape/motion/planner.hpp"
 
@@ -197,11 +197,11 @@ class PlannerState {
   /// Back to the empty state (limits, options and memory kept).
   void reset() noexcept;
 
-  // planner_push.cpp
+  // planner/push.cpp
   /// Append a block; `cubic` non-null: a cubic block (the Bézier b.start, c1, c2, b.end).
   Status push(const toolpath::Block& block, const CubicControls* cubic = nullptr) noexcept;
   void finish() noexcept;
-  // planner_output.cpp
+  // planner/output.cpp
   Status next(Sample& out) noexcept;
   Status next_segment(PlannedSegment& out) noexcept;
 
@@ -218,7 +218,7 @@ class PlannerState {
   long blocks_in_buffer() const noexcept;
   Status fail(const char* msg) noexcept;
 
-  // --- nodes and their pass records (planner_push.cpp, inline below) ---
+  // --- nodes and their pass records (planner/push.cpp, inline below) ---
   /// Length the passes plan with: the node's length minus its windows (and, while the blend at its
   /// end is pending, minus the largest end trim a blend may take) [mm].
   double planned_length(const Node& n) const noexcept;
@@ -235,12 +235,22 @@ class PlannerState {
   /// Pass record of node k from the node (w_backward and line_blend: the caller).
   void update_pass(long k) noexcept;
   /// Largest squared speed at the end of a node that starts at sqrt(w0) [mm²/s²] (the backward pass
-  /// has its own step). (Defined inline in planner_lookahead.cpp, its only user.)
+  /// has its own step). (Defined inline in planner/lookahead.cpp, its only user.)
   double reach_squared(const PassRecord& n, double w0) const noexcept;
   /// Node n at the tail with its pass record (w_backward = 0).
   void append(const Node& n) noexcept;
   /// The last node holds a whole block whose end is now known: cut arcs into pieces.
   void split_last_block() noexcept;
+  /// The geometry of the node of a line or arc block b (a cubic's is built by init_cubic_node): its
+  /// segment and bounds over the whole block (len: its length [mm]; in_place: nn is a ring slot that
+  /// may hold an older node's fields, each one the planner reads before the freeze is set).
+  void init_block_node(Node& nn, const toolpath::Block& b, long source, double len, bool in_place) noexcept;
+  /// The speed at a vertex turning theta > tangent_angle from the piece p to the new node nn by the
+  /// corner rule (u1, u2: unit tangents; amin: the moving axes' smallest acceleration; dk: the step of
+  /// the curvature vector in jerk mode; arc, cubic: the new block's kind) [mm/s], not yet capped by
+  /// the feeds; jump: the rule jumps the velocity there (vector, per-axis).
+  double kink_speed(const Node& p, const Node& nn, const Vec3& u1, const Vec3& u2, double theta, double amin,
+                    const Vec3& dk, bool arc, bool cubic, bool& jump) const noexcept;
   /// Piece k of m of a block cut into pieces (its geometry and bounds already set): speed cap and
   /// limits, the block's junction, window and curvature-step marks on its first / last piece, and the
   /// junction speed from the piece before (v_prev, updated to this piece's cap). minima: as set_limits.
@@ -255,7 +265,7 @@ class PlannerState {
   /// jump alone), 3 with jerk limits (third differences too).
   double window_periods() const noexcept { return jerk_limited_ ? 3.0 : 2.0; }
 
-  // --- cubic blocks (planner_cubic.cpp) ---
+  // --- cubic blocks (planner/cubic.cpp) ---
   /// Why a cubic block is not valid (a static message naming the field), or nullptr.
   static const char* cubic_error(const toolpath::Block& b, const CubicControls& c) noexcept;
   /// n becomes the whole cubic block as one node (Geometry::in_node, kind blend, its table filled)
@@ -268,7 +278,7 @@ class PlannerState {
   void split_cubic_block() noexcept;
   /// split_cubic_block() into the cubic record of the block (cubic_records_used()): m pieces between
   /// cuts (arc lengths), table step `step`; intervals(k, i0, i1) gives the table intervals of piece k;
-  /// amin: the smallest acceleration of the axes that move. (Defined in planner_cubic.cpp.)
+  /// amin: the smallest acceleration of the axes that move. (Defined in planner/cubic.cpp.)
   template <class Intervals>
   void fill_cubic_record(Node& whole, const PieceBase& base, const double* cuts, int m, int step, double amin,
                          const Intervals& intervals) noexcept;
@@ -284,7 +294,7 @@ class PlannerState {
   /// The table of the cubic block `source` (see CubicTable).
   CubicTable& cubic_table(long source) noexcept { return cubic_tables_[static_cast<std::size_t>(source) & 1u]; }
 
-  // --- corner blends (planner_blend.cpp) ---
+  // --- corner blends (planner/blend.cpp) ---
   /// The blend rule's corner between the previous block's node `prev` (ring index) and the new
   /// block's node nn (not yet appended): blend nodes appended, nn's junction speeds set.
   void append_corner_blend(long prev, Node& nn, const Vec3& u1, const Vec3& u2, double sin_half, long source) noexcept;
@@ -293,9 +303,9 @@ class PlannerState {
   void append_line_blend(long source, long psource, const Vec3& p0, const Vec3& vtx, const Vec3& p3, const Vec3& u1,
                          const Vec3& u2, double d, double vfeed, double& v_prev) noexcept;
 
-  // --- look-ahead: backward pass and freeze (planner_lookahead.cpp) ---
+  // --- look-ahead: backward pass and freeze (planner/lookahead.cpp) ---
   void back_pass(long dirty_from) noexcept;
-  /// Whether the buffer is deep enough to freeze (inline in planner_lookahead.cpp, its only user).
+  /// Whether the buffer is deep enough to freeze (inline in planner/lookahead.cpp, its only user).
   bool buffer_ready() const noexcept;
   bool freeze_next() noexcept;
   void freeze_line_blend(Node& n, LineBlendRecord& r, double vs, double wt) noexcept;
@@ -305,11 +315,11 @@ class PlannerState {
   void freeze_record_node(Node& n, double vs, double ve, double t_end) noexcept;
   /// The profile of a SpeedBound::axis_box piece without jerk limits over length len from vs to ve
   /// (windows ws, we) with cruise cap v_max and the piece's ramp terms (Node::ramp_tangent,
-  /// ramp_curvature). (Defined inline in planner_lookahead.cpp, its only user.)
+  /// ramp_curvature). (Defined inline in planner/lookahead.cpp, its only user.)
   Profile axis_box_profile(double len, double vs, double ve, double v_max, const Vec3 (&ramp_tangent)[2],
                            const Vec3 (&ramp_curvature)[2], double ws, double we) const noexcept;
 
-  // --- output (planner_output.cpp) ---
+  // --- output (planner/output.cpp) ---
   Status ensure_frozen_until(double t) noexcept;
   void copy_blend_geometry(const Segment& whole, Segment& out) const noexcept;
   /// The node's segment with its geometry (blend pieces: copied in from the blend store on first use).

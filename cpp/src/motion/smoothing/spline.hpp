@@ -9,16 +9,15 @@
 
 #include <Eigen/Core>
 
+#include "motion/smoothing/stage.hpp"
 #include "netshape/core/types.hpp"
-#include "smoothing_kernels.hpp"
+#include "motion/kernels/smoothing_kernels.hpp"
 
 namespace netshape::motion {
 namespace {
 
-using V2 = Eigen::Vector2d;
-
-double cross2(const V2& a, const V2& b) { return a.x() * b.y() - a.y() * b.x(); }
-V2 perp(const V2& t) { return V2(-t.y(), t.x()); }
+inline double cross2(const V2& a, const V2& b) { return a.x() * b.y() - a.y() * b.x(); }
+inline V2 perp(const V2& t) { return V2(-t.y(), t.x()); }
 
 // A segment prepared for distance queries: start a, vector d = end − a, il2 = 1/|d|² (0 for a point).
 struct Seg {
@@ -26,14 +25,14 @@ struct Seg {
   double il2;
 };
 
-Seg make_seg(const V2& a, const V2& b) {
+inline Seg make_seg(const V2& a, const V2& b) {
   const V2 d = b - a;
   const double l2 = d.squaredNorm();
   return Seg{a, d, l2 > 0 ? 1.0 / l2 : 0.0};
 }
 
 // squared distance from p to the segment
-double dist2(const V2& p, const Seg& s) {
+inline double dist2(const V2& p, const Seg& s) {
   const V2 r = p - s.a;
   const double t = std::clamp(r.dot(s.d) * s.il2, 0.0, 1.0);
   return (r - t * s.d).squaredNorm();
@@ -42,7 +41,7 @@ double dist2(const V2& p, const Seg& s) {
 // Direction of the bisector at the vertex between consecutive segments s0 and s1: u1 − u0 for their unit
 // directions u0, u1 (points on the line through the vertex with this direction are equally far from
 // both segments), the normal of s0 where they run straight on, any direction for a point segment.
-V2 bisector(const Seg& s0, const Seg& s1) {
+inline V2 bisector(const Seg& s0, const Seg& s1) {
   const V2 u0 = s0.d * std::sqrt(s0.il2), u1 = s1.d * std::sqrt(s1.il2);
   const V2 w = u1 - u0;
   if (w.squaredNorm() > 0) return w;
@@ -78,7 +77,7 @@ struct SegTable {
 // The squared distances of p0 and p1 to the segments lo..hi of s (dist2() of each) into D0, D1
 // [0..hi − lo] and their minima over the window (SmoothingKernels::pair_window says which; sag: per
 // segment, or null), several segments per step in the smoothing kernel.
-void pair_window(const V2& p0, const V2& p1, const SegTable& s, long lo, long hi, const double* sag, double* D0,
+inline void pair_window(const V2& p0, const V2& p1, const SegTable& s, long lo, long hi, const double* sag, double* D0,
                  double* D1, double* mins) {
   static const detail::SmoothingKernels& kernels = detail::smoothing_kernels();
   const double p[4] = {p0.x(), p0.y(), p1.x(), p1.y()};
@@ -101,7 +100,7 @@ struct RunWork {
   std::vector<double> v0, v1, vn, vx;
 };
 
-double run_bound(const V2& c0, const V2& c1, const SegTable& seg, long lo, long hi, const double* D0, const double* D1,
+inline double run_bound(const V2& c0, const V2& c1, const SegTable& seg, long lo, long hi, const double* D0, const double* D1,
                  const double* sag, RunWork& work) {
   static const detail::SmoothingKernels& kernels = detail::smoothing_kernels();
   const auto n = static_cast<std::size_t>(hi - lo + 1);
@@ -252,7 +251,7 @@ struct Spline {
 // definite: false). lo: workspace, lo[i][k] = L(i, i − k). Each row's forward substitution follows its
 // factorisation in the same pass (the same operations as two passes: a row's step reads only rows
 // already done), so the processor overlaps the two chains of divisions and roots.
-bool band_solve(const std::array<double, 4>* band, V2* rhs, int n, std::vector<std::array<double, 4>>& lo) {
+inline bool band_solve(const std::array<double, 4>* band, V2* rhs, int n, std::vector<std::array<double, 4>>& lo) {
   lo.resize(static_cast<std::size_t>(n));
   auto L = [&](int i) -> std::array<double, 4>& { return lo[static_cast<std::size_t>(i)]; };
   for (int i = 0; i < n; ++i) {
@@ -391,7 +390,7 @@ struct ParamMap {
 // as in band_solve) from sp's power basis: row r sums the spans r..r + 3. On span k the basis function
 // r has N_r'' = α_r + β_r·x (x = u − t[k]), with α_r = 2·pb[8 + r] and β_r = 6·pb[12 + r], so
 // ∫_0^h N_r''·N_q'' dx is exact in closed form.
-void penalty_rows(const Spline& sp, double pen, std::vector<std::array<double, 4>>& pen_band, int r0, int r1) {
+inline void penalty_rows(const Spline& sp, double pen, std::vector<std::array<double, 4>>& pen_band, int r0, int r1) {
   const int m = static_cast<int>(sp.P.size());
   r0 = std::max(r0, 0);
   r1 = std::min(r1, m - 1);
@@ -426,7 +425,7 @@ struct FitWork {
   std::vector<V2> rhs;
 };
 
-bool solve_window(const std::vector<Sample>& samples, const std::vector<int>& span, int lo, int hi,
+inline bool solve_window(const std::vector<Sample>& samples, const std::vector<int>& span, int lo, int hi,
                   const std::vector<std::array<double, 4>>& pen_band, Spline& sp, FitWork& work) {
   const int m = static_cast<int>(sp.P.size());
   auto& band = work.band;

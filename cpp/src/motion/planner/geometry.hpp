@@ -1,8 +1,8 @@
 #pragma once
-/// \file planner_geometry.hpp
+/// \file geometry.hpp
 /// Internal: the path geometry the planner bounds speeds with: points and tangents on the programmed
 /// pieces, curvature vectors at segment ends, per-axis bounds over an arc window, the pieces an arc is
-/// cut into (planner_geometry.cpp).
+/// cut into (planner/geometry.cpp).
 
 #include <algorithm>
 
@@ -50,7 +50,7 @@ inline Vec3 piece_tangent(const Segment& s, double at) {
 /// Curvature vector κ·n [1/mm] at the (trimmed) start or end of a segment (0 on lines).
 Vec3 curvature_vector(const Segment& s, bool at_end);
 /// Number of pieces an arc segment (its trimmed window) is cut into: pieces of at most
-/// arc_piece_angle sweep, at most max_arc_pieces (planner_state.hpp).
+/// arc_piece_angle sweep, at most max_arc_pieces (planner/state.hpp).
 int arc_piece_count(const Segment& s);
 /// Per-axis bounds over the arc window [s0, s1] (arc length from the block start [mm]) of |u_i| (U)
 /// and of the curvature vector |κ n_i| (K) [1/mm], a helix's curvature vector pointing to its axis; and

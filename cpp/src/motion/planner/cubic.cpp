@@ -2,14 +2,14 @@
 // arc-length table, bounds over all of it), the cut into pieces at table nodes once the block's end is
 // known (per-axis bounds per piece, as the corner blends' pieces; without jerk limits the pieces are
 // arrays in one record behind one ring node), and the test for a curvature-continuous joint. push()
-// (planner_push.cpp) sets their junctions like any block's.
+// (planner/push.cpp) sets their junctions like any block's.
 #include <algorithm>
 #include <array>
 #include <cmath>
 
-#include "blend_bounds.hpp"
-#include "planner_geometry.hpp"
-#include "planner_state.hpp"
+#include "motion/planner/blend_bounds.hpp"
+#include "motion/planner/geometry.hpp"
+#include "motion/planner/state.hpp"
 
 namespace netshape::motion::detail {
 

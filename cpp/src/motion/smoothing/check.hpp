@@ -1,5 +1,5 @@
 #pragma once
-// The tolerance-band smoothing stage's check (private, included through smoothing_fit.hpp by
+// The tolerance-band smoothing stage's check (private, included through smoothing/fit.hpp by
 // smoothing.cpp only, so everything here has internal linkage): a run's spline as cubic Bézier pieces
 // and the two-way check of the spline against the run's polyline, with rigorous bounds.
 #include <algorithm>
@@ -10,7 +10,7 @@
 #include <Eigen/Core>
 
 #include "netshape/core/types.hpp"
-#include "smoothing_spline.hpp"
+#include "motion/smoothing/spline.hpp"
 
 namespace netshape::motion {
 namespace {
@@ -58,14 +58,11 @@ struct CheckCache {
   RunWork run;
 };
 
-// In a check with the cache, the chords of a knot span whose bound is valid and the polyline segments
-// whose chords all lie in such spans keep their bounds.
-bool chain_check(const Spline& sp, const std::vector<V2>& pts, const SegTable& srows, const std::vector<double>& cum,
-                 const ParamMap& amap, double eps, double mean, CheckCache& cache, RunFit& out,
-                 std::vector<double>& bad) {
-  const std::size_t n = pts.size();
+// The chord samples of the spline (CheckCache::cp, cu, cpar, csag, cspan) and its pieces (out.pieces,
+// parameters still spline parameters); false when the spline has no non-empty knot span.
+inline bool chord_samples(const Spline& sp, const ParamMap& amap, double eps, double mean, CheckCache& cache,
+                          RunFit& out) {
   const double sag_share = 0.03 * eps;
-  bad.clear();
   out.pieces.clear();
   const int m = static_cast<int>(sp.P.size());
   // chord samples of the spline with their parameters, sagitta bound and span
@@ -110,7 +107,20 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const SegTable& s
       cspan.push_back(k);
     }
   }
-  if (out.pieces.empty()) return false;
+  return !out.pieces.empty();
+}
+
+// spline -> polyline: the largest bound over the chords of the spans whose cached bound is not valid
+// (and the cached bounds of the others); the polyline arc lengths of failing chords go to bad.
+inline double check_chords(const Spline& sp, const SegTable& srows, const std::vector<double>& cum,
+                           double eps, double mean, CheckCache& cache, std::vector<double>& bad) {
+  const std::size_t n = cum.size();
+  const int m = static_cast<int>(sp.P.size());
+  auto& cp = cache.cp;
+  auto& cu = cache.cu;
+  auto& cpar = cache.cpar;
+  auto& csag = cache.csag;
+  auto& cspan = cache.cspan;
   double bound = 0;
   const double fine = 0.1 * eps;  // bisect a failing chord down to this length [mm]
   // spline -> polyline: every spline point between chord points c0, c1 is within σ of the chord, and
@@ -197,6 +207,22 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const SegTable& s
     if (best > eps) bad.push_back(um);
     sb = std::max(sb, best);
   }
+  return bound;
+}
+
+// polyline -> spline: the largest bound over the polyline segments whose cached bound is not valid or
+// whose chords meet a span checked again; the arc lengths of failing places go to bad.
+inline double check_polyline(const std::vector<V2>& pts, const std::vector<double>& cum, double eps,
+                             double mean, CheckCache& cache, std::vector<double>& bad) {
+  const std::size_t n = pts.size();
+  auto& cp = cache.cp;
+  auto& cu = cache.cu;
+  auto& cpar = cache.cpar;
+  auto& csag = cache.csag;
+  auto& fresh = cache.fresh;
+  double bound = 0;
+  const double fine = 0.1 * eps;  // bisect a failing piece down to this length [mm]
+  auto valid = [eps](double b) { return b >= 0 && b <= eps; };
   // polyline -> spline: every point of a polyline piece [q0, q1] is within run_bound of the chords, each
   // chord's part plus its σ, so within that of the spline
   const long nch = static_cast<long>(cp.size()) - 1;
@@ -312,6 +338,19 @@ bool chain_check(const Spline& sp, const std::vector<V2>& pts, const SegTable& s
       }
     }
   }
+  return bound;
+}
+
+// The two-way check (chord_samples, check_chords, check_polyline). In a check with the cache, the
+// chords of a knot span whose bound is valid and the polyline segments whose chords all lie in such
+// spans keep their bounds.
+inline bool chain_check(const Spline& sp, const std::vector<V2>& pts, const SegTable& srows,
+                        const std::vector<double>& cum, const ParamMap& amap, double eps, double mean, CheckCache& cache, RunFit& out,
+                        std::vector<double>& bad) {
+  bad.clear();
+  if (!chord_samples(sp, amap, eps, mean, cache, out)) return false;
+  double bound = check_chords(sp, srows, cum, eps, mean, cache, bad);
+  bound = std::max(bound, check_polyline(pts, cum, eps, mean, cache, bad));
   out.bound = bound;
   std::size_t pk = 0;  // the pieces' parameters are nondecreasing
   for (Piece& p : out.pieces) {

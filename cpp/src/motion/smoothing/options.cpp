@@ -20,6 +20,7 @@ void SmoothOptions::validate() const {
   NETSHAPE_CHECK(knot_spacing > 0 && std::isfinite(knot_spacing), "knot_spacing", knot_spacing, "must be positive");
   NETSHAPE_CHECK(lead_length >= 0 && std::isfinite(lead_length), "lead_length", lead_length, "must be >= 0 [mm]");
   NETSHAPE_CHECK(plane_tolerance >= 0, "plane_tolerance", plane_tolerance, "must be >= 0 [mm]");
+  NETSHAPE_CHECK(space_flatness >= 0 && space_flatness < 1, "space_flatness", space_flatness, "must be in [0, 1)");
 }
 
 }  // namespace netshape::motion

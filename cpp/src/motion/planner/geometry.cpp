@@ -1,12 +1,12 @@
 // Arc geometry for the planner: per-axis bounds of the tangent and curvature vector over an arc
 // window, the pieces an arc is cut into, curvature vectors at segment ends.
-#include "planner_geometry.hpp"
+#include "motion/planner/geometry.hpp"
 
 #include <cmath>
 #include <utility>
 
-#include "blend_bounds.hpp"
-#include "planner_state.hpp"
+#include "motion/planner/blend_bounds.hpp"
+#include "motion/planner/state.hpp"
 
 namespace netshape::motion::detail {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "planner_state.hpp"
+#include "motion/planner/state.hpp"
 
 namespace netshape::motion::detail {
 
@@ -208,7 +208,7 @@ bool PlannerState::freeze_next() noexcept {
   return true;
 }
 
-// The pieces of a line-blend node one after the other (the freeze kernel, line_blend.hpp), as
+// The pieces of a line-blend node one after the other (the freeze kernel, kernels/line_blend_kernels.hpp), as
 // freeze_next() does for single nodes.
 void PlannerState::freeze_line_blend(Node& n, LineBlendRecord& r, double vs, double wt) noexcept {
   const double v_end = line_blend_kernels_->freeze(r, vs, wt, limits_.acceleration, t_frozen_end_);

@@ -3,7 +3,7 @@
 // hand out.
 #include <cmath>
 
-#include "planner_state.hpp"
+#include "motion/planner/state.hpp"
 
 namespace netshape::motion::detail {
 

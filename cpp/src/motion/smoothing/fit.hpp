@@ -1,7 +1,7 @@
 #pragma once
 // The tolerance-band smoothing stage's runs (private, included by smoothing.cpp only, so everything
 // here has internal linkage): one run's spline fit pulled back into the tube until the check
-// (smoothing_check.hpp) passes.
+// (smoothing/check.hpp) passes.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -12,8 +12,8 @@
 #include "netshape/core/types.hpp"
 #include "netshape/motion/smoothing.hpp"
 #include "netshape/toolpath/block.hpp"
-#include "smoothing_check.hpp"
-#include "smoothing_spline.hpp"
+#include "motion/smoothing/check.hpp"
+#include "motion/smoothing/spline.hpp"
 
 namespace netshape::motion {
 namespace {
@@ -29,7 +29,7 @@ constexpr int sharp_reach = 8;      // they reach ±2·sharp_reach fit tolerance
 constexpr int fit_reach = 6;        // a round solves the control points this many spans around raised samples
 
 // Interior vertices of the polyline turning more than sharp_turn.
-std::vector<std::size_t> sharp_vertices(const std::vector<V2>& pts, const std::vector<double>& cum) {
+inline std::vector<std::size_t> sharp_vertices(const std::vector<V2>& pts, const std::vector<double>& cum) {
   std::vector<std::size_t> out;
   for (std::size_t i = 1; i + 1 < pts.size(); ++i) {
     const double l0 = cum[i] - cum[i - 1], l1 = cum[i + 1] - cum[i];
@@ -57,21 +57,12 @@ std::vector<std::size_t> sharp_vertices(const std::vector<V2>& pts, const std::v
 // down to mean/16; the knot is inserted without changing the curve). When every residual is within
 // 0.93 of the fit tolerance the arc chain is built and checked both ways with rigorous bounds, again
 // only where the spline changed since the last check (CheckCache); where the check fails, the weights
-// of the samples within one mean segment are raised, a failing place between samples gets a sample of
-// its own, and the round repeats. False when the check still fails after max_refinements rounds.
-bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const SmoothOptions& opt,
-             RunFit& out) {
-  const std::size_t n = pts.size();  // vertices
-  std::vector<double> cum(n, 0.0);
-  for (std::size_t i = 1; i < n; ++i) cum[i] = cum[i - 1] + (pts[i] - pts[i - 1]).norm();
+// The first knots of a run of length L = cum.back(): uniform, about knot_spacing mean segments apart
+// (at least 3 spans), and every 2·eps within ±2·sharp_reach·eps of each sharp vertex; then no two
+// closer than eps.
+inline std::vector<double> initial_knots(const std::vector<double>& cum, double mean, double eps,
+                                        const SmoothOptions& opt, const std::vector<std::size_t>& sharp) {
   const double L = cum.back();
-  std::vector<Seg> segs;  // the polyline's segments and the bisectors at its interior vertices
-  std::vector<V2> wseg;
-  for (std::size_t i = 0; i + 1 < n; ++i) segs.push_back(make_seg(pts[i], pts[i + 1]));
-  for (std::size_t i = 0; i + 1 < segs.size(); ++i) wseg.push_back(bisector(segs[i], segs[i + 1]));
-  SegTable srows;  // segs and wseg as rows
-  srows.assign(segs, wseg);
-  const double eps = opt.fit_tolerance();
   const int spans = std::max(3, static_cast<int>(std::ceil(L / (opt.knot_spacing * mean))));
   const double dk = L / spans;
   std::vector<double> knots;
@@ -79,7 +70,6 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   // Next to a sharp vertex (turning more than sharp_turn) the curve has to turn within a few fit
   // tolerances: knots every 2·eps and samples every eps within ±16·eps of it give the spline the
   // freedom to do so and the fit the data to see it.
-  const auto sharp = sharp_vertices(pts, cum);
   for (const std::size_t i : sharp)
     for (int q = -sharp_reach; q <= sharp_reach; ++q) {
       const double u = cum[i] + 2.0 * q * eps;
@@ -92,6 +82,14 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
       if (kept.empty() || u - kept.back() > eps) kept.push_back(u);
     knots.swap(kept);
   }
+  return knots;
+}
+
+// The first samples of the polyline: every ≤ mean/2 along each segment, weighted by the arc length
+// each stands for, and every eps within ±2·sharp_reach·eps of each sharp vertex (weight eps).
+inline std::vector<Sample> initial_samples(const std::vector<V2>& pts, const std::vector<double>& cum,
+                                          double mean, double eps, const std::vector<std::size_t>& sharp) {
+  const std::size_t n = pts.size();
   // samples every ≤ mean/2 along each segment, weighted by the arc length each stands for
   std::vector<Sample> samples;
   for (std::size_t i = 0; i + 1 < n; ++i) {
@@ -112,6 +110,122 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   }
   if (!sharp.empty())
     std::sort(samples.begin(), samples.end(), [](const Sample& x, const Sample& y) { return x.u < y.u; });
+  return samples;
+}
+
+// After a failed check: the samples within one mean segment of a failing place (arc lengths bad, sorted
+// here) get 4× the weight, and a failing place between two samples more than mean/16 from both gets a
+// sample of its own (raised marks them for the next solve).
+inline void raise_failing(std::vector<double>& bad, const std::vector<V2>& pts,
+                          const std::vector<double>& cum, double mean, const Spline& sp,
+                          std::vector<Sample>& samples, std::vector<int>& span,
+                          std::vector<char>& raised) {
+  const std::size_t n = pts.size();
+  std::sort(bad.begin(), bad.end());
+  for (std::size_t q = 0; q < samples.size(); ++q) {
+    Sample& s = samples[q];
+    const auto it = std::lower_bound(bad.begin(), bad.end(), s.a - mean);
+    if (it != bad.end() && *it <= s.a + mean) {
+      s.w *= 4.0;
+      raised[q] = 1;
+    }
+  }
+  // A failing place between two samples more than mean/16 from both gets a sample of its own (the
+  // polyline point there, weighted as the heavier neighbour, its parameter interpolated between
+  // theirs): the curve may leave the tube between samples however heavy they are.
+  for (const double b : bad) {
+    const auto it = std::lower_bound(samples.begin(), samples.end(), b,
+                                     [](const Sample& x, double v) { return x.a < v; });
+    if (it == samples.begin() || it == samples.end()) continue;
+    const Sample &s0 = *(it - 1), &s1 = *it;
+    if (b - s0.a < mean / 16.0 || s1.a - b < mean / 16.0) continue;
+    const std::size_t i = std::min(static_cast<std::size_t>(std::upper_bound(cum.begin(), cum.end(), b) - cum.begin()) - 1, n - 2);
+    const double f = std::clamp((b - cum[i]) / (cum[i + 1] - cum[i]), 0.0, 1.0);
+    const double u = s0.u + (b - s0.a) / (s1.a - s0.a) * (s1.u - s0.u);
+    const auto q = it - samples.begin();
+    samples.insert(it, Sample{u, V2(pts[i] + f * (pts[i + 1] - pts[i])), std::max(s0.w, s1.w), b});
+    span.insert(span.begin() + q, sp.span(u));
+    raised.insert(raised.begin() + q, 1);
+  }
+}
+
+// Insert the knots mids (sorted, unique) without changing the curve and rebuild what they reach: the
+// basis and pieces of the spans a new knot reaches and of the end spans, the penalty rows that sum
+// them (changed marks those spans), the cached bounds of the split spans; hold_ends() puts the end
+// control points back as the insertions left them, up to rounding.
+template <class HoldEnds>
+void insert_knots(const std::vector<double>& mids, double pen, Spline& sp,
+                  std::vector<std::array<double, 4>>& pen_band, CheckCache& cache, std::vector<char>& changed,
+                  const HoldEnds& hold_ends) {
+  const std::vector<double> t0 = sp.t;
+  for (const double x : mids) sp.insert_knot(x);
+  hold_ends();  // as the insertions left them, up to rounding
+  // A span or penalty row k no new knot reaches moves to k + (the new knots below t0[k]); the
+  // others are rebuilt below, and the split spans' two halves are checked again.
+  auto remap = [&](auto& v, const auto& blank) {
+    auto old = std::move(v);
+    v.assign(sp.P.size(), blank);
+    std::size_t c = 0;
+    for (std::size_t k = 0; k < old.size(); ++k) {
+      while (c < mids.size() && mids[c] < t0[k]) ++c;
+      v[k + c] = old[k];
+    }
+  };
+  remap(sp.pb, std::array<double, 16>{});
+  remap(sp.pw, std::array<V2, 4>{V2::Zero(), V2::Zero(), V2::Zero(), V2::Zero()});
+  remap(pen_band, std::array<double, 4>{});
+  remap(cache.span_bound, -1.0);
+  // the basis and the pieces of the spans a new knot reaches (knot j: spans j − 4..j + 3) and of
+  // the end spans, then the penalty rows that sum them
+  const int m1 = static_cast<int>(sp.P.size());
+  changed.assign(static_cast<std::size_t>(m1), 0);
+  auto touch = [&](int k0, int k1) {
+    std::fill(changed.begin() + std::max(k0, 3), changed.begin() + std::min(k1, m1 - 1) + 1, 1);
+  };
+  for (const double x : mids) {
+    const int j = static_cast<int>(std::lower_bound(sp.t.begin(), sp.t.end(), x) - sp.t.begin());
+    touch(j - 4, j + 3);
+    cache.span_bound[static_cast<std::size_t>(j - 1)] = -1.0;
+    cache.span_bound[static_cast<std::size_t>(j)] = -1.0;
+  }
+  touch(3, 4);
+  touch(m1 - 2, m1 - 1);
+  for (int pass = 0; pass < 2; ++pass)  // every span's basis first: a penalty row sums four spans
+    for (int k0 = 3; k0 < m1;) {
+      if (!changed[static_cast<std::size_t>(k0)]) {
+        ++k0;
+        continue;
+      }
+      int k1 = k0;
+      while (k1 + 1 < m1 && changed[static_cast<std::size_t>(k1 + 1)]) ++k1;
+      if (pass == 0) {
+        sp.power_basis(k0, k1);
+        sp.prepare(k0, k1);
+      } else {
+        penalty_rows(sp, pen, pen_band, k0 - 3, k1);
+      }
+      k0 = k1 + 1;
+    }
+}
+
+// of the samples within one mean segment are raised, a failing place between samples gets a sample of
+// its own, and the round repeats. False when the check still fails after max_refinements rounds.
+inline bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const SmoothOptions& opt,
+             RunFit& out) {
+  const std::size_t n = pts.size();  // vertices
+  std::vector<double> cum(n, 0.0);
+  for (std::size_t i = 1; i < n; ++i) cum[i] = cum[i - 1] + (pts[i] - pts[i - 1]).norm();
+  const double L = cum.back();
+  std::vector<Seg> segs;  // the polyline's segments and the bisectors at its interior vertices
+  std::vector<V2> wseg;
+  for (std::size_t i = 0; i + 1 < n; ++i) segs.push_back(make_seg(pts[i], pts[i + 1]));
+  for (std::size_t i = 0; i + 1 < segs.size(); ++i) wseg.push_back(bisector(segs[i], segs[i + 1]));
+  SegTable srows;  // segs and wseg as rows
+  srows.assign(segs, wseg);
+  const double eps = opt.fit_tolerance();
+  const auto sharp = sharp_vertices(pts, cum);
+  const std::vector<double> knots = initial_knots(cum, mean, eps, opt, sharp);
+  std::vector<Sample> samples = initial_samples(pts, cum, mean, eps, sharp);
   const double ell = opt.smoothing_length;
   const double pen = ell * ell * ell * ell;
   const double target = 0.93 * eps;
@@ -213,32 +327,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
       amap.build(samples, L);
       if (!chain_check(sp, pts, srows, cum, amap, eps, mean, cache, out, bad)) return false;
       if (bad.empty()) return true;
-      std::sort(bad.begin(), bad.end());
-      for (std::size_t q = 0; q < samples.size(); ++q) {
-        Sample& s = samples[q];
-        const auto it = std::lower_bound(bad.begin(), bad.end(), s.a - mean);
-        if (it != bad.end() && *it <= s.a + mean) {
-          s.w *= 4.0;
-          raised[q] = 1;
-        }
-      }
-      // A failing place between two samples more than mean/16 from both gets a sample of its own (the
-      // polyline point there, weighted as the heavier neighbour, its parameter interpolated between
-      // theirs): the curve may leave the tube between samples however heavy they are.
-      for (const double b : bad) {
-        const auto it = std::lower_bound(samples.begin(), samples.end(), b,
-                                         [](const Sample& x, double v) { return x.a < v; });
-        if (it == samples.begin() || it == samples.end()) continue;
-        const Sample &s0 = *(it - 1), &s1 = *it;
-        if (b - s0.a < mean / 16.0 || s1.a - b < mean / 16.0) continue;
-        const std::size_t i = std::min(static_cast<std::size_t>(std::upper_bound(cum.begin(), cum.end(), b) - cum.begin()) - 1, n - 2);
-        const double f = std::clamp((b - cum[i]) / (cum[i + 1] - cum[i]), 0.0, 1.0);
-        const double u = s0.u + (b - s0.a) / (s1.a - s0.a) * (s1.u - s0.u);
-        const auto q = it - samples.begin();
-        samples.insert(it, Sample{u, V2(pts[i] + f * (pts[i + 1] - pts[i])), std::max(s0.w, s1.w), b});
-        span.insert(span.begin() + q, sp.span(u));
-        raised.insert(raised.begin() + q, 1);
-      }
+      raise_failing(bad, pts, cum, mean, sp, samples, span, raised);
     }
     if (!add.empty()) {  // split the knot spans that hold the samples, down to 1/16 of the mean segment
       std::vector<double> mids;
@@ -249,55 +338,7 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
       std::sort(mids.begin(), mids.end());
       mids.erase(std::unique(mids.begin(), mids.end()), mids.end());
       if (!mids.empty()) {  // the same curve on the finer knots; the raised samples' windows reach the new knots
-        const std::vector<double> t0 = sp.t;
-        for (const double x : mids) sp.insert_knot(x);
-        hold_ends();  // as the insertions left them, up to rounding
-        // A span or penalty row k no new knot reaches moves to k + (the new knots below t0[k]); the
-        // others are rebuilt below, and the split spans' two halves are checked again.
-        auto remap = [&](auto& v, const auto& blank) {
-          auto old = std::move(v);
-          v.assign(sp.P.size(), blank);
-          std::size_t c = 0;
-          for (std::size_t k = 0; k < old.size(); ++k) {
-            while (c < mids.size() && mids[c] < t0[k]) ++c;
-            v[k + c] = old[k];
-          }
-        };
-        remap(sp.pb, std::array<double, 16>{});
-        remap(sp.pw, std::array<V2, 4>{});
-        remap(pen_band, std::array<double, 4>{});
-        remap(cache.span_bound, -1.0);
-        // the basis and the pieces of the spans a new knot reaches (knot j: spans j − 4..j + 3) and of
-        // the end spans, then the penalty rows that sum them
-        const int m1 = static_cast<int>(sp.P.size());
-        changed.assign(static_cast<std::size_t>(m1), 0);
-        auto touch = [&](int k0, int k1) {
-          std::fill(changed.begin() + std::max(k0, 3), changed.begin() + std::min(k1, m1 - 1) + 1, 1);
-        };
-        for (const double x : mids) {
-          const int j = static_cast<int>(std::lower_bound(sp.t.begin(), sp.t.end(), x) - sp.t.begin());
-          touch(j - 4, j + 3);
-          cache.span_bound[static_cast<std::size_t>(j - 1)] = -1.0;
-          cache.span_bound[static_cast<std::size_t>(j)] = -1.0;
-        }
-        touch(3, 4);
-        touch(m1 - 2, m1 - 1);
-        for (int pass = 0; pass < 2; ++pass)  // every span's basis first: a penalty row sums four spans
-          for (int k0 = 3; k0 < m1;) {
-            if (!changed[static_cast<std::size_t>(k0)]) {
-              ++k0;
-              continue;
-            }
-            int k1 = k0;
-            while (k1 + 1 < m1 && changed[static_cast<std::size_t>(k1 + 1)]) ++k1;
-            if (pass == 0) {
-              sp.power_basis(k0, k1);
-              sp.prepare(k0, k1);
-            } else {
-              penalty_rows(sp, pen, pen_band, k0 - 3, k1);
-            }
-            k0 = k1 + 1;
-          }
+        insert_knots(mids, pen, sp, pen_band, cache, changed, hold_ends);
         find_spans();
       }
     }
@@ -305,8 +346,41 @@ bool fit_run(const std::vector<V2>& pts, const RunEnds& ends, double mean, const
   return false;
 }
 
-double turn_between(const Vec3& u1, const Vec3& u2) {
-  return std::atan2(u1.cross(u2).norm(), u1.dot(u2));
+// Append the cubic blocks of a fitted run to out: one per piece of rf, from `start` to `end` (the last
+// piece's end), each a chord block like `like` (kind line) with its inner control points (to3: the
+// fit's plane coordinates to space) and its source blocks, read through the arc lengths of the
+// polyline pts whose segment q comes from program block src[q].
+template <class To3>
+void append_pieces(detail::StageOutput& out, const toolpath::Block& like, const RunFit& rf,
+                   const std::vector<V2>& pts, const std::vector<long>& src, const Vec3& start,
+                   const Vec3& end, const To3& to3) {
+  auto& res = out.res;
+  std::vector<double> cum(pts.size(), 0.0);
+  for (std::size_t q = 1; q < pts.size(); ++q) cum[q] = cum[q - 1] + (pts[q] - pts[q - 1]).norm();
+  auto block_at = [&](double u) {
+    const long k = static_cast<long>(std::upper_bound(cum.begin(), cum.end(), u) - cum.begin()) - 1;
+    return src[static_cast<std::size_t>(std::clamp(k, 0L, static_cast<long>(src.size()) - 1))];
+  };
+  Vec3 cur = start;
+  for (std::size_t q = 0; q < rf.pieces.size(); ++q) {
+    const Piece& p = rf.pieces[q];
+    toolpath::Block b = like;  // the chord of the cubic piece
+    b.kind = toolpath::MotionKind::line;
+    b.start = cur;
+    b.end = q + 1 == rf.pieces.size() ? end : to3(p.b3);
+    if ((b.end - b.start).norm() <= 1e-12) continue;
+    res.blocks.push_back(b);
+    CubicControls cc;
+    cc.cubic = true;
+    cc.c1 = to3(p.b1);
+    cc.c2 = to3(p.b2);
+    res.controls.push_back(cc);
+    res.source_first.push_back(block_at(p.ua));
+    res.source_last.push_back(block_at(p.ub));
+    out.program_line.push_back(false);
+    out.tangent_join.push_back(3);
+    cur = b.end;
+  }
 }
 
 }  // namespace

@@ -2,8 +2,8 @@
 /// \file blend_bounds.hpp
 /// Internal: per-axis bounds of a cubic Bézier's unit tangent and curvature vector over runs of its
 /// arc-length table intervals, unsigned (the speed caps) and signed (the acceleration terms of each
-/// direction of a speed change); the planner's corner blends (planner_blend.cpp) and cubic blocks
-/// (planner_cubic.cpp) bound each of their pieces with them.
+/// direction of a speed change); the planner's corner blends (planner/blend.cpp) and cubic blocks
+/// (planner/cubic.cpp) bound each of their pieces with them.
 
 #include <algorithm>
 #include <array>
@@ -11,20 +11,10 @@
 #include <cstddef>
 #include <limits>
 
+#include "core/simd.hpp"
 #include "netshape/core/types.hpp"
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 namespace netshape::motion::detail {
-
-#if defined(__SSE2__)
-// Two-lane forms of std::min and std::max for BlendBounds::whole()'s folds, bit for bit: std::min(a, b)
-// is _mm_min_pd(b, a) and std::max(a, b) is _mm_max_pd(b, a), including ties and signed zeros.
-inline __m128d min_ab(__m128d a, __m128d b) noexcept { return _mm_min_pd(b, a); }
-inline __m128d max_ab(__m128d a, __m128d b) noexcept { return _mm_max_pd(b, a); }
-#endif
 
 // A piece over the table nodes i0..i1 in jerk mode: its largest curvature |κ| at those nodes and the
 // largest |Δ|κ| / Δs| between neighbouring ones (table: the arc lengths of the nodes).
@@ -160,32 +150,30 @@ struct BlendBounds {
     for (int c = 0; c < 3; ++c) bounds_from(c, f[c][0], f[c][5], f[c][1], f[c][6], U, K);
     for (int c = 0; c < 3; ++c) ramps_from(c, f[c][2], f[c][3], f[c][7], f[c][8], f[c][4], f[c][9], U, K, Ua, Ka);
   }
-  // bounds(0, 16, U, K) and ramps(0, 16, U, K, Ua, Ka): the whole blend. With SSE2 the folds over the
-  // intervals run two rows at a time (lane 0 one row, lane 1 another), each lane in the order of the
-  // intervals with std::max / std::min's operand order (max_ab, min_ab): the same values as the loops.
+  // bounds(0, 16, U, K) and ramps(0, 16, U, K, Ua, Ka): the whole blend. With two-lane packs
+  // (simd::Batch<2>) the folds over the intervals run two rows at a time (lane 0 one row, lane 1
+  // another), each lane in the order of the intervals with std::max / std::min's result: std::max(acc, x)
+  // is B::max(x, acc) and std::min(acc, x) is B::min(x, acc), ties and signed zeros included, so the
+  // values are the loops' bit for bit.
   void whole(Vec3& U, Vec3& K, Vec3 (&Ua)[2], Vec3 (&Ka)[2]) const noexcept {
-#if defined(__SSE2__)
+#if defined(__GNUC__)
+    using B = simd::Batch<2>;
     // the left fold of rows a (lane 0) and b (lane 1) over the 16 intervals with op(acc, x)
     const auto fold = [](const double* a, const double* b, const auto& op) {
-      const __m128d a0 = _mm_loadu_pd(a), b0 = _mm_loadu_pd(b);
-      __m128d acc = op(_mm_unpacklo_pd(a0, b0), _mm_unpackhi_pd(a0, b0));
-      for (int r = 2; r < 16; r += 2) {
-        const __m128d ar = _mm_loadu_pd(a + r), br = _mm_loadu_pd(b + r);
-        acc = op(op(acc, _mm_unpacklo_pd(ar, br)), _mm_unpackhi_pd(ar, br));
-      }
+      B::D acc = op(B::D{a[0], b[0]}, B::D{a[1], b[1]});
+      for (int r = 2; r < 16; ++r) acc = op(acc, B::D{a[r], b[r]});
       return acc;
     };
-    const auto mx = [](__m128d acc, __m128d x) { return max_ab(acc, x); };
-    const auto mn = [](__m128d acc, __m128d x) { return min_ab(acc, x); };
-    const auto lane0 = [](__m128d v) { return _mm_cvtsd_f64(v); };
-    const auto lane1 = [](__m128d v) { return _mm_cvtsd_f64(_mm_unpackhi_pd(v, v)); };
+    const auto mx = [](B::D acc, B::D x) { return B::max(x, acc); };
+    const auto mn = [](B::D acc, B::D x) { return B::min(x, acc); };
     for (int c = 0; c < 3; ++c) {
-      const __m128d ab = fold(mu[c], mk[c], mx), ef = fold(du[c], dk[c], mx);
-      bounds_from(c, lane0(ab), lane1(ab), lane0(ef), lane1(ef), U, K);
+      const B::D ab = fold(mu[c], mk[c], mx), ef = fold(du[c], dk[c], mx);
+      bounds_from(c, B::lane(ab, 0), B::lane(ab, 1), B::lane(ef, 0), B::lane(ef, 1), U, K);
     }
     for (int c = 0; c < 3; ++c) {
-      const __m128d x = fold(tmax[c], kmax[c], mx), n = fold(tmin[c], kmin[c], mn), ef = fold(st[c], sk[c], mx);
-      ramps_from(c, lane0(x), lane0(n), lane1(x), lane1(n), lane0(ef), lane1(ef), U, K, Ua, Ka);
+      const B::D x = fold(tmax[c], kmax[c], mx), n = fold(tmin[c], kmin[c], mn), ef = fold(st[c], sk[c], mx);
+      ramps_from(c, B::lane(x, 0), B::lane(n, 0), B::lane(x, 1), B::lane(n, 1), B::lane(ef, 0), B::lane(ef, 1), U,
+                 K, Ua, Ka);
     }
 #else
     bounds(0, 16, U, K);

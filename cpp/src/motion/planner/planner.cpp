@@ -1,11 +1,11 @@
 // Planner's public API: construction (every buffer is allocated here), copy and move, reset and the
-// buffer queries; the streaming calls forward to PlannerState (planner_state.hpp).
+// buffer queries; the streaming calls forward to PlannerState (planner/state.hpp).
 #include "netshape/motion/planner.hpp"
 
 #include <algorithm>
 #include <utility>
 
-#include "planner_state.hpp"
+#include "motion/planner/state.hpp"
 
 namespace netshape::motion {
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file smoothing_kernels.hpp
-/// Internal: the array work of the smoothing stage's spline fit (smoothing_spline.hpp) in kernels
+/// Internal: the array work of the smoothing stage's spline fit (smoothing/spline.hpp) in kernels
 /// (kernels/smoothing.cpp) compiled once per instruction set (docs/simd.md), one lane per knot span.
 /// Every lane does the scalar definition's operations in the same order and no copy contracts to FMA,
 /// so every instruction set gives the same bits. Only plain doubles cross between the kernels and the
@@ -47,7 +47,7 @@ struct SmoothingKernels {
   /// Reads and writes nothing outside these ranges.
   void (*pair_window)(const double* p, const SegRows& s, long lo, long hi, const double* sag, double* D0,
                       double* D1, double* mins);
-  /// The parts of run_bound() (smoothing_spline.hpp) for the segment [c0, c1] (c = c0x, c0y, c1x, c1y)
+  /// The parts of run_bound() (smoothing/spline.hpp) for the segment [c0, c1] (c = c0x, c0y, c1x, c1y)
   /// against the chain s[lo..hi], one lane per segment or vertex, each value val(d2, q) = d2, or
   /// √d2 + sag[q] where sag is not null: V0[i], V1[i] = val(D0[i], q), val(D1[i], q) for q = lo + i ≤ hi
   /// (D0, D1: the squared distances of c0, c1 to segment q); and for each vertex q = lo + i < hi, the

@@ -1,5 +1,5 @@
 #pragma once
-/// \file line_blend.hpp
+/// \file line_blend_kernels.hpp
 /// Internal: the array work of a corner blend between two lines (the planner's common case) and the
 /// record it fills, in two kernels (kernels/line_blend.cpp) compiled once per instruction set
 /// (docs/simd.md). Everything here is 4 lanes wide, one lane per piece. No copy contracts to FMA, so

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "smoothing_spline.hpp"
+#include "motion/smoothing/spline.hpp"
 
 namespace netshape::motion {
 namespace {
@@ -14,7 +14,7 @@ namespace {
 // The arc inside a sharp corner turning th whose distance from the vertex is e: for the half interior
 // angle φ = (π − th)/2 its radius is e·sin φ / (1 − sin φ), and it touches each line R·tan(th/2) from the
 // vertex.
-double corner_arc_radius(double th, double e) {
+inline double corner_arc_radius(double th, double e) {
   const double sphi = std::cos(0.5 * th);
   return e * sphi / (1.0 - sphi);
 }
@@ -35,7 +35,7 @@ struct CornerArc {
 //   arc -> polyline: chords of the arc with sagitta σ; a chord's points are within
 //   max(d(c0, S), d(c1, S)) + σ of segment S (the distance to a segment is convex).
 // Returns as soon as the bound exceeds `limit` (a value above it then).
-double corner_arc_gap(const CornerArc& a, double th, const std::vector<V2>& q, double chord, double limit) {
+inline double corner_arc_gap(const CornerArc& a, double th, const std::vector<V2>& q, double chord, double limit) {
   const V2 u1 = a.p1 - a.c, u2 = a.p2 - a.c;
   const double sg = a.ccw ? 1.0 : -1.0;
   const double slack = 1e-12 * (1.0 + a.r);
@@ -77,7 +77,7 @@ double corner_arc_gap(const CornerArc& a, double th, const std::vector<V2>& q, d
 // the end of line 1 and cap2 after the start of line 2. The largest T whose arc is within e of the
 // polyline it replaces (the lines' cut-off pieces and `mid`), both ways, wins. False when the lines
 // are (nearly) parallel, X is undefined, or no T in range keeps within e.
-bool compound_corner_arc(const std::vector<V2>& mid, const V2& d1, const V2& d2, double cap1, double cap2,
+inline bool compound_corner_arc(const std::vector<V2>& mid, const V2& d1, const V2& d2, double cap1, double cap2,
                          double e, CornerArc& out) {
   const V2 A = mid.front(), B = mid.back();
   const double den = cross2(d1, d2);

@@ -1,6 +1,6 @@
-// The line-blend kernels' constant tables and the choice of their instruction set (line_blend.hpp;
+// The line-blend kernels' constant tables and the choice of their instruction set (kernels/line_blend_kernels.hpp;
 // the kernels themselves are in kernels/line_blend.cpp).
-#include "motion/line_blend.hpp"
+#include "motion/kernels/line_blend_kernels.hpp"
 
 #include <algorithm>
 

@@ -1,19 +1,19 @@
 // The blend rule's corner blends: the blend distance within the contour tolerance, the cubic Bézier
 // cut into pieces at its arc-length table nodes with per-axis bounds for each piece, and the blend
-// between two lines as one node whose pieces the line-blend kernels build (line_blend.hpp).
+// between two lines as one node whose pieces the line-blend kernels build (kernels/line_blend_kernels.hpp).
 #include <algorithm>
 #include <array>
 #include <cmath>
 
-#include "blend_bounds.hpp"
-#include "planner_geometry.hpp"
-#include "planner_state.hpp"
+#include "motion/planner/blend_bounds.hpp"
+#include "motion/planner/geometry.hpp"
+#include "motion/planner/state.hpp"
 
 namespace netshape::motion::detail {
 
 namespace {
 // pieces of a corner blend, as runs of its 16 arc-length table intervals (node indices); between two
-// lines without jerk limits: cuts_lines (line_blend.hpp)
+// lines without jerk limits: cuts_lines (kernels/line_blend_kernels.hpp)
 const int cuts_general[max_blend_pieces + 1] = {0, 2, 4, 6, 8, 10, 12, 14, 16};
 constexpr int n_cuts_general = 8;
 const int cuts_jerk[5] = {0, 4, 8, 12, 16};

@@ -7,8 +7,8 @@
 
 #include "netshape/motion/smoothing.hpp"
 #include "netshape/toolpath/block.hpp"
-#include "smoothing_corner.hpp"
-#include "smoothing_fit.hpp"
+#include "motion/smoothing/corner.hpp"
+#include "motion/smoothing/stage.hpp"
 
 namespace netshape::motion {
 namespace {
@@ -27,7 +27,7 @@ namespace {
 // program_line: per block of res, a program line or a part of one; tangent_join: per block, bit 0 its
 // start, bit 1 its end joins a run's curve tangentially; lead_min: the shortest line that closes a
 // compound corner [mm].
-void round_line_corners(SmoothResult& res, const std::vector<bool>& program_line,
+inline void round_line_corners(SmoothResult& res, const std::vector<bool>& program_line,
                         const std::vector<unsigned char>& tangent_join, double lead_min, const SmoothOptions& opt) {
   using toolpath::MotionKind;
   const double e = opt.fit_tolerance();

@@ -1,13 +1,13 @@
 #pragma once
-/// \file cubic_record.hpp
+/// \file cubic_record_kernels.hpp
 /// Internal: the record of the pieces of a cubic block (the planner's cubic-record nodes) and the array
 /// work on it in kernels (kernels/cubic_record.cpp) compiled once per instruction set (docs/simd.md),
 /// one lane per piece. No copy contracts to FMA, so every instruction set gives the same bits. Only the
 /// record (plain doubles) and plain doubles cross between the kernels and the rest of the library.
 
-#include "blend_bounds.hpp"
+#include "motion/planner/blend_bounds.hpp"
 #include "core/dispatch.hpp"
-#include "line_blend.hpp"
+#include "motion/kernels/line_blend_kernels.hpp"
 #include "netshape/core/types.hpp"
 
 namespace netshape::motion::detail {

@@ -1,13 +1,13 @@
 // How a program block enters the planner: push() validates it, builds its node, and sets the junction
-// with the previous block by the corner rule (the blend rule's blends: planner_blend.cpp); the limits
+// with the previous block by the corner rule (the blend rule's blends: planner/blend.cpp); the limits
 // and pass record of a node; the last block's node cut into arc pieces once its end is known.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "netshape/motion/corner.hpp"
-#include "planner_geometry.hpp"
-#include "planner_state.hpp"
+#include "motion/planner/geometry.hpp"
+#include "motion/planner/state.hpp"
 
 namespace netshape::motion::detail {
 
@@ -81,28 +81,7 @@ Status PlannerState::push(const toolpath::Block& b, const CubicControls* cubic) 
   // mode) it is built in scratch_ and copied in by append().
   const bool in_place = !arc && !cubic && (!has_prev || (prev_line && (!blend_here || !jerk_mode)));
   Node& nn = in_place ? nodes_[ring_slot(tail_ + (blend_here ? 1 : 0))] : scratch_;
-  if (cubic) {
-    // built above (nn is scratch_)
-  } else if (arc) {
-    nn = Node{};
-    nn.segment = Segment::arc(b, source);
-    arc_bounds(nn.segment, 0.0, nn.segment.full_length, nn.tangent_bound, nn.curvature_bound, nn.ramp_tangent,
-               nn.ramp_curvature);
-  } else {
-    // Segment::line field by field (a line's ctrl and table are never read: copy_segment hands
-    // them out as zeros); then every field of the Node the planner reads before the freeze
-    if (!in_place) nn = Node{};
-    nn.segment.kind = SegmentKind::line;
-    nn.segment.block = b;
-    nn.segment.full_length = len;
-    nn.segment.trim_start = nn.segment.trim_end = 0.0;
-    nn.segment.curvature = nn.segment.curvature_rate = 0.0;
-    nn.segment.source = source;
-    nn.tangent_bound.setZero();
-    nn.curvature_bound.setZero();
-    nn.start = nn.end = NodeEnd{};
-    nn.geometry = Geometry::in_node;
-  }
+  if (!cubic) init_block_node(nn, b, source, len, in_place);  // (a cubic's is built above, nn is scratch_)
   nn.block = source;
   nn.feed_cap = (rapid || b.feed <= 0) ? inf : b.feed;
   nn.v_max = nn.feed_cap;
@@ -140,49 +119,7 @@ Status PlannerState::push(const toolpath::Block& b, const CubicControls* cubic) 
   const Vec3 dk = jerk_mode ? Vec3(curvature_vector(nn.segment, false) - curvature_vector(p.segment, true))
                             : Vec3::Zero();
   if (theta > tangent_angle) {
-    // next to arcs the vertex straddling second differences also see the centripetal part
-    // (a cubic block's curvature at the joint)
-    const double kappa = std::max(p.segment.kind == SegmentKind::arc     ? p.segment.block.curvature()
-                                  : p.segment.kind == SegmentKind::blend ? curvature_vector(p.segment, true).norm()
-                                                                         : 0.0,
-                                  arc     ? nn.segment.block.curvature()
-                                  : cubic ? curvature_vector(nn.segment, false).norm()
-                                          : 0.0);
-    switch (options_.rule) {
-      case CornerRule::paper:
-        v = std::max(paper_corner_speed(amin, options_.ts1, theta), options_.allowable_speed_difference);
-        break;
-      case CornerRule::vector:
-        v = jump_speed(amin, (u2 - u1).norm(), ts2, kappa);
-        if (jerk_mode) {
-          // third differences: a velocity step Δv gives |Δv|/ts2², an acceleration step |Δa|/ts2
-          const double jmin = moving_axes_min(limits_.jerk, u1, u2);
-          v = std::min(v, jump_speed(jmin * ts2, (u2 - u1).norm(), ts2, dk.norm()));
-        }
-        jump = true;
-        break;
-      case CornerRule::per_axis:
-        v = inf;
-        for (int i = 0; i < 3; ++i)
-          v = std::min(v, jump_speed(limits_.acceleration[i], std::abs(u2[i] - u1[i]), ts2, kappa));
-        if (jerk_mode)
-          for (int i = 0; i < 3; ++i)
-            v = std::min(v, jump_speed(limits_.jerk[i] * ts2, std::abs(u2[i] - u1[i]), ts2, std::abs(dk[i])));
-        jump = true;
-        break;
-      case CornerRule::junction_deviation: {
-        // theta is the turn between the tangents; Klipper's δ maps scv with the moving-axes minimum
-        const double dev = options_.square_corner_velocity > 0
-                               ? klipper_junction_deviation(options_.square_corner_velocity, amin)
-                               : options_.junction_deviation;
-        const double aj = options_.junction_accel == JunctionAccel::along_change
-                              ? junction_acceleration(limits_.acceleration, u1, u2, options_.junction_accel)
-                              : amin;
-        v = junction_deviation_speed(aj, dev, theta);
-        break;
-      }
-      case CornerRule::blend: v = 0.0; break;  // reversal: stop
-    }
+    v = kink_speed(p, nn, u1, u2, theta, amin, dk, arc, cubic != nullptr, jump);
     v = std::min(v, vcap);
   } else if (jerk_mode && options_.rule != CornerRule::paper && options_.rule != CornerRule::junction_deviation &&
              !((cubic || p.segment.kind == SegmentKind::blend) &&
@@ -215,6 +152,81 @@ Status PlannerState::push(const toolpath::Block& b, const CubicControls* cubic) 
   append(nn);
   back_pass(first);
   return Status::ok;
+}
+
+double PlannerState::kink_speed(const Node& p, const Node& nn, const Vec3& u1, const Vec3& u2, double theta,
+                                double amin, const Vec3& dk, bool arc, bool cubic, bool& jump) const noexcept {
+  const double ts2 = options_.ts2;
+  const bool jerk_mode = jerk_limited_;
+  double v = inf;
+  // next to arcs the vertex straddling second differences also see the centripetal part (a cubic
+  // block's curvature at the joint)
+  const double kappa = std::max(p.segment.kind == SegmentKind::arc     ? p.segment.block.curvature()
+                                : p.segment.kind == SegmentKind::blend ? curvature_vector(p.segment, true).norm()
+                                                                       : 0.0,
+                                arc     ? nn.segment.block.curvature()
+                                : cubic ? curvature_vector(nn.segment, false).norm()
+                                        : 0.0);
+  switch (options_.rule) {
+    case CornerRule::paper:
+      v = std::max(paper_corner_speed(amin, options_.ts1, theta), options_.allowable_speed_difference);
+      break;
+    case CornerRule::vector:
+      v = jump_speed(amin, (u2 - u1).norm(), ts2, kappa);
+      if (jerk_mode) {
+        // third differences: a velocity step Δv gives |Δv|/ts2², an acceleration step |Δa|/ts2
+        const double jmin = moving_axes_min(limits_.jerk, u1, u2);
+        v = std::min(v, jump_speed(jmin * ts2, (u2 - u1).norm(), ts2, dk.norm()));
+      }
+      jump = true;
+      break;
+    case CornerRule::per_axis:
+      v = inf;
+      for (int i = 0; i < 3; ++i)
+        v = std::min(v, jump_speed(limits_.acceleration[i], std::abs(u2[i] - u1[i]), ts2, kappa));
+      if (jerk_mode)
+        for (int i = 0; i < 3; ++i)
+          v = std::min(v, jump_speed(limits_.jerk[i] * ts2, std::abs(u2[i] - u1[i]), ts2, std::abs(dk[i])));
+      jump = true;
+      break;
+    case CornerRule::junction_deviation: {
+      // theta is the turn between the tangents; Klipper's δ maps scv with the moving-axes minimum
+      const double dev = options_.square_corner_velocity > 0
+                             ? klipper_junction_deviation(options_.square_corner_velocity, amin)
+                             : options_.junction_deviation;
+      const double aj = options_.junction_accel == JunctionAccel::along_change
+                            ? junction_acceleration(limits_.acceleration, u1, u2, options_.junction_accel)
+                            : amin;
+      v = junction_deviation_speed(aj, dev, theta);
+      break;
+    }
+    case CornerRule::blend: v = 0.0; break;  // reversal: stop
+  }
+  return v;
+}
+
+void PlannerState::init_block_node(Node& nn, const toolpath::Block& b, long source, double len,
+                                   bool in_place) noexcept {
+  if (b.kind == toolpath::MotionKind::arc) {
+    nn = Node{};
+    nn.segment = Segment::arc(b, source);
+    arc_bounds(nn.segment, 0.0, nn.segment.full_length, nn.tangent_bound, nn.curvature_bound, nn.ramp_tangent,
+               nn.ramp_curvature);
+    return;
+  }
+  // Segment::line field by field (a line's ctrl and table are never read: copy_segment hands them out
+  // as zeros); then every field of the Node the planner reads before the freeze
+  if (!in_place) nn = Node{};
+  nn.segment.kind = SegmentKind::line;
+  nn.segment.block = b;
+  nn.segment.full_length = len;
+  nn.segment.trim_start = nn.segment.trim_end = 0.0;
+  nn.segment.curvature = nn.segment.curvature_rate = 0.0;
+  nn.segment.source = source;
+  nn.tangent_bound.setZero();
+  nn.curvature_bound.setZero();
+  nn.start = nn.end = NodeEnd{};
+  nn.geometry = Geometry::in_node;
 }
 
 void PlannerState::finish() noexcept {
@@ -381,7 +393,7 @@ void PlannerState::set_box_reach(PassRecord& x, const Vec3 (&U)[2], const Vec3 (
 
 // Arcs are cut into pieces of at most arc_piece_angle, each with its own bounds (the axis box is much
 // tighter on a short piece); the pieces after the first are appended. Cubic blocks:
-// split_cubic_block() (planner_cubic.cpp).
+// split_cubic_block() (planner/cubic.cpp).
 void PlannerState::split_last_block() noexcept {
   Node& p = node(tail_ - 1);
   if (p.extent == Extent::settled) return;
