@@ -166,6 +166,24 @@ void bind_posture(py::module_& m) {
         py::call_guard<py::gil_scoped_release>());
   m.def("max_posture_change", &max_posture_change, py::arg("s"), py::arg("axes"), "[rad/mm]");
 
+  py::enum_<MachineKind>(m, "MachineKind")
+      .value("table_ac", MachineKind::table_ac)
+      .value("head_bc", MachineKind::head_bc);
+  py::class_<Kinematics>(m, "Kinematics")
+      .def(py::init<>())
+      .def_readwrite("kind", &Kinematics::kind)
+      .def_readwrite("table_centre", &Kinematics::table_centre, "[mm]")
+      .def_readwrite("pivot_length", &Kinematics::pivot_length, "[mm]")
+      .def_readwrite("tilt_min", &Kinematics::tilt_min, "[rad]")
+      .def_readwrite("tilt_max", &Kinematics::tilt_max, "[rad]")
+      .def("validate", &Kinematics::validate);
+  m.def("inverse_kinematics", &inverse_kinematics, py::arg("kinematics"), py::arg("tips"), py::arg("axes"),
+        py::arg("c_start") = 0.0, "(n, 5): X, Y, Z [mm], tilt (A or B) [rad], C [rad]");
+  m.def("forward_kinematics", [](const Kinematics& k, Eigen::Ref<const MatrixXdR> j) {
+    Points3 t, a;
+    forward_kinematics(k, j, t, a);
+    return py::make_tuple(t, a);
+  }, py::arg("kinematics"), py::arg("joints"), "(tips (n, 3), axes (n, 3))");
   py::class_<MoveCheck>(m, "MoveCheck")
       .def_readonly("collides", &MoveCheck::collides)
       .def_readonly("at", &MoveCheck::at, "lambda of the colliding pose found")
@@ -206,23 +224,4 @@ void bind_posture(py::module_& m) {
     return py::make_tuple(t, a, src);
   }, py::arg("kinematics"), py::arg("tips"), py::arg("axes"), py::arg("chord"),
         "(tips (m, 3), axes (m, 3), source (m,)): CL points inserted where the tip leaves a chord by > chord mm");
-
-  py::enum_<MachineKind>(m, "MachineKind")
-      .value("table_ac", MachineKind::table_ac)
-      .value("head_bc", MachineKind::head_bc);
-  py::class_<Kinematics>(m, "Kinematics")
-      .def(py::init<>())
-      .def_readwrite("kind", &Kinematics::kind)
-      .def_readwrite("table_centre", &Kinematics::table_centre, "[mm]")
-      .def_readwrite("pivot_length", &Kinematics::pivot_length, "[mm]")
-      .def_readwrite("tilt_min", &Kinematics::tilt_min, "[rad]")
-      .def_readwrite("tilt_max", &Kinematics::tilt_max, "[rad]")
-      .def("validate", &Kinematics::validate);
-  m.def("inverse_kinematics", &inverse_kinematics, py::arg("kinematics"), py::arg("tips"), py::arg("axes"),
-        py::arg("c_start") = 0.0, "(n, 5): X, Y, Z [mm], tilt (A or B) [rad], C [rad]");
-  m.def("forward_kinematics", [](const Kinematics& k, Eigen::Ref<const MatrixXdR> j) {
-    Points3 t, a;
-    forward_kinematics(k, j, t, a);
-    return py::make_tuple(t, a);
-  }, py::arg("kinematics"), py::arg("joints"), "(tips (n, 3), axes (n, 3))");
 }

@@ -11,7 +11,7 @@ namespace netshape::posture {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-constexpr std::size_t kPieceBudget = 200000;  // pieces per query before giving up (counts as undecided)
+constexpr std::size_t kPieceBudget = 20000;  // pieces per query before giving up (counts as undecided)
 
 // Distance from (x, y) to the segment (ax, ay)–(bx, by) in the meridian plane.
 double segment_distance(double x, double y, double ax, double ay, double bx, double by) {

@@ -25,7 +25,7 @@
 /// closest mesh point q to c gives the upper bound: the exact distance from q to the solid, computed in
 /// the meridian plane (z, ρ). Pieces are split (z while h ≥ ρ_1 / 4, then a disc into an inner disc and
 /// eight outer cells, a cell along its longest extent) until the answer is certain or b < tolerance;
-/// undecided pieces count as colliding, so "free" is always certified. The ball is exact: d − R.
+/// undecided pieces (or more than 20 000 per query) count as colliding, so "free" is always certified. The ball is exact: d − R.
 
 #include <algorithm>
 #include <vector>
