@@ -146,6 +146,21 @@ def exact_hits(assembly, tri, tips, axes, inflate=0.0, grow_ends=False):
     return hit
 
 
+def box(lo, hi):
+    """Vertices (8, 3) and faces (12, 3) of the axis-aligned box [lo, hi] [mm]."""
+    x = np.array([[lo[0], lo[1], lo[2]], [hi[0], lo[1], lo[2]], [hi[0], hi[1], lo[2]], [lo[0], hi[1], lo[2]],
+                  [lo[0], lo[1], hi[2]], [hi[0], lo[1], hi[2]], [hi[0], hi[1], hi[2]], [lo[0], hi[1], hi[2]]])
+    f = np.array([[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4], [1, 2, 6], [1, 6, 5],
+                  [2, 3, 7], [2, 7, 6], [3, 0, 4], [3, 4, 7]])
+    return x, f
+
+
+@pytest.fixture(scope="session")
+def box_mesh():
+    """box(lo, hi) → vertices (8, 3), faces (12, 3) of an axis-aligned box [mm]."""
+    return box
+
+
 @pytest.fixture(scope="session")
 def exact():
     """The exact NumPy test as a namespace: exact.hits(assembly, tri, tips, axes, inflate)."""

@@ -11,14 +11,6 @@ from netshape import posture as npost
 from netshape.geometry import TriangleMesh
 
 
-def box(lo, hi):
-    x = np.array([[lo[0], lo[1], lo[2]], [hi[0], lo[1], lo[2]], [hi[0], hi[1], lo[2]], [lo[0], hi[1], lo[2]],
-                  [lo[0], lo[1], hi[2]], [hi[0], lo[1], hi[2]], [hi[0], hi[1], hi[2]], [lo[0], hi[1], hi[2]]])
-    f = np.array([[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4], [1, 2, 6], [1, 6, 5],
-                  [2, 3, 7], [2, 7, 6], [3, 0, 4], [3, 4, 7]])
-    return x, f
-
-
 def head(pivot=0.0):
     k = npost.Kinematics()
     k.kind = npost.MachineKind.head_bc
@@ -26,10 +18,10 @@ def head(pivot=0.0):
     return k
 
 
-def test_swing_through_an_obstacle_collides_though_both_ends_are_free():
+def test_swing_through_an_obstacle_collides_though_both_ends_are_free(box_mesh):
     """B from +40° to −40° about a fixed tip (head_bc, pivot 0): the holder passes straight up, through a block
     50 mm above the tip; at both ends it is 30 mm away. The point checks say free, the move check says no."""
-    v, f = box([-2.0, -2.0, 48.0], [2.0, 2.0, 52.0])
+    v, f = box_mesh([-2.0, -2.0, 48.0], [2.0, 2.0, 52.0])
     chk = npost.InterferenceChecker(TriangleMesh(v, f), npost.default_assembly(), 0.5)
     k = head()
     j0, j1 = np.array([0, 0, 0, math.radians(40), 0.0]), np.array([0, 0, 0, math.radians(-40), 0.0])

@@ -13,21 +13,12 @@ from netshape.geometry import TriangleMesh
 POSES = 20_000  # bench/posture.py runs 1e5 (the exact test is the slow half)
 
 
-def box(lo, hi):
-    """Vertices (8, 3) and faces (12, 3) of the axis-aligned box [lo, hi] [mm]."""
-    x = np.array([[lo[0], lo[1], lo[2]], [hi[0], lo[1], lo[2]], [hi[0], hi[1], lo[2]], [lo[0], hi[1], lo[2]],
-                  [lo[0], lo[1], hi[2]], [hi[0], lo[1], hi[2]], [hi[0], hi[1], hi[2]], [lo[0], hi[1], hi[2]]])
-    f = np.array([[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4], [1, 2, 6], [1, 6, 5],
-                  [2, 3, 7], [2, 7, 6], [3, 0, 4], [3, 4, 7]])
-    return x, f
-
-
-def test_block_under_the_holder_face_collides():
+def test_block_under_the_holder_face_collides(box_mesh):
     """Issue 38's reproduction: a 2 × 2 × 0.8 mm block between radius 6 and 8 mm, 0.2–1.0 mm from the face of
     the Ø20 holder (vertical axis, face at z = 35) must collide at clearance 0.5; its gap is 0.2 mm."""
     a = npost.default_assembly()
     face = a.shank_length
-    v, f = box([6.0, -1.0, face - 1.0], [8.0, 1.0, face - 0.2])
+    v, f = box_mesh([6.0, -1.0, face - 1.0], [8.0, 1.0, face - 0.2])
     tip, axis = np.zeros((1, 3)), np.array([[0.0, 0.0, 1.0]])
     chk = npost.InterferenceChecker(TriangleMesh(v, f), a, 0.5)
     assert chk.collides(tip, axis)[0]
@@ -35,21 +26,21 @@ def test_block_under_the_holder_face_collides():
     assert not npost.InterferenceChecker(TriangleMesh(v, f), a, 0.1).collides(tip, axis)[0]
 
 
-def test_holder_profile_taper_is_checked():
+def test_holder_profile_taper_is_checked(box_mesh):
     """A shrink-fit taper (r 5 → 10 mm over z 35 → 45): the block at radius 6–8 just below z = 35 is free of
     it (5 mm at the face) but one beside the taper at z 39–40 (r(z) = 7–7.5) is hit."""
     a = npost.default_assembly()
     a.holder_profile = np.array([[35.0, 5.0], [45.0, 10.0], [80.0, 10.0]])
     a.validate()
     tip, axis = np.zeros((1, 3)), np.array([[0.0, 0.0, 1.0]])
-    v, f = box([6.0, -1.0, 34.0], [8.0, 1.0, 34.8])
+    v, f = box_mesh([6.0, -1.0, 34.0], [8.0, 1.0, 34.8])
     assert not npost.InterferenceChecker(TriangleMesh(v, f), a, 0.5).collides(tip, axis)[0]
-    v, f = box([7.2, -1.0, 39.0], [9.0, 1.0, 40.0])
+    v, f = box_mesh([7.2, -1.0, 39.0], [9.0, 1.0, 40.0])
     chk = npost.InterferenceChecker(TriangleMesh(v, f), a, 0.0)
     assert chk.collides(tip, axis)[0]
     # gap of a block beside the taper: its nearest point is the corner (ρ, z) = (8, 37); distance to the cone
     # line ρ = 5 + (z − 35)/2 in the meridian plane
-    v, f = box([8.0, -1.0, 36.0], [9.0, 1.0, 37.0])
+    v, f = box_mesh([8.0, -1.0, 36.0], [9.0, 1.0, 37.0])
     g = npost.InterferenceChecker(TriangleMesh(v, f), a, 0.0).gap(tip[0], axis[0])
     assert g == pytest.approx((8.0 - (5.0 + 0.5 * (37.0 - 35.0))) / np.hypot(1.0, 0.5), abs=2e-3)
     with pytest.raises(ValueError, match="holder_profile"):
