@@ -16,4 +16,5 @@ cmake --build build/sanitize -j "$JOBS"
 # pytest is registered in ctest too (label "python"); here it runs once, directly, below.
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build/sanitize -LE python --output-on-failure -j "$JOBS"
-"$PY" -m pytest tests/python -q
+# one pytest worker per core; a file stays on one worker, so its module fixtures are built once
+"$PY" -m pytest tests/python -q -n "$JOBS" --dist loadfile

@@ -195,6 +195,10 @@ void bind_program_compensation(py::module_& m) {
       .def_readwrite("chord_tolerance", &ProgramOptions::chord_tolerance, "[mm]")
       .def_readwrite("point", &ProgramOptions::point)
       .def_readwrite("max_halvings", &ProgramOptions::max_halvings)
+      .def_readwrite("block_times", &ProgramOptions::block_times,
+                     "program time at each block's end [s] (empty: from the programmed feeds)")
+      .def_readwrite("rapid_feed", &ProgramOptions::rapid_feed, "[mm/s]")
+      .def_readwrite("initial_direction", &ProgramOptions::initial_direction, "(3,) each −1, 0 or +1")
       .def("validate", &ProgramOptions::validate);
   py::class_<ProgramReport>(m, "ProgramReport", "What compensate_program did (lengths [mm]).")
       .def_readonly("source", &ProgramReport::source)
@@ -206,7 +210,10 @@ void bind_program_compensation(py::module_& m) {
       .def_readonly("max_correction", &ProgramReport::max_correction, "[mm]")
       .def_readonly("max_residual", &ProgramReport::max_residual, "[mm]")
       .def_readonly("max_path_deviation", &ProgramReport::max_path_deviation, "[mm]")
-      .def_readonly("commands", &ProgramReport::commands);
+      .def_readonly("commands", &ProgramReport::commands)
+      .def_readonly("takeup_moves", &ProgramReport::takeup_moves);
+  m.def("block_end_times", &block_end_times, py::arg("program"), py::arg("rapid_feed") = 250.0,
+        "program time at each block's end [s] from the programmed feeds (rapids at rapid_feed [mm/s])");
   m.def(
       "compensate_program",
       [](const netshape::machine::Machine& mm, const netshape::toolpath::Toolpath& program, const ProgramOptions& o) {

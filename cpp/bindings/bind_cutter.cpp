@@ -23,6 +23,11 @@ void bind_cutter(py::module_& m) {
       .def_readwrite("flute_length", &Cutter::flute_length, "[mm]")
       .def_readwrite("stick_out", &Cutter::stick_out, "holder face to tip [mm]")
       .def_readwrite("youngs_modulus", &Cutter::youngs_modulus, "[MPa]")
+      .def_readwrite("holder_compliance", &Cutter::holder_compliance,
+                     "clamp/holder compliance [mm/N]: the tool translates by holder_compliance * F")
+      .def_readwrite("runout_rho", &Cutter::runout_rho, "radial runout, tool-axis offset [mm]")
+      .def_readwrite("runout_lambda", &Cutter::runout_lambda,
+                     "runout angle [rad]: flute j cuts at R + rho cos(lambda - j 2 pi / N)")
       .def("validate", &Cutter::validate)
       .def("diameter", &Cutter::diameter, "[mm]")
       .def("radius_at", &Cutter::radius_at, py::arg("z"), "envelope radius at height z above the tip [mm]")

@@ -48,6 +48,9 @@ void bind_deflection(py::module_& m) {
       .def_readwrite("beam", &DeflectionModel::beam)
       .def_readwrite("load", &DeflectionModel::load)
       .def_readwrite("smooth_edges", &DeflectionModel::smooth_edges)
+      .def_readwrite("holder_compliance", &DeflectionModel::holder_compliance,
+                     "clamp/holder compliance [mm/N]: the tool also translates by holder_compliance * F")
+      .def_readwrite("chip", &DeflectionModel::chip, "runout and chip-size effect of the element chips")
       .def("validate", &DeflectionModel::validate);
   py::class_<DeflectionWorkspace>(m, "DeflectionWorkspace")
       .def(py::init<>())

@@ -179,6 +179,31 @@ void bind_force(py::module_& m) {
       },
       "model"_a, "angles"_a, "workspace"_a = nullptr, "engagement_map"_a = nullptr,
       "Forces on the cutter (n, 3) [N] at rotation angles (n) [rad] (flute 1 at the tip).");
+  py::class_<nf::RunoutSizeEffect>(m, "RunoutSizeEffect",
+                                   "Cutter runout (rho [mm], lambda [rad]) and chip-size effect (exponent p, "
+                                   "reference chip [mm], 0: the feed per tooth)")
+      .def(py::init<>())
+      .def(py::init([](double rho, double lam, double p, double href) {
+             nf::RunoutSizeEffect e{rho, lam, p, href};
+             e.validate();
+             return e;
+           }),
+           "runout_rho"_a = 0.0, "runout_lambda"_a = 0.0, "chip_exponent"_a = 1.0, "reference_chip"_a = 0.0)
+      .def_readwrite("runout_rho", &nf::RunoutSizeEffect::runout_rho, "[mm]")
+      .def_readwrite("runout_lambda", &nf::RunoutSizeEffect::runout_lambda, "[rad]")
+      .def_readwrite("chip_exponent", &nf::RunoutSizeEffect::chip_exponent, "p in (0, 2]")
+      .def_readwrite("reference_chip", &nf::RunoutSizeEffect::reference_chip, "h_ref [mm]; 0: the feed per tooth")
+      .def("validate", &nf::RunoutSizeEffect::validate)
+      .def("none", &nf::RunoutSizeEffect::none);
+  m.def(
+      "flat_end_forces_extended",
+      [](const nf::FlatEndModel& model, const nf::RunoutSizeEffect& extension, RefVector angles) {
+        py::gil_scoped_release rel;
+        return nf::flat_end_forces_extended(model, extension, angles);
+      },
+      "model"_a, "extension"_a, "angles"_a,
+      "Forces on the cutter (n, 3) [N] at rotation angles (n) [rad] with cutter runout and the chip-size "
+      "effect (netshape/force/runout_size_effect.hpp).");
   m.def(
       "flat_end_moments",
       [](const nf::FlatEndModel& model, RefVector angles) {

@@ -5,6 +5,7 @@
 namespace py = pybind11;
 using namespace netshape::machine;
 using netshape::py_types::RefPoints3;
+using netshape::py_types::RefVector;
 
 void bind_machine(py::module_& m) {
   py::enum_<OutOfRange>(m, "OutOfRange", "What a table does outside its positions")
@@ -54,8 +55,25 @@ void bind_machine(py::module_& m) {
 
   m.def("component_name", &component_name, py::arg("component"), py::arg("axis"));
 
+  py::class_<CyclicTerm>(m, "CyclicTerm", "Periodic positioning error amplitude·sin(2π·q/period + phase)")
+      .def(py::init([](double amplitude, double period, double phase) { return CyclicTerm{amplitude, period, phase}; }),
+           py::arg("amplitude") = 0.0, py::arg("period") = 1.0, py::arg("phase") = 0.0)
+      .def_readwrite("amplitude", &CyclicTerm::amplitude, "[mm]")
+      .def_readwrite("period", &CyclicTerm::period, "[mm]")
+      .def_readwrite("phase", &CyclicTerm::phase, "[rad]");
+  py::class_<ThermalDrift>(m, "ThermalDrift", "Tip drift along an axis: amplitude·(1 − exp(−t/time_constant))")
+      .def(py::init([](int axis, double amplitude, double time_constant) {
+             return ThermalDrift{axis, amplitude, time_constant};
+           }),
+           py::arg("axis") = 0, py::arg("amplitude") = 0.0, py::arg("time_constant") = 1.0)
+      .def_readwrite("axis", &ThermalDrift::axis, "0 = X, 1 = Y, 2 = Z")
+      .def_readwrite("amplitude", &ThermalDrift::amplitude, "[mm]")
+      .def_readwrite("time_constant", &ThermalDrift::time_constant, "[s]");
+
   py::class_<Axis>(m, "Axis", "A linear axis: travel [mm], frame origin [mm], six error components")
       .def(py::init<>())
+      .def_readwrite("cyclic", &Axis::cyclic, "periodic terms of the positioning component (a copy: assign back)")
+      .def_readwrite("backlash", &Axis::backlash, "reversal value [mm]")
       .def_readwrite("travel_min", &Axis::travel_min)
       .def_readwrite("travel_max", &Axis::travel_max)
       .def_readwrite("origin", &Axis::origin)
@@ -93,6 +111,8 @@ void bind_machine(py::module_& m) {
       .def_readwrite("spindle_nose", &Machine::spindle_nose)
       .def_readwrite("tool_length", &Machine::tool_length)
       .def_readwrite("tool_direction", &Machine::tool_direction)
+      .def_readwrite("thermal", &Machine::thermal, "thermal drift terms (a copy: assign back)")
+      .def("has_state_errors", &Machine::has_state_errors)
       .def("validate", &Machine::validate)
       .def("side", &Machine::side, py::arg("axis"))
       .def("nominal_tip", &Machine::nominal_tip);
@@ -107,6 +127,14 @@ void bind_machine(py::module_& m) {
         py::arg_v("order", Order::exact, "Order.exact"), "Where the tip lands, p + e(p) [mm], (n, 3) → (n, 3)");
   m.def("volumetric_error", &volumetric_error, py::arg("machine"), py::arg("points"),
         py::arg_v("order", Order::exact, "Order.exact"), "|e(p)| [mm] (Yang & Kweon eq. 16), (n, 3) → (n,)");
+  m.def(
+      "state_error",
+      [](const Machine& mm, const RefPoints3& d, const RefVector& t) { return state_error(mm, d, t); },
+      py::arg("machine"), py::arg("directions"), py::arg("times"),
+      "Backlash + thermal tip offset s(d, t) [mm]: directions (n, 3) (±1), times (n,) [s] → (n, 3)");
+  m.def("approach_directions", &approach_directions, py::arg("path"),
+        py::arg_v("initial", netshape::Vec3(1, 1, 1), "[1, 1, 1]"), py::arg("resolution") = 1e-9,
+        "Per point of a path (n, 3) [mm]: the sign of each axis' last motion (n, 3)");
   m.def("rotation_zyx", &rotation_zyx, py::arg("a"), py::arg("b"), py::arg("c"),
         "Rz(c)·Ry(b)·Rx(a) [rad] → (3, 3)");
 }

@@ -90,4 +90,29 @@ pybind11::dict block_arrays(const std::vector<toolpath::Block>& blocks,
   return arrays;
 }
 
+std::vector<toolpath::Block> program_blocks_from_arrays(
+    const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,
+    py_types::RefPoints3 center, const Eigen::Ref<const Eigen::VectorXi>& clockwise,
+    const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
+    py_types::RefVector feed) {
+  const Eigen::Index n = kind.size();
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (kind[i] < 0 || kind[i] > 2)
+      netshape::detail::throw_invalid(("kind[" + std::to_string(i) + "]").c_str(), kind[i],
+                                      "must be 0 (rapid), 1 (line) or 2 (arc) in a program (cubic blocks, kind 3, "
+                                      "only where the arrays are planned)");
+  const MatrixXdR no_ctrl = MatrixXdR::Zero(n, 6);
+  std::vector<motion::CubicControls> controls;
+  return planned_blocks_from_arrays(kind, start, end, center, clockwise, plane, turns, feed, no_ctrl, controls);
+}
+
+motion::Status drain(motion::Planner& p, motion::PlannedSegment& seg, long& segments, double& t_end) {
+  for (;;) {
+    const motion::Status st = p.next_segment(seg);
+    if (st != motion::Status::ok) return st;
+    ++segments;
+    t_end = seg.t0 + seg.profile.duration;
+  }
+}
+
 }  // namespace netshape::motion_arrays

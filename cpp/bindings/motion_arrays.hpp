@@ -5,6 +5,7 @@
 
 #include "default_types.hpp"
 #include "netshape/motion/cubic.hpp"
+#include "netshape/motion/planner.hpp"
 #include "netshape/toolpath/block.hpp"
 
 namespace netshape::motion_arrays {
@@ -23,5 +24,18 @@ std::vector<toolpath::Block> planned_blocks_from_arrays(
 /// plane, turns, feed, and ctrl (n, 2, 3): P1, P2 of cubic blocks, whose kind is 3 (zeros elsewhere).
 pybind11::dict block_arrays(const std::vector<toolpath::Block>& blocks,
                             const std::vector<motion::CubicControls>& controls);
+
+/// Blocks of a program from parallel arrays (so the planner does not depend on how toolpath binds its
+/// Block): kinds 0, 1, 2 only; a cubic row (kind 3), which only arrays that are planned may hold, is
+/// refused (std::invalid_argument naming the row).
+std::vector<toolpath::Block> program_blocks_from_arrays(
+    const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,
+    py_types::RefPoints3 center, const Eigen::Ref<const Eigen::VectorXi>& clockwise,
+    const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
+    py_types::RefVector feed);
+
+/// Hands out the Planner's segments until it needs blocks or is done (returns that status), counting
+/// them in `segments` and keeping the end time of the last in `t_end` [s].
+motion::Status drain(motion::Planner& p, motion::PlannedSegment& seg, long& segments, double& t_end);
 
 }  // namespace netshape::motion_arrays

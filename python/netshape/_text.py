@@ -55,6 +55,20 @@ def read_text(path, src: str | None = None) -> str:
     return decode(read_bytes(path), _name(path, src))
 
 
+def read_controller_text(path) -> str:
+    """The text of a file a controller or a measuring program wrote (a tool table, a ``.var`` parameter
+    file, a DynoWare export): UTF-8 when it is, else Latin-1 (ISO 8859-1, one character per byte), as
+    such software writes its comments and labels in the machine's local code page. Their numbers and
+    keywords are ASCII, so no byte is replaced: a non-ASCII byte inside a number is refused by the
+    reader's own check, naming the line."""
+    data = read_bytes(path)
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        text = data.decode("latin-1")
+    return text[1:] if text.startswith("\ufeff") else text
+
+
 #: What is not structure: strings (and TOML comments), dropped before brackets are counted.
 _TOML_SKIP = re.compile(r'"""[\s\S]*?"""|\'\'\'[\s\S]*?\'\'\'|"(?:\\.|[^"\\\n])*"|\'[^\'\n]*\'|#[^\n]*')
 _JSON_SKIP = re.compile(r'"(?:\\.|[^"\\])*"')

@@ -8,6 +8,7 @@ import json
 import shutil
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from netshape.cli import main
@@ -188,3 +189,29 @@ def test_latin1_byte_in_a_deflection_stock_and_heights_csv(tmp_path, capsys):
     (job.parent / "h.csv").write_bytes(b"# H\xf6hen\n" + b"\n".join([b"0,0,0"] * 3) + b"\n")
     job.write_text(job.read_text().replace("\nspacing_mm = 1.0", '\nheights = "h.csv"'))
     _one_line(capsys, ["run", str(job), "--out", str(tmp_path / "o"), "--quiet"], "h.csv:1: not UTF-8 text (byte 0xF6")
+
+
+def test_controller_files_read_latin1_labels_and_refuse_bytes_in_numbers(tmp_path):
+    """Tool tables, .var files and DynoWare exports hold their comments and labels in the machine's
+    code page: Latin-1 text is read (nothing replaced), a stray byte inside a number is refused naming
+    the line."""
+    import netshape.force as nf
+    import netshape.toolpath as tpm
+
+    tbl = tmp_path / "tool.tbl"
+    tbl.write_bytes("T1 P1 Z10.5 ;Fräser Ø10\nT2 P2 Z35.25 ;Bohrer\n".encode("latin-1"))
+    assert tpm.read_tool_table(tbl) == {1: 10.5, 2: 35.25}
+    tbl.write_bytes("T1 P1 Z10.5\nT2 P2 Z3\xe45.25\n".encode("latin-1"))
+    with pytest.raises(ValueError, match=r"tool.tbl:2: word 'Z3ä5.25'"):
+        tpm.read_tool_table(tbl)
+    var = tmp_path / "m.var"
+    var.write_bytes("5221 10.5 ; Nullpunkt Spannvorrichtung für Teil\n5222 -2\n".encode("latin-1"))
+    assert list(tpm.read_var_file(var)[0]) == [10.5, -2.0, 0.0]
+    dyn = tmp_path / "d.csv"
+    dyn.write_bytes("DynoWare,Version 2\nKommentar:,Fräsen µ-Test\nTime,Fx,Fy,Fz\ns,N,N,N\n0,1,2,3\n"
+                    "0.5,1,2,3\n".encode("latin-1"))
+    r = nf.read_dynoware(dyn, to_cutter=np.eye(3))
+    assert r.metadata["Kommentar"] == "Fräsen µ-Test"
+    dyn.write_bytes("Time,Fx,Fy,Fz\ns,N,N,N\n0,1,2,3\n0.5,1,\xb52,3\n".encode("latin-1"))
+    with pytest.raises(ValueError, match=":4"):
+        nf.read_dynoware(dyn)

@@ -7,3 +7,4 @@
 #include "netshape/force/force_summary.hpp"
 #include "netshape/force/calibration.hpp"
 #include "netshape/force/program.hpp"
+#include "netshape/force/runout_size_effect.hpp"

@@ -127,10 +127,23 @@ DeflectionCompensationResult compensate_deflection(const DeflectionModel& model,
   res.normals = wall_normals(nominal, po.side);
   const double eps = options.tolerance, lam = options.discount;
 
-  const Eigen::VectorXi& act = options.active;
-  NETSHAPE_CHECK(act.size() == 0 || act.size() == n, "active.size", act.size(),
-                 "must be 0 or the number of path points");
-  auto is_active = [&](Eigen::Index i) { return act.size() == 0 || act[i] != 0; };
+  const Eigen::Index n_active = options.active.size();
+  NETSHAPE_CHECK(n_active == 0 || n_active == n, "active.size", n_active, "must be 0 or the number of path points");
+  // A corner point (the path turns there by more than corner_turn) starts the wall of the move out of
+  // it; the offset its own engagement asks for (the turn's, one instant) cannot be written without
+  // over- or undercutting the wall that follows it, so it takes the offset of the point after it and
+  // its own error is no target (it is not an active point of the iteration).
+  Eigen::VectorXi act = options.active.size() ? options.active : Eigen::VectorXi::Ones(n);
+  std::vector<Eigen::Index> corners;
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (act[i] && is_corner(nominal, i)) {
+      corners.push_back(i);
+      act[i] = 0;
+    }
+  auto is_active = [&](Eigen::Index i) { return act[i] != 0; };
+  auto tie = [&](VectorXd& c) {
+    for (auto it = corners.rbegin(); it != corners.rend(); ++it) c[*it] = c[*it + 1];
+  };
 
   // every evaluation is remembered when it is the best so far (smallest max |e| over the active points)
   double best_worst = std::numeric_limits<double>::infinity();
@@ -177,6 +190,7 @@ DeflectionCompensationResult compensate_deflection(const DeflectionModel& model,
         }
       }
       if (!worse || round == 7) break;
+      tie(C);
       after = evaluate(C);
     }
     return std::move(after);
@@ -205,6 +219,7 @@ DeflectionCompensationResult compensate_deflection(const DeflectionModel& model,
         res.point_evaluations += 1;
       }
       res.iterations = 1;
+      tie(C);
       const double worst = finish(evaluate(C));
       res.converged = worst <= eps;
       res.message = res.converged
@@ -268,6 +283,7 @@ DeflectionCompensationResult compensate_deflection(const DeflectionModel& model,
           }
         }
         C = next;
+        tie(C);
         PathWallErrors trial = evaluate(C);
         const double w2 = max_abs_level(trial, level, nullptr, act);
         if (anderson && !(w2 <= 2.0 * worst)) {
@@ -276,6 +292,7 @@ DeflectionCompensationResult compensate_deflection(const DeflectionModel& model,
           dG.clear();
           f_old.resize(0);
           C = gk;
+          tie(C);
           trial = evaluate(C);
         }
         cur = std::move(trial);
@@ -359,6 +376,7 @@ DeflectionCompensationResult compensate_deflection(const DeflectionModel& model,
         }
       }
       res.iterations = most;
+      tie(C);
       const double worst = finish(evaluate(C));
       res.converged = worst <= eps;
       res.message = res.converged

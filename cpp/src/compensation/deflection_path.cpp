@@ -11,6 +11,7 @@
 #include <Eigen/QR>
 
 #include "netshape/core/error.hpp"
+#include "netshape/core/progress.hpp"
 #include "netshape/stock/sweep.hpp"
 #include "compensation/deflection_path_internal.hpp"
 
@@ -27,10 +28,7 @@ Points2 wall_normals(const Eigen::Ref<const Points3>& nominal, WallSide side) {
   Points2 out(n, 2);
   const double s = side == WallSide::left ? 1.0 : -1.0;
   for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Index a = i > 0 ? i - 1 : 0, b = i + 1 < n ? i + 1 : n - 1;
-    Vec2 t(nominal(b, 0) - nominal(a, 0), nominal(b, 1) - nominal(a, 1));
-    if (t.norm() < 1e-12) t = Vec2(nominal(i, 0) - nominal(a, 0), nominal(i, 1) - nominal(a, 1));
-    t.normalize();
+    const Vec2 t = nominal_tangent(nominal, i);
     out(i, 0) = -s * t.y();
     out(i, 1) = s * t.x();
   }
@@ -65,7 +63,9 @@ PathWallErrors path_wall_errors(const DeflectionModel& model, const cutter::Cutt
     const double R = cutter.radius;
     SweptIndex swept;
     swept.build(n, pos, R * (1.0 + 1e-9) + 1e-9);
+    core::Progress progress("deflection", static_cast<std::size_t>(n));
     for (Eigen::Index i = 0; i < n; ++i) {
+      progress.tick(static_cast<std::size_t>(i));
       const Vec3 tip = out.positions.row(i).transpose();
       const Vec2 xc = nominal_tangent(nominal, i);
       const PointCut pc = scan_window(cutter, tip, xc, options.immersion, stock, [&](const Vec3& p) {
@@ -78,7 +78,9 @@ PathWallErrors path_wall_errors(const DeflectionModel& model, const cutter::Cutt
     return out;
   }
   stock::ZMap map = stock;
+  core::Progress progress("deflection", static_cast<std::size_t>(n));
   for (Eigen::Index i = 0; i < n; ++i) {
+    progress.tick(static_cast<std::size_t>(i));
     const Vec3 tip = out.positions.row(i).transpose();
     const Vec2 xc = nominal_tangent(nominal, i);
     const stock::Immersion im = stock::immersion(map, cutter, tip, Vec3(xc.x(), xc.y(), 0.0), options.immersion);

@@ -30,13 +30,29 @@ inline std::string fmt(const char* f, double a, double b = 0, double c = 0, doub
 
 inline bool window_holds(double st, double ex, double a) { return wrap(a - st) <= ex - st + 1e-12; }
 
-/// Material of the stock before the contour at p, read from the Z-map's bilinear surface (height_at)
-/// rather than its cells: a wall the stock already has (a pre-cut, an earlier pass) then moves
-/// continuously with the point instead of in steps of one cell, so the engagement, the deflection and
-/// the compensated offsets are continuous along the path, as the real wall is.
+/// Material of the stock before the contour at p: the bilinear interpolation, over the four Z-map nodes
+/// around p, of the nodes' material indicator at p's height (1 where a node's column stands above p.z,
+/// else 0) exceeds 1/2. A wall the stock already has (a pre-cut, an earlier pass) is thus placed half-way
+/// between the last node that holds material at that height and the first that does not, and moves
+/// continuously with the point, whatever the heights on either side of it: also where a pre-cut's floor
+/// lies exactly at the contour's Z (the interpolated height itself would cross the tip's height only
+/// inside the floor nodes' squares, a staircase of cells). For a step between heights above and below
+/// p.z it places the wall where the interpolated height crosses the step's middle, as the surface does.
 inline bool material_at(const stock::ZMap& z, const Vec3& p) {
-  const double h = z.height_at(p.x(), p.y());
-  return p.z() >= z.bottom() && p.z() < h;  // false outside the map (h NaN)
+  if (!(p.z() >= z.bottom())) return false;
+  if (!(p.x() >= z.x0() && p.x() <= z.x1() && p.y() >= z.y0() && p.y() <= z.y1())) return false;
+  const int nx = z.nx(), ny = z.ny();
+  const double u = std::clamp((p.x() - z.x0()) / z.dx() - 0.5, 0.0, static_cast<double>(nx - 1));
+  const double v = std::clamp((p.y() - z.y0()) / z.dy() - 0.5, 0.0, static_cast<double>(ny - 1));
+  const int j = std::min(static_cast<int>(u), std::max(nx - 2, 0));
+  const int i = std::min(static_cast<int>(v), std::max(ny - 2, 0));
+  const double fu = nx > 1 ? u - j : 0.0, fv = ny > 1 ? v - i : 0.0;
+  const int j1 = std::min(j + 1, nx - 1), i1 = std::min(i + 1, ny - 1);
+  const auto& h = z.heights();
+  auto in = [&](int r, int c) { return h(r, c) > p.z() ? 1.0 : 0.0; };
+  const double m0 = in(i, j) * (1 - fu) + in(i, j1) * fu;
+  const double m1 = in(i1, j) * (1 - fu) + in(i1, j1) * fu;
+  return m0 * (1 - fv) + m1 * fv > 0.5;
 }
 
 /// True if q lies within the tool's sweep from `from` up to (not including) the disc at `to`: closer
@@ -140,10 +156,27 @@ inline void size_result(PathWallErrors& r, Eigen::Index n, int profile_levels) {
   r.profile.resize(n, std::max(profile_levels, 0));
 }
 
-/// Unit central-difference tangent of the nominal polyline at i (one-sided at the ends), in XY.
+/// The polyline turns by more than this at a corner [rad] (30°): more than a sampled arc does.
+inline constexpr double corner_turn = pi / 6.0;
+
+/// True at an inner point i where the polyline turns by more than corner_turn.
+inline bool is_corner(const Eigen::Ref<const Points3>& p, Eigen::Index i) {
+  if (i <= 0 || i + 1 >= p.rows()) return false;
+  const Vec2 in(p(i, 0) - p(i - 1, 0), p(i, 1) - p(i - 1, 1));
+  const Vec2 out(p(i + 1, 0) - p(i, 0), p(i + 1, 1) - p(i, 1));
+  if (in.norm() <= 1e-12 || out.norm() <= 1e-12) return false;
+  return in.normalized().dot(out.normalized()) < std::cos(corner_turn);
+}
+
+/// Unit tangent of the nominal polyline at i in XY: the central difference, one-sided at the ends. At a
+/// corner (the move out of i turns by more than corner_turn from the move into it) it is the outgoing
+/// move's direction: a corner point starts the wall of the move it starts (a finish pass that begins
+/// where its lead-in ends), so its wall normal and cutting frame are that move's, not the bisector's,
+/// which would put the corner's wall point beside both walls and its offset across them.
 inline Vec2 nominal_tangent(const Eigen::Ref<const Points3>& p, Eigen::Index i) {
   const Eigen::Index n = p.rows();
   const Eigen::Index a = i > 0 ? i - 1 : 0, b = i + 1 < n ? i + 1 : n - 1;
+  if (is_corner(p, i)) return Vec2(p(b, 0) - p(i, 0), p(b, 1) - p(i, 1)).normalized();
   Vec2 t(p(b, 0) - p(a, 0), p(b, 1) - p(a, 1));
   if (t.norm() < 1e-12) t = Vec2(p(i, 0) - p(a, 0), p(i, 1) - p(a, 1));
   return t.normalized();

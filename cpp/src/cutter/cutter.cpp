@@ -39,6 +39,12 @@ void Cutter::validate() const {
                  "must be at least the flute length [mm]");
   NETSHAPE_CHECK_FINITE("cutter.youngs_modulus", youngs_modulus);
   NETSHAPE_CHECK(youngs_modulus > 0.0, "cutter.youngs_modulus", youngs_modulus, "must be positive [MPa]");
+  NETSHAPE_CHECK_FINITE("cutter.holder_compliance", holder_compliance);
+  NETSHAPE_CHECK(holder_compliance >= 0.0, "cutter.holder_compliance", holder_compliance, "must be ≥ 0 [mm/N]");
+  NETSHAPE_CHECK_FINITE("cutter.runout_rho", runout_rho);
+  NETSHAPE_CHECK(runout_rho >= 0.0 && runout_rho < radius, "cutter.runout_rho", runout_rho,
+                 "must be ≥ 0 and below the radius [mm]");
+  NETSHAPE_CHECK_FINITE("cutter.runout_lambda", runout_lambda);
 }
 
 double Cutter::radius_at(double z) const noexcept {

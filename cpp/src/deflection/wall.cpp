@@ -36,6 +36,9 @@ void DeflectionModel::validate() const {
   beam.validate();
   NETSHAPE_CHECK(beam.length >= force.axial_depth, "stick_out", beam.length,
                  "must not be shorter than the axial depth of cut [mm]");
+  NETSHAPE_CHECK_FINITE("holder_compliance", holder_compliance);
+  NETSHAPE_CHECK(holder_compliance >= 0.0, "holder_compliance", holder_compliance, "must be ≥ 0 [mm/N]");
+  chip.validate();
 }
 
 void DeflectionWorkspace::reset(const DeflectionModel& model) {
@@ -72,6 +75,16 @@ void disk_forces(const DeflectionModel& model, DeflectionWorkspace& ws, double t
   const auto& k = fm.linear_edge;
   const double KT = fm.kline_devor.kt, KR = fm.kline_devor.kr;
   const double gamma = two_pi / ws.flutes_;
+  const auto& ext = model.chip;
+  const bool extended = !ext.none();
+  const double href = ext.reference_chip > 0.0 ? ext.reference_chip : c;
+  // chip of flute j at immersion φ: c·sin φ plus its runout step r_j − r_{j−1}; g the cutting term
+  auto step = [&](int j) {
+    const int n = ws.flutes_;
+    return ext.runout_rho * (std::cos(ext.runout_lambda - two_pi * j / n) -
+                             std::cos(ext.runout_lambda - two_pi * ((j + n - 1) % n) / n));
+  };
+  auto g = [&](double h) { return ext.chip_exponent == 1.0 ? h : href * std::pow(h / href, ext.chip_exponent); };
   for (int i = 0; i < ws.disks_; ++i) {
     double sx = 0.0, sy = 0.0;
     for (int j = 0; j < ws.flutes_; ++j) {
@@ -93,15 +106,20 @@ void disk_forces(const DeflectionModel& model, DeflectionWorkspace& ws, double t
       }
       const double sp = std::sin(phi), cp = std::cos(phi);
       const double ww = w * dz;
+      double h = std::max(c * sp, 0.0);
+      if (extended) {
+        const double hj = c * sp + step(j);
+        if (hj <= 0.0) continue;  // the flute before left the surface here: no contact
+        h = g(hj);
+      }
       if (!kd) {
-        const double h = std::max(c * sp, 0.0);
         const double ft = (k.ktc * h + k.kte) * ww, fr = (k.krc * h + k.kre) * ww;
         sx += -ft * cp - fr * sp;
         sy += ft * sp - fr * cp;
       } else {
         // paper eq. 1–5 in its angle α = π − φ
         const double sa = sp, ca = -cp;
-        const double tc = std::max(c * sa, 0.0);
+        const double tc = h;  // c·sin α = c·sin φ (clamped; with the chip extension as above)
         const double dFT = KT * tc * ww, dFR = KR * dFT;
         sx += -dFR * sa + dFT * ca;
         sy += dFR * ca + dFT * sa;
@@ -115,12 +133,13 @@ void disk_forces(const DeflectionModel& model, DeflectionWorkspace& ws, double t
 Vec2 deflection_from_forces(const DeflectionModel& model, const DeflectionWorkspace& ws, double z) {
   const double L = model.beam.length;
   const double x = L - z;
+  const double fx = ws.forces().col(0).sum(), fy = ws.forces().col(1).sum();
   if (model.load == LoadModel::resultant) {
     const double l = L - 0.5 * model.force.axial_depth;
-    const double g = model.beam.influence(x, l);
-    return Vec2(ws.forces().col(0).sum() * g, ws.forces().col(1).sum() * g);
+    const double g = model.beam.influence(x, l) + model.holder_compliance;
+    return Vec2(fx * g, fy * g);
   }
-  double dx = 0.0, dy = 0.0;
+  double dx = model.holder_compliance * fx, dy = model.holder_compliance * fy;
   for (int i = 0; i < ws.disks(); ++i) {
     const double g = model.beam.influence(x, L - ws.heights()[i]);
     dx += ws.forces()(i, 0) * g;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "netshape/core/error.hpp"
+#include "netshape/core/progress.hpp"
 #include "netshape/force/ball_end_model.hpp"
 #include "netshape/force/engagement.hpp"
 #include "netshape/force/flat_end_model.hpp"
@@ -65,7 +66,9 @@ ProgramForces simulate_program(stock::ZMap& stock, const cutter::Cutter& cutter,
   std::vector<int> blk;
   std::vector<double> pr, mr, frac;
   ProgramForces out;
+  core::Progress progress("forces", program.blocks.size());
   for (std::size_t bi = 0; bi < program.blocks.size(); ++bi) {
+    progress.report(bi);
     const toolpath::Block& b = program.blocks[bi];
     const double len = b.length();
     if (len <= 0.0) continue;

@@ -4,6 +4,7 @@
 // compiles into the chain step of lanes.cpp. A table position refused by the policy (`error` outside
 // the table, or q not finite) is reported by returning the refusing function; the caller throws
 // (`throw_refused`, the table's own message) or flags the point.
+#include <cmath>
 #include <stdexcept>
 
 #include "netshape/machine/compiled_machine.hpp"
@@ -80,6 +81,12 @@ inline const ErrorFunction* axis_components(const CompiledMachine& cm, int k, do
       double unused = 0.0;
       for (int c = 0; c < 6; ++c)
         if (!prepared_value<Slope>(f[c], q, e[c], Slope ? s[c] : unused)) return f[c].source;
+      // periodic terms of the positioning component EKk (component index k): a·sin(w·q + φ)
+      for (const auto& t : cm.cyclic[k]) {
+        const double arg = t[1] * q + t[2];
+        e[k] += t[0] * std::sin(arg);
+        if (Slope) s[k] += t[0] * t[1] * std::cos(arg);
+      }
       return nullptr;
     }
   }

@@ -39,6 +39,7 @@ detail::PreparedFunction prepare_function(const ErrorFunction& f) {
 // components become zero columns); otherwise `generic`.
 detail::AxisKernel prepare_kernel(const Machine& machine, int k) {
   const auto& errs = machine.axes[k].errors;
+  if (!machine.axes[k].cyclic.empty()) return detail::AxisKernel{};  // generic: periodic terms added per point
   bool any_table = false, any_poly = false;
   const ErrorFunction* first_table = nullptr;
   for (const ErrorFunction& f : errs) {
@@ -85,6 +86,8 @@ CompiledMachine::CompiledMachine(const Machine& machine) {
   for (int k = 0; k < 3; ++k) {
     for (int j = 0; j < 6; ++j) functions[k * 6 + j] = prepare_function(machine.axes[k].errors[j]);
     kernels[k] = prepare_kernel(machine, k);
+    for (const CyclicTerm& t : machine.axes[k].cyclic)
+      cyclic[k].push_back({t.amplitude, 2.0 * pi / t.period, t.phase});
   }
   // Chains in evaluation order, and which Abbe arms grow with which axis (first-order Jacobian).
   tool_steps = 0;

@@ -56,6 +56,20 @@ void Machine::validate() const {
                    "must be greater than travel_min [mm]");
     check_finite_vec(ax + " origin", a.origin);
     for (int c = 0; c < 6; ++c) a.errors[c].validate();
+    for (const CyclicTerm& t : a.cyclic) {
+      NETSHAPE_CHECK(std::isfinite(t.amplitude) && t.amplitude >= 0, (ax + " cyclic amplitude").c_str(),
+                     t.amplitude, "must be a finite number ≥ 0 [mm]");
+      NETSHAPE_CHECK(std::isfinite(t.period) && t.period > 0, (ax + " cyclic period").c_str(), t.period,
+                     "must be a finite number > 0 [mm]");
+      NETSHAPE_CHECK_FINITE((ax + " cyclic phase").c_str(), t.phase);
+    }
+    NETSHAPE_CHECK_FINITE((ax + " backlash").c_str(), a.backlash);
+  }
+  for (const ThermalDrift& t : thermal) {
+    NETSHAPE_CHECK(t.axis >= 0 && t.axis <= 2, "thermal axis", t.axis, "must be 0 (X), 1 (Y) or 2 (Z)");
+    NETSHAPE_CHECK_FINITE("thermal amplitude", t.amplitude);
+    NETSHAPE_CHECK(std::isfinite(t.time_constant) && t.time_constant > 0, "thermal time_constant",
+                   t.time_constant, "must be a finite number > 0 [s]");
   }
   NETSHAPE_CHECK_FINITE("EC0Y", ec0y);
   NETSHAPE_CHECK_FINITE("EB0Z", eb0z);
@@ -68,6 +82,13 @@ void Machine::validate() const {
                  "must be a finite number ≥ 0 [mm]");
   NETSHAPE_CHECK(std::abs(tool_direction.norm() - 1.0) < 1e-9, "tool_direction norm", tool_direction.norm(),
                  "must be a unit vector");
+}
+
+bool Machine::has_state_errors() const noexcept {
+  if (!thermal.empty()) return true;
+  for (const Axis& a : axes)
+    if (a.backlash != 0.0) return true;
+  return false;
 }
 
 Side Machine::side(int axis) const {

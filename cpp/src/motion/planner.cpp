@@ -45,6 +45,8 @@ double Planner::end_time() const noexcept {
   return (s.finished_ && s.frozen_ == s.tail_) ? s.t_frozen_end_ : -1.0;
 }
 
+double Planner::frozen_time() const noexcept { return state_->t_frozen_end_; }
+
 long Planner::blocks_pushed() const noexcept { return state_->pushed_; }
 const char* Planner::last_error() const noexcept { return state_->error_; }
 const AxisLimits& Planner::limits() const noexcept { return state_->limits_; }
@@ -87,6 +89,7 @@ void PlannerState::reset() noexcept {
   next_sample_ = 0;
   t_frozen_end_ = v_frozen_end_ = 0;
   have_last_ = false;
+  last_cubic_ = false;
   last_point_ = Vec3::Zero();
   error_ = "";
 }

@@ -35,7 +35,7 @@ void PlannerState::append_corner_blend(long first, Node& nn, const Vec3& u1, con
   const long psource = pseg.source;
   const bool lines = pseg.kind == SegmentKind::line && nn.segment.kind == SegmentKind::line;
   const double dmax = 0.45 * std::min(pseg.full_length, nn.segment.full_length);
-  double d = std::min(dmax, 4.0 * options_.tolerance / sin_half);
+  double d = std::min(dmax, 4.0 * blend_tolerance_ / sin_half);
   std::array<Vec3, 4> bl;
   for (int it = 0; it < 40; ++it) {
     const double sp = pseg.full_length - d;
@@ -54,7 +54,7 @@ void PlannerState::append_corner_blend(long first, Node& nn, const Vec3& u1, con
     // the blend fits when each of the 15 points is within the tolerance of either piece (the test
     // max_i min(d_prev,i, d_next,i) ≤ tolerance, decided point by point: the next piece is measured
     // only when the previous one is too far, and the first point of neither fails the blend)
-    const double tol = options_.tolerance;
+    const double tol = blend_tolerance_;
     bool fits = true;
     for (int i = 1; i < 16 && fits; ++i) {
       const Vec3 qp = bezier_point(bl, i / 16.0);

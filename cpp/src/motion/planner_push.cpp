@@ -61,6 +61,8 @@ Status PlannerState::push(const toolpath::Block& b, const CubicControls* cubic) 
   const Vec3 dir = arc || cubic ? Vec3::Zero() : Vec3((b.end - b.start) / len);
   const Vec3 prev_dir = last_dir_;
   last_dir_ = dir;
+  const bool prev_cubic = last_cubic_;
+  last_cubic_ = cubic != nullptr;
   // the junction with the previous block (its node is final up to its end trim)
   Vec3 u1 = Vec3::Zero(), u2 = Vec3::Zero();
   double sin_half = 0.0;
@@ -118,6 +120,10 @@ Status PlannerState::push(const toolpath::Block& b, const CubicControls* cubic) 
     return Status::ok;
   }
   if (blend_here) {
+    // next to a cubic block (a smoothed run, already fit_share·ε from the program) the blend keeps to
+    // `tolerance`; between programmed pieces to `corner_tolerance` when it is set
+    blend_tolerance_ = cubic || prev_cubic || !(options_.corner_tolerance > 0) ? options_.tolerance
+                                                                               : options_.corner_tolerance;
     append_corner_blend(first, nn, u1, u2, sin_half, source);
     append(nn);
     back_pass(first);

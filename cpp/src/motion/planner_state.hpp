@@ -353,6 +353,8 @@ class PlannerState {
   Vec3 last_point_ = Vec3::Zero();
   bool have_last_ = false;
   Vec3 last_dir_ = Vec3::Zero();  // unit direction of the last block pushed (lines)
+  bool last_cubic_ = false;       // the last block pushed was a cubic block
+  double blend_tolerance_ = 0.0;  // contour tolerance of the corner blend being built [mm] (push)
   const char* error_ = "";
 };
 

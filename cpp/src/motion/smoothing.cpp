@@ -1,5 +1,6 @@
-// The tolerance-band smoothing stage (netshape/motion/smoothing.hpp): options, runs and corners of a
-// program, and the smoothed program; the fit is in smoothing_spline.hpp and smoothing_fit.hpp.
+// The tolerance-band smoothing stage (netshape/motion/smoothing.hpp): runs and corners of a program,
+// and the smoothed program. The fit of a run: smoothing_fit.hpp (its check smoothing_check.hpp, the
+// spline smoothing_spline.hpp); arcs at corners between lines: smoothing_round.hpp.
 #include "netshape/motion/smoothing.hpp"
 
 #include <algorithm>
@@ -10,26 +11,10 @@
 #include "netshape/motion/segment.hpp"
 #include "smoothing_corner.hpp"
 #include "smoothing_fit.hpp"
+#include "smoothing_round.hpp"
 #include "smoothing_spline.hpp"
 
 namespace netshape::motion {
-
-void SmoothOptions::validate() const {
-  NETSHAPE_CHECK(tolerance > 0 && std::isfinite(tolerance), "tolerance", tolerance, "must be positive [mm]");
-  NETSHAPE_CHECK(fit_share > 0 && fit_share < 1, "fit_share", fit_share, "must be in (0, 1)");
-  NETSHAPE_CHECK(max_segment > 0 && std::isfinite(max_segment), "max_segment", max_segment, "must be positive [mm]");
-  NETSHAPE_CHECK(max_turn > 0 && max_turn < pi, "max_turn", max_turn, "must be in (0, pi) [rad]");
-  NETSHAPE_CHECK(max_fit_turn >= 0 && max_fit_turn < pi, "max_fit_turn", max_fit_turn, "must be in [0, pi) [rad]");
-  NETSHAPE_CHECK(min_blocks >= 2, "min_blocks", min_blocks, "must be >= 2");
-  NETSHAPE_CHECK(window >= 8, "window", window, "must be >= 8 [blocks]");
-  NETSHAPE_CHECK(max_refinements >= 1, "max_refinements", max_refinements, "must be >= 1");
-  NETSHAPE_CHECK(smoothing_length >= 0 && std::isfinite(smoothing_length), "smoothing_length", smoothing_length,
-                 "must be >= 0 [mm]");
-  NETSHAPE_CHECK(knot_spacing > 0 && std::isfinite(knot_spacing), "knot_spacing", knot_spacing, "must be positive");
-  NETSHAPE_CHECK(lead_length >= 0 && std::isfinite(lead_length), "lead_length", lead_length, "must be >= 0 [mm]");
-  NETSHAPE_CHECK(plane_tolerance >= 0, "plane_tolerance", plane_tolerance, "must be >= 0 [mm]");
-}
-
 
 namespace detail {
 const SmoothingKernels& smoothing_kernels_plain() { return baseline::smoothing_kernel_table; }
@@ -495,169 +480,10 @@ SmoothResult smooth_program(const std::vector<toolpath::Block>& program, const S
     }
     i = j;
   }
-  // Corners between two program lines (kept corners, the vertices of runs left as programmed, joints
-  // of long lines): a tangent arc inside the corner whose distance from the vertex is the fit tolerance
-  // e, so the planner no longer has to turn there within the blend tolerance. For a turn θ (half
-  // interior angle φ = (π − θ)/2) the arc has radius R = e·sin φ / (1 − sin φ) and touches the lines at
-  // T = R·tan(θ/2) from the vertex; T is capped at half of each line's length before rounding, or at
-  // 0.95 of it when its other end joins a curve tangentially (no arc there); R and the vertex distance
-  // shrink with it. Every point of the arc and of the two cut-off line pieces is then within e of the
-  // other. A corner made of several vertices (up to four program lines shorter than lead_min between
-  // two longer lines: CAM output often turns a corner over a few micrometre-long blocks) gets one arc
-  // tangent to the two longer lines, the largest whose distance from the replaced polyline is at
-  // most e both ways (compound_corner_arc); where none is, its vertices are rounded one by one.
-  if (opt.round_corners) {
-    const double e = opt.fit_tolerance();
-    const std::size_t nr = res.blocks.size();
-    std::vector<double> len0(nr);
-    for (std::size_t k = 0; k < nr; ++k) len0[k] = res.blocks[k].length();
-    // a line may give an arc half of itself, or nearly all when its other end joins a curve tangentially
-    auto cap_end = [&](std::size_t k) { return (tangent_join[k] & 1) ? 0.95 * len0[k] : 0.5 * len0[k]; };
-    auto cap_start = [&](std::size_t k) { return (tangent_join[k] & 2) ? 0.95 * len0[k] : 0.5 * len0[k]; };
-    auto joined = [&](std::size_t k) {  // blocks k and k + 1: program lines, one feed, end to start
-      return k + 1 < nr && program_line[k] && program_line[k + 1] && res.blocks[k].feed == res.blocks[k + 1].feed &&
-             (res.blocks[k + 1].start - res.blocks[k].end).norm() <= 1e-9;
-    };
-    // a coordinate plane holding the points p3 (normal Z, then Y, then X); false when none does
-    auto plane_of = [&](const std::vector<Vec3>& p3, toolpath::Plane& plane) {
-      for (int a : {2, 1, 0}) {
-        bool in = true;
-        for (const Vec3& v : p3) in = in && std::abs(v[a] - p3.front()[a]) <= opt.plane_tolerance;
-        if (in) {
-          plane = a == 2 ? toolpath::Plane::xy : a == 1 ? toolpath::Plane::zx : toolpath::Plane::yz;
-          return true;
-        }
-      }
-      return false;
-    };
-    SmoothResult out;
-    out.blocks.reserve(nr);
-    // the arc from p1 to p2 about c2 (in the plane's coordinates), replacing the vertices between res
-    // blocks first and last; it takes the feed and the rest of its fields from `like`
-    auto emit_arc = [&](const toolpath::Block& like, toolpath::Plane plane, const Vec3& p1, const Vec3& p2,
-                        const V2& c2, bool ccw, std::size_t first, std::size_t last) {
-      const auto ax = toolpath::plane_axes(plane);
-      toolpath::Block arc = like;
-      arc.kind = MotionKind::arc;
-      arc.plane = plane;
-      arc.start = p1;
-      arc.end = p2;
-      arc.center = p1;
-      arc.center[ax.a] = c2.x();
-      arc.center[ax.b] = c2.y();
-      arc.clockwise = !ccw;
-      arc.turns = 1;
-      out.blocks.push_back(arc);
-      out.controls.emplace_back();
-      out.source_first.push_back(res.source_first[first]);
-      out.source_last.push_back(res.source_last[last]);
-      ++out.corners_rounded;
-    };
-    auto emit = [&](std::size_t k) {
-      out.blocks.push_back(res.blocks[k]);
-      out.controls.push_back(res.controls[k]);
-      out.source_first.push_back(res.source_first[k]);
-      out.source_last.push_back(res.source_last[k]);
-    };
-    std::vector<Vec3> p3;
-    std::vector<V2> mid;
-    for (std::size_t k = 0; k < nr; ++k) {
-      emit(k);
-      if (!joined(k)) continue;
-      toolpath::Block& b1 = out.blocks.back();
-      const double l1 = b1.length();
-      if (l1 <= 1e-9) continue;
-      const Vec3 d1 = (b1.end - b1.start) / l1;
-      // compound corner: lines k + 1 .. m − 1 shorter than lead_min, line m not
-      std::size_t m = k + 1;
-      // (a line joined to a curve at its far end is a corner's line, whatever its length)
-      auto closes = [&](std::size_t q) { return len0[q] >= lead_min || (tangent_join[q] & 2); };
-      while (m < k + 5 && !closes(m) && joined(m)) ++m;
-      if (m > k + 1 && closes(m)) {
-        p3.assign({b1.start, b1.end});
-        for (std::size_t q = k + 1; q <= m; ++q) p3.push_back(res.blocks[q].end);
-        toolpath::Plane plane;
-        const double l2 = res.blocks[m].length();
-        if (plane_of(p3, plane) && l2 > 1e-9) {
-          const auto ax = toolpath::plane_axes(plane);
-          auto to2 = [&](const Vec3& v) { return V2(v[ax.a], v[ax.b]); };
-          const Vec3 d2 = (res.blocks[m].end - res.blocks[m].start) / l2;
-          mid.assign(1, to2(b1.end));
-          for (std::size_t q = k + 1; q < m; ++q) mid.push_back(to2(res.blocks[q].end));
-          const double cap1 = std::min(cap_end(k), l1 - 1e-9), cap2 = std::min(cap_start(m), l2 - 1e-9);
-          CornerArc ca;
-          if (compound_corner_arc(mid, to2(d1), to2(d2), cap1, cap2, e, ca)) {
-            // the tangent points on the lines themselves (their normal coordinate as on the lines)
-            const Vec3 q1 = b1.end + (ca.p1 - to2(b1.end)).dot(to2(d1)) * d1;
-            const Vec3 q2 = res.blocks[m].start + (ca.p2 - to2(res.blocks[m].start)).dot(to2(d2)) * d2;
-            b1.end = q1;
-            res.blocks[m].start = q2;
-            emit_arc(res.blocks[m], plane, q1, q2, ca.c, ca.ccw, k, m);
-            k = m - 1;  // block m is emitted next
-            continue;
-          }
-        }
-      }
-      const toolpath::Block& b2 = res.blocks[k + 1];
-      const double l2 = b2.length();
-      if (l2 <= 1e-9) continue;
-      const Vec3 d2 = (b2.end - b2.start) / l2;
-      const double th = turn_between(d1, d2);
-      if (th < 1e-3 || th > pi - 1e-3) continue;  // nearly straight: the planner blends it; reversals stay
-      p3.assign({b1.start, b1.end, b2.end});
-      toolpath::Plane plane;
-      if (!plane_of(p3, plane)) continue;
-      const auto ax = toolpath::plane_axes(plane);
-      const double tan_half = std::tan(0.5 * th);
-      double R = corner_arc_radius(th, e);
-      double T = R * tan_half;
-      const double cap = std::min({cap_end(k), cap_start(k + 1), l1 - 1e-9, l2 - 1e-9});
-      if (T > cap) {
-        T = cap;
-        R = T / tan_half;
-      }
-      if (!(T > 1e-9)) continue;
-      const Vec3 V = b1.end;
-      const Vec3 p1 = V - T * d1, p2 = V + T * d2;
-      const V2 t1(d1[ax.a], d1[ax.b]), t2(d2[ax.a], d2[ax.b]);
-      const bool ccw = cross2(t1, t2) > 0;
-      const V2 c2 = V2(p1[ax.a], p1[ax.b]) + R * (ccw ? perp(t1) : V2(-perp(t1)));
-      b1.end = p1;
-      res.blocks[k + 1].start = p2;
-      emit_arc(b2, plane, p1, p2, c2, ccw, k, k + 1);
-    }
-    res.blocks = std::move(out.blocks);
-    res.controls = std::move(out.controls);
-    res.source_first = std::move(out.source_first);
-    res.source_last = std::move(out.source_last);
-    res.corners_rounded = out.corners_rounded;
-  }
+  // corners between two program lines become arcs within the fit tolerance (smoothing_round.hpp)
+  if (opt.round_corners) round_line_corners(res, program_line, tangent_join, lead_min, opt);
   return res;
 }
 }  // namespace
-
-double deviation_to_program(const std::vector<toolpath::Block>& program, const Points3& points,
-                            const std::vector<long>& first, const std::vector<long>& last) {
-  NETSHAPE_CHECK(static_cast<Eigen::Index>(first.size()) == points.rows() && first.size() == last.size(), "first",
-                 first.size(), "must have one entry per point (and match last)");
-  const long nb = static_cast<long>(program.size());
-  double dev = 0;
-  std::vector<Segment> segs;
-  segs.reserve(program.size());
-  for (const auto& b : program)
-    segs.push_back(b.kind == toolpath::MotionKind::arc ? Segment::arc(b, 0) : Segment::line(b, 0));
-  for (Eigen::Index k = 0; k < points.rows(); ++k) {
-    const Vec3 p = points.row(k).transpose();
-    const auto kk = static_cast<std::size_t>(k);
-    double best = 1e300;
-    for (long q = std::max(0L, first[kk] - 1); q <= std::min(nb - 1, last[kk] + 1); ++q) {
-      const Segment& s = segs[static_cast<std::size_t>(q)];
-      if (s.full_length <= 0) continue;
-      best = std::min(best, s.distance_to_piece(p, 0.0, s.full_length));
-    }
-    if (best < 1e300) dev = std::max(dev, best);
-  }
-  return dev;
-}
 
 }  // namespace netshape::motion

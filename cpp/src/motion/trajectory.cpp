@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
 #include "netshape/core/error.hpp"
+#include "netshape/core/progress.hpp"
 #include "netshape/motion/planner.hpp"
 #include "netshape/motion/segment.hpp"
 
@@ -131,13 +133,22 @@ Trajectory plan(const std::vector<toolpath::Block>& blocks, const std::vector<Cu
   std::vector<int> blk;
   std::size_t next_block = 0;
   Sample s;
+  core::Progress progress("plan", index.size());
   for (;;) {
     const Status st = planner.next(s);
     if (st == Status::ok) {
-      if (max_samples > 0 && static_cast<long>(t.size()) >= max_samples)
+      progress.tick(next_block);
+      // refused as soon as the planned time implies too many samples, before they are made
+      const double planned = std::max(s.t, planner.frozen_time());
+      if (max_samples > 0 && (static_cast<long>(t.size()) >= max_samples ||
+                              planned / options.ts2 > static_cast<double>(max_samples)))
+      {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "(%.6g s of motion planned, one sample every %.3g s)", planned, options.ts2);
         throw std::invalid_argument("max_samples = " + std::to_string(max_samples) +
-                                    ": the plan needs more fine samples (stopped at t = " + std::to_string(s.t) +
-                                    " s into the program); raise the limit or the fine period ts2");
+                                    ": the plan needs more fine samples " + buf +
+                                    "; raise the limit or the fine period ts2");
+      }
       t.push_back(s.t);
       pos.push_back(s.position);
       vel.push_back(s.velocity);

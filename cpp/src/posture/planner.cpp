@@ -6,6 +6,7 @@
 #include <string>
 
 #include "netshape/core/error.hpp"
+#include "netshape/core/progress.hpp"
 #include "netshape/posture/mb_spline.hpp"
 
 namespace netshape::posture {
@@ -81,7 +82,9 @@ PlanResult plan(const InterferenceChecker& checker, const Eigen::Ref<const Point
     res.feeds.row(i) = frames.back().feed.transpose();
   }
   res.cspaces.reserve(static_cast<std::size_t>(n));
+  core::Progress progress("C-space", static_cast<std::size_t>(n));
   for (Eigen::Index i = 0; i < n; ++i) {
+    progress.report(static_cast<std::size_t>(i));
     const std::string name = point_name(i);
     res.cspaces.push_back(compute_cspace(checker, frames[static_cast<std::size_t>(i)], options.cspace, name.c_str()));
     res.checks += res.cspaces.back().checks;

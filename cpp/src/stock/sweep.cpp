@@ -7,6 +7,7 @@
 #include <string>
 
 #include "netshape/core/error.hpp"
+#include "netshape/core/progress.hpp"
 #include "stock/sweep_internal.hpp"
 
 namespace netshape::stock {
@@ -72,7 +73,9 @@ SweepStats sweep_lines(ZMap& zmap, const cutter::Cutter& cutter, const Eigen::Re
   const TipProfile p = TipProfile::of(cutter);
   const ProfileKind kind = kind_of(cutter);
   SweepStats st;
+  core::Progress progress("sweep", static_cast<std::size_t>(n));
   for (Eigen::Index k = 0; k < n; ++k) {
+    progress.report(static_cast<std::size_t>(k));
     const Vec3 a(starts(k, 0), starts(k, 1), starts(k, 2));
     const Vec3 b(ends(k, 0), ends(k, 1), ends(k, 2));
     st += sweep_line_impl(zmap, p, kind, a, b);
@@ -94,7 +97,9 @@ SweepStats sweep_polyline(ZMap& zmap, const cutter::Cutter& cutter, const Eigen:
   }
   Vec3 a = points.row(0).transpose();
   Vec3 b = points.row(1).transpose();
+  core::Progress progress("sweep", static_cast<std::size_t>(points.rows()));
   for (Eigen::Index k = 2; k <= points.rows(); ++k) {
+    progress.report(static_cast<std::size_t>(k));
     if (k < points.rows()) {
       const Vec3 c = points.row(k).transpose();
       if (merge_collinear && toolpath::continues_run(a, b, c, 1e-9)) {  // extend the run a→b to c
@@ -172,7 +177,10 @@ SweepStats sweep(ZMap& zmap, const cutter::Cutter& cutter, const toolpath::Toolp
     if (run) st += sweep_line_impl(zmap, p, kind, a, b);
     run = false;
   };
+  core::Progress progress("sweep", program.blocks.size());
+  std::size_t done = 0;
   for (const toolpath::Block& blk : program.blocks) {
+    progress.report(done++);
     blk.validate();
     if (blk.kind == toolpath::MotionKind::line && options.merge_collinear) {
       if (run && blk.start == b && toolpath::continues_run(a, b, blk.end, 1e-9)) {

@@ -1,4 +1,5 @@
 from __future__ import annotations
+import collections.abc
 import netshape._core.cutter
 import netshape._core.deflection
 import netshape._core.machine
@@ -7,7 +8,7 @@ import netshape._core.toolpath
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['DeflectionCompensationOptions', 'DeflectionCompensationResult', 'DeflectionScheme', 'DrawingOffsets', 'PathOptions', 'PathWallErrors', 'ProgramOptions', 'ProgramReport', 'ReferenceLevel', 'VolumetricOptions', 'VolumetricResult', 'VolumetricStatus', 'compensate_deflection', 'compensate_points', 'compensate_points_status', 'compensate_program', 'deflection_scheme_from_string', 'drawing_offsets', 'one_d_compensation', 'path_wall_errors', 'reference_level_from_string', 'wall_normals', 'wall_remains']
+__all__: list[str] = ['DeflectionCompensationOptions', 'DeflectionCompensationResult', 'DeflectionScheme', 'DrawingOffsets', 'PathOptions', 'PathWallErrors', 'ProgramOptions', 'ProgramReport', 'ReferenceLevel', 'VolumetricOptions', 'VolumetricResult', 'VolumetricStatus', 'block_end_times', 'compensate_deflection', 'compensate_points', 'compensate_points_status', 'compensate_program', 'deflection_scheme_from_string', 'drawing_offsets', 'one_d_compensation', 'path_wall_errors', 'reference_level_from_string', 'wall_normals', 'wall_remains']
 class VolumetricOptions:
     check_travel: bool
     @typing.overload
@@ -115,6 +116,14 @@ class ProgramOptions:
     def validate(self) -> None:
         ...
     @property
+    def block_times(self) -> list[float]:
+        """
+        program time at each block's end [s] (empty: from the programmed feeds)
+        """
+    @block_times.setter
+    def block_times(self, arg0: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+    @property
     def chord_tolerance(self) -> float:
         """
         [mm]
@@ -123,10 +132,26 @@ class ProgramOptions:
     def chord_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def initial_direction(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        (3,) each −1, 0 or +1
+        """
+    @initial_direction.setter
+    def initial_direction(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> None:
+        ...
+    @property
     def max_halvings(self) -> int:
         ...
     @max_halvings.setter
     def max_halvings(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rapid_feed(self) -> float:
+        """
+        [mm/s]
+        """
+    @rapid_feed.setter
+    def rapid_feed(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
 class ProgramReport:
     """
@@ -167,6 +192,9 @@ class ProgramReport:
         """
     @property
     def source(self) -> str:
+        ...
+    @property
+    def takeup_moves(self) -> int:
         ...
 class ReferenceLevel:
     """
@@ -412,6 +440,10 @@ class DrawingOffsets:
     @property
     def s(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
+def block_end_times(program: netshape._core.toolpath.Toolpath, rapid_feed: typing.SupportsFloat | typing.SupportsIndex = 250.0) -> list[float]:
+    """
+    program time at each block's end [s] from the programmed feeds (rapids at rapid_feed [mm/s])
+    """
 def compensate_deflection(model: netshape._core.deflection.DeflectionModel, cutter: netshape._core.cutter.Cutter, stock: netshape._core.stock.ZMap, nominal: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], options: DeflectionCompensationOptions = ...) -> DeflectionCompensationResult:
     """
     compensate the path (n, 3) for tool deflection; converged = False with a message when it fails

@@ -115,12 +115,36 @@ class Cutter:
     def helix(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def holder_compliance(self) -> float:
+        """
+        clamp/holder compliance [mm/N]: the tool translates by holder_compliance * F
+        """
+    @holder_compliance.setter
+    def holder_compliance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def radius(self) -> float:
         """
         nominal radius R = D/2 [mm]
         """
     @radius.setter
     def radius(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def runout_lambda(self) -> float:
+        """
+        runout angle [rad]: flute j cuts at R + rho cos(lambda - j 2 pi / N)
+        """
+    @runout_lambda.setter
+    def runout_lambda(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def runout_rho(self) -> float:
+        """
+        radial runout, tool-axis offset [mm]
+        """
+    @runout_rho.setter
+    def runout_rho(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def stick_out(self) -> float:

@@ -208,6 +208,22 @@ class DeflectionModel:
         ...
     def validate(self) -> None:
         ...
+    @property
+    def chip(self) -> netshape._core.force.RunoutSizeEffect:
+        """
+        runout and chip-size effect of the element chips
+        """
+    @chip.setter
+    def chip(self, arg0: netshape._core.force.RunoutSizeEffect) -> None:
+        ...
+    @property
+    def holder_compliance(self) -> float:
+        """
+        clamp/holder compliance [mm/N]: the tool also translates by holder_compliance * F
+        """
+    @holder_compliance.setter
+    def holder_compliance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
 class DeflectionWorkspace:
     @typing.overload
     def __init__(self) -> None:

@@ -6,7 +6,7 @@ import netshape._core.toolpath
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AngularEngagement', 'BallEndCoefficientSet', 'BallEndCoefficients', 'BallEndFit', 'BallEndModel', 'BallEndWorkspace', 'EngagementMap', 'FlatCoefficientModel', 'FlatEndModel', 'FlatEndWorkspace', 'KlineDevorCoefficients', 'LinearEdgeCoefficientSet', 'LinearEdgeCoefficients', 'LinearEdgeFit', 'MillingMode', 'ProgramForceOptions', 'TimeSeriesFit', 'ball_end_coefficient_set', 'ball_end_coefficient_set_names', 'ball_end_forces', 'ball_end_mean_slot_force', 'fit_ball_end_mean_forces', 'fit_linear_edge_mean_forces', 'fit_linear_edge_time_series', 'flat_end_forces', 'flat_end_moments', 'linear_edge_basis', 'linear_edge_coefficient_set', 'linear_edge_coefficient_set_names', 'mean_force', 'mean_force_matrix', 'milling_mode_from_string', 'resultant', 'rotation_angles', 'simulate_program_core', 'summarize', 'summarize_revolutions']
+__all__: list[str] = ['AngularEngagement', 'BallEndCoefficientSet', 'BallEndCoefficients', 'BallEndFit', 'BallEndModel', 'BallEndWorkspace', 'EngagementMap', 'FlatCoefficientModel', 'FlatEndModel', 'FlatEndWorkspace', 'KlineDevorCoefficients', 'LinearEdgeCoefficientSet', 'LinearEdgeCoefficients', 'LinearEdgeFit', 'MillingMode', 'ProgramForceOptions', 'RunoutSizeEffect', 'TimeSeriesFit', 'ball_end_coefficient_set', 'ball_end_coefficient_set_names', 'ball_end_forces', 'ball_end_mean_slot_force', 'fit_ball_end_mean_forces', 'fit_linear_edge_mean_forces', 'fit_linear_edge_time_series', 'flat_end_forces', 'flat_end_forces_extended', 'flat_end_moments', 'linear_edge_basis', 'linear_edge_coefficient_set', 'linear_edge_coefficient_set_names', 'mean_force', 'mean_force_matrix', 'milling_mode_from_string', 'resultant', 'rotation_angles', 'simulate_program_core', 'summarize', 'summarize_revolutions']
 class MillingMode:
     """
     Up, down or slot milling (docs/conventions.md §2).
@@ -357,6 +357,52 @@ class FlatEndWorkspace:
         ...
     def reset(self, model: FlatEndModel) -> None:
         ...
+class RunoutSizeEffect:
+    """
+    Cutter runout (rho [mm], lambda [rad]) and chip-size effect (exponent p, reference chip [mm], 0: the feed per tooth)
+    """
+    @typing.overload
+    def __init__(self) -> None:
+        ...
+    @typing.overload
+    def __init__(self, runout_rho: typing.SupportsFloat | typing.SupportsIndex = 0.0, runout_lambda: typing.SupportsFloat | typing.SupportsIndex = 0.0, chip_exponent: typing.SupportsFloat | typing.SupportsIndex = 1.0, reference_chip: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    def none(self) -> bool:
+        ...
+    def validate(self) -> None:
+        ...
+    @property
+    def chip_exponent(self) -> float:
+        """
+        p in (0, 2]
+        """
+    @chip_exponent.setter
+    def chip_exponent(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def reference_chip(self) -> float:
+        """
+        h_ref [mm]; 0: the feed per tooth
+        """
+    @reference_chip.setter
+    def reference_chip(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def runout_lambda(self) -> float:
+        """
+        [rad]
+        """
+    @runout_lambda.setter
+    def runout_lambda(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def runout_rho(self) -> float:
+        """
+        [mm]
+        """
+    @runout_rho.setter
+    def runout_rho(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
 class BallEndModel:
     """
     Ball end mill force model (Kim et al.).
@@ -532,6 +578,10 @@ def fit_linear_edge_time_series(model: FlatEndModel, angles: typing.Annotated[nu
 def flat_end_forces(model: FlatEndModel, angles: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], workspace: FlatEndWorkspace = None, engagement_map: EngagementMap = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
     """
     Forces on the cutter (n, 3) [N] at rotation angles (n) [rad] (flute 1 at the tip).
+    """
+def flat_end_forces_extended(model: FlatEndModel, extension: RunoutSizeEffect, angles: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+    """
+    Forces on the cutter (n, 3) [N] at rotation angles (n) [rad] with cutter runout and the chip-size effect (netshape/force/runout_size_effect.hpp).
     """
 def flat_end_moments(model: FlatEndModel, angles: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
     ...

@@ -3,7 +3,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Axis', 'Component', 'ErrorFunction', 'Machine', 'Order', 'OutOfRange', 'Side', 'actual_points', 'component_name', 'ideal_machine', 'rotation_zyx', 'tip_error', 'volumetric_error']
+__all__: list[str] = ['Axis', 'Component', 'CyclicTerm', 'ErrorFunction', 'Machine', 'Order', 'OutOfRange', 'Side', 'ThermalDrift', 'actual_points', 'approach_directions', 'component_name', 'ideal_machine', 'rotation_zyx', 'state_error', 'tip_error', 'volumetric_error']
 class OutOfRange:
     """
     What a table does outside its positions
@@ -295,6 +295,66 @@ class Order:
     @property
     def value(self) -> int:
         ...
+class CyclicTerm:
+    """
+    Periodic positioning error amplitude·sin(2π·q/period + phase)
+    """
+    def __init__(self, amplitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, period: typing.SupportsFloat | typing.SupportsIndex = 1.0, phase: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    @property
+    def amplitude(self) -> float:
+        """
+        [mm]
+        """
+    @amplitude.setter
+    def amplitude(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def period(self) -> float:
+        """
+        [mm]
+        """
+    @period.setter
+    def period(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def phase(self) -> float:
+        """
+        [rad]
+        """
+    @phase.setter
+    def phase(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class ThermalDrift:
+    """
+    Tip drift along an axis: amplitude·(1 − exp(−t/time_constant))
+    """
+    def __init__(self, axis: typing.SupportsInt | typing.SupportsIndex = 0, amplitude: typing.SupportsFloat | typing.SupportsIndex = 0.0, time_constant: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
+        ...
+    @property
+    def amplitude(self) -> float:
+        """
+        [mm]
+        """
+    @amplitude.setter
+    def amplitude(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def axis(self) -> int:
+        """
+        0 = X, 1 = Y, 2 = Z
+        """
+    @axis.setter
+    def axis(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def time_constant(self) -> float:
+        """
+        [s]
+        """
+    @time_constant.setter
+    def time_constant(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
 class Axis:
     """
     A linear axis: travel [mm], frame origin [mm], six error components
@@ -304,6 +364,22 @@ class Axis:
     def error(self, component: Component) -> ErrorFunction:
         ...
     def set_error(self, component: Component, function: ErrorFunction) -> None:
+        ...
+    @property
+    def backlash(self) -> float:
+        """
+        reversal value [mm]
+        """
+    @backlash.setter
+    def backlash(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def cyclic(self) -> list[CyclicTerm]:
+        """
+        periodic terms of the positioning component (a copy: assign back)
+        """
+    @cyclic.setter
+    def cyclic(self, arg0: collections.abc.Sequence[CyclicTerm]) -> None:
         ...
     @property
     def errors(self) -> list[ErrorFunction]:
@@ -339,6 +415,8 @@ class Machine:
     def __init__(self) -> None:
         ...
     def axis(self, index: typing.SupportsInt | typing.SupportsIndex) -> Axis:
+        ...
+    def has_state_errors(self) -> bool:
         ...
     def nominal_tip(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         ...
@@ -393,6 +471,14 @@ class Machine:
     def spindle_tilt_b(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def thermal(self) -> list[ThermalDrift]:
+        """
+        thermal drift terms (a copy: assign back)
+        """
+    @thermal.setter
+    def thermal(self, arg0: collections.abc.Sequence[ThermalDrift]) -> None:
+        ...
+    @property
     def tool_chain(self) -> list[int]:
         ...
     @tool_chain.setter
@@ -420,6 +506,10 @@ def actual_points(machine: Machine, commanded: typing.Annotated[numpy.typing.NDA
     """
     Where the tip lands, p + e(p) [mm], (n, 3) → (n, 3)
     """
+def approach_directions(path: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], initial: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = [1, 1, 1], resolution: typing.SupportsFloat | typing.SupportsIndex = 1e-09) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+    """
+    Per point of a path (n, 3) [mm]: the sign of each axis' last motion (n, 3)
+    """
 def component_name(component: Component, axis: typing.SupportsInt | typing.SupportsIndex) -> str:
     ...
 def ideal_machine(tool_chain: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex], workpiece_chain: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex], tool_length: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> Machine:
@@ -427,6 +517,10 @@ def ideal_machine(tool_chain: collections.abc.Sequence[typing.SupportsInt | typi
 def rotation_zyx(a: typing.SupportsFloat | typing.SupportsIndex, b: typing.SupportsFloat | typing.SupportsIndex, c: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
     """
     Rz(c)·Ry(b)·Rx(a) [rad] → (3, 3)
+    """
+def state_error(machine: Machine, directions: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], times: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+    """
+    Backlash + thermal tip offset s(d, t) [mm]: directions (n, 3) (±1), times (n,) [s] → (n, 3)
     """
 def tip_error(machine: Machine, points: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], order: Order = ...) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
     """

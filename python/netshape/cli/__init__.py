@@ -71,8 +71,12 @@ def main(argv: list[str] | None = None) -> int:
     if not getattr(args, "func", None):
         parser.print_help()
         return 2
+    from netshape._progress import progress
+
     try:
-        result = args.func(args)
+        # run, batch and demo show their own bars, by stage of the job
+        with progress(args._prog, None if args.command not in ("run", "batch", "demo") else False):
+            result = args.func(args)
     except (ValueError, CliError, FileNotFoundError, IsADirectoryError, PermissionError) as exc:
         print(f"{args._prog}: error: {_one_line(exc)}", file=sys.stderr)
         return 2

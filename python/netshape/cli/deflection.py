@@ -138,7 +138,7 @@ def run_wall(args) -> int:
 
         c = load_cutter(args.tool)
         diameter, flutes, helix = 2 * c.radius, c.flutes, math.degrees(c.helix)
-        stick, e = c.stick_out, c.youngs_modulus
+        stick, e, holder = c.stick_out, c.youngs_modulus, c.holder_compliance
         for name in ("diameter", "flutes", "helix", "stick_out", "youngs_modulus"):
             if getattr(args, name) is not None:
                 raise CliError(f"--{name.replace('_', '-')} = {getattr(args, name):g}: give either --tool "
@@ -150,6 +150,7 @@ def run_wall(args) -> int:
         if missing:
             raise CliError(f"{missing[0]}: required without --tool")
         diameter, flutes, helix, stick, e = args.diameter, args.flutes, args.helix, args.stick_out, args.youngs_modulus
+        holder = 0.0
     if stick < args.ap:
         raise CliError(f"--stick-out = {stick:g}: shorter than the axial depth --ap = {args.ap:g} [mm]")
     if args.mode != "slot" and args.ae is None:
@@ -158,7 +159,8 @@ def run_wall(args) -> int:
         raise CliError(f"--ae = {args.ae:g}: must not exceed the diameter ({diameter:g}) [mm]")
     model = d.make_model(diameter=diameter, flutes=flutes, helix_deg=helix, stick_out=stick, youngs_modulus=e,
                          feed_per_tooth=args.feed_per_tooth, ap=args.ap, ae=args.ae, mode=args.mode,
-                         coefficients=args.coefficients, inertia=args.inertia, load=args.load)
+                         coefficients=args.coefficients, inertia=args.inertia, load=args.load,
+                         holder_compliance=holder)
     res = d.steady_wall(model, args.mode, levels=args.levels)
     res.update({"mode": args.mode, "load": args.load, "inertia": args.inertia, "rpm": args.rpm})
     # a cantilever's deflection grows with stick-out³ / (E · D⁴): the tool's numbers are the cause
@@ -200,7 +202,7 @@ def _final_wall(setup, r):
     normals = np.asarray(wall_normals(setup.nominal, setup.side))
     remains = walls.wall_remains_points(setup.program, setup.owner, setup.nominal, normals, np.asarray(r.depth),
                                         setup.cutter.radius)
-    return walls.final_wall_points(setup.owner, remains, np.asarray(r.engaged))
+    return walls.final_wall_points(setup.owner, remains, walls.generates_wall(r, setup.side))
 
 
 def _pieces(setup, final):

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 
 from netshape.cli import _args as a
 
@@ -57,6 +58,14 @@ def register(sub) -> None:
     p.add_argument("--inclination", type=a.real("--inclination", "deg", gt=-80, lt=80), default=0.0,
                    metavar="DEG", help="ball end mill: ramp angle xi of the feed [deg] in (-80, 80), > 0 climbing "
                    "(default 0)")
+    p.add_argument("--runout-rho", type=a.real("--runout-rho", "mm", ge=0, lt=1), default=0.0, metavar="MM",
+                   help="cutter runout: offset of the tool axis [mm] (flat tool; default 0)")
+    p.add_argument("--runout-lambda", type=a.real("--runout-lambda", "deg"), default=0.0, metavar="DEG",
+                   help="runout angle [deg]: flute j cuts at R + rho cos(lambda - j 360/N) (default 0)")
+    p.add_argument("--chip-exponent", type=a.real("--chip-exponent", gt=0, le=2), default=1.0, metavar="P",
+                   help="chip-size effect: cutting terms grow as h_ref (h/h_ref)^P (flat tool; default 1, none)")
+    p.add_argument("--reference-chip", type=a.real("--reference-chip", "mm", ge=0), default=0.0, metavar="MM",
+                   help="h_ref of the size effect [mm] (default: the feed per tooth)")
     p.add_argument("--revolutions", type=a.real("--revolutions", ge=1), default=1.0,
                    help="revolutions (>= 1, default 1)")
     p.add_argument("--samples", type=a.integer("--samples", ge=8, le=1_000_000), default=360, metavar="N",
@@ -97,11 +106,17 @@ def run(args) -> int:
                            f"(known: {', '.join(names)})")
     if args.tool == "flat" and args.inclination != 0:
         raise CliError(f"--inclination = {args.inclination:g}: ramp cuts are modelled for --tool ball only")
+    from netshape.force import RunoutSizeEffect
+
+    ext = RunoutSizeEffect(runout_rho=args.runout_rho, runout_lambda=math.radians(args.runout_lambda),
+                           chip_exponent=args.chip_exponent, reference_chip=args.reference_chip)
+    if args.tool == "ball" and not ext.none():
+        raise CliError("--runout-rho/--chip-exponent: modelled for --tool flat only")
     angles, forces = cutter_forces(
         tool=args.tool, diameter=args.diameter, flutes=args.flutes, helix_deg=args.helix,
         feed_per_tooth=args.feed_per_tooth, ap=args.ap, ae=args.ae, mode=args.mode,
         coefficients=args.coefficients, coefficient_set=args.coefficient_set, inclination_deg=args.inclination,
-        samples_per_revolution=args.samples, revolutions=args.revolutions)
+        samples_per_revolution=args.samples, revolutions=args.revolutions, extension=ext)
     deg = np.degrees(angles)
     table = np.column_stack([deg, forces])
     with all_or_nothing():

@@ -69,7 +69,9 @@ def register(sub) -> None:
                         "both sides) is passed by the run's curve within the tolerance; 0 keeps every "
                         "corner [deg] in [0, 180) (92)")
     p.add_argument("--smoothed-gcode", metavar="OUT.ngc",
-                   help="smooth rule: write the smoothed program (G1/G2/G3, G17-G19) atomically")
+                   help="smooth rule: write the program with its smoothed moves in place atomically (every other "
+                        "line and word as written; new moves G1/G2/G3, G5 for cubics in XY, G1 chords within "
+                        "--chord-tolerance for other cubics)")
     # the choices are netshape.motion.smooth_gcode.FORMATS, not imported here so that parsing needs no NumPy
     p.add_argument("--smoothed-format", choices=("arcs", "g1", "nurbs"), default=None,
                    help="form of --smoothed-gcode: arcs (G1/G2/G3, the default), g1 (every arc as G1 chords "
@@ -240,13 +242,9 @@ def run(args) -> int:
                 traj = plan(arrays, limits, rule="smooth", tolerance=args.tolerance, ts1=args.ts1, ts2=args.ts2,
                             lookahead=args.lookahead, max_samples=_max_samples(args), **skw)
             if args.smoothed_gcode:
-                from netshape.motion import smooth_path
-                from netshape.motion.smooth_gcode import write_smoothed_gcode
-
-                new = smooth_path(arrays, args.tolerance, **skw)[0]
                 kw = {} if args.chord_tolerance is None else {"chord_tolerance": args.chord_tolerance}
                 try:
-                    write_smoothed_gcode(new, args.smoothed_gcode, args.smoothed_format or "arcs", **kw)
+                    _write_spliced(args, arrays, skw, kw)
                 except ValueError as exc:  # the core's chord count names its argument; name the option
                     msg = str(exc)
                     if msg.startswith("chord_tolerance "):
@@ -300,3 +298,30 @@ def run(args) -> int:
           f"accel {traj.stats['max_axis_accel_mm_s2']:.1f} mm/s^2, "
           f"path deviation {traj.stats['max_path_deviation_mm']:.4f} mm")
     return 0
+
+
+def _write_spliced(args, arrays, skw, kw) -> None:
+    """--smoothed-gcode: the program's text with the smoothed moves in place (netshape.motion.gcode_splice)."""
+    import warnings
+    from pathlib import Path
+
+    import numpy as np
+
+    from netshape import toolpath
+    from netshape._atomic import atomic_write
+    from netshape.motion import smooth_path
+    from netshape.motion.gcode_splice import frame_shift, spliced_gcode_lines
+
+    new, first, _, _ = smooth_path(arrays, args.tolerance, **skw)
+    if args.var or args.tool_table:  # the program's own frame: the same program read without them
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", toolpath.GcodeWarning)
+            own = toolpath.read_gcode_arrays(args.program)
+        shift = frame_shift(arrays, own)
+    else:
+        shift = np.zeros((len(arrays["kind"]), 3))
+    text = Path(args.program).read_text(encoding="utf-8", errors="replace")
+    lines = spliced_gcode_lines(text, arrays, shift, new, first, args.smoothed_format or "arcs",
+                                feed_scale=args.feed_scale, **kw)
+    with atomic_write(args.smoothed_gcode, "w") as fh:
+        fh.write("\n".join(lines) + "\n")

@@ -85,11 +85,15 @@ class ProgramReport:
 
 
 def compensate_program(machine: _m.Machine, program: Any, chord_tolerance: float = 0.002,
-                       tolerance: float = 1e-9, *, work_offsets: Any = None, tool_table: Any = None):
+                       tolerance: float = 1e-9, *, work_offsets: Any = None, tool_table: Any = None,
+                       block_times: Any = None):
     """Compensate a program (path or netshape.toolpath.Toolpath). Returns (Toolpath, ProgramReport).
     See the module docstring for what happens to lines, arcs, modal state and commands (the work is
     C++ ``netshape::compensation::compensate_program``).
-    ``work_offsets`` / ``tool_table``: see :func:`netshape.toolpath.read_gcode` (path input only)."""
+    ``work_offsets`` / ``tool_table``: see :func:`netshape.toolpath.read_gcode` (path input only).
+    ``block_times``: program time at each block's end [s] for a machine with thermal drift (a feed
+    plan's time stamps); default: from the programmed feeds (``_core.compensation.block_end_times``).
+    A machine with backlash gets take-up moves at reversals (``extra["takeup_moves"]``)."""
     from .. import toolpath as tpm
 
     options = _c.ProgramOptions(float(chord_tolerance), _options(tolerance, 50, True))
@@ -104,11 +108,15 @@ def compensate_program(machine: _m.Machine, program: Any, chord_tolerance: float
                              "already carries its offsets")
         tp = program
         source = getattr(tp, "source", "") or "<program>"
+    if block_times is not None:
+        options.block_times = [float(t) for t in np.asarray(block_times, dtype=float).reshape(-1)]
     out, rep = _c.compensate_program(machine, tp, options)
     report = ProgramReport(source=source, blocks_in=rep.blocks_in, blocks_out=rep.blocks_out,
                            lines_split=rep.lines_split, arcs_kept=rep.arcs_kept, arcs_split=rep.arcs_split,
                            max_correction_mm=rep.max_correction, max_residual_mm=rep.max_residual,
                            max_path_deviation_mm=rep.max_path_deviation, commands=rep.commands)
+    if rep.takeup_moves:
+        report.extra["takeup_moves"] = rep.takeup_moves
     return out, report
 
 

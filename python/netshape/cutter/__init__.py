@@ -11,6 +11,13 @@ TOML keys (units in the names)::
     stick_out_mm = 40.0
     youngs_modulus_MPa = 600000.0   # optional (carbide by default)
 
+Optional keys of the tool as it runs in its holder (the catalogue effects of ``netshape diagnose``,
+written by :func:`netshape.discrepancy.update_tool.apply_to_tool`)::
+
+    holder_compliance_um_per_N = 0.05   # clamp/holder/spindle compliance: the tool translates by c*F
+    runout_rho_mm = 0.005               # radial runout: offset of the tool axis [mm]
+    runout_lambda_deg = 30.0            # its angle: flute j cuts at R + rho*cos(lambda - j*360/N)
+
 Optional keys of the cutter assembly, read by netshape.posture (lengths measured from the tip)::
 
     shank_diameter_mm = 6.0
@@ -35,7 +42,7 @@ check_flutes = _cutter.check_flutes  # the one 1..64 check (C++), with the calle
 
 _KEYS = ("kind", "diameter_mm", "corner_radius_mm", "flutes", "helix_deg", "flute_length_mm", "stick_out_mm",
          "youngs_modulus_MPa", "shank_diameter_mm", "shank_length_mm", "holder_diameter_mm", "holder_length_mm",
-         "holder_profile_mm")
+         "holder_profile_mm", "holder_compliance_um_per_N", "runout_rho_mm", "runout_lambda_deg")
 _REQUIRED = ("kind", "diameter_mm", "flutes", "helix_deg", "flute_length_mm", "stick_out_mm")
 
 
@@ -80,6 +87,15 @@ def cutter_from_dict(d: dict, *, source: str = "cutter") -> Cutter:
     c.stick_out = _number("stick_out_mm", d["stick_out_mm"])
     if "youngs_modulus_MPa" in d:
         c.youngs_modulus = _number("youngs_modulus_MPa", d["youngs_modulus_MPa"])
+    if "holder_compliance_um_per_N" in d:
+        v = _number("holder_compliance_um_per_N", d["holder_compliance_um_per_N"])
+        if v < 0:
+            raise ValueError(f"holder_compliance_um_per_N = {v!r}: must be ≥ 0 [µm/N]")
+        c.holder_compliance = 1e-3 * v
+    if "runout_rho_mm" in d:
+        c.runout_rho = _number("runout_rho_mm", d["runout_rho_mm"])
+    if "runout_lambda_deg" in d:
+        c.runout_lambda = math.radians(_number("runout_lambda_deg", d["runout_lambda_deg"]))
     c.validate()  # ValueError "cutter.<field> = value: requirement"
     return c
 
@@ -96,6 +112,9 @@ def cutter_to_dict(c: Cutter) -> dict:
         "flute_length_mm": c.flute_length,
         "stick_out_mm": c.stick_out,
         "youngs_modulus_MPa": c.youngs_modulus,
+        **({"holder_compliance_um_per_N": 1e3 * c.holder_compliance} if c.holder_compliance else {}),
+        **({"runout_rho_mm": c.runout_rho, "runout_lambda_deg": math.degrees(c.runout_lambda)}
+           if c.runout_rho else {}),
     }
 
 

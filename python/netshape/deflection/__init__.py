@@ -105,9 +105,12 @@ def _check_positive(name: str, value: float) -> float:
 def make_model(*, diameter: float, flutes: int, helix_deg: float, stick_out: float, youngs_modulus: float,
                feed_per_tooth: float, ap: float, ae: float | None = None, mode: str = "down",
                coefficients="cho_suh_example", inertia: str = "square", load: str = "distributed",
-               disk_height: float = 0.05, smooth_edges: bool = True) -> DeflectionModel:
+               disk_height: float = 0.05, smooth_edges: bool = True,
+               holder_compliance: float = 0.0, chip=None) -> DeflectionModel:
     """A validated :class:`DeflectionModel` for a steady cut (mm, MPa, degrees for the helix).
-    ``coefficients``: text for :func:`parse_coefficients` or a coefficient object."""
+    ``coefficients``: text for :func:`parse_coefficients` or a coefficient object;
+    ``holder_compliance`` [mm/N] the clamp/holder spring in series with the cantilever; ``chip`` a
+    netshape.force.RunoutSizeEffect (runout and chip-size effect of the element chips) or None."""
     d = _check_positive("diameter", diameter)
     _check_positive("stick_out", stick_out)
     if not isinstance(youngs_modulus, (int, float)) or not math.isfinite(youngs_modulus) or youngs_modulus <= 0:
@@ -144,19 +147,24 @@ def make_model(*, diameter: float, flutes: int, helix_deg: float, stick_out: flo
     m.beam = Cantilever.tool(d, float(stick_out), float(youngs_modulus), _d.inertia_model_from_string(inertia))
     m.load = _d.load_model_from_string(load)
     m.smooth_edges = bool(smooth_edges)
+    m.holder_compliance = float(holder_compliance)
+    if chip is not None:
+        m.chip = chip
     m.validate()
     return m
 
 
 def model_for_cutter(cutter, *, feed_per_tooth: float, coefficients, inertia: str = "square",
                      load: str = "distributed", ap: float = 1.0, disk_height: float = 0.05) -> DeflectionModel:
-    """A model from a netshape.cutter.Cutter (flat end mill): D, N, β, stick-out and E from the cutter."""
+    """A model from a netshape.cutter.Cutter (flat end mill): D, N, β, stick-out, E and the holder
+    compliance from the cutter."""
     if str(cutter.kind).split(".")[-1] != "flat":
         raise ValueError(f"tool kind = {str(cutter.kind).split('.')[-1]}: the deflection model needs a flat end mill")
     return make_model(diameter=2 * cutter.radius, flutes=cutter.flutes, helix_deg=math.degrees(cutter.helix),
                       stick_out=cutter.stick_out, youngs_modulus=cutter.youngs_modulus,
                       feed_per_tooth=feed_per_tooth, ap=ap, ae=2 * cutter.radius, mode="slot",
-                      coefficients=coefficients, inertia=inertia, load=load, disk_height=disk_height)
+                      coefficients=coefficients, inertia=inertia, load=load, disk_height=disk_height,
+                      holder_compliance=cutter.holder_compliance)
 
 
 def steady_wall(model: DeflectionModel, mode: str, levels: int = 21) -> dict:

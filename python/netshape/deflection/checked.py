@@ -20,7 +20,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .. import _core
-from .walls import DrawingCheck, check_against_drawing, final_wall_points, wall_remains_points
+from .walls import (DrawingCheck, check_against_drawing, final_wall_points, generates_wall,
+                    wall_remains_points)
 
 _comp = _core.compensation
 _LEVELS = ("bottom", "middle", "top")
@@ -86,13 +87,14 @@ def dense_drawing(setup, density: int):
 
 def _block_flags(owner_from, flags_from, owner_to):
     """Per-point flags of one sampling carried to another by block (final-wall status is per block,
-    plus the start of each final-wall block, see walls.final_wall_points)."""
+    plus the start of each final-wall block, see walls.final_wall_points). A block's last point is the
+    next block's start and carries that block's flag, so a block's own status is read before it."""
     owner_from, owner_to = np.asarray(owner_from), np.asarray(owner_to)
     flags_from = np.asarray(flags_from, dtype=bool)
     block = {}
     for b in np.unique(owner_from):
         sel = owner_from == b
-        block[int(b)] = bool(np.any(flags_from[sel][1:])) if np.sum(sel) > 1 else bool(flags_from[sel][0])
+        block[int(b)] = bool(np.any(flags_from[sel][:-1])) if np.sum(sel) > 1 else bool(flags_from[sel][0])
     out = np.array([block.get(int(b), False) for b in owner_to], dtype=bool)
     starts = np.flatnonzero(out[1:] & (owner_to[1:] != owner_to[:-1]))
     out[starts] = True
@@ -124,7 +126,7 @@ def compensate_checked(setup, *, scheme: str = "accelerated", level: str = "midd
         prog = setup.program if later_program is None else later_program
         remains = wall_remains_points(prog, d_owner + block_offset, d_pts, normals, np.asarray(before_r.depth),
                                       setup.cutter.radius)
-        final = final_wall_points(d_owner, remains, np.asarray(before_r.engaged))
+        final = final_wall_points(d_owner, remains, generates_wall(before_r, setup.side))
     final = np.asarray(final, dtype=bool)
     p_final = _block_flags(d_owner, final, p_owner)
     before = check_against_drawing(setup.model, setup.cutter, setup.stock, d_pts, d_pts, final, setup.side, opt)

@@ -65,19 +65,30 @@ def wall_remains_points(program, owner, nominal, normals, depth, radius: float, 
     return keep & (depth > 1e-9)
 
 
+def generates_wall(r, side) -> np.ndarray:
+    """(n) bool: the point of the path evaluation ``r`` (PathWallErrors) generates a wall on ``side``
+    (WallSide): it cuts, and its engaged window holds that side's wall angle. A move that cuts only
+    ahead of it, its wall side in air (a lead-in through a cleared pocket), leaves no wall."""
+    bit = 1 if str(side).split(".")[-1] == "left" else 2
+    return np.asarray(r.engaged, dtype=bool) & (np.asarray(r.wall_flags) & bit > 0)
+
+
 def final_wall_points(owner, point_remains, engaged) -> np.ndarray:
-    """(n) bool per point from its block: a block is a final-wall block when most of its engaged
-    points leave a wall that remains (a block that cuts nothing is not). The point where a final-wall
-    block starts counts too, whichever block it ends, so that the compensated offset is in place at
-    the start of the final wall instead of ramping up along it."""
+    """(n) bool per point from its block: a block is a final-wall block when most of its points that
+    generate a wall (``engaged``, see :func:`generates_wall`) leave a wall that remains (a block that
+    generates none is not); its last point, where the next block starts (at a corner in that block's
+    frame), does not vote. The point where a final-wall block starts counts too, whichever block it
+    ends, so that the compensated offset is in place at the start of the final wall instead of ramping
+    up along it."""
     owner = np.asarray(owner)
     engaged = np.asarray(engaged, dtype=bool)
     remains = np.asarray(point_remains, dtype=bool)
     out = np.zeros(len(owner), dtype=bool)
     for b in np.unique(owner):
-        sel = owner == b
-        n_eng = int(np.sum(engaged[sel]))
-        out[sel] = n_eng > 0 and int(np.sum(remains[sel] & engaged[sel])) * 2 > n_eng
+        sel = np.flatnonzero(owner == b)
+        votes = sel[:-1] if len(sel) > 1 else sel
+        n_eng = int(np.sum(engaged[votes]))
+        out[sel] = n_eng > 0 and int(np.sum(remains[votes] & engaged[votes])) * 2 > n_eng
     starts = np.flatnonzero(out[1:] & (owner[1:] != owner[:-1]))
     out[starts] = True
     return out

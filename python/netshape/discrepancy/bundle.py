@@ -8,6 +8,8 @@
     diameter_mm = 10.0
     flutes = 2
     helix_deg = 30.0
+    runout_rho_mm = 0.0         # optional: the tool's runout, offset [mm] and angle [deg]
+    runout_lambda_deg = 0.0
     [model]                     # the current linear edge-force coefficients
     Ktc_N_per_mm2 = 958.8
     Krc_N_per_mm2 = 251.1
@@ -15,6 +17,8 @@
     Kte_N_per_mm = 15.8
     Kre_N_per_mm = 19.4
     Kae_N_per_mm = 18.2
+    chip_exponent = 1.0         # optional: chip-size effect exponent p and its
+    reference_chip_mm = 0.05    # reference h_ref (default: the geometric mean feed per tooth)
     [[experiment]]
     file = "slot_f050.csv"      # columns angle_deg,fx_N,fy_N,fz_N or time_s,fx_N,fy_N,fz_N
     spindle_rpm = 6000.0
@@ -120,6 +124,8 @@ FORCE_MODEL_KEYS = (
     "Kre_N_per_mm",
     "Kae_N_per_mm",
 )
+#: optional [model] keys: the chip-size effect g(h) = h_ref·(h/h_ref)^p (netshape.force.RunoutSizeEffect)
+FORCE_MODEL_OPTIONAL = ("chip_exponent", "reference_chip_mm")
 VOLUMETRIC_COLUMNS = ("x_mm", "y_mm", "z_mm", "ex_mm", "ey_mm", "ez_mm")
 VOLUMETRIC_OPTIONAL = ("t_s", "direction")
 _AXES = "XYZ"
@@ -174,7 +180,7 @@ def _load_force(doc: dict, root: Path, where: str) -> Bundle:
     if not isinstance(tool, dict):
         raise _fail(where, "missing table [tool] (type, diameter_mm, flutes, helix_deg)")
     w = f"{where}: [tool]"
-    _check_keys(tool, ("type", "diameter_mm", "flutes", "helix_deg"), w)
+    _check_keys(tool, ("type", "diameter_mm", "flutes", "helix_deg", "runout_rho_mm", "runout_lambda_deg"), w)
     ttype = tool.get("type")
     if ttype not in ("flat", "ball"):
         raise _fail(w, f"type = {ttype!r}: must be 'flat' or 'ball'")
@@ -189,12 +195,19 @@ def _load_force(doc: dict, root: Path, where: str) -> Bundle:
         "diameter": _number(tool, "diameter_mm", w, positive=True),
         "flutes": flutes,
         "helix": math.radians(helix),
+        "runout_rho": _number(tool, "runout_rho_mm", w, default=0.0),
+        "runout_lambda": math.radians(_number(tool, "runout_lambda_deg", w, default=0.0)),
     }
+    if tool_out["runout_rho"] < 0:
+        raise _fail(w, f"runout_rho_mm = {tool_out['runout_rho']}: must be ≥ 0 [mm]")
     model = doc.get("model")
     if not isinstance(model, dict):
         raise _fail(where, f"missing table [model] ({', '.join(FORCE_MODEL_KEYS)})")
-    _check_keys(model, FORCE_MODEL_KEYS, f"{where}: [model]")
+    _check_keys(model, FORCE_MODEL_KEYS + FORCE_MODEL_OPTIONAL, f"{where}: [model]")
     model_out = {k: _number(model, k, f"{where}: [model]") for k in FORCE_MODEL_KEYS}
+    for k in FORCE_MODEL_OPTIONAL:
+        if k in model:
+            model_out[k] = _number(model, k, f"{where}: [model]", positive=True)
     exps = doc.get("experiment")
     if not isinstance(exps, list) or not exps:
         raise _fail(where, "no [[experiment]] tables")

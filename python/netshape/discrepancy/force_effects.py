@@ -92,7 +92,8 @@ class ForceProblem(Problem):
         self.radius = 0.5 * tool["diameter"]
         self.helix = tool["helix"]
         self.grid = 2.0 * math.pi * np.arange(GRID) / GRID
-        self.h_ref = float(np.exp(np.mean(np.log([e.feed_per_tooth for e in self.experiments]))))
+        self.h_ref = float(bundle.model.get("reference_chip_mm")
+                           or np.exp(np.mean(np.log([e.feed_per_tooth for e in self.experiments]))))
         self._windows, self._models, self._ws = [], [], []
         for e in self.experiments:
             eng = _f.AngularEngagement.from_mode(
@@ -282,7 +283,10 @@ class ForceProblem(Problem):
                 "Kae_N_per_mm",
             )
         )
-        spec = ForceSpec(coefficients=k, phases=tuple(0.0 for _ in self.experiments))
+        t = self.bundle.tool
+        spec = ForceSpec(coefficients=k, phases=tuple(0.0 for _ in self.experiments),
+                         runout=(t["runout_rho"], t["runout_lambda"]) if t.get("runout_rho") else None,
+                         chip_exponent=m.get("chip_exponent"))
         if self.nuisance_experiments():
             spec = self.with_nuisance(spec, [self._phase_scan(spec, i) for i in self.nuisance_experiments()])
             _, spec = self.least_squares(lambda x: spec, [np.zeros(0)], (np.zeros(0), np.zeros(0)))

@@ -77,20 +77,32 @@ class VolumetricProblem(Problem):
     kind = "volumetric_error"
     unit = "mm"
 
-    def __init__(self, bundle):
+    def __init__(self, bundle, machine=None):
+        """``machine``: a machine TOML path as the current model instead of the bundle's ``[model]``
+        (:class:`volumetric_machine.MachineModel`)."""
         self.bundle = bundle
+        self.base = None
+        if machine is not None:
+            from .volumetric_machine import MachineModel
+
+            self.base = MachineModel(machine, bundle)
         self.experiments = bundle.experiments
         self.measured = [np.asarray(e.errors, float) for e in self.experiments]
         self._machines: dict = {}
         self.notes = []
 
     def initial_spec(self):
-        return VolumetricSpec(model=tuple(sorted((k, tuple(v)) for k, v in self.bundle.model.items())))
+        model = self.bundle.model if self.base is None else self.base.initial_model()
+        return VolumetricSpec(model=tuple(sorted((k, tuple(v)) for k, v in model.items())))
 
     def machine(self, spec, tool_length):
         key = (spec.model, tool_length)
         m = self._machines.get(key)
         if m is not None:
+            return m
+        if self.base is not None:
+            m = self.base.build(dict(spec.model), tool_length)
+            self._machines[key] = m
             return m
         mc = self.bundle.machine
         doc = {
@@ -167,6 +179,8 @@ class VolumetricProblem(Problem):
         out = []
         for e in self.experiments:
             p = np.array(tip_error(self.machine(spec, e.tool_length), e.points))
+            if self.base is not None:
+                p += self.base.state(e)
             for axis, amp, tau in spec.thermal:
                 p[:, _AXES.index(axis)] += amp * (1.0 - np.exp(-e.times / tau))
             for axis, rev in spec.backlash:

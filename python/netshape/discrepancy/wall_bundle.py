@@ -53,7 +53,8 @@ class WallContourExperiment:
     cutter: Any = None
 
 
-WALL_TOOL_KEYS = ("type", "diameter_mm", "flutes", "helix_deg", "stick_out_mm", "youngs_modulus_MPa")
+WALL_TOOL_KEYS = ("type", "diameter_mm", "flutes", "helix_deg", "stick_out_mm", "youngs_modulus_MPa",
+                  "holder_compliance_um_per_N", "runout_rho_mm", "runout_lambda_deg")
 WALL_MODEL_KEYS = ("coefficients", "inertia", "load")
 
 
@@ -79,7 +80,20 @@ def _wall_tool_table(tool: Any, where: str) -> dict:
         "helix_deg": helix,
         "stick_out": _number(tool, "stick_out_mm", w, positive=True),
         "youngs_modulus": _number(tool, "youngs_modulus_MPa", w, positive=True, default=600e3),
+        **_holder_terms(tool, w),
     }
+
+
+def _holder_terms(tool: dict, w: str) -> dict:
+    """The optional tool-in-holder keys of a [tool] table (netshape.cutter): holder compliance
+    [mm/N], runout ρ [mm] and λ [rad]."""
+    out = {"holder_compliance": 1e-3 * _number(tool, "holder_compliance_um_per_N", w, default=0.0),
+           "runout_rho": _number(tool, "runout_rho_mm", w, default=0.0),
+           "runout_lambda": math.radians(_number(tool, "runout_lambda_deg", w, default=0.0))}
+    for k in ("holder_compliance", "runout_rho"):
+        if out[k] < 0:
+            raise _fail(w, f"{k} = {out[k]!r}: must be ≥ 0")
+    return out
 
 
 def _file_key(e: dict, key: str, we: str, root: Path) -> Path:
@@ -200,7 +214,8 @@ def _load_wall(doc: dict, root: Path, where: str) -> Bundle:
             c = ce.cutter
             if tool_out is None:
                 tool_out = dict(_cutter_table(c), type="flat", stick_out=float(c.stick_out),
-                                youngs_modulus=float(c.youngs_modulus))
+                                youngs_modulus=float(c.youngs_modulus), holder_compliance=float(c.holder_compliance),
+                                runout_rho=float(c.runout_rho), runout_lambda=float(c.runout_lambda))
             else:
                 _same_tool(tool_out, c, f"{where}: [[experiment]] {i}")
             out.append(ce)
@@ -219,7 +234,8 @@ def _load_wall(doc: dict, root: Path, where: str) -> Bundle:
             _defl.make_model(diameter=tool_out["diameter"], flutes=flutes, helix_deg=helix,
                              stick_out=tool_out["stick_out"], youngs_modulus=tool_out["youngs_modulus"],
                              feed_per_tooth=c, ap=ap, ae=ae, mode=mode, coefficients=model["coefficients"],
-                             inertia=model_out["inertia"], load=model_out["load"])
+                             inertia=model_out["inertia"], load=model_out["load"],
+                             holder_compliance=tool_out["holder_compliance"])
         except ValueError as exc:
             raise _fail(we, str(exc)) from None
         cols, z = _wall_csv(e, we, path, z_default=0.5 * ap, axial_depth=ap)

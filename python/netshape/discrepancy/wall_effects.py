@@ -148,6 +148,7 @@ class WallProblem(Problem):
                 youngs_modulus=t["youngs_modulus"], feed_per_tooth=e.feed_per_tooth, ap=e.axial_depth,
                 ae=e.radial_depth, mode=e.mode, coefficients=bundle.model["coefficients"],
                 inertia=bundle.model["inertia"], load=bundle.model["load"],
+                holder_compliance=t.get("holder_compliance", 0.0),
             )
             zu, inv = np.unique(e.z, return_inverse=True)
             w = d.wall_errors(m, d.DeflectionWorkspace(m), getattr(d.WallSide, e.side), zu)
@@ -159,7 +160,9 @@ class WallProblem(Problem):
             self._shift.append(self.flutes * e.feed_per_tooth * self.k_beta * e.z / (2 * math.pi))
 
     def initial_spec(self):
-        return WallSpec()
+        """The bundle's model: its tool's holder compliance is inside e₀ (C++), its runout here."""
+        t = self.bundle.tool
+        return WallSpec(runout=(t["runout_rho"], t["runout_lambda"]) if t.get("runout_rho") else None)
 
     def runout_term(self, i, rho, lam) -> np.ndarray:
         """−max over passes of the reach r_j − d²/(2R_j) at the points of experiment i [mm]."""

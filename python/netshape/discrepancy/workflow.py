@@ -75,6 +75,8 @@ class Diagnosis:
     #: the registered measurement frame after the added effects (volumetric bundles; None otherwise):
     #: {rotation_urad: [rx, ry, rz], translation_mm: [tx, ty, tz]}
     frame: dict | None = None
+    #: the bundle's folder (named in the comments of an updated model file)
+    bundle_path: str = ""
 
     @property
     def effect(self) -> str | None:
@@ -83,6 +85,15 @@ class Diagnosis:
     @property
     def parameters(self) -> dict:
         return dict(self.effects[0]["parameters"]) if self.effects else {}
+
+    def apply(self, model):
+        """The model with the found effects added: ``model`` is the text of a model file (machine TOML
+        for a volumetric bundle, tool TOML for a wall bundle, cutter/coefficients TOML for a force
+        bundle) or a path to one; returns the new text (comments name this diagnosis). No effect found:
+        the text unchanged. See :func:`netshape.discrepancy.update.apply`."""
+        from .update import apply
+
+        return apply(self, model)
 
     def to_dict(self) -> dict:
         """The machine-readable result (the keys of ``netshape diagnose --json``)."""
@@ -144,7 +155,7 @@ class Diagnosis:
         return "\n".join(lines)
 
 
-def make_problem(bundle: Bundle):
+def make_problem(bundle: Bundle, machine=None):
     if bundle.kind == "cutting_force":
         from .force_effects import ForceProblem
 
@@ -152,7 +163,7 @@ def make_problem(bundle: Bundle):
     if bundle.kind == "volumetric_error":
         from .volumetric_effects import VolumetricProblem
 
-        return VolumetricProblem(bundle)
+        return VolumetricProblem(bundle, machine)
     if bundle.kind == "wall_error":
         from .wall_effects import WallProblem
 
@@ -160,12 +171,17 @@ def make_problem(bundle: Bundle):
     raise ValueError(f"kind = {bundle.kind!r}: no workflow for it")
 
 
-def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
+def diagnose(bundle, *, effects=None, max_effects: int = 4, machine=None) -> Diagnosis:
     """Find what the bundle's model misses. ``bundle``: a :class:`Bundle` or a path to one;
-    ``effects``: names of the catalogue entries to consider (default all of the bundle's kind)."""
+    ``effects``: names of the catalogue entries to consider (default all of the bundle's kind);
+    ``machine``: a machine TOML path, the current model of a volumetric bundle instead of its
+    ``[model]`` (the machine's tables, cyclic terms, backlash and thermal drift included)."""
     if not isinstance(bundle, Bundle):
         bundle = load_bundle(bundle)
-    problem = make_problem(bundle)
+    if machine is not None and bundle.kind != "volumetric_error":
+        raise ValueError(f"machine = {str(machine)!r}: only a volumetric_error bundle is diagnosed against a "
+                         f"machine file (this bundle is {bundle.kind})")
+    problem = make_problem(bundle, machine)
     from . import force_effects, volumetric_effects, wall_effects  # noqa: F401  (register the built-in catalogue)
 
     cat = catalogue(bundle.kind)
@@ -314,6 +330,7 @@ def diagnose(bundle, *, effects=None, max_effects: int = 4) -> Diagnosis:
         unexplained=unexplained,
         frame=problem.frame(spec) if hasattr(problem, "frame") else None,
         ambiguous=ambiguous,
+        bundle_path=str(bundle.path),
     )
 
 

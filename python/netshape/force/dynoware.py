@@ -27,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
+from netshape._text import read_controller_text
 from netshape.errors import ParseError
 
 #: C = T · F_dyn for the leekunhwee-flat-slot set-up (see the module docstring).
@@ -89,7 +90,7 @@ def read_dynoware(path: str | os.PathLike, to_cutter: np.ndarray | str | None = 
     Raises ParseError (a ValueError) naming the file and line on a malformed file.
     """
     p = Path(path)
-    text = p.read_text(encoding="utf-8", errors="replace").splitlines()
+    text = read_controller_text(p).splitlines()
     meta: dict[str, str] = {}
     header_at = None
     for i, line in enumerate(text[:200]):

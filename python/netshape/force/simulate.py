@@ -62,6 +62,7 @@ def cutter_forces(
     samples_per_revolution: int = 360,
     revolutions: float = 1.0,
     disk_height: float = 0.02,
+    extension=None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Forces on the cutter over ``revolutions`` turns.
 
@@ -70,7 +71,8 @@ def cutter_forces(
     (a BallEndCoefficients or a named ball set, default ``kim_zas_ball12``; ``inclination_deg`` = ramp ξ).
     ``ae`` [mm] is measured from the wall to the tool's largest radius (diameter/2); in up and down
     milling a ball element of radius r(z) < diameter/2 meets that wall at its own angle (no cut where
-    r(z) ≤ diameter/2 − ae). For ``mode="slot"`` ae is the diameter or None. See docs/force.md.
+    r(z) ≤ diameter/2 − ae). For ``mode="slot"`` ae is the diameter or None. ``extension``: a
+    RunoutSizeEffect (cutter runout, chip-size effect; flat end mills). See docs/force.md.
     """
     if tool not in ("flat", "ball"):
         raise ValueError(f"tool = {tool!r}: must be flat or ball")
@@ -114,7 +116,11 @@ def cutter_forces(
         model = _f.FlatEndModel(radius=radius, flutes=flutes, helix=helix, axial_depth=ap,
                                 feed_per_tooth=feed_per_tooth, engagement=engagement, linear_edge=k,
                                 disk_height=min(disk_height, ap))
+        if extension is not None and not extension.none():
+            return angles, _f.flat_end_forces_extended(model, extension, angles)
         return angles, _f.flat_end_forces(model, angles)
+    if extension is not None and not extension.none():
+        raise ValueError("extension: runout and the size effect are modelled for flat end mills only")
     if coefficients is not None and not isinstance(coefficients, _f.BallEndCoefficients):
         raise ValueError("coefficients: a ball end mill needs BallEndCoefficients or --coefficient-set")
     k = coefficients if coefficients is not None else _f.ball_end_coefficient_set(coefficient_set or "kim_zas_ball12").coefficients

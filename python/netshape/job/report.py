@@ -192,6 +192,12 @@ def write_html(path, summary: dict, images: dict[str, str]) -> None:
         notes.append("files in this folder that this run did not write: " + ", ".join(summary["stale_files"]))
     if notes:
         out.append("<ul>" + "".join(f'<li class="note">{html.escape(n)}</li>' for n in notes) + "</ul>")
+    mach = summary.get("machine")
+    if mach and mach.get("terms"):
+        out.append(f'<h2>Machine terms</h2><p><code>{html.escape(mach["file"])}</code></p><table id="machine-terms">'
+                   "<tr><th>term</th><th>value</th><th>from</th></tr>" + "".join(
+                       f"<tr><td>{html.escape(t['term'])}</td><td>{html.escape(t['value'])}</td>"
+                       f"<td>{html.escape(t['source'])}</td></tr>" for t in mach["terms"]) + "</table>")
     warns = summary.get("warnings") or []
     if warns:
         out.append('<h2>Warnings</h2><ul id="warnings">' + "".join(

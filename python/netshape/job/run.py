@@ -22,8 +22,9 @@ from pathlib import Path
 import numpy as np
 
 from . import stages as st
-from .stage_deflection import stage_deflection
 from .spec import Job
+from .stage_deflection import stage_deflection
+from .warnings import outside_travel
 
 
 class StageFailed(Exception):
@@ -72,6 +73,12 @@ class _Stages:
         if self.bar is not None:
             self.bar.update(1)
         return out
+
+    def skip(self, name: str) -> None:
+        """A stage of the list that has nothing to do in this run: no time, the bar moves on."""
+        self.times[name] = 0.0
+        if self.bar is not None:
+            self.bar.update(1)
 
     def sub_progress(self, name: str, total: int, unit: str):
         """A callable ``f(done)`` that shows the progress inside a long stage on a second bar (None when
@@ -215,11 +222,18 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
     if p["volumetric"]:
         def _volumetric():
             m = st.load_job_machine(job)
-            return m, st.stage_volumetric(job, m, st.machine_frame_toolpath(prog))
+            tp_m = st.machine_frame_toolpath(prog)
+            return m, st.stage_volumetric(job, m, tp_m), outside_travel(m, tp_m)
 
-        machine, vol = S.run("volumetric", _volumetric)
-        status["volumetric"] = "ok"
-        if c["volumetric"]:
+        machine, vol, outside = S.run("volumetric", _volumetric)
+        warnings.extend(outside)
+        # outside the travel the machine's error is extrapolated and compensation would be refused
+        status["volumetric"] = "outside_travel" if outside else "ok"
+        if c["volumetric"] and outside:
+            S.skip("volumetric_compensation")
+            vol.after_mm, vol.s_after_mm = vol.before_mm, vol.s_before_mm
+            vol.report = {"status": "skipped", "reason": outside[0]["message"]}
+        elif c["volumetric"]:
             target_machine = st.machine_frame_toolpath(target_prog)
             vol = S.run("volumetric_compensation", st.stage_volumetric_compensation, job, machine,
                         target_machine, vol)
@@ -235,9 +249,7 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
         traj_c = (S.run("feed_plan_compensated", st.stage_feed_plan, job, compensated_program[0])
                   if compensated_program is not None else None)
         if traj_c is None:
-            S.times["feed_plan_compensated"] = 0.0
-            if S.bar is not None:
-                S.bar.update(1)
+            S.skip("feed_plan_compensated")
 
     # ---- summary
     errors = {
@@ -251,6 +263,8 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
     applied = job.compensations
     if defl is not None and defl.compensated is None and "deflection" in applied:
         applied = [a for a in applied if a != "deflection"]
+    if vol is not None and vol.compensated is None and "volumetric" in applied:
+        applied = [a for a in applied if a != "volumetric"]
     stem = job.program.stem
     files = {"summary": "summary.json", "report": "report.html"}
     if compensated_program is not None:
@@ -278,6 +292,10 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
     if forces is not None:
         summary["forces"] = {"max_peak_resultant_N": float(np.max(forces.peak_resultant, initial=0.0)),
                              "samples": int(len(forces.peak_resultant))}
+    if machine is not None:
+        from netshape.machine import machine_terms
+
+        summary["machine"] = {"file": str(job.machine), "terms": machine_terms(job.machine)}
     if vol is not None and vol.report:
         summary["volumetric_compensation"] = {k: v for k, v in vol.report.items() if isinstance(v, (int, float, str))}
 

@@ -28,7 +28,7 @@ COMPENSATIONS = ("deflection", "volumetric")
 _TOP = {"name", "program", "output", "tool", "stock", "offsets", "coefficients", "machine", "limits",
         "cutting", "predict", "compensate", "report", "grid", "start_mm", "clearance_mm"}
 _TOOL_KEYS = {"file", "kind", "diameter_mm", "corner_radius_mm", "flutes", "helix_deg", "flute_length_mm",
-              "stick_out_mm", "youngs_modulus_MPa"}
+              "stick_out_mm", "youngs_modulus_MPa", "holder_compliance_um_per_N", "runout_rho_mm", "runout_lambda_deg"}
 _STOCK_KEYS = {"file", "min_mm", "max_mm", "spacing_mm", "heights", "pre_cut"}
 _PRE_CUT_KEYS = {"program", "tool"}
 _MACHINE_KEYS = {"file", "error_scale"}
@@ -201,7 +201,7 @@ def _stock(src: str, base: Path, v: Any) -> dict:
             raise _err(src, "stock.heights", t["heights"], "must be a .npy or .csv file of (ny, nx) heights [mm]")
         ny, nx, about = _heights_shape(hp)
         if ny * nx > MAX_ZMAP_NODES:
-            raise _err(src, "stock.heights", t["heights"], f"holds {'about ' if about else ''}{ny:.0f} x {nx} = "
+            raise _err(src, "stock.heights", t["heights"], f"holds {'at least ' if about else ''}{ny:.0f} x {nx} = "
                        f"{ny * nx:.3g} Z-map nodes, over the limit of 4e7 (not loaded)")
         out["heights"] = hp
         out["nodes"] = ny * nx
@@ -219,9 +219,10 @@ def _stock(src: str, base: Path, v: Any) -> dict:
     return out
 
 
-def _heights_shape(path: Path) -> tuple[float, int, bool]:
-    """(ny, nx, estimated) of a heights file without loading it: a .npy header, or a CSV's first row
-    (nx) and its size in bytes over that row's (ny, an estimate)."""
+def _heights_shape(path: Path, max_nodes: int = MAX_ZMAP_NODES) -> tuple[float, int, bool]:
+    """(ny, nx, at_least) of a heights file without loading it: a .npy header, or a CSV's first row (nx)
+    and its lines with data (ny), counted in 1 MB chunks. Counting stops once ny · nx exceeds
+    ``max_nodes``; then ny is a lower bound and ``at_least`` is True."""
     if path.suffix.lower() == ".npy":
         import numpy as np
 
@@ -237,10 +238,18 @@ def _heights_shape(path: Path) -> tuple[float, int, bool]:
         return float(shape[0]), int(shape[1]), False
     with open(path, "rb") as fh:
         first = fh.readline(1 << 20)
-    if not first:
-        return 0.0, 0, False
-    nx = first.count(b",") + 1
-    return path.stat().st_size / len(first), nx, True
+        if not first.strip():
+            return 0.0, 0, False
+        nx = first.count(b",") + 1
+        ny, last = 1, b"\n"
+        while chunk := fh.read(1 << 20):
+            ny += chunk.count(b"\n")
+            last = chunk[-1:]
+            if ny * nx > max_nodes:
+                return float(ny), nx, True
+    if last != b"\n":  # a last row without its newline
+        ny += 1
+    return float(ny), nx, False
 
 
 def _coefficients(src: str, v: Any):

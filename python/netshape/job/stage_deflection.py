@@ -130,7 +130,7 @@ def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> De
         normals = np.asarray(nd.wall_normals(nominal, setup.side))
         remains = walls.wall_remains_points(tp, setup.owner + first, nominal, normals, np.asarray(pred.depth),
                                             cutter.radius)
-        final = walls.final_wall_points(setup.owner, remains, np.asarray(pred.engaged))
+        final = walls.final_wall_points(setup.owner, remains, walls.generates_wall(pred, setup.side))
         arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(nominal[:, :2], axis=0), axis=1))])
         err = np.asarray(pred.error, dtype=float)
         pieces = walls.contour_pieces(setup.owner, final, lambda b: run[b].line)

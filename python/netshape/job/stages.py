@@ -227,23 +227,10 @@ def stage_cut(job: Job, stock0, prog: Program, warnings: list | None = None):
                                             f"Z{b.end[2]:g} removes {st.removed_volume:.3g} mm^3 of stock"})
         done = i + 1
     if warnings is not None:
-        _feed_warnings(job, blocks, warnings)
+        from .warnings import tool_shorter_than_cut
+
+        tool_shorter_than_cut(job, blocks, warnings)
     return z, removed
-
-
-def _feed_warnings(job: Job, blocks, warnings: list) -> None:
-    """Cuts deeper below the stock top than the tool sticks out (a feed move without a feed is refused
-    by the reader already)."""
-    top = job.stock["max_mm"][2] if job.stock.get("max_mm") is not None else None
-    stick = job.tool.get("stick_out_mm")
-    if top is not None and stick:
-        deep = [b for b in blocks if int(b.kind) != 0 and top - min(b.start[2], b.end[2]) > float(stick)]
-        if deep:
-            b = deep[0]
-            warnings.append({"kind": "tool_shorter_than_cut", "line": int(b.line),
-                             "message": f"line {b.line} cuts {top - min(b.start[2], b.end[2]):g} mm below the stock "
-                                        f"top, more than the tool's stick-out {float(stick):g} mm (the holder would "
-                                        "hit the stock)"})
 
 
 # ---------------------------------------------------------------------------------------------- forces
@@ -337,7 +324,8 @@ def load_job_machine(job: Job):
 
 
 def scale_machine_errors(m, s: float) -> None:
-    """Multiply every geometric error of ``m`` (the 18 error motions, squareness, spindle tilt) by ``s``."""
+    """Multiply every error of ``m`` (the 18 error motions, squareness, spindle tilt, cyclic amplitudes,
+    backlash, thermal drift amplitudes) by ``s``."""
     axes = []
     for ax in m.axes:
         funcs = []
@@ -349,9 +337,12 @@ def scale_machine_errors(m, s: float) -> None:
                 f.values = [s * v for v in f.values]
             funcs.append(f)
         ax.errors = funcs
+        ax.cyclic = [type(t)(amplitude=s * t.amplitude, period=t.period, phase=t.phase) for t in ax.cyclic]
+        ax.backlash = s * ax.backlash
         axes.append(ax)
     m.axes = axes
     m.ec0y, m.eb0z, m.ea0z = s * m.ec0y, s * m.eb0z, s * m.ea0z
+    m.thermal = [type(t)(axis=t.axis, amplitude=s * t.amplitude, time_constant=t.time_constant) for t in m.thermal]
     m.spindle_tilt_a, m.spindle_tilt_b = s * m.spindle_tilt_a, s * m.spindle_tilt_b
 
 
@@ -450,6 +441,46 @@ def check_tip_errors(job: Job, pts: np.ndarray, e: np.ndarray) -> None:
     raise ValueError(f"machine.file = {str(job.machine)!r}: gives {what}")
 
 
+def state_offsets(machine, tp, pts: np.ndarray, s: np.ndarray, departing: bool = False) -> np.ndarray:
+    """Backlash and thermal drift (n, 3) [mm] at points ``pts`` sampled along the feed moves of ``tp`` at
+    feed-path distances ``s`` [mm] (sample_segments): each axis' direction along the samples, arriving
+    at the point (or ``departing`` from it; steps below 1 µm ignored: a compensation's own corrections),
+    the program time interpolated in the feed-path distance between the feed blocks' ends
+    (block_end_times, programmed feeds)."""
+    if not machine.has_state_errors() or len(pts) == 0:
+        return np.zeros_like(pts)
+    from netshape import machine as nm
+    from netshape._core import compensation as _c
+
+    t_end = np.asarray(_c.block_end_times(tp), dtype=float)
+    feed = [i for i, b in enumerate(tp.blocks) if b.kind.name != "rapid"]
+    dist = np.cumsum([tp.blocks[i].length() for i in feed])
+    t = np.interp(s, np.concatenate([[0.0], dist]), np.concatenate([[0.0], t_end[feed]]))
+    if departing:
+        d = nm.approach_directions(pts[::-1], [1.0, 1.0, 1.0], 1e-3)[::-1] * -1.0
+    else:
+        d = nm.approach_directions(pts, [1.0, 1.0, 1.0], 1e-3)
+    return nm.state_error(machine, np.ascontiguousarray(d), t)
+
+
+def state_deviation(machine, tp, pts: np.ndarray, s: np.ndarray, a: np.ndarray, b: np.ndarray,
+                    spacing: float) -> tuple[np.ndarray, np.ndarray]:
+    """(distance [mm] of the actual tip to the nominal segments (a, b), tip error (n, 3)) at the samples.
+    With backlash the direction at a point where an axis reverses is ambiguous (it arrives one way and
+    leaves the other; a compensation's take-up move sits there): the state that gives the smaller
+    distance is taken, arriving elsewhere."""
+    from netshape import machine as nm
+
+    e = nm.tip_error(machine, pts)
+    arr = e + state_offsets(machine, tp, pts, s)
+    dev = distance_to_path(pts + arr, a, b, spacing)
+    if not any(ax.backlash for ax in machine.axes):
+        return dev, arr
+    dep = e + state_offsets(machine, tp, pts, s, departing=True)
+    dev_dep = distance_to_path(pts + dep, a, b, spacing)
+    return np.minimum(dev, dev_dep), np.where((dev_dep < dev)[:, None], dep, arr)
+
+
 def stage_volumetric(job: Job, machine, tp_machine) -> VolumetricResult:
     """Volumetric error along the feed moves: at points every ``cutting.error_spacing_mm`` the actual tip
     p + e(p) and its distance to the nominal path (machine frame)."""
@@ -459,9 +490,8 @@ def stage_volumetric(job: Job, machine, tp_machine) -> VolumetricResult:
     pts, s = sample_segments(a, b, job.cutting["error_spacing_mm"])
     if len(pts) == 0:
         raise ValueError(f"program = {str(job.program)!r}: no feed moves to predict the volumetric error of")
-    e = nm.tip_error(machine, pts)
-    check_tip_errors(job, pts, e)
-    dev = distance_to_path(pts + e, a, b, job.cutting["error_spacing_mm"])
+    check_tip_errors(job, pts, nm.tip_error(machine, pts))
+    dev, e = state_deviation(machine, tp_machine, pts, s, a, b, job.cutting["error_spacing_mm"])
     return VolumetricResult(s_before_mm=s, before_mm=dev, points_mm=pts, error_vectors_mm=e)
 
 
@@ -470,14 +500,12 @@ def stage_volumetric_compensation(job: Job, machine, tp_machine, vol: Volumetric
     (netshape.compensation.compensate_program), then re-predict: sample the compensated program, move
     every point by the machine's error and measure its distance to the nominal path."""
     from netshape import compensation as nc
-    from netshape import machine as nm
 
     comp, report = nc.compensate_program(machine, tp_machine, job.compensate["chord_tolerance_mm"])
     a, b = feed_segments(tp_machine)
     ca, cb = feed_segments(comp)
     pts, s = sample_segments(ca, cb, job.cutting["error_spacing_mm"])
-    actual = pts + nm.tip_error(machine, pts)
-    vol.after_mm = distance_to_path(actual, a, b, job.cutting["error_spacing_mm"])
+    vol.after_mm, _ = state_deviation(machine, comp, pts, s, a, b, job.cutting["error_spacing_mm"])
     vol.s_after_mm = s
     vol.compensated = comp
     vol.report = report.to_dict()

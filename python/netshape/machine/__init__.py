@@ -15,6 +15,7 @@ S_yz → EA0Z, S_zx → −EB0Z, ε_xs/ε_ys → spindle_tilt_a/b, L → tool_le
 from __future__ import annotations
 
 from .._core import machine as _m
+from .provenance import machine_terms
 from .description import AXES, iso_names, load_machine, machine_from_dict, read_error_table
 from .volumetric_map import (
     ErrorMap,
@@ -41,6 +42,30 @@ Order = _m.Order
 ideal_machine = _m.ideal_machine
 component_name = _m.component_name
 rotation_zyx = _m.rotation_zyx
+CyclicTerm = _m.CyclicTerm
+ThermalDrift = _m.ThermalDrift
+approach_directions = _m.approach_directions
+
+
+def state_error(machine, directions, times):
+    """Backlash + thermal drift of the tip s(d, t) [mm] (C++ machine/state_error.hpp): directions
+    (n, 3) (each axis' last direction of motion, ±1), times (n,) program time [s] → (n, 3)."""
+    import numpy as np
+
+    d = np.ascontiguousarray(directions, dtype=float).reshape(-1, 3)
+    t = np.ascontiguousarray(times, dtype=float).reshape(-1)
+    return _m.state_error(machine, d, t)
+
+
+def actual_path(machine, commanded, times=None, initial=(1.0, 1.0, 1.0)):
+    """Where the tip lands when the machine runs through the commanded points (n, 3) [mm] in order
+    at program times (n,) [s] (default 0): p + e(p) + s(d, t), d each axis' approach direction
+    (:func:`approach_directions` from ``initial``). (n, 3) [mm]."""
+    import numpy as np
+
+    p = np.ascontiguousarray(commanded, dtype=float).reshape(-1, 3)
+    t = np.zeros(len(p)) if times is None else np.asarray(times, dtype=float)
+    return p + _m.tip_error(machine, p) + state_error(machine, _m.approach_directions(p, initial), t)
 
 #: Yang & Kweon symbol → (ISO 230-1 name, sign) for the paper's HMC. Its Z axis is on the workpiece
 #: side, where the paper writes the table's own motion and netshape the tool's motion relative to the
@@ -58,9 +83,10 @@ SEEDS003_SYMBOLS = {
 }
 
 __all__ = [
-    "AXES", "Axis", "Component", "ErrorFunction", "ErrorMap", "Machine", "Order", "OutOfRange",
+    "AXES", "Axis", "Component", "CyclicTerm", "ThermalDrift", "actual_path", "approach_directions",
+    "state_error", "ErrorFunction", "ErrorMap", "Machine", "Order", "OutOfRange",
     "SEEDS003_SYMBOLS", "Side", "actual_points", "compare_orders", "component_name", "error_map",
-    "grid_error_map", "grid_points", "ideal_machine", "iso_names", "load_machine", "machine_from_dict",
+    "grid_error_map", "grid_points", "ideal_machine", "iso_names", "load_machine", "machine_terms", "machine_from_dict",
     "plot_error_map", "plot_surface_error", "program_error_map", "program_points", "read_error_table",
     "rotation_zyx", "tip_error", "volumetric_error",
 ]

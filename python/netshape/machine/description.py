@@ -25,8 +25,18 @@ Format (docs/machine.md has a full example)::
     origin_mm = [0.0, 0.0, 0.0]     # this carriage's frame relative to the frame below it
     table = "x_errors.csv"          # controller table: X_mm,EXX_mm,EYX_mm,...,ECX_rad
     out_of_range = "error"          # table outside its positions: error | clamp | extrapolate
+    backlash_um = 0.0               # reversal value: the tip lands backlash/2 along the last direction
     [axes.X.polynomials]            # ascending powers of the axis position q [mm]
     EAX_rad = [0.0, 1.0e-8]
+    [[axes.X.cyclic]]               # periodic positioning error: amplitude·sin(2π·q/period + phase)
+    period_mm = 10.0
+    amplitude_mm = 0.002            # or amplitude_um
+    phase_deg = 0.0
+
+    [[thermal]]                     # tip drift with program time t: amplitude·(1 − exp(−t/τ))
+    axis = "Z"
+    amplitude_mm = 0.01             # or amplitude_um
+    time_constant_s = 1800.0
 
 Table columns: the axis position first (``X_mm``), then ISO 230-1 component names of that axis with
 a unit suffix: ``_mm`` or ``_um`` for EXX EYX EZX, ``_rad``, ``_urad`` or ``_arcsec`` for EAX EBX ECX.
@@ -50,8 +60,9 @@ _LENGTH_UNITS = {"mm": 1.0, "um": 1e-3}
 _ANGLE_UNITS = {"rad": 1.0, "urad": 1e-6, "arcsec": math.pi / 648000.0}
 _OUT_OF_RANGE = {"error": _m.OutOfRange.error, "clamp": _m.OutOfRange.clamp,
                  "extrapolate": _m.OutOfRange.extrapolate}
-_TOP_KEYS = {"name", "tool_chain", "workpiece_chain", "tool", "spindle", "squareness", "axes"}
-_AXIS_KEYS = {"travel_mm", "origin_mm", "table", "out_of_range", "polynomials"}
+_TOP_KEYS = {"name", "tool_chain", "workpiece_chain", "tool", "spindle", "squareness", "axes", "thermal"}
+_AXIS_KEYS = {"travel_mm", "origin_mm", "table", "out_of_range", "polynomials", "backlash_mm", "backlash_um",
+              "cyclic"}
 
 
 def iso_names(axis: str) -> list[str]:
@@ -151,6 +162,60 @@ def _inline_table(tab: Mapping[str, Any], axis: str, where: str) -> dict[str, An
         if not positions[i] > positions[i - 1]:
             raise ValueError(f"{where}.{key}[{i}] = {positions[i]}: positions must be strictly increasing")
     return {"axis": axis, "positions": positions, "components": comps}
+
+
+def _length(d: Mapping[str, Any], stem: str, where: str, default: float | None = 0.0) -> float:
+    """``stem_mm`` or ``stem_um`` of ``d`` in mm (not both; ``default`` when neither, None: required)."""
+    keys = [k for k in (f"{stem}_mm", f"{stem}_um") if k in d]
+    if len(keys) > 1:
+        raise ValueError(f"{where}: give {stem}_mm or {stem}_um, not both")
+    if not keys:
+        if default is None:
+            raise ValueError(f"{where}: missing {stem}_mm (or {stem}_um)")
+        return default
+    return _finite(d[keys[0]], f"{where}.{keys[0]}") * _LENGTH_UNITS[keys[0].rsplit("_", 1)[1]]
+
+
+def _tables(value: Any, where: str) -> list:
+    if not isinstance(value, list) or not all(isinstance(t, dict) for t in value):
+        raise ValueError(f"{where}: must be an array of tables ([[{where.split('[')[-1].strip(']')}]])")
+    return value
+
+
+def _cyclic(value: Any, where: str) -> list:
+    out = []
+    for i, t in enumerate(_tables(value, where)):
+        w = f"{where}[{i}]"
+        _check_keys(t, {"period_mm", "amplitude_mm", "amplitude_um", "phase_deg"}, w)
+        if "period_mm" not in t:
+            raise ValueError(f"{w}: missing period_mm")
+        period = _finite(t["period_mm"], f"{w}.period_mm")
+        if not period > 0:
+            raise ValueError(f"{w}.period_mm = {period}: must be > 0")
+        amp = _length(t, "amplitude", w, None)
+        if amp < 0:
+            raise ValueError(f"{w}: amplitude = {amp} mm: must be ≥ 0 (a sign is a phase of 180°)")
+        phase = math.radians(_finite(t.get("phase_deg", 0.0), f"{w}.phase_deg"))
+        out.append(_m.CyclicTerm(amplitude=amp, period=period, phase=phase))
+    return out
+
+
+def _thermal(value: Any, where: str) -> list:
+    out = []
+    for i, t in enumerate(_tables(value, where)):
+        w = f"{where}[{i}]"
+        _check_keys(t, {"axis", "amplitude_mm", "amplitude_um", "time_constant_s"}, w)
+        axis = t.get("axis")
+        if not isinstance(axis, str) or axis.upper() not in AXES:
+            raise ValueError(f"{w}.axis = {axis!r}: must be \"X\", \"Y\" or \"Z\"")
+        if "time_constant_s" not in t:
+            raise ValueError(f"{w}: missing time_constant_s")
+        tau = _finite(t["time_constant_s"], f"{w}.time_constant_s")
+        if not tau > 0:
+            raise ValueError(f"{w}.time_constant_s = {tau}: must be > 0")
+        out.append(_m.ThermalDrift(axis=AXES.index(axis.upper()), amplitude=_length(t, "amplitude", w, None),
+                                   time_constant=tau))
+    return out
 
 
 def _chain(value: Any, where: str) -> list[int]:
@@ -260,7 +325,10 @@ def machine_from_dict(doc: Mapping[str, Any], base_dir: str | os.PathLike = ".",
             funcs[c] = _m.ErrorFunction.polynomial(vals, cname)
             given[cname] = f"{where}.polynomials"
         a.errors = funcs
+        a.backlash = _length(ad, "backlash", where)
+        a.cyclic = _cyclic(ad.get("cyclic", []), f"{where}.cyclic")
     m.axes = axes
+    m.thermal = _thermal(doc.get("thermal", []), f"{source}: thermal")
     try:
         m.validate()
     except ValueError as exc:

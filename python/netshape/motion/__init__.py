@@ -75,7 +75,7 @@ class Trajectory:
 
 
 def make_options(rule: str | CornerRule = "vector", *, ts1: float = 1e-3, ts2: float = 1e-4,
-                 lookahead: int = 64, tolerance: float = 0.01,
+                 lookahead: int = 64, tolerance: float = 0.01, corner_tolerance: float = 0.0,
                  allowable_speed_difference: float = 100.0 / 60.0,
                  junction_deviation: float = 0.0, square_corner_velocity: float = 5.0,
                  junction_accel: str | JunctionAccel = "min-moving-axis",
@@ -85,12 +85,14 @@ def make_options(rule: str | CornerRule = "vector", *, ts1: float = 1e-3, ts2: f
     junction-deviation rule: `junction_deviation` δ [mm] (grbl's $11) is used when
     `square_corner_velocity` is 0, else δ comes from Klipper's square corner velocity [mm/s];
     `junction_accel` is "min-moving-axis" (smallest limit of the moving axes) or "along-change"
-    (grbl: the axis-limited acceleration along the velocity change).
+    (grbl: the axis-limited acceleration along the velocity change). Blend rule: `corner_tolerance`
+    [mm] > 0 is the tolerance at vertices where neither block is a cubic block (else `tolerance`).
     """
     o = PlanOptions()
     o.rule = rule if isinstance(rule, CornerRule) else parse_rule(str(rule))
     o.ts1, o.ts2, o.lookahead = float(ts1), float(ts2), int(lookahead)
     o.tolerance = float(tolerance)
+    o.corner_tolerance = float(corner_tolerance)
     o.allowable_speed_difference = float(allowable_speed_difference)
     o.junction_deviation = float(junction_deviation)
     o.square_corner_velocity = float(square_corner_velocity)
@@ -271,7 +273,8 @@ def _plan_smooth(program, limits, feed, with_deviation, kw, max_samples=0):
         raise ValueError("rule = 'smooth': programs with dwells between moves are not supported yet")
     new, first, last, sstats = smooth_path(arr, tol, **skw)
     fit_share = float(skw.get("fit_share", 0.98))
-    options = make_options("blend", tolerance=tol * (1.0 - fit_share), **kw)
+    # blends next to cubic blocks get the rest of ε; between programmed pieces the whole ε, as `blend`
+    options = make_options("blend", tolerance=tol * (1.0 - fit_share), corner_tolerance=tol, **kw)
     t, pos, vel, fd, blk, stats = _m._plan_arrays(*_call_args(new), limits, options, False, int(max_samples))
     stats = dict(stats)
     blk = np.asarray(blk)
@@ -313,7 +316,8 @@ def plan(program, limits: AxisLimits, options: PlanOptions | None = None, *, fee
 
     ``rule="smooth"`` (with ``tolerance`` ε [mm] and optionally the keywords of :func:`smooth_path`):
     micro-segment runs are first replaced by :func:`smooth_path` within ``fit_share·ε``, then planned
-    with the blend rule at ``(1 − fit_share)·ε``; ``max_path_deviation_mm`` is measured against the
+    with the blend rule at ``(1 − fit_share)·ε`` next to the fitted curves and the whole ε between
+    programmed pieces (a program nothing is smoothed in is planned as ``rule="blend"`` plans it); ``max_path_deviation_mm`` is measured against the
     original program and ``block`` is the first program block of the smoothed block being run; stats
     add ``runs_smoothed``, ``runs_kept``, ``corners_kept``, ``corners_rounded``, ``max_fit_deviation_mm``,
     ``smoothed_blocks``.

@@ -325,9 +325,27 @@ def smoothed_gcode_lines(arrays, fmt: str = "arcs", *, chord_tolerance: float = 
     chords of cubics that are not in the XY plane (the 0.001 mm default when not given). Rows of kinds
     0, 1, 2 are written as before cubics existed; only a program with a cubic gets the extra header
     comment."""
+    _check_format(fmt)
+    has_cubic = bool(np.any(np.asarray(arrays["kind"]) == 3))
+    # the cubic comment goes after the form's own comments, before its last line (the G21 G90 … modes)
+    header = _HEADERS[fmt][:-1] + (_CUBIC_HEADERS[fmt] if has_cubic else []) + _HEADERS[fmt][-1:]
+    w = _Writer([h.format(tol=chord_tolerance) for h in header])
+    if fmt == "nurbs":
+        w.last_plane = 0
+    if len(arrays["kind"]):
+        w.out.append(f"G0 {_xyz(np.asarray(arrays['start'], dtype=float)[0])}")
+    write_blocks(w, arrays, fmt, chord_tolerance)
+    w.out.append("M2")
+    return w.out
+
+
+def _check_format(fmt: str) -> None:
     if fmt not in FORMATS:
         raise ValueError(f"format = {fmt!r}: must be one of {', '.join(FORMATS)}")
-    has_cubic = bool(np.any(np.asarray(arrays["kind"]) == 3))
+
+
+def write_blocks(w: "_Writer", arrays, fmt: str, chord_tolerance: float) -> None:
+    """Append the moves of the block arrays to `w` in the form `fmt` (no header, no end word)."""
     if fmt == "g1":
         arrays = _split_arcs(arrays, chord_tolerance)
     kind = np.asarray(arrays["kind"])
@@ -335,13 +353,6 @@ def smoothed_gcode_lines(arrays, fmt: str = "arcs", *, chord_tolerance: float = 
     cw, plane = np.asarray(arrays["clockwise"]), np.asarray(arrays["plane"])
     turns = np.asarray(arrays["turns"]) if "turns" in arrays else np.ones(len(kind), dtype=int)
     feed = np.asarray(arrays["feed"], dtype=float)
-    # the cubic comment goes after the form's own comments, before its last line (the G21 G90 … modes)
-    header = _HEADERS[fmt][:-1] + (_CUBIC_HEADERS[fmt] if has_cubic else []) + _HEADERS[fmt][-1:]
-    w = _Writer([h.format(tol=chord_tolerance) for h in header])
-    if fmt == "nurbs":
-        w.last_plane = 0
-    if len(kind):
-        w.out.append(f"G0 {_xyz(start[0])}")
     blocks = _blocks(arrays) if fmt == "nurbs" else None
     for i in range(len(kind)):
         k = int(kind[i])
@@ -355,8 +366,6 @@ def smoothed_gcode_lines(arrays, fmt: str = "arcs", *, chord_tolerance: float = 
             w.cubic(_cubic_points(arrays, i, start, end), feed[i], chord_tolerance, g5=fmt != "g1")
             continue
         w.block(k, start[i], end[i], center[i], bool(cw[i]), int(plane[i]), int(turns[i]), feed[i])
-    w.out.append("M2")
-    return w.out
 
 
 def write_smoothed_gcode(arrays, path, fmt: str = "arcs", *, chord_tolerance: float = 0.001) -> None:

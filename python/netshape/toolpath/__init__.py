@@ -55,21 +55,22 @@ def read_var_file(path: str | os.PathLike) -> np.ndarray:
     the line: malformed lines, a rotation (XY rotation parameter 5230 + 20·row non-zero), or an active
     G92 offset (5210 = 1 with a non-zero 5211–5213), which change geometry this reader does not model.
     """
+    from netshape._text import read_controller_text
+
     p = _path(path)
     values: dict[int, float] = {}
-    with open(p, encoding="utf-8", errors="replace") as fh:
-        for i, raw in enumerate(fh, 1):
-            text = raw.split(";")[0].split("#")[0].strip()
-            if not text:
-                continue
-            parts = text.split()
-            try:
-                num, val = int(parts[0]), float(parts[1])
-            except (ValueError, IndexError):
-                raise ValueError(f"{p}:{i}: {raw.strip()!r}: expected 'parameter value'") from None
-            if not math.isfinite(val):
-                raise ValueError(f"{p}:{i}: parameter {num} = {parts[1]}: must be a finite number")
-            values[num] = val
+    for i, raw in enumerate(read_controller_text(p).splitlines(), 1):
+        text = raw.split(";")[0].split("#")[0].strip()
+        if not text:
+            continue
+        parts = text.split()
+        try:
+            num, val = int(parts[0]), float(parts[1])
+        except (ValueError, IndexError):
+            raise ValueError(f"{p}:{i}: {raw.strip()!r}: expected 'parameter value'") from None
+        if not math.isfinite(val):
+            raise ValueError(f"{p}:{i}: parameter {num} = {parts[1]}: must be a finite number")
+        values[num] = val
     out = np.zeros((9, 3))
     for row, code in enumerate(WORK_OFFSET_CODES):
         base = 5221 + 20 * row
@@ -90,28 +91,29 @@ def read_tool_table(path: str | os.PathLike) -> dict[int, float]:
     """Tool lengths [mm] by tool number from a LinuxCNC tool table (lines ``T1 P1 D10 Z120.5 ;comment``:
     ``T`` the tool number, ``Z`` its length offset; a tool without ``Z`` has length 0). Refused with
     ValueError naming the line: a line without ``T``, a malformed word, or a tool given twice."""
+    from netshape._text import read_controller_text
+
     p = _path(path)
     out: dict[int, float] = {}
-    with open(p, encoding="utf-8", errors="replace") as fh:
-        for i, raw in enumerate(fh, 1):
-            text = raw.split(";")[0].strip()
-            if not text:
-                continue
-            words: dict[str, float] = {}
-            for w in text.split():
-                try:
-                    words[w[0].upper()] = float(w[1:])
-                except (ValueError, IndexError):
-                    raise ValueError(f"{p}:{i}: word {w!r}: expected a letter and a number") from None
-            t = words.get("T")
-            if t is None or t < 0 or t != int(t):
-                raise ValueError(f"{p}:{i}: {raw.strip()!r}: needs T with a non-negative tool number")
-            z = words.get("Z", 0.0)
-            if not math.isfinite(z):
-                raise ValueError(f"{p}:{i}: Z = {z}: must be a finite length [mm]")
-            if int(t) in out:
-                raise ValueError(f"{p}:{i}: tool T{int(t)} is given twice")
-            out[int(t)] = z
+    for i, raw in enumerate(read_controller_text(p).splitlines(), 1):
+        text = raw.split(";")[0].strip()
+        if not text:
+            continue
+        words: dict[str, float] = {}
+        for w in text.split():
+            try:
+                words[w[0].upper()] = float(w[1:])
+            except (ValueError, IndexError):
+                raise ValueError(f"{p}:{i}: word {w!r}: expected a letter and a number") from None
+        t = words.get("T")
+        if t is None or t < 0 or t != int(t):
+            raise ValueError(f"{p}:{i}: {raw.strip()!r}: needs T with a non-negative tool number")
+        z = words.get("Z", 0.0)
+        if not math.isfinite(z):
+            raise ValueError(f"{p}:{i}: Z = {z}: must be a finite length [mm]")
+        if int(t) in out:
+            raise ValueError(f"{p}:{i}: tool T{int(t)} is given twice")
+        out[int(t)] = z
     return out
 
 

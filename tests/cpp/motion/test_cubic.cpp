@@ -313,3 +313,41 @@ TEST_CASE("cubic block: invalid input is refused naming the field") {
   }
   CHECK_THROWS_AS(plan({l, l}, {CubicControls{}}, AxisLimits::uniform(100, 1000), o), std::invalid_argument);
 }
+
+TEST_CASE("blend rule: corner_tolerance between programmed pieces, tolerance next to cubic blocks") {
+  // two lines at 90°, then a cubic leaving the second line at an angle, then a line at 90° again
+  const Ctrl c = {Vec3(10, 10, 0), Vec3(14, 11, 0), Vec3(18, 10, 0), Vec3(22, 10, 0)};
+  std::vector<toolpath::Block> blocks;
+  std::vector<CubicControls> controls;
+  add_line(blocks, controls, Vec3(0, 0, 0), Vec3(10, 0, 0), 200);
+  add_line(blocks, controls, Vec3(10, 0, 0), c[0], 200);
+  add_cubic(blocks, controls, c, 200);
+  add_line(blocks, controls, c[3], c[3] + Vec3(0, 10, 0), 200);
+  const AxisLimits lim = AxisLimits::uniform(200, 2000);
+  PlanOptions o;
+  o.rule = CornerRule::blend;
+  o.tolerance = 0.002;
+  o.corner_tolerance = 0.02;
+  // lines only: the plan at corner_tolerance is the plan at that tolerance, sample for sample
+  PlanOptions whole = o;
+  whole.tolerance = 0.02;
+  whole.corner_tolerance = 0;
+  const std::vector<toolpath::Block> lines(blocks.begin(), blocks.begin() + 2);
+  const Trajectory ta = plan(lines, lim, o), tb = plan(lines, lim, whole);
+  CHECK(ta.stats.cycle_time == tb.stats.cycle_time);
+  CHECK(ta.position == tb.position);
+  // with the cubic: the line-line corner uses more than the tolerance, the corners at the cubic not
+  const Trajectory tr = plan(blocks, controls, lim, o);
+  double d_lines = 0, d_cubic = 0;
+  for (Eigen::Index i = 0; i < tr.position.rows(); ++i) {
+    const Vec3 p = tr.position.row(i).transpose();
+    const double d = std::min({distance_to_segment(p, blocks[0].start, blocks[0].end),
+                               distance_to_segment(p, blocks[1].start, blocks[1].end), distance_to_bezier(c, p),
+                               distance_to_segment(p, blocks[3].start, blocks[3].end)});
+    if ((p - Vec3(10, 0, 0)).norm() < 2) d_lines = std::max(d_lines, d);
+    if ((p - c[0]).norm() < 2 || (p - c[3]).norm() < 2) d_cubic = std::max(d_cubic, d);
+  }
+  CHECK(d_lines > 0.002 * 2);
+  CHECK(d_lines <= 0.02 * (1 + 1e-3));
+  CHECK(d_cubic <= 0.002 * (1 + 1e-3));
+}

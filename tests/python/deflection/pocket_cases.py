@@ -7,8 +7,9 @@ The finish contour is the tool-centre path of a rounded-rectangle wall (half-wid
 finish path offset inwards by (rings + 1 − k)·``stepover`` (the corner radius shrinks by the same amount,
 down to a sharp corner); the innermost ring clears the middle (its smaller half-width is below R). Every
 loop runs counter-clockwise — the outer wall on the right of the feed, down milling — from and back to
-the middle of its −Y side; a straight move of one stepover joins a loop to the next. The whole figure is
-rotated by ``rotation_deg`` about ``centre``. Arcs are G3 with I J.
+the middle of its −Y side (the finish loop from ``lead_in`` [mm] along +X from it); a straight move
+joins a loop to the next (one stepover long; diagonal into the finish loop when ``lead_in`` ≠ 0). The
+whole figure is rotated by ``rotation_deg`` about ``centre``. Arcs are G3 with I J.
 
     p = Pocket(half_x=20, half_y=15, corner_radius=8, tool_diameter=8, stepover=3, rings=3)
     text = pocket_gcode(p)                 # plunge, rings, finish
@@ -35,6 +36,7 @@ class Pocket:
     rotation_deg: float = 0.0
     centre: tuple[float, float] = (0.0, 0.0)
     feed: float = 900.0          # [mm/min]
+    lead_in: float = 0.0         # [mm] the finish loop's start along +X from its −Y side's middle
 
     def validate(self) -> None:
         r = 0.5 * self.tool_diameter
@@ -47,6 +49,10 @@ class Pocket:
             raise ValueError(f"rings = {self.rings}, stepover = {self.stepover}: the innermost ring's "
                              f"smaller half-width {min(inner_x, inner_y):g} mm must lie in (0, R = {r:g}) so "
                              "that it clears the middle (no island)")
+        a, rc = self.half_x - r, max(self.corner_radius - r, 0.0)
+        if not abs(self.lead_in) < a - rc:
+            raise ValueError(f"lead_in = {self.lead_in}: must lie within the finish loop's straight −Y side "
+                             f"(|lead_in| < {a - rc:g} mm)")
 
     def loops(self) -> list[tuple[float, float, float]]:
         """(half-width x, half-width y, corner radius) of each loop's tool-centre path, innermost first,
@@ -60,12 +66,12 @@ class Pocket:
         return out
 
 
-def _loop_moves(a: float, b: float, rc: float) -> list[tuple]:
-    """Counter-clockwise rounded rectangle about the origin from (0, −b) back to it:
+def _loop_moves(a: float, b: float, rc: float, x_start: float = 0.0) -> list[tuple]:
+    """Counter-clockwise rounded rectangle about the origin from (x_start, −b) back to it:
     ("line", end) and ("arc", end, centre) items (arcs counter-clockwise)."""
     rc = min(rc, a, b)
     moves: list[tuple] = []
-    at = (0.0, -b)
+    at = (x_start, -b)
 
     def line(q):
         nonlocal at
@@ -84,7 +90,7 @@ def _loop_moves(a: float, b: float, rc: float) -> list[tuple]:
             moves.append(("arc", at, (p[0] + ox * rc, p[1] + oy * rc)))
         else:
             line((cx, cy))
-    line((0.0, -b))
+    line((x_start, -b))
     return moves
 
 
@@ -95,11 +101,12 @@ def pocket_moves(p: Pocket) -> tuple[tuple[float, float], list[tuple], int]:
     moves: list[tuple] = []
     finish_first = 0
     for k, (a, b, rc) in enumerate(loops):
+        x_start = p.lead_in if k == len(loops) - 1 else 0.0
         if k > 0:
-            moves.append(("line", (0.0, -b)))
+            moves.append(("line", (x_start, -b)))
         if k == len(loops) - 1:
             finish_first = len(moves)
-        moves.extend(_loop_moves(a, b, rc))
+        moves.extend(_loop_moves(a, b, rc, x_start))
     return start, moves, finish_first
 
 

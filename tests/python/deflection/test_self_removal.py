@@ -98,6 +98,14 @@ def _assert_matches_the_sweep(setup, exact, swept, radius: float):
     the grid tolerance at every point (fails while earlier moves beyond 2R + 2 mm of path are forgotten)."""
     p = setup.nominal
     width_tol, angle_tol, repeat = _tolerances(p, radius)
+    # a corner point (turn > 30°) is evaluated in the outgoing move's frame, where the move into it lies
+    # behind the tool: the exact removal includes that move (in_last_sweep), the Z-map sweep adds it only
+    # after evaluating the point, so the two differ there by construction
+    u = np.diff(p[:, :2], axis=0)
+    u /= np.linalg.norm(u, axis=1)[:, None]
+    corner = np.zeros(len(p), dtype=bool)
+    corner[1:-1] = np.sum(u[:-1] * u[1:], axis=1) < math.cos(math.pi / 6)
+    repeat = repeat | corner
     we, ws = np.asarray(exact.width), np.asarray(swept.width)
     dw = np.where(repeat, 0.0, np.abs(we - ws))
     bad = np.nonzero(dw > width_tol)[0]

@@ -176,6 +176,46 @@ def force_bundle(
     return folder
 
 
+# --- round trips (issue 43): the model of an updated manifest against the hidden truth ---------
+
+
+def manifest_force_model(manifest: dict, mode, ae, c):
+    """(FlatEndModel, RunoutSizeEffect): the C++ forward model of a parsed cutting-force manifest's tool
+    and model at one condition."""
+    from netshape import force as _f
+
+    t, k = manifest["tool"], manifest["model"]
+    eng = _f.AngularEngagement.from_mode(_f.milling_mode_from_string(mode), t["diameter_mm"] / 2,
+                                        ae if mode != "slot" else 0.0)
+    lin = _f.LinearEdgeCoefficients(*(k[n] for n in ("Ktc_N_per_mm2", "Krc_N_per_mm2", "Kac_N_per_mm2",
+                                                    "Kte_N_per_mm", "Kre_N_per_mm", "Kae_N_per_mm")))
+    model = _f.FlatEndModel(radius=t["diameter_mm"] / 2, flutes=t["flutes"], helix=np.radians(t["helix_deg"]),
+                           axial_depth=AP, feed_per_tooth=c, engagement=eng, linear_edge=lin, disk_height=0.01)
+    ext = _f.RunoutSizeEffect(runout_rho=t.get("runout_rho_mm", 0.0),
+                             runout_lambda=np.radians(t.get("runout_lambda_deg", 0.0)),
+                             chip_exponent=k.get("chip_exponent", 1.0), reference_chip=k.get("reference_chip_mm", 0.0))
+    return model, ext
+
+
+def model_force_error(manifest: dict, hidden: dict) -> float:
+    """rms of (the manifest's model − the hidden truth of force_bundle(**hidden)) forces over CONDITIONS,
+    one revolution [N]."""
+    from netshape import force as _f
+
+    th = np.linspace(0, 2 * np.pi, 240, endpoint=False)
+    h_ref = float(np.exp(np.mean(np.log([c for _, _, c in CONDITIONS]))))
+    truth = dict(MODEL)
+    if "edges" in hidden:
+        truth.update(zip(("Kte_N_per_mm", "Kre_N_per_mm", "Kae_N_per_mm"), hidden["edges"]))
+    err = []
+    for mode, ae, c in CONDITIONS:
+        ref = oracle_forces(th, feed=c, mode=mode, ae=ae, coefficients=truth, runout=hidden.get("runout"),
+                            exponent=hidden.get("exponent"), h_ref=h_ref)
+        model, ext = manifest_force_model(manifest, mode, ae, c)
+        err.append(_f.flat_end_forces_extended(model, ext, th) - ref)
+    return float(np.sqrt(np.mean(np.square(err))))
+
+
 # --- volumetric --------------------------------------------------------------------------------------
 
 MACHINE = {"tool_side": ["Z"], "workpiece_side": ["Y", "X"], "tool_length_mm": 100.0}
@@ -209,10 +249,19 @@ def volumetric_bundle(
     seed=2,
     experiments=2,
     lengths=(100.0, 220.0),
+    grid=(7, 5, 3),
+    order="serpentine",
+    seconds_per_point=20.0,
+    cyclic=None,
+    frame=None,
 ):
     """Write a volumetric_error bundle. Hidden: ``squareness`` {EC0Y, EB0Z, EA0Z: µrad}, ``scale``
     {EXX/EYY/EZZ: µm/m}, ``thermal`` (axis, amplitude [mm], τ [s]), ``tilt`` (a, b) [µrad],
-    ``backlash`` (axis, reversal [µm]); noise [mm]. Experiments use the tool lengths ``lengths``."""
+    ``backlash`` (axis, reversal [µm]), ``cyclic`` (axis, amplitude [mm], period [mm], phase [deg]: that
+    axis' error A·sin(2π·pos/period + phase)), ``frame`` (rotation ω [µrad] (3,), translation T [mm] (3,):
+    the data in a measuring frame, e + ω × p + T); noise [mm]. Experiments use the tool lengths
+    ``lengths``; each measures the serpentine ``grid`` (``order`` "serpentine", X fastest) or its points
+    in random order ("random", each with a random approach direction), ``seconds_per_point`` apart."""
     from netshape.machine import machine_from_dict, tip_error
 
     folder = Path(folder)
@@ -240,10 +289,17 @@ def volumetric_bundle(
         if tilt is not None:
             doc["spindle"] = {"tilt_a_rad": tilt[0] * 1e-6, "tilt_b_rad": tilt[1] * 1e-6}
         m = machine_from_dict(doc)
-        pts, dirs = _grid_path()
-        t = t_next + 20.0 * np.arange(len(pts))
-        t_next = t[-1] + 20.0
+        pts, dirs = _grid_path(*grid)
+        if order == "random":
+            pts, dirs = pts[rng.permutation(len(pts))], rng.choice([-1.0, 1.0], len(pts))
+        t = t_next + seconds_per_point * np.arange(len(pts))
+        t_next = t[-1] + seconds_per_point
         e = np.array(tip_error(m, pts))
+        if cyclic is not None:
+            a = "XYZ".index(cyclic[0])
+            e[:, a] += cyclic[1] * np.sin(2 * np.pi * pts[:, a] / cyclic[2] + math.radians(cyclic[3]))
+        if frame is not None:
+            e += np.cross(np.asarray(frame[0], float) * 1e-6, pts) + np.asarray(frame[1], float)
         if thermal is not None:
             e[:, "XYZ".index(thermal[0])] += thermal[1] * (1 - np.exp(-t / thermal[2]))
         if backlash is not None:
@@ -267,6 +323,22 @@ WALL_MODEL = {"coefficients": "Ktc=900,Krc=270,Kac=150,Kte=16,Kre=20,Kae=10", "i
 #: (mode, radial depth [mm], feed per tooth [mm]) of the 3 steady cuts of a wall bundle
 WALL_CONDITIONS = [("down", 0.5, 0.15), ("down", 1.0, 0.2), ("up", 0.5, 0.25)]
 WALL_AP = 4.0
+
+
+def runout_reach(X, Z, *, R, flutes, kb, feed, runout):
+    """How far [mm] beyond the nominal radius R the wall at (x, z) was cut with a runout (ρ [mm], λ [deg]):
+    flute j cuts an exact circle of radius R + ρ·cos(λ − j·2π/N) at every pass, the passes placed by the
+    flute angles (flute j at height z reaches the wall angle at θ = φ_w + k_β·z + j·2π/N + 2πm, the tool
+    centre then at x = N·c·(θ − φ_w)/2π); the wall is the deepest of all circles. X, Z: same shape."""
+    rho, lam, N = runout[0], math.radians(runout[1]), flutes
+    reach = np.full(np.shape(X), -np.inf)
+    for j in range(N):
+        Rj = R + rho * math.cos(lam - 2 * math.pi * j / N)
+        for mrev in range(int(np.min(X) / (N * feed)) - 3, int(np.max(X) / (N * feed)) + 3):
+            xp = N * feed * (kb * Z + 2 * math.pi * j / N + 2 * math.pi * mrev) / (2 * math.pi)
+            dd = np.minimum(np.abs(X - xp), Rj)
+            reach = np.maximum(reach, np.sqrt(Rj**2 - dd**2) - R)
+    return reach
 
 
 def wall_bundle(folder, *, holder_stiffness=None, runout=None, noise=1e-3, seed=3, form="xz",
@@ -302,16 +374,7 @@ def wall_bundle(folder, *, holder_stiffness=None, runout=None, noise=1e-3, seed=
         if holder_stiffness is not None:
             E -= (np.asarray(w.force)[:, 1] * ny)[:, None] / (holder_stiffness * 1e3)
         if runout is not None:
-            rho, lam = runout[0], math.radians(runout[1])
-            reach = np.full(X.shape, -np.inf)
-            for j in range(N):
-                Rj = R + rho * math.cos(lam - 2 * math.pi * j / N)
-                for mrev in range(-2, int(length / (N * c)) + 3):
-                    theta = kb * Z + 2 * math.pi * j / N + 2 * math.pi * mrev  # θ − φ_w of the pass
-                    xp = N * c * theta / (2 * math.pi)
-                    dd = np.minimum(np.abs(X - xp), Rj)
-                    reach = np.maximum(reach, np.sqrt(Rj**2 - dd**2) - R)
-            E -= reach
+            E -= runout_reach(X, Z, R=R, flutes=N, kb=kb, feed=c, runout=runout)
         E += rng.normal(0.0, noise, E.shape)
         name = f"wall{i + 1}.csv"
         if form == "xz":
@@ -385,15 +448,7 @@ def wall_contour_bundle(folder, *, holder_stiffness=None, runout=None, noise=1e-
         if holder_stiffness is not None:
             E -= np.interp(S, s_pts, fn) / (holder_stiffness * 1e3)
         if runout is not None:
-            rho, lam = runout[0], math.radians(runout[1])
-            reach = np.full(S.shape, -np.inf)
-            for j in range(N):
-                Rj = R + rho * math.cos(lam - 2 * math.pi * j / N)
-                for mrev in range(-2, int(s_range[1] / (N * c)) + 3):
-                    xp = N * c * (kb * Z + 2 * math.pi * j / N + 2 * math.pi * mrev) / (2 * math.pi)
-                    dd = np.minimum(np.abs(S - xp), Rj)
-                    reach = np.maximum(reach, np.sqrt(Rj**2 - dd**2) - R)
-            E -= reach
+            E -= runout_reach(S, Z, R=R, flutes=N, kb=kb, feed=c, runout=runout)
         E += rng.normal(0.0, noise, E.shape)
         if form == "xz":
             write_csv(folder / f"{name}.csv", ["x_mm", "z_mm", "error_mm"],

@@ -150,8 +150,16 @@ def test_unreachable_scheduler_fails_fast(tmp_path, capsys):
 
 
 def _wait_for(path: Path, proc, seconds: float) -> None:
+    """Until ``path`` holds a whole JSON document (the scheduler writes its file in more than one go)."""
+    import json
+
     t0 = time.time()
-    while not path.exists():
+    while True:
+        try:
+            json.loads(path.read_text())
+            return
+        except (OSError, ValueError):
+            pass
         if proc.poll() is not None or time.time() - t0 > seconds:
             raise RuntimeError(f"{path} did not appear within {seconds} s")
         time.sleep(0.2)

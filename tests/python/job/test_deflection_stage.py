@@ -38,6 +38,7 @@ class _Errors:
         self.error = np.column_stack([np.full(n, middle / 2), np.full(n, middle), np.full(n, 2 * middle)])
         self.depth = np.full(n, 3.0)
         self.engaged = np.ones(n, dtype=np.int32)
+        self.wall_flags = np.full(n, 3, dtype=np.int32)  # both wall angles in the window
 
 
 def _fake_api(monkeypatch, calls):

@@ -88,12 +88,25 @@ def test_a_huge_heights_file_is_refused_before_it_is_loaded(capsys, tmp_path):
     _refused(capsys, ["run", str(job), "--quiet"], "stock.heights = 'h.npy': holds 20000 x 20000 = 4e+08 Z-map nodes")
 
 
-def test_a_huge_csv_heights_file_is_estimated_from_its_size(capsys, tmp_path):
+def test_a_huge_csv_heights_file_is_counted_before_it_is_loaded(capsys, tmp_path):
+    # a long first row: an estimate from the file size over the first row's would say ~700 rows
     job = _job(tmp_path)
+    first = ",".join(["-1.00000000000000"] * 8000) + "\n"
     row = ",".join(["-1"] * 8000) + "\n"
-    (tmp_path / "demo" / "h.csv").write_text(row * 6000)  # 4.8e7 nodes in 96 MB
+    (tmp_path / "demo" / "h.csv").write_text(first + row * 5999)  # 4.8e7 nodes
     job.write_text(re.sub(r"^spacing_mm = 0.25", 'heights = "h.csv"', job.read_text(), flags=re.M))
-    _refused(capsys, ["run", str(job), "--quiet"], "stock.heights = 'h.csv': holds about 6000 x 8000")
+    _refused(capsys, ["run", str(job), "--quiet"], "stock.heights = 'h.csv': holds at least 50")
+
+
+def test_heights_csv_rows_are_counted_exactly(tmp_path):
+    from netshape.job.spec import _heights_shape
+
+    p = tmp_path / "h.csv"
+    p.write_text("1.000000,2,3\n4,5,6\n7,8,9")  # no newline after the last row
+    assert _heights_shape(p) == (3.0, 3, False)
+    p.write_text("1,2\n" * 7)
+    assert _heights_shape(p) == (7.0, 2, False)
+    assert _heights_shape(p, max_nodes=5) == (7.0, 2, True)  # stopped counting: at least
 
 
 def test_a_zmap_stl_of_too_many_triangles_is_refused(capsys, tmp_path):

@@ -4,6 +4,8 @@ the tool starts."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 from netshape.job import job_from_dict, run_job
@@ -59,3 +61,26 @@ def test_a_cut_deeper_than_the_stick_out_is_warned(tmp_path):
     s = run_job(job, tmp_path / "out")
     deep = [w for w in s["warnings"] if w["kind"] == "tool_shorter_than_cut"]
     assert deep and deep[0]["line"] == 3
+
+
+def test_a_move_outside_the_machine_travel_is_warned_and_not_compensated(tmp_path):
+    # X travel ends at 10 mm (program X zero at machine X zero): the moves on lines 4-6 leave it
+    text = (Path(__file__).resolve().parents[3] / "examples" / "demo" / "machine.toml").read_text()
+    text = text.replace("travel_mm = [-400.0, 400.0]", "travel_mm = [-400.0, 10.0]", 1)
+    (tmp_path / "m.toml").write_text(text)
+    program = "G21 G90\nG0 X-15 Y0 Z5\nG1 Z-1 F300\nG1 X15\nG1 Y5\nG0 Z5\nM30\n"
+    extra = {"machine": {"file": "m.toml"}, "offsets": {"G54_mm": [0.0, 0.0, -300.0], "tool_length_mm": 100.0},
+             "compensate": {"volumetric": True},
+             "predict": {"forces": False, "deflection": False, "volumetric": True, "feed_plan": False}}
+    s = run_job(_job(tmp_path, program, **extra), tmp_path / "out")
+    out = [w for w in s["warnings"] if w["kind"] == "move_outside_travel"]
+    assert [w["line"] for w in out] == [4, 5, 6]  # the cut to X15, along Y there, the rapid up there
+    assert "axis X reaches 15.0000 mm" in out[0]["message"] and "[-400, 10]" in out[0]["message"]
+    assert s["stages"]["volumetric"] == "outside_travel"
+    assert s["volumetric_compensation"]["status"] == "skipped"
+    assert "volumetric" not in s["job"]["compensations"]
+    # the same program inside the travel: no warning, compensated
+    (tmp_path / "m.toml").write_text(text.replace("[-400.0, 10.0]", "[-400.0, 400.0]", 1))
+    s = run_job(_job(tmp_path, program, **extra), tmp_path / "ok")
+    assert not [w for w in s["warnings"] if w["kind"] == "move_outside_travel"]
+    assert s["stages"]["volumetric"] == "ok" and "volumetric" in s["job"]["compensations"]

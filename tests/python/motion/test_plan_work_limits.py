@@ -103,3 +103,35 @@ def test_the_planner_stops_at_max_samples_where_the_estimate_is_low(capsys, tmp_
     err = capsys.readouterr().err
     assert err.startswith("netshape plan: error: --max-samples = 45100: the plan needs more fine samples"), err
     assert not (tmp_path / "o.json").exists()
+
+
+def test_a_tiny_jerk_limit_is_refused_before_the_samples_are_made(tmp_path):
+    """The planned time of the first segments already implies more samples than allowed: the planner
+    refuses then, instead of filling ~70 B per sample up to the limit (3.4 GB for 5e7) first."""
+    import subprocess
+    import sys
+    import textwrap
+    from pathlib import Path
+
+    p = tmp_path / "p.ngc"
+    p.write_text(SQUARE)
+    if not Path("/proc/self/status").exists():
+        pytest.skip("needs /proc/self/status (VmHWM) to read the peak memory")
+    # VmHWM: the peak resident memory of this process image (ru_maxrss would keep the forking
+    # parent's peak across exec)
+    script = textwrap.dedent(f"""
+        import re
+        from pathlib import Path
+        from netshape import motion, toolpath
+        a = toolpath.read_gcode_arrays({str(p)!r})
+        limits = motion.AxisLimits.uniform(200.0, 2000.0, 1e-7)
+        try:
+            motion.plan(a, limits, rule="blend", ts2=1e-3, max_samples=50_000_000)
+        except ValueError as exc:
+            print(str(exc).split(";")[0])
+        print(re.search(r"VmHWM:\\s*(\\d+) kB", Path("/proc/self/status").read_text()).group(1))
+    """)
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True).stdout
+    message, rss_kb = out.strip().splitlines()
+    assert message.startswith("max_samples = 50000000: the plan needs more fine samples")
+    assert int(rss_kb) < 1_000_000  # well below the 3.4 GB the samples up to the limit would take

@@ -25,6 +25,7 @@ import pytest
 import netshape.motion as nm
 from netshape import toolpath
 from netshape.cli import main
+from netshape.motion.gcode_splice import spliced_gcode_lines
 from netshape.motion.smooth_gcode import FORMATS, smoothed_gcode_lines, write_smoothed_gcode
 
 _AXES = ((0, 1, 2), (2, 0, 1), (1, 2, 0))  # plane -> (a, b, normal): G17 XY, G18 ZX, G19 YZ
@@ -384,9 +385,11 @@ def test_cli_writes_each_format(program, fmt, extra):
     argv = PLAN + ["--smoothed-gcode", "s.ngc"] + (["--smoothed-format", fmt] if fmt else []) + extra
     assert main(argv) == 0
     arrays = toolpath.read_gcode_arrays("p.ngc")
-    new = nm.smooth_path(arrays, 0.01)[0]
+    new, first, _, _ = nm.smooth_path(arrays, 0.01)
     kw = {"chord_tolerance": float(extra[1])} if extra else {}
-    want = smoothed_gcode_lines(new, fmt or "arcs", **kw)
+    # the program's text with the new moves in place (gcode_splice; test_smooth_splice.py)
+    want = spliced_gcode_lines(_micro_segment_program(), arrays, np.zeros((len(arrays["kind"]), 3)), new, first,
+                               fmt or "arcs", **kw)
     assert (program / "s.ngc").read_text() == "\n".join(want) + "\n"
     moves = _parse(want)
     kinds = {m[0] for m in moves}

@@ -53,8 +53,9 @@ const char* to_string(DeflectionScheme s) noexcept;
 DeflectionScheme deflection_scheme_from_string(const std::string& s);
 
 /// Unit wall normals (n, 2) of the polyline `nominal` (n ≥ 2 points, consecutive points distinct in
-/// XY): the normal of the central-difference tangent (one-sided at the ends), to the left of the
-/// feed for WallSide::left, to the right for WallSide::right.
+/// XY): the normal of the central-difference tangent (one-sided at the ends; at a corner, where the
+/// path turns by more than 30° at a point, the outgoing move's), to the left of the feed for
+/// WallSide::left, to the right for WallSide::right.
 Points2 wall_normals(const Eigen::Ref<const Points3>& nominal, deflection::WallSide side);
 
 struct PathOptions {

@@ -13,7 +13,8 @@
 /// - rapids move to their compensated ends;
 /// - a line becomes one or more lines: each output segment is halved until the actual path between
 ///   compensated points, checked at ¼, ½ and ¾ of it, stays within `chord_tolerance` of the nominal
-///   line (at most `max_halvings` times);
+///   line and, on a machine with cyclic terms, it is no longer than a quarter of the shortest period
+///   (at most `max_halvings` times);
 /// - an arc stays a (moved) arc when the moved arc's actual path, checked at max(8, n) points with
 ///   n = toolpath::chord_count(r, sweep, chord_tolerance / 2), stays within `chord_tolerance` of the
 ///   nominal arc and the moved arc does not change the difference of its end radii by more than
@@ -25,9 +26,17 @@
 /// table, or a segment still off the path after `max_halvings` (std::invalid_argument); a point that
 /// does not converge (netshape::Error).
 ///
+/// State-dependent errors (machine/state_error.hpp): every point is compensated for the tip offset
+/// s(d, t) of its block: d the axes' approach directions (the sign of each axis' last motion, from
+/// `initial_direction`), t the program time (`block_times`, linear within a block). On a machine
+/// with backlash every arc is written as chords (an arc may reverse an axis inside it), and a feed
+/// block that reverses an axis with backlash starts with a take-up move: from the previous commanded
+/// end to this block's commanded start, over which the lost motion is taken up and the tip stays.
+///
 /// All units mm.
 
 #include <string>
+#include <vector>
 
 #include "netshape/compensation/volumetric_compensation.hpp"
 #include "netshape/machine/machine.hpp"
@@ -40,6 +49,12 @@ struct ProgramOptions {
   double chord_tolerance = 0.002;  ///< largest deviation of the actual path from the nominal one [mm], > 0
   VolumetricOptions point{};       ///< per-point compensation (tolerance [mm], iterations, travel check)
   int max_halvings = 30;           ///< halvings of one segment before giving up, ≥ 0
+  /// Program time at each block's end [s] (a feed plan's time stamps; one per block, non-decreasing),
+  /// for a machine with thermal drift. Empty: the programmed feeds (block length / feed, rapids at
+  /// `rapid_feed`), see block_end_times.
+  std::vector<double> block_times;
+  double rapid_feed = 250.0;             ///< rapid speed for the default block times [mm/s], > 0
+  Vec3 initial_direction = Vec3(1, 1, 1);  ///< approach direction of each axis before it first moves
   /// Throws std::invalid_argument naming the field.
   void validate() const;
 };
@@ -56,6 +71,7 @@ struct ProgramReport {
   double max_residual = 0.0;          ///< largest |P_cmd + e(P_cmd) − P_nom| [mm]
   double max_path_deviation = 0.0;    ///< largest checked deviation of the actual path [mm]
   long commands = 0;                  ///< comments and non-motion words carried over
+  long takeup_moves = 0;              ///< take-up moves written at axis reversals (backlash)
 };
 
 /// The compensated program and its report.
@@ -63,6 +79,10 @@ struct ProgramResult {
   toolpath::Toolpath toolpath;
   ProgramReport report;
 };
+
+/// Program time at each block's end from the programmed feeds [s]: cumulative length / feed, rapids
+/// (and blocks without a feed) at `rapid_feed` [mm/s].
+std::vector<double> block_end_times(const toolpath::Toolpath& program, double rapid_feed = 250.0);
 
 /// Compensate `program` (block coordinates in the machine model's frame) on `machine`; see the file
 /// comment for what happens to each block. Messages name `program.source` ("<program>" when empty)

@@ -20,6 +20,11 @@ struct Cutter {
   double flute_length = 20.0;     ///< length of the fluted part from the tip [mm]
   double stick_out = 40.0;        ///< length from the holder face to the tip [mm]; ≥ flute_length
   double youngs_modulus = 600e3;  ///< E of the tool material [MPa] (carbide ≈ 600 GPa)
+  /// Clamp/holder/spindle compliance at the tool [mm/N] ≥ 0: the whole tool translates by
+  /// holder_compliance·F under the cutting force F (a spring in series with the cantilever).
+  double holder_compliance = 0.0;
+  double runout_rho = 0.0;     ///< radial runout ρ: offset of the tool axis [mm], ≥ 0 and < radius
+  double runout_lambda = 0.0;  ///< runout angle λ [rad]: flute j cuts at R + ρ·cos(λ − j·2π/N)
 
   /// Throws std::invalid_argument naming the field and the value if anything is inconsistent.
   void validate() const;

@@ -27,6 +27,7 @@
 #include "netshape/core/types.hpp"
 #include "netshape/deflection/cantilever.hpp"
 #include "netshape/force/flat_end_model.hpp"
+#include "netshape/force/runout_size_effect.hpp"
 
 namespace netshape::deflection {
 
@@ -52,6 +53,13 @@ struct DeflectionModel {
   /// its centre) inside the engagement window, so forces change continuously with the window; false:
   /// an element is in or out by its centre, exactly as force::flat_end_forces.
   bool smooth_edges = true;
+  /// Clamp/holder compliance [mm/N] ≥ 0 (cutter::Cutter::holder_compliance): a spring in series with
+  /// the cantilever, so the tool also translates rigidly by holder_compliance·F, F the total force.
+  double holder_compliance = 0.0;
+  /// Runout and chip-size effect of the element chips (force::RunoutSizeEffect, the same chip as
+  /// force::flat_end_forces_extended, the power law evaluated exactly): flute j's chip
+  /// h_j = c·sin φ + r_j − r_{j−1}, no force where h_j ≤ 0, cutting terms h_ref·(h_j/h_ref)^p.
+  force::RunoutSizeEffect chip{};
 
   /// force.validate(), beam.validate(), and beam.length ≥ force.axial_depth (a stick-out shorter than
   /// the cut cannot cut it); throws std::invalid_argument naming the field.
@@ -86,7 +94,8 @@ class DeflectionWorkspace {
 /// Coefficients as the force model: linear edge or Kline–DeVor (paper eq. 1–5).
 void disk_forces(const DeflectionModel& model, DeflectionWorkspace& workspace, double theta);
 
-/// Deflection (δx_c, δy_c) [mm] at height z [mm] above the tip of the forces in workspace.forces().
+/// Deflection (δx_c, δy_c) [mm] at height z [mm] above the tip of the forces in workspace.forces():
+/// the cantilever's bending plus the holder's translation holder_compliance·ΣF.
 Vec2 deflection_from_forces(const DeflectionModel& model, const DeflectionWorkspace& workspace, double z);
 
 /// Rotation angle θ_w(z) = φ_w + k_β·z [rad] at which flute 1 generates the wall at height z [mm].

@@ -60,6 +60,9 @@ struct CompiledMachine {
 
   std::array<detail::PreparedFunction, 18> functions;  ///< [axis * 6 + component]
   std::array<detail::AxisKernel, 3> kernels;           ///< per axis: six components in one pass
+  /// Per axis: periodic terms of its positioning component (an axis with terms is evaluated `generic`),
+  /// as (amplitude [mm], 2π/period [1/mm], phase [rad]).
+  std::array<std::vector<std::array<double, 3>>, 3> cyclic;
   std::array<detail::ChainStep, 3> steps;              ///< the chains in evaluation order
   int tool_steps = 0;                                  ///< steps[0, tool_steps) are tool side
   std::array<std::array<bool, 3>, 3> arm_grows{};      ///< [k][j]: axis j's Abbe arm grows with q_k

@@ -42,6 +42,23 @@ enum class Side : std::uint8_t { tool = 0, workpiece = 1 };
 /// ISO 230-1 name of component `c` of axis `axis` (0 = X, 1 = Y, 2 = Z), e.g. (ea, 0) → "EAX".
 std::string component_name(Component c, int axis);
 
+/// A periodic positioning error of an axis (ball-screw pitch error, encoder interpolation error):
+/// added to the axis' positioning component EKk as amplitude·sin(2π·q/period + phase), q the axis
+/// position [mm].
+struct CyclicTerm {
+  double amplitude = 0.0;  ///< [mm], ≥ 0
+  double period = 1.0;     ///< [mm], > 0
+  double phase = 0.0;      ///< [rad]
+};
+
+/// Thermal drift of the tool tip relative to the workpiece along one axis as a function of the
+/// program time t [s]: amplitude·(1 − exp(−t/time_constant)) (a first-order warm-up from t = 0).
+struct ThermalDrift {
+  int axis = 0;                ///< 0 = X, 1 = Y, 2 = Z
+  double amplitude = 0.0;      ///< [mm]
+  double time_constant = 1.0;  ///< τ [s], > 0
+};
+
 /// One linear axis. Its position q [mm] is the program coordinate along its direction (ISO 841:
 /// the motion of the tool relative to the workpiece), whichever chain carries it.
 struct Axis {
@@ -50,6 +67,9 @@ struct Axis {
   Vec3 origin = Vec3::Zero();              ///< offset of this carriage's frame from the previous frame in the
                                            ///< chain (bed or the axis below) [mm]; the paper's Oxy, Ozx
   std::array<ErrorFunction, 6> errors{};   ///< indexed by Component: EXk, EYk, EZk [mm]; EAk, EBk, ECk [rad]
+  std::vector<CyclicTerm> cyclic;          ///< periodic terms added to the positioning component EKk
+  double backlash = 0.0;                   ///< reversal value [mm]: the tip lands backlash/2 further along
+                                           ///< the axis' last direction of motion (state_error.hpp)
 
   const ErrorFunction& error(Component c) const { return errors[static_cast<int>(c)]; }
   ErrorFunction& error(Component c) { return errors[static_cast<int>(c)]; }
@@ -69,10 +89,16 @@ struct Machine {
   Vec3 spindle_nose = Vec3::Zero();  ///< gauge point of the spindle in the last tool-side frame [mm] (T)
   double tool_length = 0.0;          ///< tool length from the gauge point to the tip [mm] (L), ≥ 0
   Vec3 tool_direction = Vec3(0, 0, -1);  ///< unit vector from gauge point to tip, last tool-side frame
+  std::vector<ThermalDrift> thermal;     ///< drift of the tip with program time (state_error.hpp)
 
   /// Throws std::invalid_argument naming the field: every axis exactly once in the two chains,
-  /// travel_min < travel_max, finite numbers, unit tool direction, valid error functions.
+  /// travel_min < travel_max, finite numbers, unit tool direction, valid error functions, cyclic
+  /// periods and thermal time constants > 0.
   void validate() const;
+
+  /// True when some axis has a backlash or the machine a thermal drift: errors that depend on the
+  /// direction of motion or the program time, not on the position alone (state_error.hpp).
+  bool has_state_errors() const noexcept;
 
   /// Side of axis `axis` (0..2).
   Side side(int axis) const;

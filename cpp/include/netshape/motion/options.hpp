@@ -44,6 +44,10 @@ struct PlanOptions {
   /// paper rule: allowable speed difference, the floor of the eq. 4 corner speed [mm/s]
   double allowable_speed_difference = 100.0 / 60.0;
   double tolerance = 0.01;              ///< blend rule: contour tolerance ε [mm]
+  /// blend rule: contour tolerance at a vertex where neither block is a cubic block (programmed
+  /// lines and arcs) [mm]; 0: `tolerance`. Rule smooth plans with tolerance (1 − fit_share)·ε next
+  /// to its cubic blocks, which already use fit_share·ε, and the whole ε here.
+  double corner_tolerance = 0.0;
   double junction_deviation = 0.0;      ///< junction-deviation rule: δ [mm] (used when scv = 0)
   double square_corner_velocity = 5.0;  ///< Klipper's square corner velocity [mm/s] (0: use δ)
   /// junction-deviation rule: which acceleration the corner speed uses (see JunctionAccel)

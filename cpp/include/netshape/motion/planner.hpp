@@ -100,6 +100,9 @@ class Planner {
   int free_blocks() const noexcept;
   /// Program end time once known (after finish() and the last segment is frozen), else −1 [s].
   double end_time() const noexcept;
+  /// End time of the segments planned for good so far (their samples are due up to it) [s]. Grows as
+  /// next() freezes segments; lets a caller refuse a plan whose time already exceeds a budget.
+  double frozen_time() const noexcept;
   /// Number of blocks accepted so far.
   long blocks_pushed() const noexcept;
   /// Message of the last invalid_input.

@@ -5,7 +5,8 @@
 /// the Planner.
 ///
 ///     netshape::motion::Smoother smoother(smooth_options);
-///     netshape::motion::Planner planner(limits, plan_options);   // blend rule at blend_tolerance()
+///     netshape::motion::Planner planner(limits, plan_options);   // blend rule: tolerance blend_tolerance(),
+///                                                                // corner_tolerance the whole tolerance
 ///     netshape::motion::SmoothedBlock sb;
 ///     netshape::motion::Sample sample;
 ///     for (;;) {

@@ -1,0 +1,100 @@
+#include "netshape/force/runout_size_effect.hpp"
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "netshape/core/error.hpp"
+
+namespace netshape::force {
+
+namespace {
+constexpr double two_pi = 2.0 * pi;
+// knots of the piecewise-linear chip function, as fractions of the feed per tooth
+constexpr std::array<double, 11> knot_fraction{0.0, 0.006, 0.02, 0.05, 0.1, 0.18, 0.3, 0.45, 0.62, 0.8, 1.0};
+
+// base window ∩ {sin φ ≥ s} for a window inside [0, π]; false when empty
+bool narrowed(const AngularEngagement& base, double s, AngularEngagement& out) {
+  if (s >= 1.0) return false;
+  double st = base.phi_st, ex = base.phi_ex;
+  if (s > 0.0) {
+    const double a = std::asin(s);
+    st = std::max(st, a);
+    ex = std::min(ex, pi - a);
+  }
+  if (!(ex > st)) return false;
+  out.phi_st = st;
+  out.phi_ex = ex;
+  return true;
+}
+}  // namespace
+
+void RunoutSizeEffect::validate() const {
+  NETSHAPE_CHECK_FINITE("runout_rho", runout_rho);
+  NETSHAPE_CHECK(runout_rho >= 0.0, "runout_rho", runout_rho, "must be ≥ 0 [mm]");
+  NETSHAPE_CHECK_FINITE("runout_lambda", runout_lambda);
+  NETSHAPE_CHECK_FINITE("chip_exponent", chip_exponent);
+  NETSHAPE_CHECK(chip_exponent > 0.0 && chip_exponent <= 2.0, "chip_exponent", chip_exponent, "must be in (0, 2]");
+  NETSHAPE_CHECK_FINITE("reference_chip", reference_chip);
+  NETSHAPE_CHECK(reference_chip >= 0.0, "reference_chip", reference_chip, "must be ≥ 0 [mm] (0: the feed per tooth)");
+}
+
+Points3 flat_end_forces_extended(const FlatEndModel& model, const RunoutSizeEffect& ext,
+                                 const Eigen::Ref<const VectorXd>& angles) {
+  model.validate();
+  ext.validate();
+  NETSHAPE_CHECK(model.engagement.phi_st >= 0.0 && model.engagement.phi_ex <= pi + 1e-12, "engagement",
+                 model.engagement.phi_ex, "runout and size effect need a window inside [0, π] [rad]");
+  if (ext.none()) return flat_end_forces(model, angles);
+  const LinearEdgeCoefficients k = model.coefficient_model == FlatCoefficientModel::linear_edge
+                                       ? model.linear_edge
+                                       : model.kline_devor.to_linear_edge();
+  const int N = model.flutes;
+  const double c = model.feed_per_tooth;
+  NETSHAPE_CHECK(c > 0.0, "feed_per_tooth", c, "must be positive with runout or a size effect [mm]");
+  // cutting term Σ_k w_k·max(0, h − h_k): w the slope changes of the interpolant of g
+  std::vector<double> knots{0.0}, weights{1.0};
+  if (ext.chip_exponent != 1.0) {
+    const double href = ext.reference_chip > 0.0 ? ext.reference_chip : c;
+    const double p = ext.chip_exponent;
+    knots.clear();
+    weights.clear();
+    double prev_slope = 0.0;
+    for (std::size_t i = 0; i + 1 < knot_fraction.size(); ++i) {
+      const double h0 = c * knot_fraction[i], h1 = c * knot_fraction[i + 1];
+      const double slope = href * (std::pow(h1 / href, p) - std::pow(h0 / href, p)) / (h1 - h0);
+      knots.push_back(h0);
+      weights.push_back(slope - prev_slope);
+      prev_slope = slope;
+    }
+  }
+  const bool runout = ext.runout_rho != 0.0;
+  FlatEndModel one = model;
+  one.coefficient_model = FlatCoefficientModel::linear_edge;
+  if (runout) one.flutes = 1;
+  FlatEndWorkspace ws(one);
+  const Eigen::Index n = angles.size();
+  Points3 total = Points3::Zero(n, 3), part(n, 3);
+  VectorXd shifted(n);
+  std::vector<double> r(N, 0.0);
+  for (int j = 0; j < N; ++j) r[j] = ext.runout_rho * std::cos(ext.runout_lambda - two_pi * j / N);
+  const int groups = runout ? N : 1;
+  for (int j = 0; j < groups; ++j) {
+    const double delta = runout ? r[j] - r[(j + N - 1) % N] : 0.0;
+    shifted = angles.array() + (runout ? two_pi * j / N : 0.0);
+    auto add = [&](double s, const LinearEdgeCoefficients& kk, double weight) {
+      if (!narrowed(model.engagement, s, one.engagement)) return;
+      one.linear_edge = kk;
+      flat_end_forces(one, ws, shifted, part);
+      total += weight * part;
+    };
+    for (std::size_t q = 0; q < knots.size(); ++q) {
+      const double d = knots[q] - delta;  // element force ∝ c·sin φ − d where positive
+      add(d / c, {k.ktc, k.krc, k.kac, -d * k.ktc, -d * k.krc, -d * k.kac}, weights[q]);
+    }
+    add(-delta / c, {0.0, 0.0, 0.0, k.kte, k.kre, k.kae}, 1.0);  // edge forces wherever h_j > 0
+  }
+  return total;
+}
+
+}  // namespace netshape::force

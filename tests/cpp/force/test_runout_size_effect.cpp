@@ -1,0 +1,130 @@
+// Flat end mill forces with runout and the chip-size effect (runout_size_effect.hpp) against an
+// independent direct element sum of docs/conventions.md §2 (chip h_j = c·sin φ + r_j − r_{j−1} clamped
+// at 0, cutting term h_ref·(h/h_ref)^p), and the clamp/holder compliance of the deflection model.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "netshape/deflection.hpp"
+#include "netshape/force.hpp"
+
+using namespace netshape;
+using namespace netshape::force;
+
+namespace {
+FlatEndModel cut() {
+  FlatEndModel m;
+  m.radius = 5.0;
+  m.flutes = 3;
+  m.helix = deg2rad(30.0);
+  m.axial_depth = 3.0;
+  m.feed_per_tooth = 0.08;
+  m.disk_height = 0.05;
+  m.engagement = AngularEngagement::from_mode(MillingMode::down, 5.0, 4.0);
+  m.linear_edge = {900.0, 270.0, 150.0, 16.0, 20.0, 10.0};
+  return m;
+}
+
+// Direct sum over disks and flutes; power law exact (the kernel uses its piecewise-linear interpolant).
+Vec3 oracle(const FlatEndModel& m, const RunoutSizeEffect& e, double theta) {
+  const int N = m.flutes, disks = m.disks();
+  const double dz = m.axial_depth / disks, c = m.feed_per_tooth;
+  const double href = e.reference_chip > 0 ? e.reference_chip : c;
+  const auto& k = m.linear_edge;
+  Vec3 F = Vec3::Zero();
+  for (int i = 0; i < disks; ++i) {
+    const double z = (i + 0.5) * dz;
+    for (int j = 0; j < N; ++j) {
+      const double rj = e.runout_rho * std::cos(e.runout_lambda - 2 * pi * j / N);
+      const double rp = e.runout_rho * std::cos(e.runout_lambda - 2 * pi * ((j + N - 1) % N) / N);
+      double phi = std::fmod(theta + 2 * pi * j / N - m.k_beta() * z, 2 * pi);
+      if (phi < 0) phi += 2 * pi;
+      if (phi < m.engagement.phi_st || phi > m.engagement.phi_ex) continue;
+      const double h = c * std::sin(phi) + rj - rp;
+      if (h <= 0) continue;
+      const double g = href * std::pow(h / href, e.chip_exponent);
+      const double ft = (k.ktc * g + k.kte) * dz, fr = (k.krc * g + k.kre) * dz, fa = (k.kac * g + k.kae) * dz;
+      F += Vec3(-ft * std::cos(phi) - fr * std::sin(phi), ft * std::sin(phi) - fr * std::cos(phi), fa);
+    }
+  }
+  return F;
+}
+}  // namespace
+
+TEST_CASE("no extension is the plain flat end model") {
+  const FlatEndModel m = cut();
+  const VectorXd th = rotation_angles(90);
+  const Points3 a = flat_end_forces(m, th), b = flat_end_forces_extended(m, RunoutSizeEffect{}, th);
+  CHECK((a - b).cwiseAbs().maxCoeff() == 0.0);
+}
+
+TEST_CASE("runout and size effect match a direct element sum") {
+  const FlatEndModel m = cut();
+  const VectorXd th = rotation_angles(120);
+  for (const RunoutSizeEffect e : {RunoutSizeEffect{0.01, deg2rad(40.0), 1.0, 0.0},
+                                   RunoutSizeEffect{0.0, 0.0, 0.7, 0.05},
+                                   RunoutSizeEffect{0.006, deg2rad(200.0), 0.8, 0.0}}) {
+    const Points3 F = flat_end_forces_extended(m, e, th);
+    double worst = 0.0, peak = 0.0;
+    for (Eigen::Index a = 0; a < th.size(); ++a) {
+      const Vec3 ref = oracle(m, e, th[a]);
+      worst = std::max(worst, (F.row(a).transpose() - ref).norm());
+      peak = std::max(peak, ref.norm());
+    }
+    // exact for runout alone; the size effect's interpolant between knots is within 2 % of the peak
+    CHECK(worst <= (e.chip_exponent == 1.0 ? 1e-9 : 0.02) * peak);
+  }
+}
+
+TEST_CASE("runout and size effect: bad input names the field") {
+  const FlatEndModel m = cut();
+  const VectorXd th = rotation_angles(8);
+  CHECK_THROWS_AS(flat_end_forces_extended(m, RunoutSizeEffect{-0.1, 0, 1, 0}, th), std::invalid_argument);
+  CHECK_THROWS_AS(flat_end_forces_extended(m, RunoutSizeEffect{0, 0, 2.5, 0}, th), std::invalid_argument);
+  CHECK_THROWS_AS(flat_end_forces_extended(m, RunoutSizeEffect{0, 0, 0.8, NAN}, th), std::invalid_argument);
+}
+
+TEST_CASE("holder compliance translates the tool by c·F at every height") {
+  deflection::DeflectionModel d;
+  d.force = cut();
+  d.beam = deflection::Cantilever::tool(10.0, 40.0, 600e3, deflection::InertiaModel::square);
+  for (auto load : {deflection::LoadModel::resultant, deflection::LoadModel::distributed}) {
+    d.load = load;
+    deflection::DeflectionWorkspace ws(d);
+    deflection::DeflectionModel h = d;
+    h.holder_compliance = 2e-4;  // [mm/N]
+    for (double z : {0.0, 1.5, 3.0}) {
+      disk_forces(d, ws, 0.7);
+      const Vec2 a = deflection_from_forces(d, ws, z), b = deflection_from_forces(h, ws, z);
+      const Vec2 F(ws.forces().col(0).sum(), ws.forces().col(1).sum());
+      CHECK((b - a - 2e-4 * F).norm() <= 1e-12 * (1.0 + a.norm()));
+    }
+  }
+  deflection::DeflectionModel bad = d;
+  bad.holder_compliance = -1.0;
+  CHECK_THROWS_AS(bad.validate(), std::invalid_argument);
+}
+
+TEST_CASE("the deflection model's disk forces carry the same runout and size effect") {
+  deflection::DeflectionModel d;
+  d.force = cut();
+  d.beam = deflection::Cantilever::tool(10.0, 40.0, 600e3, deflection::InertiaModel::square);
+  d.smooth_edges = false;  // elements in or out by their centre, as the force kernel
+  for (const RunoutSizeEffect e : {RunoutSizeEffect{0.01, deg2rad(40.0), 1.0, 0.0},
+                                   RunoutSizeEffect{0.006, deg2rad(200.0), 0.8, 0.05}}) {
+    d.chip = e;
+    deflection::DeflectionWorkspace ws(d);
+    const VectorXd th = rotation_angles(60);
+    const Points3 F = flat_end_forces_extended(d.force, e, th);
+    double worst = 0.0, peak = 0.0;
+    for (Eigen::Index a = 0; a < th.size(); ++a) {
+      disk_forces(d, ws, th[a]);
+      const Vec2 s(ws.forces().col(0).sum(), ws.forces().col(1).sum());
+      worst = std::max(worst, (s - F.row(a).head<2>().transpose()).norm());
+      peak = std::max(peak, s.norm());
+    }
+    // the disk loop evaluates the power law exactly, the force kernel its interpolant (2 %)
+    CHECK(worst <= (e.chip_exponent == 1.0 ? 1e-9 : 0.02) * peak);
+  }
+}

@@ -1,0 +1,6 @@
+"""Make the program generators of this folder importable as ``finishing_programs``."""
+
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
