@@ -3,9 +3,12 @@ on the default impeller passage, interference checks per second, the between-poi
 repair, rotary subdivision), and the disagreement count of the C++ check against the exact NumPy
 solid–triangle test of tests/python/posture/conftest.py on the same mesh and random poses.
 
-    PYTHONPATH=python python bench/posture.py [--points 200] [--poses 100000] [--quick]
+    PYTHONPATH=python python bench/posture.py [--points 200] [--poses 100000] [--quick] [--baseline DIR]
 
-Times are CPU time of this process (time.process_time); the extension is single-threaded.
+Times are CPU time (time.process_time); the extension is single-threaded. With --baseline DIR (a directory
+whose `netshape` package is another build, e.g. main's installed one), the planning rate of this build and of
+the baseline are measured in alternating child processes, `--rounds` times each, under the same load; the
+ratio of the medians is printed.
 """
 
 from __future__ import annotations
@@ -13,6 +16,9 @@ from __future__ import annotations
 import argparse
 import importlib.util
 import os
+import statistics
+import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -31,14 +37,55 @@ def _load(name, path):
     return mod
 
 
+# One planning run in a child process: the C-space + MC + MB + repair of the impeller at `points` CC points;
+# prints "<CC points/s> <checks/s>". Runs against whichever `netshape` is first on the child's sys.path.
+_CHILD = """
+import sys, time
+from netshape import posture as npost
+from netshape.geometry import TriangleMesh
+n = int(sys.argv[1])
+imp = npost.make_impeller()
+cc, normals = imp.cc_path(n)
+v, f = imp.obstacles()
+chk = npost.InterferenceChecker(TriangleMesh(v, f), npost.default_assembly(), 0.5)
+t = time.process_time()
+r = npost.plan(chk, cc, normals)
+dt = time.process_time() - t
+print(n / dt, r.checks / dt)
+"""
+
+
+def _child_rate(path, points):
+    env = dict(os.environ, PYTHONPATH=str(path))
+    out = subprocess.run([sys.executable, "-c", _CHILD, str(points)], env=env, capture_output=True, text=True,
+                         check=True).stdout.split()
+    return float(out[0]), float(out[1])
+
+
+def compare(baseline, points, rounds):
+    """Planning rate of this build and of `baseline`, alternating, `rounds` each: medians and their ratio."""
+    ours, base = [], []
+    for _ in range(rounds):
+        base.append(_child_rate(baseline, points))
+        ours.append(_child_rate(HERE.parent / "python", points))
+    mo, mb = statistics.median(r[0] for r in ours), statistics.median(r[0] for r in base)
+    print(f"interleaved x{rounds}, {points} CC points: this build {mo:.1f} CC points/s "
+          f"({statistics.median(r[1] for r in ours):.0f} checks/s), baseline {mb:.1f} CC points/s "
+          f"({statistics.median(r[1] for r in base):.0f} checks/s); ratio {mo / mb:.1f}x")
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--points", type=int, default=200)
     ap.add_argument("--poses", type=int, default=100_000)
     ap.add_argument("--quick", action="store_true", help="CI size: 20 points, 4000 poses")
+    ap.add_argument("--baseline", type=Path, help="directory holding the baseline build's netshape package")
+    ap.add_argument("--rounds", type=int, default=3, help="alternating runs per build with --baseline")
     args = ap.parse_args(argv)
     if args.quick:
         args.points, args.poses = 20, 4000
+    if args.baseline:
+        compare(args.baseline, args.points, args.rounds)
     imp = npost.make_impeller()
     cc, normals = imp.cc_path(args.points)
     v, f = imp.obstacles()

@@ -35,32 +35,34 @@ def test_swing_through_an_obstacle_collides_though_both_ends_are_free(box_mesh):
 
 
 def test_certified_free_moves_are_free_when_sampled_densely():
-    """Random short moves near the impeller blades (table_ac): every move reported free is free at 200
-    evenly spaced poses along it (the bound covers the poses in between)."""
+    """Random short moves near the impeller blades (table_ac) between postures tilted up to 6° off the planned
+    final ones: every move reported free is free at 200 evenly spaced poses along it (the bound covers the
+    poses in between), and the bound is tight enough that nearly every move free at those 200 poses is
+    certified free (at most 2 of the 40 are not)."""
     imp = npost.make_impeller()
     v, f = imp.obstacles()
     a = npost.default_assembly()
     chk = npost.InterferenceChecker(TriangleMesh(v, f), a, 0.5)
     k = npost.Kinematics()
     cc, n = imp.cc_path(60)
+    final = npost.plan(chk, cc, n).final
     rng = np.random.default_rng(5)
-    free = 0
+    certified = dense = 0
     for _ in range(40):
-        i = rng.integers(0, len(cc) - 1)
-        ax = []
-        for _ in range(2):
-            t, p = rng.uniform(0, 0.6), rng.uniform(-np.pi, np.pi)
-            ax.append([math.sin(t) * math.cos(p), math.sin(t) * math.sin(p), math.cos(t)])
-        ax = np.array(ax)
+        i = int(rng.integers(0, len(cc) - 1))
+        ax = np.array(final.axes)[[i, i + 1]] + rng.normal(0.0, math.radians(6) / 2, (2, 3))
+        ax /= np.linalg.norm(ax, axis=1)[:, None]
         tips = np.array([cc[i], cc[i + 1]]) + a.ball_radius * (n[[i, i + 1]] - ax)
         joints = npost.inverse_kinematics(k, tips, ax)
-        if npost.check_move(chk, k, joints[0], joints[1]).collides:
-            continue
-        free += 1
         lam = np.linspace(0, 1, 200)[:, None]
         t2, a2 = npost.forward_kinematics(k, joints[0] + lam * (joints[1] - joints[0]))
-        assert not np.any(chk.collides(t2, a2))
-    assert free >= 10
+        free_dense = not np.any(chk.collides(t2, a2))
+        dense += free_dense
+        if npost.check_move(chk, k, joints[0], joints[1]).collides:
+            continue
+        certified += 1
+        assert free_dense
+    assert certified >= 10 and certified >= dense - 2, (certified, dense)
 
 
 def test_plan_program_approach_retract_chord_and_no_colliding_move(tmp_path):

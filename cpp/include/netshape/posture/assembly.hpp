@@ -1,7 +1,7 @@
 #pragma once
 /// \file assembly.hpp
 /// Ball-end cutter assembly (ball + shank + holder, solids of revolution about the tool axis) and its
-/// interference with an obstacle triangle mesh (CGAL AABB tree of geometry::TriangleMesh).
+/// interference with an obstacle triangle mesh.
 ///
 /// Tool frame: tip at z = 0 (lowest point of the ball), unit axis a from the tip into the spindle, ρ the
 /// distance from the axis. Lengths are measured from the tip. The assembly is the union of
@@ -15,23 +15,29 @@
 /// The checked solid is exactly this union: nothing is rounded or left out (the holder's flat face out to
 /// its radius is in it).
 ///
-/// Interference gap g = distance between the solid and the mesh [mm] (≤ 0: they overlap); a posture
-/// collides when g < clearance. Branch and bound over pieces of the solid: a piece is a slab
-/// z ∈ [z_c − h, z_c + h] of one part, either the whole disc ρ ≤ ρ_1 (centre on the axis) or a cell
-/// ρ ∈ [ρ_0, ρ_1], ψ ∈ [ψ_c − δ, ψ_c + δ] of it (centre at ρ_m = (ρ_0 + ρ_1)/2, ψ_c), with ρ_1 ≥ the part's
-/// radius over the slab. Every point of the piece lies within b of its centre c, b² = h² + max over
-/// ρ ∈ {ρ_0, ρ_1} of (ρ² + ρ_m² − 2ρρ_m cos δ) (h² + ρ_1² for the disc), so with d = dist(c, mesh) (the
-/// AABB tree's point distance) no mesh point is closer to the piece than d − b (the lower bound). The
-/// closest mesh point q to c gives the upper bound: the exact distance from q to the solid, computed in
-/// the meridian plane (z, ρ). Pieces are split (z while h ≥ ρ_1 / 4, then a disc into an inner disc and
-/// eight outer cells, a cell along its longest extent) until the answer is certain or b < tolerance;
-/// undecided pieces (or more than 20 000 per query) count as colliding, so "free" is always certified. The ball is exact: d − R.
+/// Interference gap g = distance between the solid and the mesh [mm] (0 when they overlap); a posture
+/// collides when g < clearance. The mesh's triangles sit in a bounding-volume hierarchy; a box of it is
+/// skipped when a lower bound of its distance to a part (ball: exact point–box distance − R; frustum: the
+/// larger of the box–box distance to the part's bounding box and the distance of the box's bounding sphere to
+/// the part's axis segment minus its largest radius) reaches the threshold asked. A triangle against the ball
+/// is exact (closest point to the centre, minus R); against a frustum, GJK on the two convex sets gives a
+/// certified lower and upper bound at every step (cpp/src/posture/convex_distance.hpp), refined until they decide the
+/// question or lie within the tolerance of each other. Undecided at the tolerance counts as colliding, so
+/// "free" is certified: the gap of a free posture is ≥ clearance (up to rounding, ~1e-9 mm).
+/// The triangle that decided the last collision is tried first in the next query (neighbouring postures
+/// mostly collide with the same triangle).
 
 #include <algorithm>
+#include <atomic>
+#include <memory>
 #include <vector>
 
 #include "netshape/core/types.hpp"
 #include "netshape/geometry/triangle_mesh.hpp"
+
+namespace netshape::detail {
+struct TriangleBvh;
+}
 
 namespace netshape::posture {
 
@@ -66,7 +72,7 @@ struct CutterAssembly {
 class InterferenceChecker {
  public:
   /// clearance ≥ 0 [mm]: the safety distance the assembly must keep from the mesh. tolerance > 0 [mm]:
-  /// resolution of the branch and bound (default 1e-3 mm).
+  /// resolution of the distance bounds (default 1e-3 mm): a gap within it of the clearance may count as colliding.
   InterferenceChecker(geometry::TriangleMesh obstacles, CutterAssembly assembly, double clearance,
                       double tolerance = 1e-3);
 
@@ -78,7 +84,7 @@ class InterferenceChecker {
   /// Whether the assembly with its tip at `tip` and unit axis `axis` comes closer than the clearance.
   /// When it does and `witness` is given, *witness is the mesh point of least gap found [mm].
   bool collides(const Vec3& tip, const Vec3& axis, Vec3* witness = nullptr) const;
-  /// The interference gap g [mm] to within the tolerance (negative: the mesh penetrates the assembly).
+  /// The interference gap g [mm] to within the tolerance (0: the mesh touches or penetrates the assembly).
   double gap(const Vec3& tip, const Vec3& axis) const;
   /// collides() for many postures: tips (n, 3), axes (n, 3) → (n) flags.
   std::vector<bool> collides(const Eigen::Ref<const Points3>& tips, const Eigen::Ref<const Points3>& axes) const;
@@ -91,16 +97,20 @@ class InterferenceChecker {
 
  private:
   struct Outcome {
-    double upper;  ///< least exact distance of a mesh point found [mm]
-    int state;     ///< −1 below stop_below, +1 every piece ≥ prune_at, 0 undecided at the resolution
+    double upper;  ///< least upper bound of a triangle's distance found [mm]
+    int state;     ///< −1 some triangle certainly below `near`, 0 some undecided below `far`, +1 none below `far`
     Vec3 witness;  ///< mesh point of `upper`
   };
-  /// Branch and bound over the pieces (see the file comment). stop_below: stop once a mesh point is
-  /// certainly closer; prune_at: drop pieces whose lower bound reaches it; resolution: smallest piece.
-  Outcome search(const Vec3& tip, const Vec3& axis, double stop_below, double prune_at, double resolution) const;
+  /// Traversal of the hierarchy (see the file comment). near: a triangle certainly closer decides −1 (the
+  /// search stops unless `least`); far: triangles certainly at least this far are skipped; tol: resolution of
+  /// a triangle's bounds; least: go on to the least distance (the witness, the gap).
+  Outcome search(const Vec3& tip, const Vec3& axis, double near, double far, double tol, bool least) const;
 
   geometry::TriangleMesh mesh_;
   CutterAssembly assembly_;
+  std::vector<ProfileSection> sections_;
+  std::shared_ptr<const detail::TriangleBvh> bvh_;
+  std::shared_ptr<std::atomic<int>> last_hit_;  ///< triangle of the last collision (a hint; −1 none)
   double clearance_ = 0.0;
   double tolerance_ = 1e-3;
 };
