@@ -1,6 +1,6 @@
 """Exact, independent solid–triangle test for the posture tests: the assembly (ball + frustums with flat ends,
 radii grown by `inflate`) against triangles, in NumPy, by minimising a convex function over the triangle — not
-the planner's branch and bound.
+the planner's GJK bounds.
 
 For a frustum z ∈ [z0, z1], radius r(z) (linear), a point x with z = (x − tip)·a, ρ = |(x − tip) − z a| is inside
 iff z0 ≤ z ≤ z1 and h(x) = ρ − r(z) ≤ 0. ρ is convex in x and r affine, so h is convex on the polygon

@@ -1,5 +1,5 @@
 """netshape.posture: the default impeller's passage end to end, checked against the exact NumPy solid–triangle
-test of conftest.py (not the planner's AABB-tree branch and bound); impeller construction; bad input.
+test of conftest.py (not the planner's GJK bounds); impeller construction; bad input.
 
 Method: Park, Jung, Hwang, Jung, "A theoretical consideration for continuity control of cutter posture",
 Proc. KSPE Conference (C-space, MC-space §2 steps 1–4, MB-spline eq. 1)."""
