@@ -27,10 +27,15 @@ struct Part {
   // Lower bound of the distance from the box [lo, hi] to the part [mm].
   double box_bound(const Vec3& blo, const Vec3& bhi) const {
     if (ball) return std::sqrt(box_distance(centre, blo, bhi)) - radius;
-    const double d = std::sqrt(detail::box_distance2(blo, bhi, lo, hi));
-    const Vec3 m = 0.5 * (blo + bhi), u = s1 - s0;
+    return std::max(std::sqrt(detail::box_distance2(blo, bhi, lo, hi)),
+                    sphere_bound(0.5 * (blo + bhi), 0.5 * (bhi - blo).norm()));
+  }
+  // Lower bound of the distance from the ball (m, r) to a frustum part: every point of the frustum lies within
+  // its largest radius of the axis segment s0–s1 [mm].
+  double sphere_bound(const Vec3& m, double r) const {
+    const Vec3 u = s1 - s0;
     const double t = std::clamp((m - s0).dot(u) / u.squaredNorm(), 0.0, 1.0);
-    return std::max(d, (m - s0 - t * u).norm() - 0.5 * (bhi - blo).norm() - radius);
+    return (m - s0 - t * u).norm() - r - radius;
   }
   static double box_distance(const Vec3& p, const Vec3& blo, const Vec3& bhi) {
     return (blo - p).cwiseMax(p - bhi).cwiseMax(0.0).squaredNorm();
@@ -90,6 +95,9 @@ InterferenceChecker::Outcome InterferenceChecker::search(const Vec3& tip, const 
         d.witness = detail::closest_on_triangle(p.centre, a, b, c);
         d.lower = d.upper = std::max(0.0, (d.witness - p.centre).norm() - p.radius);
       } else {
+        const Vec3 m = (a + b + c) / 3.0;
+        const double r = std::sqrt(std::max({(a - m).squaredNorm(), (b - m).squaredNorm(), (c - m).squaredNorm()}));
+        if (p.sphere_bound(m, r) >= cut) continue;  // cheaper than GJK for a triangle off a tilted part
         d = detail::triangle_frustum(a, b, c, p.f, least ? -kInf : near, cut, tol);
       }
       if (d.upper < out.upper) out.upper = d.upper, out.witness = d.witness;
