@@ -1,66 +1,91 @@
 """Benchmark: 5-axis posture planning — CC points per second through C-space + MC-space + MB-spline + repair
-on the default impeller passage, and assembly interference checks per second (C++ branch and bound on the
-CGAL AABB tree) against a NumPy brute force (axis sampled every 0.1 mm, every triangle) in the same run.
+on the default impeller passage, interference checks per second, the between-point program (move check,
+repair, rotary subdivision), and the disagreement count of the C++ check against the exact NumPy
+solid–triangle test of tests/python/posture/conftest.py on the same mesh and random poses.
 
-    PYTHONPATH=python python bench/posture.py [--points 40] [--checks 2000] [--numpy-checks 20]
+    PYTHONPATH=python python bench/posture.py [--points 200] [--poses 100000] [--quick] [--baseline DIR]
 
-Times are CPU time of this process (time.process_time); the extension is single-threaded.
+Times are CPU time (time.process_time); the extension is single-threaded. With --baseline DIR (a directory
+whose `netshape` package is another build, e.g. main's installed one), the planning rate of this build and of
+the baseline are measured in alternating child processes, `--rounds` times each, under the same load; the
+ratio of the medians is printed.
 """
 
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import os
+import statistics
+import subprocess
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
-try:
-    from netshape import posture as npost
-except ImportError:  # pragma: no cover
-    npost = None
+from netshape import posture as npost
+from netshape.geometry import TriangleMesh
+
+HERE = Path(__file__).resolve().parent
 
 
-def numpy_collides(assembly, tri, tip, axis, clearance, h=0.1):
-    """Reference: min over axis samples (every h mm) and all triangles of point–triangle distance − radius."""
-    a = assembly
-    parts = ((a.ball_radius, a.ball_radius, a.ball_radius), (a.ball_radius, a.shank_length, a.shank_radius),
-             (a.shank_length + a.holder_radius, a.holder_length, a.holder_radius))
-    A, B, C = tri[:, 0], tri[:, 1], tri[:, 2]
-    n = np.cross(B - A, C - A)
-    for z0, z1, r in parts:
-        zs = np.arange(z0, z1 + h, h) if z1 > z0 else np.array([z0])
-        p = tip + zs[:, None] * axis
-        # distance to each triangle's plane where the projection falls inside, else to its three edges
-        d = _point_triangle(p, A, B, C, n)
-        if d.min() - r < clearance:
-            return True
-    return False
+def _load(name, path):
+    spec = importlib.util.spec_from_file_location(name, path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
 
 
-def _seg(p, a, b):
-    ab = b - a
-    t = np.clip(np.einsum("pmk,mk->pm", p[:, None, :] - a, ab) / np.einsum("mk,mk->m", ab, ab), 0, 1)
-    return np.linalg.norm(p[:, None, :] - (a + t[..., None] * ab), axis=-1)
+# One planning run in a child process: the C-space + MC + MB + repair of the impeller at `points` CC points;
+# prints "<CC points/s> <checks/s>". Runs against whichever `netshape` is first on the child's sys.path.
+_CHILD = """
+import sys, time
+from netshape import posture as npost
+from netshape.geometry import TriangleMesh
+n = int(sys.argv[1])
+imp = npost.make_impeller()
+cc, normals = imp.cc_path(n)
+v, f = imp.obstacles()
+chk = npost.InterferenceChecker(TriangleMesh(v, f), npost.default_assembly(), 0.5)
+t = time.process_time()
+r = npost.plan(chk, cc, normals)
+dt = time.process_time() - t
+print(n / dt, r.checks / dt)
+"""
 
 
-def _point_triangle(p, A, B, C, n):
-    nn = n / np.linalg.norm(n, axis=1)[:, None]
-    d_plane = np.einsum("pmk,mk->pm", p[:, None, :] - A, nn)
-    q = p[:, None, :] - d_plane[..., None] * nn
-    inside = np.ones(d_plane.shape, bool)
-    for a, b in ((A, B), (B, C), (C, A)):
-        inside &= np.einsum("pmk,mk->pm", np.cross(b - a, q - a), nn) >= 0
-    edges = np.minimum(np.minimum(_seg(p, A, B), _seg(p, B, C)), _seg(p, C, A))
-    return np.where(inside, np.abs(d_plane), edges)
+def _child_rate(path, points):
+    env = dict(os.environ, PYTHONPATH=str(path))
+    out = subprocess.run([sys.executable, "-c", _CHILD, str(points)], env=env, capture_output=True, text=True,
+                         check=True).stdout.split()
+    return float(out[0]), float(out[1])
+
+
+def compare(baseline, points, rounds):
+    """Planning rate of this build and of `baseline`, alternating, `rounds` each: medians and their ratio."""
+    ours, base = [], []
+    for _ in range(rounds):
+        base.append(_child_rate(baseline, points))
+        ours.append(_child_rate(HERE.parent / "python", points))
+    mo, mb = statistics.median(r[0] for r in ours), statistics.median(r[0] for r in base)
+    print(f"interleaved x{rounds}, {points} CC points: this build {mo:.1f} CC points/s "
+          f"({statistics.median(r[1] for r in ours):.0f} checks/s), baseline {mb:.1f} CC points/s "
+          f"({statistics.median(r[1] for r in base):.0f} checks/s); ratio {mo / mb:.1f}x")
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--points", type=int, default=40)
-    ap.add_argument("--checks", type=int, default=2000)
-    ap.add_argument("--numpy-checks", type=int, default=20)
+    ap.add_argument("--points", type=int, default=200)
+    ap.add_argument("--poses", type=int, default=100_000)
+    ap.add_argument("--quick", action="store_true", help="CI size: 20 points, 4000 poses")
+    ap.add_argument("--baseline", type=Path, help="directory holding the baseline build's netshape package")
+    ap.add_argument("--rounds", type=int, default=3, help="alternating runs per build with --baseline")
     args = ap.parse_args(argv)
+    if args.quick:
+        args.points, args.poses = 20, 4000
+    if args.baseline:
+        compare(args.baseline, args.points, args.rounds)
     imp = npost.make_impeller()
     cc, normals = imp.cc_path(args.points)
     v, f = imp.obstacles()
@@ -68,38 +93,38 @@ def main(argv=None):
     print(f"load average {os.getloadavg()[0]:.1f}; obstacles {len(f)} triangles; {args.points} CC points")
 
     t = time.process_time()
-    run = npost.plan_postures(cc, normals, v, f, asm, clearance=0.5)
+    run = npost.plan_postures(cc, normals, v, f, asm, clearance=0.5, approach_mm=10.0, chord_mm=0.01)
     dt = time.process_time() - t
-    s = run.summary()
-    print(f"plan (C-space + MC + MB + repair): {args.points / dt:.1f} CC points/s "
-          f"({run.result.checks} interference checks, {run.result.checks / args.points:.0f} per point)")
+    r, p, s = run.result, run.program, run.summary()
+    t = time.process_time()
+    npost.plan(npost.InterferenceChecker(TriangleMesh(v, f), asm, 0.5), cc, normals)
+    dt_plan = time.process_time() - t
+    print(f"plan (C-space + MC + MB + repair): {args.points / dt_plan:.1f} CC points/s, {r.checks / dt_plan:.0f} "
+          f"checks/s ({r.checks} interference checks, {r.checks / args.points:.0f} per point)")
+    print(f"  with the program (move check + repair + chord + approach): {args.points / dt:.1f} CC points/s; "
+          f"{p.checks} move checks; moves colliding {p.colliding_before} -> {int(np.sum(p.move_collides))}, "
+          f"{p.inserted} CL points inserted, {len(p.tips)} program points")
     print(f"  collisions raw/mc/final {s['collisions']}, repaired {s['repaired']}, "
           f"max change deg/mm {s['max_posture_change_deg_per_mm']}")
 
-    rng = np.random.default_rng(0)
-    idx = rng.integers(0, args.points, args.checks)
-    th = rng.uniform(0, np.radians(60), args.checks)
-    ph = rng.uniform(-np.pi, np.pi, args.checks)
-    axes = np.empty((args.checks, 3))
-    tips = np.empty((args.checks, 3))
-    for k, (i, a, b) in enumerate(zip(idx, th, ph)):
-        fr = run.result.cspaces[i].frame
-        axes[k] = fr.axis(a, b)
-        tips[k] = cc[i] + asm.ball_radius * normals[i] - asm.ball_radius * axes[k]
-    from netshape.geometry import TriangleMesh
-
-    chk = npost.InterferenceChecker(TriangleMesh(v, f), asm, 0.5)
-    t = time.process_time()
-    flags = chk.collides(tips, axes)
-    rate_cpp = args.checks / (time.process_time() - t)
+    exact = _load("posture_exact", HERE.parent / "tests/python/posture/conftest.py")
+    solids = _load("posture_solids", HERE.parent / "tests/python/posture/test_posture_solids.py")
+    _, _, tips, axes = solids.random_poses(args.poses, seed=0)
     tri = v[f]
-    m = args.numpy_checks
-    t = time.process_time()
-    ref = [numpy_collides(asm, tri, tips[k], axes[k], 0.5) for k in range(m)]
-    rate_np = m / (time.process_time() - t)
-    agree = int(np.sum(np.asarray(ref) == flags[:m]))
-    print(f"interference checks: C++ {rate_cpp:.0f}/s, NumPy brute force {rate_np:.1f}/s, "
-          f"ratio {rate_cpp / rate_np:.0f}x; agreement {agree}/{m}")
+    for clearance in (0.0, 0.5):
+        chk = npost.InterferenceChecker(TriangleMesh(v, f), asm, clearance)
+        t = time.process_time()
+        got = np.asarray(chk.collides(tips, axes))
+        rate_cpp = len(tips) / (time.process_time() - t)
+        free = np.flatnonzero(~got)  # unsafe = reported free while the exact solid hits: every free pose
+        sample = np.random.default_rng(1).choice(np.flatnonzero(got), min(4000, int(got.sum())), replace=False)
+        t = time.process_time()
+        unsafe = int(exact.exact_hits(asm, tri, tips[free], axes[free], inflate=clearance).sum())
+        rate_np = len(free) / (time.process_time() - t)
+        spare = 1 - exact.exact_hits(asm, tri, tips[sample], axes[sample], inflate=clearance).mean()
+        print(f"clearance {clearance}: {len(tips)} poses, C++ {rate_cpp:.0f} checks/s, exact NumPy {rate_np:.0f}/s; "
+              f"unsafe (free but the exact solid hits) {unsafe} of {len(free)} free; conservative (colliding, the "
+              f"exact solid free) {100 * spare:.1f} % of {len(sample)} colliding; colliding {got.mean():.2f}")
 
 
 if __name__ == "__main__":

@@ -21,11 +21,11 @@ py::array_t<bool> bools(const std::vector<bool>& v) {
 
 void bind_posture(py::module_& m) {
   py::class_<CutterAssembly>(m, "CutterAssembly",
-                             "Ball-end cutter assembly: ball + shank + holder (capsules on the axis); lengths "
-                             "from the tip [mm]")
+                             "Ball-end cutter assembly: ball + shank cylinder + holder (flat-faced cylinder or a "
+                             "(z, r) profile of frustums), solids of revolution; lengths from the tip [mm]")
       .def(py::init<>())
       .def(py::init([](double R, double rs, double ls, double rh, double lh) {
-             CutterAssembly a{R, rs, ls, rh, lh};
+             CutterAssembly a{R, rs, ls, rh, lh, {}};
              a.validate();
              return a;
            }),
@@ -36,7 +36,20 @@ void bind_posture(py::module_& m) {
       .def_readwrite("shank_length", &CutterAssembly::shank_length, "tip to the end of the shank [mm]")
       .def_readwrite("holder_radius", &CutterAssembly::holder_radius, "[mm]")
       .def_readwrite("holder_length", &CutterAssembly::holder_length, "tip to the end of the holder [mm]")
-      .def("validate", &CutterAssembly::validate);
+      .def_readwrite("holder_profile", &CutterAssembly::holder_profile,
+                     "(k, 2) (z [mm] from the tip, r [mm]) of the holder; empty = the flat-faced cylinder")
+      .def("validate", &CutterAssembly::validate)
+      .def("reach", &CutterAssembly::reach, "largest distance of a point of the solid from the tip [mm]")
+      .def("distance", &CutterAssembly::distance, py::arg("z"), py::arg("rho"),
+           "exact distance [mm] from the meridian point (z, rho) to the solid (0 inside)")
+      .def_property_readonly("sections", [](const CutterAssembly& a) {
+        const auto secs = a.sections();
+        MatrixXdR out(static_cast<Eigen::Index>(secs.size()), 4);
+        for (std::size_t i = 0; i < secs.size(); ++i) {
+          out.row(static_cast<Eigen::Index>(i)) << secs[i].z0, secs[i].z1, secs[i].r0, secs[i].r1;
+        }
+        return out;
+      }, "(k, 4): z0, z1, r0, r1 [mm] of the shank and holder frustums, bottom to top (the ball is separate)");
 
   py::class_<InterferenceChecker>(m, "InterferenceChecker")
       .def(py::init<geometry::TriangleMesh, CutterAssembly, double, double>(), py::arg("obstacles"),
@@ -54,7 +67,9 @@ void bind_posture(py::module_& m) {
              return bools(r);
            }, py::arg("tips"), py::arg("axes"), "(n,) bool: closer than the clearance, tips/axes (n, 3)")
       .def("gap", &InterferenceChecker::gap, py::arg("tip"), py::arg("axis"),
-           "least distance between assembly and mesh [mm] (to the tolerance)");
+           "least distance between assembly and mesh [mm] (to the tolerance)")
+      .def("clear_by", &InterferenceChecker::clear_by, py::arg("tip"), py::arg("axis"), py::arg("margin"),
+           "+1 gap certainly >= clearance + margin, -1 certainly < clearance, 0 undecided");
 
   py::class_<CSpaceOptions>(m, "CSpaceOptions")
       .def(py::init<>())
@@ -169,4 +184,44 @@ void bind_posture(py::module_& m) {
     forward_kinematics(k, j, t, a);
     return py::make_tuple(t, a);
   }, py::arg("kinematics"), py::arg("joints"), "(tips (n, 3), axes (n, 3))");
+  py::class_<MoveCheck>(m, "MoveCheck")
+      .def_readonly("collides", &MoveCheck::collides)
+      .def_readonly("at", &MoveCheck::at, "lambda of the colliding pose found")
+      .def_readonly("checks", &MoveCheck::checks);
+  py::class_<MovePlan>(m, "MovePlan")
+      .def_readonly("tips", &MovePlan::tips, "(m, 3) [mm]")
+      .def_readonly("axes", &MovePlan::axes, "(m, 3) unit")
+      .def_readonly("source", &MovePlan::source, "(m,) CC index + fraction to the next (-1 approach, n retract)")
+      .def_readonly("joints", &MovePlan::joints, "(m, 5) X, Y, Z [mm], tilt, C [rad]")
+      .def_property_readonly("move_collides", [](const MovePlan& p) { return bools(p.move_collides); },
+                             "(m - 1,) bool: certified check of every move")
+      .def_readonly("colliding_before", &MovePlan::colliding_before)
+      .def_readonly("inserted", &MovePlan::inserted)
+      .def_readonly("checks", &MovePlan::checks);
+  m.def("move_speed_bound", &move_speed_bound, py::arg("kinematics"), py::arg("assembly"), py::arg("j0"),
+        py::arg("j1"), "largest displacement of any assembly point per unit lambda [mm]");
+  m.def("check_move", &check_move, py::arg("checker"), py::arg("kinematics"), py::arg("j0"), py::arg("j1"),
+        py::arg("min_step") = 1e-4, py::call_guard<py::gil_scoped_release>());
+  m.def("check_moves", [](const InterferenceChecker& c, const Kinematics& k, Eigen::Ref<const MatrixXdR> j,
+                          double min_step) {
+    std::vector<MoveCheck> r;
+    {
+      py::gil_scoped_release rel;
+      r = check_moves(c, k, j, min_step);
+    }
+    std::vector<bool> hit;
+    for (const auto& x : r) hit.push_back(x.collides);
+    return bools(hit);
+  }, py::arg("checker"), py::arg("kinematics"), py::arg("joints"), py::arg("min_step") = 1e-4,
+        "(n - 1,) bool: certified check of the joint-linear moves between joints (n, 5)");
+  m.def("plan_program", &plan_program, py::arg("checker"), py::arg("kinematics"), py::arg("plan"),
+        py::arg_v("options", PlanOptions(), "PlanOptions()"), py::arg("approach") = 10.0, py::arg("chord") = 0.01,
+        py::arg("max_depth") = 4, py::call_guard<py::gil_scoped_release>());
+  m.def("subdivide_rotary", [](const Kinematics& k, RefPoints3 tips, RefPoints3 axes, double chord) {
+    Points3 t, a;
+    VectorXd src;
+    subdivide_rotary(k, tips, axes, chord, t, a, &src);
+    return py::make_tuple(t, a, src);
+  }, py::arg("kinematics"), py::arg("tips"), py::arg("axes"), py::arg("chord"),
+        "(tips (m, 3), axes (m, 3), source (m,)): CL points inserted where the tip leaves a chord by > chord mm");
 }

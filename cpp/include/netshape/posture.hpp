@@ -5,3 +5,4 @@
 #include "netshape/posture/kinematics.hpp"
 #include "netshape/posture/mb_spline.hpp"
 #include "netshape/posture/planner.hpp"
+#include "netshape/posture/moves.hpp"

@@ -62,8 +62,7 @@ PostureState classify(const InterferenceChecker& checker, const PostureFrame& fr
   const Vec3 tip = frame.cc + r * frame.normal - r * t;
   Vec3 witness;
   if (!checker.collides(tip, t, &witness)) return PostureState::free;
-  const Vec3 q = checker.closest_point(witness);
-  return (q - frame.cc).dot(frame.left) > 0 ? PostureState::ca1 : PostureState::ca2;
+  return (witness - frame.cc).dot(frame.left) > 0 ? PostureState::ca1 : PostureState::ca2;
 }
 
 namespace {
@@ -134,6 +133,32 @@ CSpace compute_cspace(const InterferenceChecker& checker, const PostureFrame& fr
     }
   }
   return cs;
+}
+
+Vec2 repair_posture(const InterferenceChecker& checker, const CSpace& cs, const Vec2& p, long& checks) {
+  const Vec2 pp = to_plane(p);
+  double best = std::numeric_limits<double>::infinity();
+  Vec2 target(0.0, 0.0);
+  for (int j = 0; j < cs.count_phi; ++j) {
+    for (int k = 0; k < cs.count_theta; ++k) {
+      if (cs.state(j, k) != PostureState::free) continue;
+      const Vec2 g(cs.theta(k), cs.phi(j));
+      const double d = (to_plane(g) - pp).squaredNorm();
+      if (d < best) {
+        best = d;
+        target = g;
+      }
+    }
+  }
+  Vec2 bad = pp, good = to_plane(target);
+  while ((bad - good).norm() > cs.options.tolerance) {
+    const Vec2 mid = 0.5 * (bad + good);
+    const Vec2 pm = from_plane(mid);
+    const bool b = pm[0] > cs.options.theta_max || classify(checker, cs.frame, pm[0], pm[1]) != PostureState::free;
+    ++checks;
+    (b ? bad : good) = mid;
+  }
+  return from_plane(good);
 }
 
 Vec2 CSpace::nearest_boundary(const Vec2& p, int obstacle) const {

@@ -118,30 +118,7 @@ PlanResult plan(const InterferenceChecker& checker, const Eigen::Ref<const Point
     fill(res.smoothed, i, fr, radius, p, hit);
     Vec2 q = p;
     if (hit || p[0] > theta_max) {
-      // nearest free grid posture in the polar plane, then bisect towards it from the bad posture
-      const Vec2 pp = to_plane(p);
-      double best = std::numeric_limits<double>::infinity();
-      Vec2 target = res.mc.angles.row(i).transpose();
-      for (int j = 0; j < cs.count_phi; ++j) {
-        for (int k = 0; k < cs.count_theta; ++k) {
-          if (cs.state(j, k) != PostureState::free) continue;
-          const Vec2 g(cs.theta(k), cs.phi(j));
-          const double d = (to_plane(g) - pp).squaredNorm();
-          if (d < best) {
-            best = d;
-            target = g;
-          }
-        }
-      }
-      Vec2 bad = pp, good = to_plane(target);
-      while ((bad - good).norm() > options.cspace.tolerance) {
-        const Vec2 mid = 0.5 * (bad + good);
-        const Vec2 pm = from_plane(mid);
-        const bool b = pm[0] > theta_max || classify(checker, fr, pm[0], pm[1]) != PostureState::free;
-        ++res.checks;
-        (b ? bad : good) = mid;
-      }
-      q = from_plane(good);
+      q = repair_posture(checker, cs, p, res.checks);
       res.repaired[static_cast<std::size_t>(i)] = true;
     }
     const bool final_hit = classify(checker, fr, q[0], q[1]) != PostureState::free;

@@ -3,10 +3,10 @@ import netshape._core.geometry
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['CSpace', 'CSpaceOptions', 'CutterAssembly', 'InterferenceChecker', 'Kinematics', 'MachineKind', 'PlanOptions', 'PlanResult', 'PostureFrame', 'PostureSet', 'classify', 'compute_cspace', 'forward_kinematics', 'inverse_kinematics', 'max_posture_change', 'mb_smooth', 'mb_spline_derivative', 'mb_spline_joins', 'mb_spline_point', 'plan']
+__all__: list[str] = ['CSpace', 'CSpaceOptions', 'CutterAssembly', 'InterferenceChecker', 'Kinematics', 'MachineKind', 'MoveCheck', 'MovePlan', 'PlanOptions', 'PlanResult', 'PostureFrame', 'PostureSet', 'check_move', 'check_moves', 'classify', 'compute_cspace', 'forward_kinematics', 'inverse_kinematics', 'max_posture_change', 'mb_smooth', 'mb_spline_derivative', 'mb_spline_joins', 'mb_spline_point', 'move_speed_bound', 'plan', 'plan_program', 'subdivide_rotary']
 class CutterAssembly:
     """
-    Ball-end cutter assembly: ball + shank + holder (capsules on the axis); lengths from the tip [mm]
+    Ball-end cutter assembly: ball + shank cylinder + holder (flat-faced cylinder or a (z, r) profile of frustums), solids of revolution; lengths from the tip [mm]
     """
     @typing.overload
     def __init__(self) -> None:
@@ -14,6 +14,14 @@ class CutterAssembly:
     @typing.overload
     def __init__(self, ball_radius: typing.SupportsFloat | typing.SupportsIndex, shank_radius: typing.SupportsFloat | typing.SupportsIndex, shank_length: typing.SupportsFloat | typing.SupportsIndex, holder_radius: typing.SupportsFloat | typing.SupportsIndex, holder_length: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+    def distance(self, z: typing.SupportsFloat | typing.SupportsIndex, rho: typing.SupportsFloat | typing.SupportsIndex) -> float:
+        """
+        exact distance [mm] from the meridian point (z, rho) to the solid (0 inside)
+        """
+    def reach(self) -> float:
+        """
+        largest distance of a point of the solid from the tip [mm]
+        """
     def validate(self) -> None:
         ...
     @property
@@ -33,6 +41,14 @@ class CutterAssembly:
     def holder_length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def holder_profile(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 2]"]:
+        """
+        (k, 2) (z [mm] from the tip, r [mm]) of the holder; empty = the flat-faced cylinder
+        """
+    @holder_profile.setter
+    def holder_profile(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 2]"]) -> None:
+        ...
+    @property
     def holder_radius(self) -> float:
         """
         [mm]
@@ -40,6 +56,11 @@ class CutterAssembly:
     @holder_radius.setter
     def holder_radius(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+    @property
+    def sections(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        (k, 4): z0, z1, r0, r1 [mm] of the shank and holder frustums, bottom to top (the ball is separate)
+        """
     @property
     def shank_length(self) -> float:
         """
@@ -59,6 +80,10 @@ class CutterAssembly:
 class InterferenceChecker:
     def __init__(self, obstacles: netshape._core.geometry.TriangleMesh, assembly: CutterAssembly, clearance: typing.SupportsFloat | typing.SupportsIndex, tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.001) -> None:
         ...
+    def clear_by(self, tip: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], axis: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], margin: typing.SupportsFloat | typing.SupportsIndex) -> int:
+        """
+        +1 gap certainly >= clearance + margin, -1 certainly < clearance, 0 undecided
+        """
     def collides(self, tips: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], axes: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"]) -> numpy.typing.NDArray[numpy.bool]:
         """
         (n,) bool: closer than the clearance, tips/axes (n, 3)
@@ -334,6 +359,59 @@ class Kinematics:
     @tilt_min.setter
     def tilt_min(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+class MoveCheck:
+    @property
+    def at(self) -> float:
+        """
+        lambda of the colliding pose found
+        """
+    @property
+    def checks(self) -> int:
+        ...
+    @property
+    def collides(self) -> bool:
+        ...
+class MovePlan:
+    @property
+    def axes(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (m, 3) unit
+        """
+    @property
+    def checks(self) -> int:
+        ...
+    @property
+    def colliding_before(self) -> int:
+        ...
+    @property
+    def inserted(self) -> int:
+        ...
+    @property
+    def joints(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        (m, 5) X, Y, Z [mm], tilt, C [rad]
+        """
+    @property
+    def move_collides(self) -> numpy.typing.NDArray[numpy.bool]:
+        """
+        (m - 1,) bool: certified check of every move
+        """
+    @property
+    def source(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        (m,) CC index + fraction to the next (-1 approach, n retract)
+        """
+    @property
+    def tips(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (m, 3) [mm]
+        """
+def check_move(checker: InterferenceChecker, kinematics: Kinematics, j0: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], j1: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], min_step: typing.SupportsFloat | typing.SupportsIndex = 0.0001) -> MoveCheck:
+    ...
+def check_moves(checker: InterferenceChecker, kinematics: Kinematics, joints: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]", "flags.c_contiguous"], min_step: typing.SupportsFloat | typing.SupportsIndex = 0.0001) -> numpy.typing.NDArray[numpy.bool]:
+    """
+    (n - 1,) bool: certified check of the joint-linear moves between joints (n, 5)
+    """
 def classify(checker: InterferenceChecker, frame: PostureFrame, theta: typing.SupportsFloat | typing.SupportsIndex, phi: typing.SupportsFloat | typing.SupportsIndex) -> int:
     """
     0 free, 1 CA1, 2 CA2
@@ -360,5 +438,15 @@ def mb_spline_joins(control: typing.Annotated[numpy.typing.NDArray[numpy.float64
     ...
 def mb_spline_point(control: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], span: typing.SupportsInt | typing.SupportsIndex, u: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
     ...
+def move_speed_bound(kinematics: Kinematics, assembly: CutterAssembly, j0: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], j1: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]) -> float:
+    """
+    largest displacement of any assembly point per unit lambda [mm]
+    """
 def plan(checker: InterferenceChecker, cc: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], normals: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], options: PlanOptions = ...) -> PlanResult:
     ...
+def plan_program(checker: InterferenceChecker, kinematics: Kinematics, plan: PlanResult, options: PlanOptions = ..., approach: typing.SupportsFloat | typing.SupportsIndex = 10.0, chord: typing.SupportsFloat | typing.SupportsIndex = 0.01, max_depth: typing.SupportsInt | typing.SupportsIndex = 4) -> MovePlan:
+    ...
+def subdivide_rotary(kinematics: Kinematics, tips: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], axes: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], chord: typing.SupportsFloat | typing.SupportsIndex) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]]:
+    """
+    (tips (m, 3), axes (m, 3), source (m,)): CL points inserted where the tip leaves a chord by > chord mm
+    """

@@ -55,6 +55,10 @@ def register(sub) -> None:
                    help="largest tilt searched [deg] in (0, 90) (default 60)")
     q.add_argument("--feed", type=a.positive("--feed", "mm/min"), default=1000.0, metavar="MM_PER_MIN",
                    help="feed of program.ngc [mm/min] (default 1000)")
+    q.add_argument("--approach-mm", type=a.non_negative("--approach-mm", "mm"), default=10.0, metavar="MM",
+                   help="approach and retract along the tool axis [mm] (default 10; 0: none)")
+    q.add_argument("--chord-mm", type=a.positive("--chord-mm", "mm"), default=0.01, metavar="MM",
+                   help="subdivide rotary moves where the tip would leave the chord by more [mm] (default 0.01)")
     q.add_argument("--plot", action="store_true", help="write cspace.png and angles.png")
     q.add_argument("--plot-point", type=a.integer("--plot-point", ge=0), metavar="I", help="CC point of cspace.png (default: first collision)")
     q.set_defaults(func=run)
@@ -102,7 +106,8 @@ def run(args) -> int:
     opts = npost.PlanOptions()
     opts.passes = args.passes
     opts.cspace.theta_max = math.radians(args.tilt_max)
-    run_ = npost.plan_postures(cc, normals, verts, faces, assembly, clearance=args.clearance, options=opts)
+    run_ = npost.plan_postures(cc, normals, verts, faces, assembly, clearance=args.clearance, options=opts,
+                               kinematics=kin, approach_mm=args.approach_mm, chord_mm=args.chord_mm)
     from netshape._atomic import make_output_folder
 
     out = make_output_folder(args.out, "--out")
@@ -112,5 +117,6 @@ def run(args) -> int:
     print(f"{s['points']} CC points: collisions raw {s['collisions']['raw']}, mc {s['collisions']['mc']}, "
           f"final {s['collisions']['final']}; repaired {s['repaired']}; max posture change "
           f"{s['max_posture_change_deg_per_mm']['mc']:.3g} (mc) -> {s['max_posture_change_deg_per_mm']['final']:.3g} "
-          f"(final) deg/mm; written to {out}")
+          f"(final) deg/mm; moves colliding {s['moves']['colliding_before_repair']} -> {s['moves']['colliding']} "
+          f"({s['moves']['inserted']} CL points inserted); written to {out}")
     return 0

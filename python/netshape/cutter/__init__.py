@@ -24,6 +24,7 @@ Optional keys of the cutter assembly, read by netshape.posture (lengths measured
     shank_length_mm = 35.0     # tip to the end of the shank (where the holder starts)
     holder_diameter_mm = 20.0
     holder_length_mm = 80.0    # tip to the end of the holder
+    holder_profile_mm = [[35.0, 5.0], [45.0, 10.0], [80.0, 10.0]]   # or (z, r) pairs: a taper, a neck
 """
 
 from __future__ import annotations
@@ -42,7 +43,7 @@ check_flutes = _cutter.check_flutes  # the one 1..64 check (C++), with the calle
 
 _KEYS = ("kind", "diameter_mm", "corner_radius_mm", "flutes", "helix_deg", "flute_length_mm", "stick_out_mm",
          "youngs_modulus_MPa", "shank_diameter_mm", "shank_length_mm", "holder_diameter_mm", "holder_length_mm",
-         "holder_compliance_um_per_N", "runout_rho_mm", "runout_lambda_deg")
+         "holder_profile_mm", "holder_compliance_um_per_N", "runout_rho_mm", "runout_lambda_deg")
 _REQUIRED = ("kind", "diameter_mm", "flutes", "helix_deg", "flute_length_mm", "stick_out_mm")
 
 

@@ -40,6 +40,13 @@ mb_spline_derivative = _p.mb_spline_derivative
 mb_spline_joins = _p.mb_spline_joins
 mb_smooth = _p.mb_smooth
 inverse_kinematics = _p.inverse_kinematics
+MoveCheck = _p.MoveCheck
+MovePlan = _p.MovePlan
+move_speed_bound = _p.move_speed_bound
+check_move = _p.check_move
+check_moves = _p.check_moves
+plan_program = _p.plan_program
+subdivide_rotary = _p.subdivide_rotary
 forward_kinematics = _p.forward_kinematics
 
 __all__ = [
@@ -52,12 +59,16 @@ __all__ = [
     "InterferenceChecker",
     "Kinematics",
     "MachineKind",
+    "MoveCheck",
+    "MovePlan",
     "PlanOptions",
     "PlanResult",
     "PostureFrame",
     "PostureRun",
     "PostureSet",
     "assembly_from_dict",
+    "check_move",
+    "check_moves",
     "classify",
     "compute_cspace",
     "default_assembly",
@@ -75,7 +86,10 @@ __all__ = [
     "mb_spline_derivative",
     "mb_spline_joins",
     "mb_spline_point",
+    "move_speed_bound",
     "plan",
     "plan_postures",
+    "plan_program",
+    "subdivide_rotary",
     "surface_cc_path",
 ]

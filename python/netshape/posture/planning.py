@@ -19,27 +19,39 @@ from .._core import posture as _p
 #: unit axis from the tip towards the spindle.
 CSV_COLUMNS = ("s_mm", "tip_x_mm", "tip_y_mm", "tip_z_mm", "axis_i", "axis_j", "axis_k")
 
-#: Cutter TOML keys of the assembly beyond the cutter's own (lengths measured from the tip).
+#: Cutter TOML keys of the assembly beyond the cutter's own (lengths measured from the tip); with
+#: ``holder_profile_mm`` (a list of [z, r] pairs) the holder keys are not needed.
 ASSEMBLY_KEYS = ("shank_diameter_mm", "shank_length_mm", "holder_diameter_mm", "holder_length_mm")
 
 
 def assembly_from_dict(d: dict, *, source: str = "tool") -> _p.CutterAssembly:
     """A validated :class:`CutterAssembly` from cutter TOML keys (``kind = "ball"``, ``diameter_mm``, …) plus
-    ``shank_diameter_mm``, ``shank_length_mm``, ``holder_diameter_mm``, ``holder_length_mm`` (from the tip)."""
+    ``shank_diameter_mm``, ``shank_length_mm``, ``holder_diameter_mm``, ``holder_length_mm`` (from the tip): a
+    flat-faced cylinder holder; or ``holder_profile_mm = [[z, r], …]`` (from the tip, z non-decreasing, starting
+    at ``shank_length_mm``): frustums between consecutive pairs (a shrink-fit taper, a neck)."""
     from ..cutter import cutter_from_dict
 
     cutter = cutter_from_dict(d, source=source)
     if d.get("kind") != "ball":
         raise ValueError(f"{source}: kind = {d.get('kind')!r}: posture planning needs a ball end mill (\"ball\")")
-    for key in ASSEMBLY_KEYS:
+    profile = d.get("holder_profile_mm")
+    for key in ASSEMBLY_KEYS[:2] if profile is not None else ASSEMBLY_KEYS:
         if key not in d:
-            raise ValueError(f"{source}: {key}: missing (posture planning needs {', '.join(ASSEMBLY_KEYS)})")
+            raise ValueError(f"{source}: {key}: missing (posture planning needs {', '.join(ASSEMBLY_KEYS)}"
+                             " or holder_profile_mm)")
     a = _p.CutterAssembly()
     a.ball_radius = cutter.radius
     a.shank_radius = 0.5 * number(source, "shank_diameter_mm", d["shank_diameter_mm"])
     a.shank_length = number(source, "shank_length_mm", d["shank_length_mm"])
-    a.holder_radius = 0.5 * number(source, "holder_diameter_mm", d["holder_diameter_mm"])
-    a.holder_length = number(source, "holder_length_mm", d["holder_length_mm"])
+    if profile is not None:
+        if not isinstance(profile, list) or not all(isinstance(p, list) and len(p) == 2 for p in profile):
+            raise ValueError(f"{source}: holder_profile_mm = {profile!r}: must be a list of [z, r] pairs [mm]")
+        a.holder_profile = np.array([[number(source, "holder_profile_mm", v) for v in p] for p in profile])
+        a.holder_radius = float(a.holder_profile[:, 1].max())
+        a.holder_length = float(a.holder_profile[-1, 0])
+    else:
+        a.holder_radius = 0.5 * number(source, "holder_diameter_mm", d["holder_diameter_mm"])
+        a.holder_length = number(source, "holder_length_mm", d["holder_length_mm"])
     try:
         a.validate()
     except ValueError as exc:
@@ -94,12 +106,14 @@ def load_kinematics(path: str | os.PathLike) -> _p.Kinematics:
     return kinematics_from_dict(load_toml(path), source=os.fspath(path))
 
 
-def machine_gcode(kinematics: _p.Kinematics, tips, axes, *, feed_mm_per_min: float = 1000.0,
+def machine_gcode(kinematics: _p.Kinematics, program: _p.MovePlan, *, feed_mm_per_min: float = 1000.0,
                   title: str = "netshape posture plan") -> str:
-    """RS274 program of the 5-axis CL points: G1 X Y Z with A C (table_ac) or B C (head_bc) words [deg]."""
+    """RS274 program of a :func:`plan_program` result: G0 to its first point (the approach point up the tool
+    axis), then G1 X Y Z with A C (table_ac) or B C (head_bc) words [deg] through the CL points (rotary moves
+    already subdivided to the chord tolerance) to the retract point."""
     if not (math.isfinite(feed_mm_per_min) and feed_mm_per_min > 0):
         raise ValueError(f"feed_mm_per_min = {feed_mm_per_min!r}: must be positive")
-    joints = _p.inverse_kinematics(kinematics, np.ascontiguousarray(tips, float), np.ascontiguousarray(axes, float))
+    joints = np.asarray(program.joints)
     tilt = "A" if kinematics.kind == _p.MachineKind.table_ac else "B"
     lines = [f"({title}: {kinematics.kind.name}, {len(joints)} points)", "G21 G90 G94"]
     for i, (x, y, z, t, c) in enumerate(joints):
@@ -144,6 +158,8 @@ class PostureRun:
     clearance: float
     obstacle_vertices: np.ndarray
     obstacle_faces: np.ndarray
+    kinematics: _p.Kinematics
+    program: _p.MovePlan
     extra: dict = field(default_factory=dict)
 
     def table(self, stage: str) -> np.ndarray:
@@ -166,6 +182,7 @@ class PostureRun:
                 "shank_length_mm": a.shank_length,
                 "holder_radius_mm": a.holder_radius,
                 "holder_length_mm": a.holder_length,
+                **({"holder_profile_mm": np.asarray(a.holder_profile).tolist()} if len(a.holder_profile) else {}),
             },
             "clearance_mm": self.clearance,
             "points": int(len(r.s)),
@@ -173,6 +190,13 @@ class PostureRun:
                            "final": r.final.collision_count()},
             "repaired": r.repaired_count(),
             "max_posture_change_deg_per_mm": {k: self.max_change_deg_per_mm(k) for k in ("raw", "mc", "final")},
+            "moves": {
+                "machine": self.kinematics.kind.name,
+                "colliding_before_repair": self.program.colliding_before,
+                "inserted": self.program.inserted,
+                "program_points": int(len(self.program.tips)),
+                "colliding": int(np.sum(self.program.move_collides)),
+            },
         }
 
     def write(self, out_dir: str | os.PathLike, *, plot: bool = False, plot_point: int | None = None,
@@ -210,8 +234,7 @@ class PostureRun:
         written.append(path)
         if kinematics is not None:
             path = out / "program.ngc"
-            text = machine_gcode(kinematics, self.result.final.tips, self.result.final.axes,
-                                 feed_mm_per_min=feed_mm_per_min)
+            text = machine_gcode(kinematics, self.program, feed_mm_per_min=feed_mm_per_min)
             with atomic_write(path) as fh:
                 fh.write(text)
             written.append(path)
@@ -236,8 +259,13 @@ class PostureRun:
 
 
 def plan_postures(cc, normals, obstacle_vertices, obstacle_faces, assembly: _p.CutterAssembly, *,
-                  clearance: float = 0.5, options: _p.PlanOptions | None = None) -> PostureRun:
-    """Run the planner: C-space per CC point, MC-space, MB-spline smoothing, repair (see docs/posture.md)."""
+                  clearance: float = 0.5, options: _p.PlanOptions | None = None,
+                  kinematics: _p.Kinematics | None = None, approach_mm: float = 10.0,
+                  chord_mm: float = 0.01) -> PostureRun:
+    """Run the planner: C-space per CC point, MC-space, MB-spline smoothing, repair; then the CL program on the
+    machine (default: table_ac at the origin): the moves between the final postures checked and repaired,
+    rotary moves subdivided to `chord_mm`, approach and retract `approach_mm` along the tool axis, every move
+    checked (see docs/posture.md)."""
     from ..geometry import TriangleMesh
 
     if not (isinstance(clearance, (int, float)) and math.isfinite(clearance) and clearance >= 0):
@@ -248,7 +276,12 @@ def plan_postures(cc, normals, obstacle_vertices, obstacle_faces, assembly: _p.C
         raise ValueError("obstacles: the mesh is empty (no triangles)")
     mesh = TriangleMesh(v, f)
     checker = _p.InterferenceChecker(mesh, assembly, float(clearance))
-    result = _p.plan(checker, np.ascontiguousarray(cc, float), np.ascontiguousarray(normals, float),
-                     options or _p.PlanOptions())
+    for key, value, ok in (("approach_mm", approach_mm, lambda x: x >= 0), ("chord_mm", chord_mm, lambda x: x > 0)):
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or not ok(value):
+            raise ValueError(f"{key} = {value!r}: must be a finite number {'≥ 0' if key == 'approach_mm' else '> 0'} [mm]")
+    options = options or _p.PlanOptions()
+    result = _p.plan(checker, np.ascontiguousarray(cc, float), np.ascontiguousarray(normals, float), options)
+    kinematics = kinematics or _p.Kinematics()
+    program = _p.plan_program(checker, kinematics, result, options, float(approach_mm), float(chord_mm))
     return PostureRun(result=result, assembly=assembly, clearance=float(clearance), obstacle_vertices=v,
-                      obstacle_faces=f)
+                      obstacle_faces=f, kinematics=kinematics, program=program)

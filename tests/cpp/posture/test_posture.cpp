@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <utility>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -23,17 +24,18 @@ TriangleMesh wall(double d) {
   return TriangleMesh(v, f);
 }
 
-// Largest x reached by the capsule assembly with ball centre at the origin plane x = 0 and axis T
-// (closed form: segment end points ± radius).
-double max_x(const CutterAssembly& a, const Vec3& t) {
-  const double tx = t.x();
-  const double ball = a.ball_radius;  // centre x = 0
-  const double shank = std::max(0.0, (a.shank_length - a.ball_radius) * tx) + a.shank_radius;
-  const double holder =
-      std::max((a.shank_length + a.holder_radius - a.ball_radius) * tx, (a.holder_length - a.ball_radius) * tx) +
-      a.holder_radius;
-  return std::max({ball, shank, holder});
+// Largest x reached by the assembly (ball, flat-ended shank and holder cylinders) with the ball centre at
+// x = 0 and unit axis T: the rim of an end disc at height z reaches (z − R)·T_x + r·√(1 − T_x²).
+double max_x(const CutterAssembly& a, double tx) {
+  const double R = a.ball_radius, s = std::sqrt(std::max(0.0, 1.0 - tx * tx));
+  double best = R;
+  for (const auto& [z, r] : {std::pair{R, a.shank_radius}, std::pair{a.shank_length, a.shank_radius},
+                             std::pair{a.shank_length, a.holder_radius}, std::pair{a.holder_length, a.holder_radius}}) {
+    best = std::max(best, (z - R) * tx + r * s);
+  }
+  return best;
 }
+double max_x(const CutterAssembly& a, const Vec3& t) { return max_x(a, t.x()); }
 }  // namespace
 
 TEST_CASE("MB-spline: joins (P_i + 2P_{i+1} + P_{i+2})/4, C1 at the joins, derivative vs finite differences") {
@@ -68,7 +70,7 @@ TEST_CASE("MB-spline: joins (P_i + 2P_{i+1} + P_{i+2})/4, C1 at the joins, deriv
 }
 
 TEST_CASE("Interference gap of the assembly against a flat wall equals the closed form") {
-  const CutterAssembly a{2.0, 1.5, 25.0, 6.0, 60.0};
+  const CutterAssembly a{2.0, 1.5, 25.0, 6.0, 60.0, {}};
   const double d = 30.0;
   const InterferenceChecker chk(wall(d), a, 0.5, 1e-4);
   std::mt19937 rng(3);
@@ -86,16 +88,16 @@ TEST_CASE("Interference gap of the assembly against a flat wall equals the close
 
 TEST_CASE("C-obstacle of a single flat wall against its closed form; MC-space midpoint") {
   // CC at the origin, normal +z, feed +y: left b = n × f = −x, so a wall at x = d is on the right (CA2).
-  const CutterAssembly a{2.0, 2.0, 25.0, 6.0, 60.0};
+  const CutterAssembly a{2.0, 2.0, 25.0, 6.0, 60.0, {}};
   const double d = 20.0, c = 0.5;
   const InterferenceChecker chk(wall(d), a, c, 1e-5);
   const PostureFrame fr = PostureFrame::make(Vec3::Zero(), Vec3::UnitZ(), Vec3::UnitY());
   CSpaceOptions opt;
   const CSpace cs = compute_cspace(chk, fr, opt);
-  // closed form: collides iff T_x > t* with t* the smaller of the shank and holder limits (T_x > 0 here)
-  const double t_star = std::min((d - c - a.shank_radius) / (a.shank_length - a.ball_radius),
-                                 (d - c - a.holder_radius) / (a.holder_length - a.ball_radius));
-  // (T_x > 0 on the wall's side; the holder's far end is the furthest point there)
+  // closed form: collides iff T_x > t*, the root of max_x(T_x) = d − c (increasing in T_x ∈ [0, 0.9] here)
+  double lo = 0.0, hi = 0.9;
+  for (int it = 0; it < 100; ++it) (max_x(a, 0.5 * (lo + hi)) > d - c ? hi : lo) = 0.5 * (lo + hi);
+  const double t_star = 0.5 * (lo + hi);
   int ca2 = 0;
   for (const BoundaryPoint& b : cs.boundary) {
     CHECK(b.obstacle == 2);
@@ -125,7 +127,7 @@ TEST_CASE("An assembly boxed in on both sides cannot reach: the error names the 
       500;
   Faces f(4, 3);
   f << 0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7;
-  const InterferenceChecker chk(TriangleMesh(v, f), CutterAssembly{2.0, 2.0, 25.0, 6.0, 60.0}, 1.5);
+  const InterferenceChecker chk(TriangleMesh(v, f), CutterAssembly{2.0, 2.0, 25.0, 6.0, 60.0, {}}, 1.5);
   Points3 cc(3, 3), n(3, 3);
   cc << 0, 0, 0, 0, 1, 0, 0, 2, 0;
   n << 0, 0, 1, 0, 0, 1, 0, 0, 1;

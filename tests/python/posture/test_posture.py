@@ -1,5 +1,5 @@
-"""netshape.posture: the default impeller's passage end to end, checked against an independent NumPy
-point-to-triangle distance (not the planner's AABB-tree branch and bound); impeller construction; bad input.
+"""netshape.posture: the default impeller's passage end to end, checked against the exact NumPy solid–triangle
+test of conftest.py (not the planner's GJK bounds); impeller construction; bad input.
 
 Method: Park, Jung, Hwang, Jung, "A theoretical consideration for continuity control of cutter posture",
 Proc. KSPE Conference (C-space, MC-space §2 steps 1–4, MB-spline eq. 1)."""
@@ -16,57 +16,6 @@ from netshape import posture as npost
 POINTS = 40  # the CLI default; MC-space jitter between neighbours shows at this spacing (≈1.1 mm)
 
 
-def point_triangle_distance(p: np.ndarray, tri: np.ndarray) -> np.ndarray:
-    """Distances (n,) from points p (n, 3) to the nearest of triangles tri (m, 3, 3): Ericson's closest point
-    on a triangle (Real-Time Collision Detection §5.1.5), evaluated for every pair."""
-    a, b, c = tri[None, :, 0], tri[None, :, 1], tri[None, :, 2]
-    P = p[:, None, :]
-    ab, ac, ap = b - a, c - a, P - a
-    d1, d2 = np.sum(ab * ap, -1), np.sum(ac * ap, -1)
-    bp = P - b
-    d3, d4 = np.sum(ab * bp, -1), np.sum(ac * bp, -1)
-    cp = P - c
-    d5, d6 = np.sum(ab * cp, -1), np.sum(ac * cp, -1)
-    va = d3 * d6 - d5 * d4
-    vb = d5 * d2 - d1 * d6
-    vc = d1 * d4 - d3 * d2
-    with np.errstate(divide="ignore", invalid="ignore"):
-        den = va + vb + vc
-        v = vb / den
-        w = vc / den
-        q = a + ab * v[..., None] + ac * w[..., None]  # inside the face
-        t_ab = d1 / (d1 - d3)
-        q = np.where(((vc <= 0) & (d1 >= 0) & (d3 <= 0))[..., None], a + ab * t_ab[..., None], q)
-        t_ac = d2 / (d2 - d6)
-        q = np.where(((vb <= 0) & (d2 >= 0) & (d6 <= 0))[..., None], a + ac * t_ac[..., None], q)
-        t_bc = (d4 - d3) / ((d4 - d3) + (d5 - d6))
-        q = np.where(((va <= 0) & ((d4 - d3) >= 0) & ((d5 - d6) >= 0))[..., None], b + (c - b) * t_bc[..., None], q)
-        q = np.where(((d1 <= 0) & (d2 <= 0))[..., None], a, q)
-        q = np.where(((d3 >= 0) & (d4 <= d3))[..., None], b, q)
-        q = np.where(((d6 >= 0) & (d5 <= d6))[..., None], c, q)
-    return np.min(np.linalg.norm(P - q, axis=-1), axis=1)
-
-
-def numpy_gap(assembly, tri: np.ndarray, tip: np.ndarray, axis: np.ndarray, h: float = 0.25) -> float:
-    """Lower bound of the assembly–mesh gap [mm]: distances of axis samples every h mm minus the part radius,
-    less h/2 (the distance is 1-Lipschitz along the axis). Only triangles near the axis are kept."""
-    a = assembly
-    parts = ((a.ball_radius, a.ball_radius, a.ball_radius), (a.ball_radius, a.shank_length, a.shank_radius),
-             (a.shank_length + a.holder_radius, a.holder_length, a.holder_radius))
-    best = math.inf
-    for z0, z1, r in parts:
-        zs = np.arange(z0, z1 + h, h) if z1 > z0 else np.array([z0])
-        pts = tip[None, :] + zs[:, None] * axis[None, :]
-        # triangles whose box comes within r + 1 mm of this part's axis samples' box (others are further away)
-        lo, hi = pts.min(0) - r - 1.0, pts.max(0) + r + 1.0
-        near = tri[np.all((tri.max(1) >= lo) & (tri.min(1) <= hi), axis=1)]
-        if len(near) == 0:
-            continue
-        d = point_triangle_distance(pts, near)
-        best = min(best, float(d.min()) - r - (h / 2 if z1 > z0 else 0.0))
-    return best
-
-
 @pytest.fixture(scope="module")
 def default_run():
     imp = npost.make_impeller()
@@ -76,39 +25,29 @@ def default_run():
     return imp, run, v[f]
 
 
-def test_default_impeller_normal_posture_collides_on_the_inner_part(default_run):
+def test_default_impeller_normal_posture_collides_on_the_inner_part(default_run, exact):
     """The normal posture (+z) hits the leaning blade where the passage is narrow relative to the lean; the
-    independent NumPy distance agrees point by point (where it is not within 0.1 mm of the clearance)."""
+    independent exact test agrees point by point (where the gap is not within 0.25 mm of the clearance)."""
     imp, run, tri = default_run
     raw = np.asarray(run.result.raw.collides)
     assert 0 < raw.sum() < POINTS, raw
     # the inner part of the passage (where the lean is large against the gap) and nothing beyond it
     np.testing.assert_array_equal(raw, np.arange(POINTS) < raw.sum())
-    a = run.assembly
-    for i in range(POINTS):
-        g = numpy_gap(a, tri, run.result.raw.tips[i], run.result.raw.axes[i])
-        if abs(g - 0.5) > 0.25:
-            assert raw[i] == (g < 0.5), (i, g)
+    tips, axes = run.result.raw.tips, run.result.raw.axes
+    surely_hit = exact.hits(run.assembly, tri, tips, axes, inflate=0.25)
+    surely_free = ~exact.hits(run.assembly, tri, tips, axes, inflate=0.75, grow_ends=True)
+    assert np.all(raw[surely_hit]) and not np.any(raw[surely_free])
+    assert surely_hit.sum() >= 8 and surely_free.sum() >= POINTS // 2  # the rest lie within 0.25 mm of it
 
 
-def test_after_mc_mb_repair_nothing_collides_independent_check(default_run):
-    """Final postures keep the clearance (checked with the brute-force NumPy distance), and the largest posture
-    change between neighbours falls to half or less of the MC-space postures' (the smoothing's purpose)."""
+def test_after_mc_mb_repair_nothing_collides_independent_check(default_run, exact):
+    """Final postures keep the clearance (the exact solid with its radii grown by the clearance meets no
+    triangle), and the largest posture change between neighbours falls to half or less of the MC-space
+    postures' (the smoothing's purpose)."""
     imp, run, tri = default_run
     s = run.summary()
     assert s["collisions"]["final"] == 0
-    for i in range(POINTS):
-        g = numpy_gap(run.assembly, tri, run.result.final.tips[i], run.result.final.axes[i])
-        assert g >= 0.5 - 0.15, (i, g)
-    # the NumPy bound agrees with the planner's own gap (AABB-tree branch and bound) to the sampling step
-    from netshape.geometry import TriangleMesh
-
-    chk = npost.InterferenceChecker(TriangleMesh(run.obstacle_vertices, run.obstacle_faces), run.assembly, 0.5)
-    for i in range(0, POINTS, 7):
-        g = numpy_gap(run.assembly, tri, run.result.final.tips[i], run.result.final.axes[i])
-        gc = chk.gap(run.result.final.tips[i], run.result.final.axes[i])
-        if math.isfinite(g):
-            assert gc - 0.125 - 2e-3 <= g <= gc + 2e-3, (i, g, gc)
+    assert not exact.hits(run.assembly, tri, run.result.final.tips, run.result.final.axes, inflate=0.5).any()
     ch = s["max_posture_change_deg_per_mm"]
     assert ch["final"] <= 0.5 * ch["mc"], ch
     # tips: the ball touches the floor at the CC point: centre at CC + R n, tip = centre − R·axis
@@ -152,13 +91,16 @@ def test_cli_writes_the_listed_files_and_keys(tmp_path):
     import json
 
     s = json.loads((out / "summary.json").read_text())
-    assert set(s) == {"cutter", "clearance_mm", "points", "collisions", "repaired", "max_posture_change_deg_per_mm"}
+    assert set(s) == {"cutter", "clearance_mm", "points", "collisions", "repaired", "max_posture_change_deg_per_mm",
+                      "moves"}
+    assert s["moves"]["machine"] == "head_bc" and s["moves"]["colliding"] == 0
     assert set(s["cutter"]) == {"ball_radius_mm", "shank_radius_mm", "shank_length_mm", "holder_radius_mm",
                                 "holder_length_mm"}
     assert set(s["collisions"]) == {"raw", "mc", "final"} == set(s["max_posture_change_deg_per_mm"])
     prog = (out / "program.ngc").read_text().splitlines()
     assert any(" B" in ln and " C" in ln for ln in prog if ln.startswith("G1"))
-    # the G-code's B/C words and XYZ give back the final CL points by forward kinematics
+    # the G-code's B/C words and XYZ give back the final CL points by forward kinematics (in order, between the
+    # approach and the retract 10 mm up the tool axis and the points inserted on the chords)
     k = npost.load_kinematics(kin)
     joints = []
     for ln in prog:
@@ -166,8 +108,12 @@ def test_cli_writes_the_listed_files_and_keys(tmp_path):
             w = {t[0]: float(t[1:]) for t in ln.split()[1:] if t[0] in "XYZBC"}
             joints.append([w["X"], w["Y"], w["Z"], math.radians(w["B"]), math.radians(w["C"])])
     tips, axes = npost.forward_kinematics(k, np.array(joints))
-    np.testing.assert_allclose(tips, rows[:, 1:4], atol=2e-3)
-    np.testing.assert_allclose(axes, rows[:, 4:], atol=1e-5)
+    np.testing.assert_allclose(tips[0], rows[0, 1:4] + 10.0 * rows[0, 4:], atol=2e-3)
+    np.testing.assert_allclose(tips[-1], rows[-1, 1:4] + 10.0 * rows[-1, 4:], atol=2e-3)
+    near = [int(np.argmin(np.linalg.norm(tips - r[1:4], axis=1))) for r in rows]
+    assert near == sorted(near)
+    np.testing.assert_allclose(tips[near], rows[:, 1:4], atol=2e-3)
+    np.testing.assert_allclose(axes[near], rows[:, 4:], atol=1e-5)
 
 
 def test_cli_plot_and_table_ac(tmp_path):
@@ -226,7 +172,7 @@ def _plate(x, y0, y1):
     return v, np.array([[0, 1, 2], [0, 2, 3]])
 
 
-def test_smoothing_into_an_obstacle_is_repaired():
+def test_smoothing_into_an_obstacle_is_repaired(exact):
     """A channel open on the left for y < 40 and tight beyond (walls at x = ±6.6: the Ø12 holder keeps 0.1 mm
     more than the clearance upright): the MC postures tilt to the left before the step and stand upright after
     it, and strong smoothing (30 passes) drags the first postures after the step into the walls; they are
@@ -246,9 +192,7 @@ def test_smoothing_into_an_obstacle_is_repaired():
     assert s["collisions"]["mc"] == 0 and smoothed_hits.sum() > 0, s
     np.testing.assert_array_equal(np.asarray(run.result.repaired), smoothed_hits)
     assert s["repaired"] == smoothed_hits.sum() and s["collisions"]["final"] == 0
-    tri = v[f]
-    for i in range(len(y)):
-        assert numpy_gap(a, tri, run.result.final.tips[i], run.result.final.axes[i], h=0.1) >= 0.5 - 0.06, i
+    assert not exact.hits(a, v[f], run.result.final.tips, run.result.final.axes, inflate=0.5).any()
 
 
 def test_cli_surface_and_obstacles_and_impeller_toml(tmp_path, capsys):

@@ -96,4 +96,9 @@ PostureState classify(const InterferenceChecker& checker, const PostureFrame& fr
 CSpace compute_cspace(const InterferenceChecker& checker, const PostureFrame& frame, const CSpaceOptions& options,
                       const char* field = "CC point");
 
+/// Repair of a posture p (θ, φ) [rad] that collides or tilts beyond θ_max: the segment of the polar plane from
+/// p to the nearest free grid posture of `cs` is bisected to the tolerance and its free end returned (the
+/// smallest move found along that segment). `checks` is increased by the interference checks spent.
+Vec2 repair_posture(const InterferenceChecker& checker, const CSpace& cs, const Vec2& p, long& checks);
+
 }  // namespace netshape::posture
