@@ -69,7 +69,7 @@ def saving(name, text, stock, cutter, coeffs, table) -> dict:
     axis = ns.motion.AxisLimits.uniform(200.0, 2000.0, math.inf)
     t0 = time.perf_counter()
     r = optimize_program(text, name, stock, cutter, coeffs, lim, axis_limits=axis,
-                         plan_options=ns.motion.make_options("blend"), split=split,
+                         plan_options=ns.motion.make_options("blend", ts1=2e-3, ts2=1e-3), split=split,
                          sampling={"step": 0.5, "samples_per_revolution": 36, "disk_height": 0.25})
     c = r.summary["cycle_time_s"]
     print(f"{name}: limits {r.summary['limits']}")

@@ -37,8 +37,9 @@ void bind_feed_schedule(py::module_& m) {
   m.def(
       "feed_samples_core",
       [](netshape::stock::ZMap& stock, const netshape::cutter::Cutter& cutter,
-         const netshape::toolpath::Toolpath& program, const nf::LinearEdgeCoefficients* linear_edge,
-         const nf::BallEndCoefficients* ball_end, const nc::FeedLimits& limits, const nf::ProgramForceOptions& sampling) {
+         const netshape::toolpath::Toolpath& program, const nc::FeedLimits& limits,
+         const nf::ProgramForceOptions& sampling, const nf::LinearEdgeCoefficients* linear_edge,
+         const nf::BallEndCoefficients* ball_end) {
         nf::ProgramCoefficients k;
         if (linear_edge) k.linear_edge = *linear_edge;
         if (ball_end) k.ball_end = *ball_end;
@@ -52,17 +53,19 @@ void bind_feed_schedule(py::module_& m) {
         return py::dict("positions"_a = r.positions, "block"_a = r.block, "fraction"_a = r.fraction,
                         "feed_direction"_a = r.feed_direction, "spindle_rpm"_a = r.spindle_rpm,
                         "engaged"_a = r.engaged, "walls"_a = r.walls, "depth"_a = r.depth,
-                        "chip_factor"_a = r.chip_factor, "allowed"_a = r.allowed, "lowest"_a = r.lowest,
+                        "chip_factor"_a = r.chip_factor, "engaged_share"_a = r.engaged_share,
+                        "allowed"_a = r.allowed, "lowest"_a = r.lowest,
                         "force"_a = r.force, "removed_volume"_a = r.removed_volume);
       },
-      "stock"_a, "cutter"_a, "program"_a, "linear_edge"_a = nullptr, "ball_end"_a = nullptr, "limits"_a,
-      "sampling"_a, "Per force sample, the largest feed [mm/s] each limit allows (netshape.compensation.feeds).");
+      "stock"_a, "cutter"_a, "program"_a, "limits"_a, "sampling"_a, "linear_edge"_a = nullptr,
+      "ball_end"_a = nullptr, "Per force sample, the largest feed [mm/s] each limit allows (netshape.compensation.feeds).");
   m.def(
       "feed_pieces_core",
       [](const netshape::toolpath::Toolpath& program, const Eigen::Ref<const Eigen::VectorXi>& block,
          const Eigen::Ref<const netshape::VectorXd>& fraction, const Eigen::Ref<const Eigen::VectorXi>& engaged,
          const Eigen::Ref<const Eigen::VectorXi>& walls, const Eigen::Ref<const netshape::VectorXd>& depth,
          const Eigen::Ref<const netshape::VectorXd>& chip_factor,
+         const Eigen::Ref<const netshape::VectorXd>& engaged_share,
          const Eigen::Ref<const netshape::MatrixXdR>& allowed, const nc::FeedLimits& limits, double tolerance,
          double min_length) {
         nc::FeedSamples s;
@@ -72,11 +75,13 @@ void bind_feed_schedule(py::module_& m) {
         s.walls = walls;
         s.depth = depth;
         s.chip_factor = chip_factor;
+        s.engaged_share = engaged_share;
         const nc::FeedPieces r = nc::feed_pieces(program, s, allowed, limits, tolerance, min_length);
         return py::dict("block"_a = r.block, "start"_a = r.start, "end"_a = r.end, "feed"_a = r.feed,
                         "binding"_a = r.binding, "sample"_a = r.sample);
       },
-      "program"_a, "block"_a, "fraction"_a, "engaged"_a, "walls"_a, "depth"_a, "chip_factor"_a, "allowed"_a,
+      "program"_a, "block"_a, "fraction"_a, "engaged"_a, "walls"_a, "depth"_a, "chip_factor"_a, "engaged_share"_a,
+      "allowed"_a,
       "limits"_a, "tolerance"_a = 0.1, "min_length"_a = 1.0,
       "Pieces of the feed blocks and their feeds [mm/s] (netshape.compensation.feeds).");
 }

@@ -33,13 +33,14 @@ void sample_feed(const FeedSamples& s, const Eigen::Ref<const MatrixXdR>& allowe
     }
 }
 
-/// Same engagement as the piece's first sample `r`: both in air, or both engaged with depth and chip
-/// factor within the relative tolerance.
+/// Same engagement as the piece's first sample `r`: both in air, or both engaged with depth, chip
+/// factor and engaged share within the relative tolerance and the same walls.
 bool same_engagement(const FeedSamples& s, Eigen::Index r, Eigen::Index i, double tol) {
   if (s.engaged[r] != s.engaged[i]) return false;
   if (!s.engaged[i]) return true;
   auto close = [tol](double a, double b) { return std::abs(a - b) <= tol * std::max(std::abs(a), 1e-12); };
-  return close(s.depth[r], s.depth[i]) && close(s.chip_factor[r], s.chip_factor[i]) && s.walls[r] == s.walls[i];
+  return close(s.depth[r], s.depth[i]) && close(s.chip_factor[r], s.chip_factor[i]) &&
+         close(s.engaged_share[r], s.engaged_share[i]) && s.walls[r] == s.walls[i];
 }
 
 /// Pieces of one block from its samples [first, last).
@@ -68,12 +69,14 @@ void block_pieces(const FeedSamples& s, const Eigen::Ref<const MatrixXdR>& allow
     }
     ps.back().end = i + 1 == last ? 1.0 : s.fraction[i];
   }
-  // short pieces join a neighbour, which takes the smaller feed (never faster than any of its samples)
+  // a short piece joins the one before when both cut or both are in air; the joined piece takes the
+  // smaller feed (never faster than any of its samples)
   std::vector<Piece> merged;
+  auto in_air = [](const Piece& q) { return q.binding == static_cast<int>(FeedLimit::air); };
   for (const Piece& p : ps) {
     const bool short_piece = (p.end - p.start) * length < min_length;
     const bool short_last = !merged.empty() && (merged.back().end - merged.back().start) * length < min_length;
-    if (!merged.empty() && (short_piece || short_last)) {
+    if (!merged.empty() && (short_piece || short_last) && in_air(merged.back()) == in_air(p)) {
       Piece& q = merged.back();
       q.end = p.end;
       if (p.feed < q.feed) {

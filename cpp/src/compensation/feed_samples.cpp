@@ -7,12 +7,11 @@
 
 #include "netshape/compensation/feed_schedule.hpp"
 #include "netshape/core/error.hpp"
-#include "netshape/core/progress.hpp"
 #include "netshape/deflection/cantilever.hpp"
 #include "netshape/force/ball_end_model.hpp"
 #include "netshape/force/flat_end_model.hpp"
+#include "netshape/force/program_walk.hpp"
 #include "netshape/stock/engagement.hpp"
-#include "netshape/stock/sweep.hpp"
 
 namespace netshape::compensation {
 
@@ -122,29 +121,210 @@ void tangential_sums(const force::FlatEndWorkspace& ws, int flutes, double k_bet
 
 namespace {
 
-/// The two force parts at c = 1 of one sample (see the file comment of feed_schedule.hpp).
-struct SampleForces {
-  Points3 P, Q;
-  double p = 1.0, q = 0.0;
-  double torque_cutting = 0.0, torque_edge = 0.0;  // mean T = c·cutting + edge [N·mm]
+/// What the engagement mask says about one sample.
+struct MaskFacts {
+  bool engaged = false;
+  int walls = 0;          // bit 1 left (within 10° of φ = 0), bit 2 right (within 10° of φ = π)
+  double depth = 0.0;     // [mm]
+  double chip = 0.0;      // max sin φ over the engaged bins
+  double share = 0.0;     // engaged entries / all entries
 };
 
-/// What the engagement mask says: engaged, wall bits, depth, chip factor.
-void read_mask(const stock::MaskR& mask, const VectorXd& phi, const VectorXd& z, double dz,
-               std::vector<double>& row) {
+MaskFacts read_mask(const stock::MaskR& mask, const VectorXd& phi, const VectorXd& z, double dz) {
   const Eigen::Index bins = mask.cols(), half = bins / 2;
-  bool any = false, left = false, right = false;
-  double depth = 0.0, chip = 0.0;
+  const Eigen::Index near = std::max<Eigen::Index>(1, bins / 36);  // bins within 10° of a wall angle
+  MaskFacts f;
+  Eigen::Index count = 0;
   for (Eigen::Index i = 0; i < mask.rows(); ++i)
     for (Eigen::Index b = 0; b < bins; ++b) {
       if (!mask(i, b)) continue;
-      any = true;
-      depth = std::max(depth, z[i] + 0.5 * dz);
-      chip = std::max(chip, std::sin(phi[b]));
-      left = left || b == 0 || b == bins - 1;
-      right = right || b == half - 1 || b == half;
+      ++count;
+      f.depth = std::max(f.depth, z[i] + 0.5 * dz);
+      f.chip = std::max(f.chip, std::sin(phi[b]));
+      if (b < near || b >= bins - near) f.walls |= 1;
+      if (b >= half - near && b < half + near) f.walls |= 2;
     }
-  row = {any ? 1.0 : 0.0, (left ? 1.0 : 0.0) + (right ? 2.0 : 0.0), depth, chip};
+  f.engaged = count > 0;
+  f.share = mask.size() ? static_cast<double>(count) / static_cast<double>(mask.size()) : 0.0;
+  return f;
+}
+
+/// The force models of a program run with their two parts (file comment of feed_schedule.hpp), the
+/// workspaces and the buffers: the sample loop allocates only when the cut depth changes.
+class SampleForces {
+ public:
+  SampleForces(const cutter::Cutter& cutter, const force::ProgramCoefficients& k,
+               const force::ProgramForceOptions& opt, Eigen::Index angles)
+      : ball_(cutter.kind == cutter::CutterKind::ball), radius_(cutter.radius), k_(k) {
+    fm_.radius = bm_.radius = cutter.radius;
+    fm_.flutes = bm_.flutes = cutter.flutes;
+    fm_.helix = bm_.helix = cutter.helix;
+    fm_.engagement = bm_.engagement = force::AngularEngagement{0.0, two_pi};
+    fm_.disk_height = bm_.disk_height = opt.disk_height;
+    fm_.feed_per_tooth = bm_.feed_per_tooth = 1.0;
+    bm_.element_angle = opt.element_angle;
+    cut_ = edge_ = k.linear_edge;
+    cut_.kte = cut_.kre = cut_.kae = 0.0;
+    edge_.ktc = edge_.krc = edge_.kac = 0.0;
+    tan_ = rad_ = k.ball_end;
+    tan_.b = {0.0, 0.0, 0.0, 0.0};
+    rad_.a = {0.0, 0.0, 0.0, 0.0};
+    if (ball_) {
+      p = k.ball_end.m_t;
+      q = k.ball_end.m_r;
+    }
+    P.resize(angles, 3);
+    Q.resize(angles, 3);
+  }
+
+  /// Element heights (and their spacing dz [mm]) for a cut `depth` [mm] with tangent `t`.
+  const VectorXd& heights(double depth, const Vec3& t, double& dz) {
+    if (ball_) {
+      bm_.axial_depth = std::max(depth, 1e-3);
+      const double th = std::hypot(t.x(), t.y());
+      bm_.inclination = std::clamp(std::atan2(t.z(), th), -deg2rad(79.0), deg2rad(79.0));
+      bws_.reset(bm_);
+      dz = bm_.disk_height;
+      return bws_.heights();
+    }
+    fm_.axial_depth = std::max(depth, 1e-3);
+    if (fws_.disks() != fm_.disks() || std::abs(fws_.disk_height() * fws_.disks() - fm_.axial_depth) > 1e-12)
+      fws_.reset(fm_);
+    dz = fws_.disk_height();
+    return fws_.heights();
+  }
+
+  /// P, Q at the angles for the engagement `mask`; flat: the mean torque parts too.
+  void evaluate(const stock::MaskR& mask, const VectorXd& angles) {
+    map_.mask = mask.cast<std::uint8_t>();
+    if (ball_) {
+      bm_.coefficients = tan_;
+      force::ball_end_forces(bm_, bws_, angles, P, &map_);
+      bm_.coefficients = rad_;
+      force::ball_end_forces(bm_, bws_, angles, Q, &map_);
+      return;
+    }
+    fm_.linear_edge = cut_;
+    force::flat_end_forces(fm_, fws_, angles, P, &map_);
+    fm_.linear_edge = edge_;
+    force::flat_end_forces(fm_, fws_, angles, Q, &map_);
+    double tc = 0.0, te = 0.0;
+    detail::tangential_sums(fws_, fm_.flutes, fm_.k_beta(), mask, angles, tc, te);
+    torque_cutting = radius_ * k_.linear_edge.ktc * tc;
+    torque_edge = radius_ * k_.linear_edge.kte * te;
+  }
+
+  /// max_θ |F(θ; c)| [N] at feed per tooth c [mm].
+  double peak(double c) const {
+    const double cp = std::pow(c, p), cq = std::pow(c, q);
+    double m = 0.0;
+    for (Eigen::Index i = 0; i < P.rows(); ++i) m = std::max(m, (cp * P.row(i) + cq * Q.row(i)).norm());
+    return m;
+  }
+
+  bool ball() const { return ball_; }
+  Points3 P, Q;
+  double p = 1.0, q = 0.0;
+  double torque_cutting = 0.0, torque_edge = 0.0;  // mean T = c·cutting + edge [N·mm]
+
+ private:
+  bool ball_;
+  double radius_;
+  force::ProgramCoefficients k_;
+  force::FlatEndModel fm_;
+  force::BallEndModel bm_;
+  force::LinearEdgeCoefficients cut_, edge_;
+  force::BallEndCoefficients tan_, rad_;
+  force::FlatEndWorkspace fws_;
+  force::BallEndWorkspace bws_;
+  force::EngagementMap map_;
+};
+
+using Allowed = std::array<double, feed_limit_columns>;
+
+/// The largest feed [mm/s] each limit allows at an engaged sample (FeedLimit 0..5; inf: no bound).
+Allowed allowed_feeds(const SampleForces& sf, const MaskFacts& m, const FeedLimits& lim,
+                      const deflection::Cantilever& beam, double holder_compliance, int flutes, double rpm) {
+  Allowed al;
+  al.fill(inf);
+  const double to_feed = flutes * rpm / 60.0;  // [mm/s] per [mm/tooth]
+  const double a = std::min(m.depth, beam.length);
+  const double kappa = beam.influence(beam.length, beam.length - 0.5 * a) + holder_compliance;
+  const Vec3 all(1, 1, 1), xy(1, 1, 0), y(0, 1, 0);
+  auto largest = [&](const Vec3& w, double limit) {
+    return detail::largest_feed_per_tooth(sf.P, sf.Q, sf.p, sf.q, w, limit) * to_feed;
+  };
+  al[0] = largest(all, lim.max_force);
+  if (m.chip > 0.0) al[1] = lim.max_chip / m.chip * to_feed;
+  al[2] = largest(xy, lim.max_deflection / kappa);
+  if (m.walls) al[3] = largest(y, lim.max_wall_error / kappa);
+  if (!sf.ball()) {
+    auto torque_feed = [&](double t_nmm) {
+      if (!std::isfinite(t_nmm)) return inf;
+      if (sf.torque_edge >= t_nmm) return 0.0;
+      return sf.torque_cutting > 0 ? (t_nmm - sf.torque_edge) / sf.torque_cutting * to_feed : inf;
+    };
+    al[4] = torque_feed(lim.max_power / (two_pi * rpm / 60.0) * 1e3);
+    al[5] = torque_feed(lim.max_torque * 1e3);
+  }
+  return al;
+}
+
+/// Samples gathered along the program, turned into FeedSamples at the end.
+struct Collected {
+  std::vector<Vec3> pos, dir;
+  std::vector<int> block;
+  std::vector<double> fraction, rpm, lowest, force;
+  std::vector<MaskFacts> facts;
+  std::vector<Allowed> allowed;
+
+  void into(FeedSamples& out) const {
+    const Eigen::Index m = static_cast<Eigen::Index>(pos.size());
+    out.positions.resize(m, 3);
+    out.feed_direction.resize(m, 3);
+    out.block.resize(m);
+    out.fraction.resize(m);
+    out.spindle_rpm.resize(m);
+    out.engaged.resize(m);
+    out.walls.resize(m);
+    out.depth.resize(m);
+    out.chip_factor.resize(m);
+    out.engaged_share.resize(m);
+    out.allowed.resize(m, feed_limit_columns);
+    out.lowest.resize(m);
+    out.force.resize(m);
+    for (Eigen::Index i = 0; i < m; ++i) {
+      out.positions.row(i) = pos[i].transpose();
+      out.feed_direction.row(i) = dir[i].transpose();
+      out.block[i] = block[i];
+      out.fraction[i] = fraction[i];
+      out.spindle_rpm[i] = rpm[i];
+      out.engaged[i] = facts[i].engaged ? 1 : 0;
+      out.walls[i] = facts[i].walls;
+      out.depth[i] = facts[i].depth;
+      out.chip_factor[i] = facts[i].chip;
+      out.engaged_share[i] = facts[i].share;
+      for (int j = 0; j < feed_limit_columns; ++j) out.allowed(i, j) = allowed[i][j];
+      out.lowest[i] = lowest[i];
+      out.force[i] = force[i];
+    }
+  }
+};
+
+void check_inputs(const cutter::Cutter& cutter, const force::ProgramCoefficients& k, const FeedLimits& limits,
+                  const FeedScheduleOptions& options) {
+  options.validate();
+  limits.validate();
+  cutter.validate();
+  NETSHAPE_CHECK(cutter.kind != cutter::CutterKind::bull, "cutter.kind", "bull",
+                 "feed scheduling models flat and ball end mills");
+  if (cutter.kind == cutter::CutterKind::ball) {
+    k.ball_end.validate();
+    NETSHAPE_CHECK(!std::isfinite(limits.max_power) && !std::isfinite(limits.max_torque), "max_power_W",
+                   limits.max_power, "power and torque limits are modelled for flat end mills");
+  } else {
+    k.linear_edge.validate();
+  }
 }
 
 }  // namespace
@@ -152,194 +332,48 @@ void read_mask(const stock::MaskR& mask, const VectorXd& phi, const VectorXd& z,
 FeedSamples feed_samples(stock::ZMap& stock, const cutter::Cutter& cutter, const toolpath::Toolpath& program,
                          const force::ProgramCoefficients& k, const FeedLimits& limits,
                          const FeedScheduleOptions& options) {
-  options.validate();
-  limits.validate();
-  cutter.validate();
+  check_inputs(cutter, k, limits, options);
   const force::ProgramForceOptions& opt = options.sampling;
-  NETSHAPE_CHECK(cutter.kind != cutter::CutterKind::bull, "cutter.kind", "bull",
-                 "feed scheduling models flat and ball end mills");
-  const bool ball = cutter.kind == cutter::CutterKind::ball;
-  if (ball) {
-    k.ball_end.validate();
-    NETSHAPE_CHECK(!std::isfinite(limits.max_power) && !std::isfinite(limits.max_torque), "max_power_W",
-                   limits.max_power, "power and torque limits are modelled for flat end mills");
-  } else {
-    k.linear_edge.validate();
-  }
-  const double top = stock.max_height();
   VectorXd phi(opt.bins);
   for (int b = 0; b < opt.bins; ++b) phi[b] = (b + 0.5) * two_pi / opt.bins;
   const VectorXd angles = force::rotation_angles(opt.samples_per_revolution);
   const deflection::Cantilever beam = deflection::Cantilever::tool(
       cutter.diameter(), cutter.stick_out, cutter.youngs_modulus, deflection::InertiaModel::square);
-
-  force::FlatEndModel fm;
-  fm.radius = cutter.radius;
-  fm.flutes = cutter.flutes;
-  fm.helix = cutter.helix;
-  fm.engagement = force::AngularEngagement{0.0, two_pi};
-  fm.disk_height = opt.disk_height;
-  fm.feed_per_tooth = 1.0;
-  force::LinearEdgeCoefficients cut_part = k.linear_edge, edge_part = k.linear_edge;
-  cut_part.kte = cut_part.kre = cut_part.kae = 0.0;
-  edge_part.ktc = edge_part.krc = edge_part.kac = 0.0;
-  force::BallEndModel bm;
-  bm.radius = cutter.radius;
-  bm.flutes = cutter.flutes;
-  bm.helix = cutter.helix;
-  bm.engagement = force::AngularEngagement{0.0, two_pi};
-  bm.element_angle = opt.element_angle;
-  bm.disk_height = opt.disk_height;
-  bm.feed_per_tooth = 1.0;
-  force::BallEndCoefficients tan_part = k.ball_end, rad_part = k.ball_end;
-  tan_part.b = {0.0, 0.0, 0.0, 0.0};
-  rad_part.a = {0.0, 0.0, 0.0, 0.0};
-  force::FlatEndWorkspace fws;
-  force::BallEndWorkspace bws;
+  SampleForces sf(cutter, k, opt, angles.size());
   stock::MaskR mask;
-  force::EngagementMap map;
-  SampleForces sf;
-  sf.P.resize(angles.size(), 3);
-  sf.Q.resize(angles.size(), 3);
-  if (ball) {
-    sf.p = k.ball_end.m_t;
-    sf.q = k.ball_end.m_r;
-  }
-
-  std::vector<Vec3> pos, dir;
-  std::vector<int> blk;
-  std::vector<double> frac, rpms, force_prog, lowest;
-  std::vector<std::array<double, 4>> info;
-  std::vector<std::array<double, feed_limit_columns>> allowed;
-  std::vector<double> row;
+  Collected c;
   FeedSamples out;
-  core::Progress progress("feeds", program.blocks.size());
-  for (std::size_t bi = 0; bi < program.blocks.size(); ++bi) {
-    progress.report(bi);
-    const toolpath::Block& b = program.blocks[bi];
-    const double len = b.length();
-    if (len <= 0.0) continue;
-    if (b.kind == toolpath::MotionKind::rapid) {
-      out.removed_volume += stock::sweep_line(stock, cutter, b.start, b.end).removed_volume;
-      continue;
+  auto visit = [&](const force::WalkSample& w) {
+    const toolpath::Block& b = program.blocks[w.block];
+    const double rpm = opt.spindle_rpm > 0 ? opt.spindle_rpm : std::abs(b.spindle_rpm);
+    double dz = 0.0;
+    const VectorXd& z = sf.heights(w.depth, w.tangent, dz);
+    stock::engaged_elements_into(stock, cutter, w.tip, w.feed_direction, phi, z, mask);
+    const MaskFacts facts = read_mask(mask, phi, z, dz);
+    Allowed al;
+    al.fill(inf);
+    double low = 0.0, fprog = 0.0;
+    if (facts.engaged) {
+      NETSHAPE_CHECK(rpm > 0.0, ("block at line " + std::to_string(b.line) + ": spindle_rpm").c_str(), rpm,
+                     "a cutting move needs a spindle speed (S word) [rev/min]");
+      sf.evaluate(mask, angles);
+      al = allowed_feeds(sf, facts, limits, beam, cutter.holder_compliance, cutter.flutes, rpm);
+      const double to_feed = cutter.flutes * rpm / 60.0;
+      if (facts.chip > 0.0) low = limits.min_chip / facts.chip * to_feed;
+      fprog = sf.peak(b.feed / to_feed);
     }
-    const int n = std::max(1, static_cast<int>(std::ceil(len / opt.step - 1e-9)));
-    Vec3 prev = b.start;
-    for (int s = 1; s <= n; ++s) {
-      const double sd = static_cast<double>(s) / n;
-      const Vec3 p = b.point_at(sd);
-      const Vec3 t = b.tangent_at(sd);
-      const Vec3 th(t.x(), t.y(), 0.0);
-      const double depth = std::min(cutter.flute_length, top - p.z());
-      if (th.norm() > 1e-9 && depth > 0.0) {
-        const double rpm = opt.spindle_rpm > 0 ? opt.spindle_rpm : std::abs(b.spindle_rpm);
-        const Vec3 fd = th.normalized();
-        const VectorXd* z = nullptr;
-        double dz = 0.0;
-        if (ball) {
-          bm.axial_depth = std::max(depth, 1e-3);
-          bm.inclination = std::clamp(std::atan2(t.z(), th.norm()), -deg2rad(79.0), deg2rad(79.0));
-          bws.reset(bm);
-          z = &bws.heights();
-          dz = opt.disk_height;
-        } else {
-          fm.axial_depth = std::max(depth, 1e-3);
-          if (fws.disks() != fm.disks() || std::abs(fws.disk_height() * fws.disks() - fm.axial_depth) > 1e-12)
-            fws.reset(fm);
-          z = &fws.heights();
-          dz = fws.disk_height();
-        }
-        stock::engaged_elements_into(stock, cutter, p, fd, phi, *z, mask);
-        read_mask(mask, phi, *z, dz, row);
-        std::array<double, feed_limit_columns> al;
-        al.fill(inf);
-        double low = 0.0, fprog = 0.0;
-        if (row[0] > 0.0) {
-          NETSHAPE_CHECK(rpm > 0.0, ("block at line " + std::to_string(b.line) + ": spindle_rpm").c_str(), rpm,
-                         "a cutting move needs a spindle speed (S word) [rev/min]");
-          map.mask = mask.cast<std::uint8_t>();
-          if (ball) {
-            bm.coefficients = tan_part;
-            force::ball_end_forces(bm, bws, angles, sf.P, &map);
-            bm.coefficients = rad_part;
-            force::ball_end_forces(bm, bws, angles, sf.Q, &map);
-          } else {
-            fm.linear_edge = cut_part;
-            force::flat_end_forces(fm, fws, angles, sf.P, &map);
-            fm.linear_edge = edge_part;
-            force::flat_end_forces(fm, fws, angles, sf.Q, &map);
-            double tc = 0.0, te = 0.0;
-            detail::tangential_sums(fws, cutter.flutes, fm.k_beta(), mask, angles, tc, te);
-            sf.torque_cutting = cutter.radius * k.linear_edge.ktc * tc;
-            sf.torque_edge = cutter.radius * k.linear_edge.kte * te;
-          }
-          const double to_feed = cutter.flutes * rpm / 60.0;  // mm/s per mm/tooth
-          const double a = std::min(row[2], beam.length);
-          const double kappa = beam.influence(beam.length, beam.length - 0.5 * a) + cutter.holder_compliance;
-          const Vec3 all(1, 1, 1), xy(1, 1, 0), y(0, 1, 0);
-          auto feed_of = [&](double c) { return c * to_feed; };
-          al[0] = feed_of(detail::largest_feed_per_tooth(sf.P, sf.Q, sf.p, sf.q, all, limits.max_force));
-          if (row[3] > 0.0) al[1] = feed_of(limits.max_chip / row[3]);
-          al[2] = feed_of(detail::largest_feed_per_tooth(sf.P, sf.Q, sf.p, sf.q, xy, limits.max_deflection / kappa));
-          if (row[1] > 0.0)
-            al[3] = feed_of(detail::largest_feed_per_tooth(sf.P, sf.Q, sf.p, sf.q, y, limits.max_wall_error / kappa));
-          if (!ball) {
-            const double omega = two_pi * rpm / 60.0;
-            auto torque_feed = [&](double t_nmm) {
-              if (!std::isfinite(t_nmm)) return inf;
-              if (sf.torque_edge >= t_nmm) return 0.0;
-              return sf.torque_cutting > 0 ? feed_of((t_nmm - sf.torque_edge) / sf.torque_cutting) : inf;
-            };
-            al[4] = torque_feed(limits.max_power / omega * 1e3);
-            al[5] = torque_feed(limits.max_torque * 1e3);
-          }
-          if (row[3] > 0.0) low = feed_of(limits.min_chip / row[3]);
-          const double c0 = rpm > 0 ? b.feed / to_feed : 0.0;
-          const double cp = std::pow(c0, sf.p), cq = std::pow(c0, sf.q);
-          for (Eigen::Index i = 0; i < angles.size(); ++i)
-            fprog = std::max(fprog, (cp * sf.P.row(i) + cq * sf.Q.row(i)).norm());
-        }
-        pos.push_back(p);
-        dir.push_back(fd);
-        blk.push_back(static_cast<int>(bi));
-        frac.push_back(sd);
-        rpms.push_back(rpm);
-        info.push_back({row[0], row[1], row[2], row[3]});
-        allowed.push_back(al);
-        lowest.push_back(low);
-        force_prog.push_back(fprog);
-      }
-      out.removed_volume += stock::sweep_line(stock, cutter, prev, p).removed_volume;
-      prev = p;
-    }
-  }
-  const Eigen::Index m = static_cast<Eigen::Index>(pos.size());
-  out.positions.resize(m, 3);
-  out.feed_direction.resize(m, 3);
-  out.block.resize(m);
-  out.fraction.resize(m);
-  out.spindle_rpm.resize(m);
-  out.engaged.resize(m);
-  out.walls.resize(m);
-  out.depth.resize(m);
-  out.chip_factor.resize(m);
-  out.allowed.resize(m, feed_limit_columns);
-  out.lowest.resize(m);
-  out.force.resize(m);
-  for (Eigen::Index i = 0; i < m; ++i) {
-    out.positions.row(i) = pos[i].transpose();
-    out.feed_direction.row(i) = dir[i].transpose();
-    out.block[i] = blk[i];
-    out.fraction[i] = frac[i];
-    out.spindle_rpm[i] = rpms[i];
-    out.engaged[i] = static_cast<int>(info[i][0]);
-    out.walls[i] = static_cast<int>(info[i][1]);
-    out.depth[i] = info[i][2];
-    out.chip_factor[i] = info[i][3];
-    for (int j = 0; j < feed_limit_columns; ++j) out.allowed(i, j) = allowed[i][j];
-    out.lowest[i] = lowest[i];
-    out.force[i] = force_prog[i];
-  }
+    c.pos.push_back(w.tip);
+    c.dir.push_back(w.feed_direction);
+    c.block.push_back(static_cast<int>(w.block));
+    c.fraction.push_back(w.fraction);
+    c.rpm.push_back(rpm);
+    c.facts.push_back(facts);
+    c.allowed.push_back(al);
+    c.lowest.push_back(low);
+    c.force.push_back(fprog);
+  };
+  out.removed_volume = force::walk_program(stock, cutter, program, opt.step, visit, "feeds");
+  c.into(out);
   return out;
 }
 

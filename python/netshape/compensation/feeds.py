@@ -132,13 +132,19 @@ def _final_walls(program, samples: dict, radius: float) -> np.ndarray:
     return final
 
 
+#: The smallest feed an F word is written with [mm/s] (0.1 mm/min).
+MIN_WRITTEN_FEED = 0.1 / 60.0
+
+
 def _refuse_infeasible(program, samples: dict, allowed: np.ndarray, limits: FeedLimits) -> None:
-    """A limit no feed at or above min_feed (and the min_chip feed) keeps, named with its block's line."""
+    """A limit no feed at or above min_feed (and the feed min_chip asks for, and the smallest written
+    feed) keeps, named with its block's line."""
     engaged = np.asarray(samples["engaged"]) > 0
     if not engaged.any():
         return
     best = np.minimum(allowed.min(axis=1), limits.max_feed)
-    low = np.maximum(np.asarray(samples["lowest"]), limits.min_feed)
+    lowest = np.asarray(samples["lowest"])
+    low = np.maximum(np.maximum(lowest, limits.min_feed), MIN_WRITTEN_FEED)
     bad = engaged & (best < low * (1 - 1e-9))
     if not bad.any():
         return
@@ -147,10 +153,14 @@ def _refuse_infeasible(program, samples: dict, allowed: np.ndarray, limits: Feed
     j = int(np.argmin(allowed[i]))
     key = PHYSICAL[j] if allowed[i, j] <= limits.max_feed else "max_feed_mm_min"
     value = stated(limits).get(key)
-    need = "min_chip_mm" if samples["lowest"][i] > limits.min_feed else "min_feed_mm_min"
+    if lowest[i] >= max(limits.min_feed, MIN_WRITTEN_FEED):
+        need = "min_chip_mm asks for"
+    elif limits.min_feed >= MIN_WRITTEN_FEED:
+        need = "min_feed_mm_min asks for"
+    else:
+        need = "is the smallest feed written"
     raise ValueError(f"{key} = {value:g}: the block on line {line} keeps it only below "
-                     f"{best[i] * 60:.4g} mm/min, "
-                     f"under the {low[i] * 60:.4g} mm/min that {need} asks for")
+                     f"{best[i] * 60:.4g} mm/min, under the {low[i] * 60:.4g} mm/min that {need}")
 
 
 def schedule_feeds(stock, cutter, program, coefficients, limits: FeedLimits, *, split_tolerance: float = 0.1,
@@ -180,7 +190,8 @@ def schedule_feeds(stock, cutter, program, coefficients, limits: FeedLimits, *, 
         allowed[~final, 3] = np.inf
     _refuse_infeasible(program, s, allowed, limits)
     p = _c.feed_pieces_core(program, s["block"], s["fraction"], s["engaged"], s["walls"], s["depth"],
-                            s["chip_factor"], allowed, limits, split_tolerance, min_piece_mm)
+                            s["chip_factor"], s["engaged_share"], allowed, limits, split_tolerance,
+                            min_piece_mm)
     p = {k: np.asarray(v) for k, v in p.items()}
     floor = np.where(p["binding"] == int(FeedLimit.programmed), 0.0, limits.min_feed)
     p["feed"] = np.maximum(p["feed"], floor)

@@ -82,9 +82,11 @@ struct FeedSamples {
   Points3 feed_direction;   ///< (m, 3) unit horizontal feed direction
   VectorXd spindle_rpm;     ///< (m) [rev/min]
   Eigen::VectorXi engaged;  ///< (m) 1 where any element is in material
-  Eigen::VectorXi walls;    ///< (m) bit 1: a left wall (φ = 0) is generated, bit 2: a right wall (φ = π)
+  Eigen::VectorXi walls;    ///< (m) bit 1: a left wall is generated (material within 10° of φ = 0),
+                            ///< bit 2: a right wall (within 10° of φ = π)
   VectorXd depth;           ///< (m) height of the engaged material above the tip [mm]
   VectorXd chip_factor;     ///< (m) max sin φ over the engaged bins: largest chip = c·chip_factor [-]
+  VectorXd engaged_share;   ///< (m) share of the element × bin map in material [-]
   MatrixXdR allowed;        ///< (m, 6) largest feed [mm/s] each limit allows (FeedLimit 0..5); inf: no bound
   VectorXd lowest;          ///< (m) smallest feed [mm/s] min_chip allows (0 without it)
   VectorXd force;           ///< (m) max_θ |F| at the block's programmed feed [N]
@@ -112,13 +114,15 @@ struct FeedPieces {
 
 /// Split every feed block where its engagement changes and give each piece the smallest allowed feed
 /// of its samples. A piece runs over consecutive samples of one block while the samples stay engaged
-/// (or in air) and their engaged depth and chip factor stay within `tolerance` (relative) of the
-/// piece's first sample; a piece shorter than `min_length` [mm] joins the piece before it (or after,
-/// at a block's start). The split depends on the engagement only, never on the limits, so raising a
-/// limit never lowers a feed. A sample's feed is min(max_feed, its allowed feeds) when engaged and
-/// the air feed otherwise; a feed block without samples gets one piece: a vertical line (a plunge)
-/// keeps its programmed feed, any other (above the stock) the air feed. `allowed` may differ from samples.allowed (the
-/// caller lifts the wall-error column where the wall does not remain). Rapids get no piece.
+/// (or in air) and their engaged depth, chip factor and engaged share stay within `tolerance`
+/// (relative) of the piece's first sample and generate the same walls. A piece shorter than
+/// `min_length` [mm] joins the piece before it when both cut or both are in air (so the entry into
+/// material never slows the air before it). The split depends on the engagement only, never on the
+/// limits, so raising a limit never lowers a feed. A sample's feed is min(max_feed, its allowed
+/// feeds) when engaged and the air feed otherwise; a feed block without samples gets one piece: a
+/// vertical line (a plunge) keeps its programmed feed, any other (above the stock) the air feed.
+/// `allowed` may differ from samples.allowed (the caller lifts the wall-error column where the wall
+/// does not remain). Rapids get no piece.
 FeedPieces feed_pieces(const toolpath::Toolpath& program, const FeedSamples& samples,
                        const Eigen::Ref<const MatrixXdR>& allowed, const FeedLimits& limits, double tolerance = 0.1,
                        double min_length = 1.0);
