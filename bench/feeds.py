@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import re
 import time
 from pathlib import Path
 from types import SimpleNamespace
@@ -47,7 +48,8 @@ def throughput(blocks: int) -> dict:
     from netshape.compensation.feeds_run import read_program_text, with_start
 
     stock = _stock(([-35, -30, -10], [35, 30, 0]), 0.25)
-    cutter = ns.cutter.cutter_from_dict({"kind": "flat", "diameter_mm": 6.0, "flutes": 3, "helix_deg": 35.0})
+    cutter = ns.cutter.cutter_from_dict({"kind": "flat", "diameter_mm": 6.0, "flutes": 3, "helix_deg": 35.0,
+                                         "flute_length_mm": 16.0, "stick_out_mm": 30.0})
     coeffs = ns.force.linear_edge_coefficient_set("leekunhwee_flat_slot").coefficients
     tp = with_start(read_program_text(surfacing(blocks), "surfacing"), stock)
     lim, split = feed_limits_from_dict({"max_force_N": 150.0, "max_chip_mm": 0.06, "max_feed_mm_min": 4000.0})
@@ -84,11 +86,13 @@ def saving(name, text, stock, cutter, coeffs, table) -> dict:
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--quick", action="store_true", help="1000 blocks, the demo program only")
+    p.add_argument("--chips-only", action="store_true", help="only the 3D_Chips saving")
     a = p.parse_args(argv)
     import netshape as ns
     from netshape.job.spec import PreCut
 
-    throughput(1000 if a.quick else 10000)
+    if not a.chips_only:
+        throughput(1000 if a.quick else 10000)
     demo = HERE.parent / "examples" / "demo"
     import tomllib
 
@@ -96,15 +100,18 @@ def main(argv=None) -> int:
     stock = _stock(([-30, -25, -20], [30, 25, 0]), 0.25, [rough])
     cutter = ns.cutter.load_cutter(demo / "tool.toml")
     coeffs = ns.force.linear_edge_coefficient_set("leekunhwee_flat_slot").coefficients
-    saving("demo part.ngc", (demo / "part.ngc").read_text(), stock, cutter, coeffs,
-           {"max_force_N": 120.0, "max_chip_mm": 0.05, "max_feed_mm_min": 3000.0, "air_feed_mm_min": 5000.0})
+    if not a.chips_only:
+        saving("demo part.ngc", (demo / "part.ngc").read_text(), stock, cutter, coeffs,
+               {"max_force_N": 300.0, "max_chip_mm": 0.05, "max_feed_mm_min": 3000.0, "air_feed_mm_min": 5000.0})
     if not a.quick and CHIPS.is_file():
         stock = _stock(([-50, -50, -50], [50, 50, 0]), 0.5)
         ball = ns.cutter.cutter_from_dict({"kind": "ball", "diameter_mm": 10.0, "flutes": 2,
                                            "helix_deg": 30.0, "flute_length_mm": 30.0, "stick_out_mm": 50.0})
         kim = ns.force.ball_end_coefficient_set("kim_zas_ball12").coefficients
-        saving("3D_Chips.ngc (ball D10)", CHIPS.read_text(), stock, ball, kim,
-               {"max_force_N": 200.0, "max_feed_mm_min": 3000.0, "air_feed_mm_min": 5000.0})
+        # the file sets #<fscale> = 10000 (F up to 2.25e6 mm/min); its header states 450 mm/min: fscale 2
+        text = re.sub(r"#<fscale>\s*=\s*[\d.]+", "#<fscale> = 2.0", CHIPS.read_text())
+        saving("3D_Chips.ngc (ball D10, #<fscale> = 2)", text, stock, ball, kim,
+               {"max_force_N": 200.0, "max_chip_mm": 0.1, "max_feed_mm_min": 3000.0, "air_feed_mm_min": 5000.0})
     print(f"(load average {os.getloadavg()[0]:.1f})")
     return 0
 

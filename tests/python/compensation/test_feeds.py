@@ -216,3 +216,20 @@ def test_a_wall_error_no_feed_keeps_is_refused(setup):
     forces alone exceed is refused, naming the limit and the line, never written as F0."""
     with pytest.raises(ValueError, match=r"max_wall_error_mm = 0.01: the block on line 6 keeps it only below"):
         _schedule(setup, max_wall_error_mm=0.01)
+
+
+def test_ball_end_mill_reaches_the_force_limit():
+    """A ball end mill (Feng–Menq, chip exponents: the feed found by bisection): the written program,
+    re-simulated, reaches the force limit in the steady slot within 2 % and nowhere exceeds it."""
+    kim = ns.force.ball_end_coefficient_set("kim_zas_ball12").coefficients
+    ball = ns.cutter.cutter_from_dict({"kind": "ball", "diameter_mm": 2 * R, "flutes": 2, "helix_deg": 30.0,
+                                       "flute_length_mm": 20.0, "stick_out_mm": 40.0})
+    stock = ns.stock.ZMap(-30, 30, -20, 20, 0.25, 0.0, -10.0)
+    lim, split = feed_limits_from_dict({"max_force_N": 150.0, "max_feed_mm_min": 20000.0})
+    res = optimize_program(PROGRAM, "t.ngc", stock, ball, kim, lim,
+                           axis_limits=ns.motion.AxisLimits.uniform(1000.0, 20000.0, math.inf),
+                           plan_options=ns.motion.make_options("vector", ts1=2e-3, ts2=1e-3), split=split,
+                           sampling={"step": 0.5, "samples_per_revolution": 72, "disk_height": 0.1})
+    ratio = res.summary["check"]["max_force_N"]["ratio"]
+    assert 0.98 <= ratio <= 1.005, ratio
+    assert res.summary["binding"]["max_force_N"] >= 2
