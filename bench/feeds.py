@@ -102,7 +102,8 @@ def main(argv=None) -> int:
     coeffs = ns.force.linear_edge_coefficient_set("leekunhwee_flat_slot").coefficients
     if not a.chips_only:
         saving("demo part.ngc", (demo / "part.ngc").read_text(), stock, cutter, coeffs,
-               {"max_force_N": 300.0, "max_chip_mm": 0.05, "max_feed_mm_min": 3000.0, "air_feed_mm_min": 5000.0})
+               {"max_force_N": 300.0, "max_chip_mm": 0.05, "max_feed_mm_min": 3000.0,
+                "air_feed_mm_min": 5000.0})
     if not a.quick and CHIPS.is_file():
         stock = _stock(([-50, -50, -50], [50, 50, 0]), 0.5)
         ball = ns.cutter.cutter_from_dict({"kind": "ball", "diameter_mm": 10.0, "flutes": 2,
@@ -111,7 +112,8 @@ def main(argv=None) -> int:
         # the file sets #<fscale> = 10000 (F up to 2.25e6 mm/min); its header states 450 mm/min: fscale 2
         text = re.sub(r"#<fscale>\s*=\s*[\d.]+", "#<fscale> = 2.0", CHIPS.read_text())
         saving("3D_Chips.ngc (ball D10, #<fscale> = 2)", text, stock, ball, kim,
-               {"max_force_N": 200.0, "max_chip_mm": 0.1, "max_feed_mm_min": 3000.0, "air_feed_mm_min": 5000.0})
+               {"max_force_N": 200.0, "max_chip_mm": 0.1, "max_feed_mm_min": 3000.0,
+                "air_feed_mm_min": 5000.0})
     print(f"(load average {os.getloadavg()[0]:.1f})")
     return 0
 

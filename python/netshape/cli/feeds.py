@@ -163,7 +163,8 @@ def run(args) -> int:
                 "spindle_rpm": args.rpm or 0.0}
     text = read_text(args.program)
     res = optimize_program(text, args.program, stock, cutter, coeffs, limits, axis_limits=axis,
-                           plan_options=make_options(args.rule, ts1=2e-3, ts2=1e-3), split=split, sampling=sampling)
+                           plan_options=make_options(args.rule, ts1=2e-3, ts2=1e-3), split=split,
+                           sampling=sampling)
     if not res.rows:
         raise CliError(f"{args.program}: no feed moves to schedule")
     res.summary["output"] = args.output

@@ -214,7 +214,7 @@ def test_job_optimize_table(tmp_path):
 def test_a_wall_error_no_feed_keeps_is_refused(setup):
     """With no min_feed the smallest written feed (0.1 mm/min) is the floor: a wall-error limit the edge
     forces alone exceed is refused, naming the limit and the line, never written as F0."""
-    with pytest.raises(ValueError, match=r"max_wall_error_mm = 0.01: the block on line 6 keeps it only below"):
+    with pytest.raises(ValueError, match=r"max_wall_error_mm = 0.01: the block on line 6 keeps it only"):
         _schedule(setup, max_wall_error_mm=0.01)
 
 
