@@ -111,8 +111,16 @@ def main(argv=None) -> int:
         kim = ns.force.ball_end_coefficient_set("kim_zas_ball12").coefficients
         # the file sets #<fscale> = 10000 (F up to 2.25e6 mm/min); its header states 450 mm/min: fscale 2
         text = re.sub(r"#<fscale>\s*=\s*[\d.]+", "#<fscale> = 2.0", CHIPS.read_text())
-        saving("3D_Chips.ngc (ball D10, #<fscale> = 2)", text, stock, ball, kim,
-               {"max_force_N": 200.0, "max_chip_mm": 0.1, "max_feed_mm_min": 3000.0,
+        # the program finishes a part from a block: a semi-finishing pass of itself 1 mm higher first
+        import numpy as np
+
+        from netshape.compensation.feeds_run import read_program_text
+        from netshape.job.stages import shift_toolpath
+
+        tp = read_program_text(text, "3D_Chips")
+        ns.stock.sweep(stock, ball, shift_toolpath(tp, np.tile([0.0, 0.0, 1.0], (len(tp.blocks), 1))))
+        saving("3D_Chips.ngc (ball D10, #<fscale> = 2, 1 mm left)", text, stock, ball, kim,
+               {"max_force_N": 600.0, "max_chip_mm": 0.2, "max_feed_mm_min": 3000.0,
                 "air_feed_mm_min": 5000.0})
     print(f"(load average {os.getloadavg()[0]:.1f})")
     return 0
