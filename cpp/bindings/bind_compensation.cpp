@@ -230,8 +230,11 @@ void bind_program_compensation(py::module_& m) {
 
 }  // namespace
 
+void bind_feed_schedule(py::module_& m);  // bind_feed_schedule.cpp
+
 void bind_compensation(py::module_& m) {
   bind_volumetric_compensation(m);
   bind_program_compensation(m);
   bind_deflection_compensation(m);
+  bind_feed_schedule(m);
 }

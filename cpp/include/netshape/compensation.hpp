@@ -3,3 +3,4 @@
 #include "netshape/compensation/volumetric_compensation.hpp"
 #include "netshape/compensation/deflection_compensation.hpp"
 #include "netshape/compensation/program_compensation.hpp"
+#include "netshape/compensation/feed_schedule.hpp"

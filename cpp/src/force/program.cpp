@@ -4,13 +4,12 @@
 #include <cmath>
 
 #include "netshape/core/error.hpp"
-#include "netshape/core/progress.hpp"
 #include "netshape/force/ball_end_model.hpp"
 #include "netshape/force/engagement.hpp"
 #include "netshape/force/flat_end_model.hpp"
 #include "netshape/force/force_summary.hpp"
+#include "netshape/force/program_walk.hpp"
 #include "netshape/stock/engagement.hpp"
-#include "netshape/stock/sweep.hpp"
 
 namespace netshape::force {
 
@@ -35,7 +34,6 @@ ProgramForces simulate_program(stock::ZMap& stock, const cutter::Cutter& cutter,
                  "force along a program models flat and ball end mills");
   const bool ball = cutter.kind == cutter::CutterKind::ball;
   if (ball) k.ball_end.validate(); else k.linear_edge.validate();
-  const double top = stock.max_height();
   const int bins = opt.bins;
   VectorXd phi(bins);
   for (int b = 0; b < bins; ++b) phi[b] = (b + 0.5) * 2.0 * pi / bins;
@@ -66,64 +64,44 @@ ProgramForces simulate_program(stock::ZMap& stock, const cutter::Cutter& cutter,
   std::vector<int> blk;
   std::vector<double> pr, mr, frac;
   ProgramForces out;
-  core::Progress progress("forces", program.blocks.size());
-  for (std::size_t bi = 0; bi < program.blocks.size(); ++bi) {
-    progress.report(bi);
-    const toolpath::Block& b = program.blocks[bi];
-    const double len = b.length();
-    if (len <= 0.0) continue;
-    if (b.kind == toolpath::MotionKind::rapid) {
-      out.removed_volume += stock::sweep_line(stock, cutter, b.start, b.end).removed_volume;
-      continue;
+  auto visit = [&](const WalkSample& w) {
+    const toolpath::Block& b = program.blocks[w.block];
+    const double rpm = opt.spindle_rpm > 0 ? opt.spindle_rpm : std::abs(b.spindle_rpm);
+    const double c = opt.feed_per_tooth > 0 ? opt.feed_per_tooth
+                                            : (rpm > 0 ? b.feed * 60.0 / (rpm * cutter.flutes) : 0.0);
+    if (c <= 0.0) return;
+    const VectorXd* z = nullptr;
+    if (ball) {
+      bm.axial_depth = std::max(w.depth, 1e-3);
+      bm.feed_per_tooth = c;
+      const double th = std::hypot(w.tangent.x(), w.tangent.y());
+      bm.inclination = std::clamp(std::atan2(w.tangent.z(), th), -deg2rad(79.0), deg2rad(79.0));
+      bws.reset(bm);
+      z = &bws.heights();
+    } else {
+      fm.axial_depth = std::max(w.depth, 1e-3);
+      fm.feed_per_tooth = c;
+      if (fws.disks() != fm.disks() || std::abs(fws.disk_height() * fws.disks() - fm.axial_depth) > 1e-12)
+        fws.reset(fm);
+      z = &fws.heights();
     }
-    const int n = std::max(1, static_cast<int>(std::ceil(len / opt.step - 1e-9)));
-    Vec3 prev = b.start;
-    for (int s = 1; s <= n; ++s) {
-      const double sd = static_cast<double>(s) / n;  // fraction of the block
-      const Vec3 p = b.point_at(sd);
-      const Vec3 t = b.tangent_at(sd);
-      const Vec3 th(t.x(), t.y(), 0.0);
-      const double rpm = opt.spindle_rpm > 0 ? opt.spindle_rpm : std::abs(b.spindle_rpm);
-      const double c = opt.feed_per_tooth > 0 ? opt.feed_per_tooth
-                                              : (rpm > 0 ? b.feed * 60.0 / (rpm * cutter.flutes) : 0.0);
-      const double depth = std::min(cutter.flute_length, top - p.z());
-      if (th.norm() > 1e-9 && depth > 0.0 && c > 0.0) {
-        const Vec3 fd = th.normalized();
-        const VectorXd* z = nullptr;
-        if (ball) {
-          bm.axial_depth = std::max(depth, 1e-3);
-          bm.feed_per_tooth = c;
-          bm.inclination = std::atan2(t.z(), th.norm());
-          bm.inclination = std::clamp(bm.inclination, -deg2rad(79.0), deg2rad(79.0));
-          bws.reset(bm);
-          z = &bws.heights();
-        } else {
-          fm.axial_depth = std::max(depth, 1e-3);
-          fm.feed_per_tooth = c;
-          if (fws.disks() != fm.disks() || std::abs(fws.disk_height() * fws.disks() - fm.axial_depth) > 1e-12)
-            fws.reset(fm);
-          z = &fws.heights();
-        }
-        stock::engaged_elements_into(stock, cutter, p, fd, phi, *z, mask);
-        map.mask = mask.cast<std::uint8_t>();
-        if (ball)
-          ball_end_forces(bm, bws, angles, F, &map);
-        else
-          flat_end_forces(fm, fws, angles, F, &map);
-        const ForceSummary sm = summarize(F);
-        pos.push_back(p);
-        dir.push_back(fd);
-        blk.push_back(static_cast<int>(bi));
-        mean.push_back(sm.mean);
-        peak.push_back(sm.peak);
-        pr.push_back(sm.peak_resultant);
-        mr.push_back(sm.mean_resultant);
-        frac.push_back(map.mask.size() ? map.mask.cast<double>().mean() : 0.0);
-      }
-      out.removed_volume += stock::sweep_line(stock, cutter, prev, p).removed_volume;
-      prev = p;
-    }
-  }
+    stock::engaged_elements_into(stock, cutter, w.tip, w.feed_direction, phi, *z, mask);
+    map.mask = mask.cast<std::uint8_t>();
+    if (ball)
+      ball_end_forces(bm, bws, angles, F, &map);
+    else
+      flat_end_forces(fm, fws, angles, F, &map);
+    const ForceSummary sm = summarize(F);
+    pos.push_back(w.tip);
+    dir.push_back(w.feed_direction);
+    blk.push_back(static_cast<int>(w.block));
+    mean.push_back(sm.mean);
+    peak.push_back(sm.peak);
+    pr.push_back(sm.peak_resultant);
+    mr.push_back(sm.mean_resultant);
+    frac.push_back(map.mask.size() ? map.mask.cast<double>().mean() : 0.0);
+  };
+  out.removed_volume = walk_program(stock, cutter, program, opt.step, visit, "forces");
   const Eigen::Index m = static_cast<Eigen::Index>(pos.size());
   out.positions.resize(m, 3);
   out.feed_direction.resize(m, 3);

@@ -2,13 +2,14 @@ from __future__ import annotations
 import collections.abc
 import netshape._core.cutter
 import netshape._core.deflection
+import netshape._core.force
 import netshape._core.machine
 import netshape._core.stock
 import netshape._core.toolpath
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['DeflectionCompensationOptions', 'DeflectionCompensationResult', 'DeflectionScheme', 'DrawingOffsets', 'PathOptions', 'PathWallErrors', 'ProgramOptions', 'ProgramReport', 'ReferenceLevel', 'VolumetricOptions', 'VolumetricResult', 'VolumetricStatus', 'block_end_times', 'compensate_deflection', 'compensate_points', 'compensate_points_status', 'compensate_program', 'deflection_scheme_from_string', 'drawing_offsets', 'one_d_compensation', 'path_wall_errors', 'reference_level_from_string', 'wall_normals', 'wall_remains']
+__all__: list[str] = ['DeflectionCompensationOptions', 'DeflectionCompensationResult', 'DeflectionScheme', 'DrawingOffsets', 'FeedLimit', 'FeedLimits', 'PathOptions', 'PathWallErrors', 'ProgramOptions', 'ProgramReport', 'ReferenceLevel', 'VolumetricOptions', 'VolumetricResult', 'VolumetricStatus', 'block_end_times', 'compensate_deflection', 'compensate_points', 'compensate_points_status', 'compensate_program', 'deflection_scheme_from_string', 'drawing_offsets', 'feed_limit_name', 'feed_pieces_core', 'feed_samples_core', 'one_d_compensation', 'path_wall_errors', 'reference_level_from_string', 'wall_normals', 'wall_remains']
 class VolumetricOptions:
     check_travel: bool
     @typing.overload
@@ -440,6 +441,142 @@ class DrawingOffsets:
     @property
     def s(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
+class FeedLimit:
+    """
+    What sets a piece's feed (docs/feeds.md).
+    
+    Members:
+    
+      force
+    
+      chip
+    
+      deflection
+    
+      wall_error
+    
+      power
+    
+      torque
+    
+      max_feed
+    
+      air
+    
+      programmed
+    """
+    __members__: typing.ClassVar[dict[str, FeedLimit]]
+    air: typing.ClassVar[FeedLimit]
+    chip: typing.ClassVar[FeedLimit]
+    deflection: typing.ClassVar[FeedLimit]
+    force: typing.ClassVar[FeedLimit]
+    max_feed: typing.ClassVar[FeedLimit]
+    power: typing.ClassVar[FeedLimit]
+    programmed: typing.ClassVar[FeedLimit]
+    torque: typing.ClassVar[FeedLimit]
+    wall_error: typing.ClassVar[FeedLimit]
+    @typing.overload
+    def __eq__(self, other: FeedLimit) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: FeedLimit) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class FeedLimits:
+    """
+    Limits of a feed schedule (forces [N], lengths [mm], feeds [mm/s], power [W], torque [N·m]); inf: not stated.
+    """
+    def __init__(self) -> None:
+        ...
+    def validate(self) -> None:
+        ...
+    @property
+    def air_feed(self) -> float:
+        ...
+    @air_feed.setter
+    def air_feed(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_chip(self) -> float:
+        ...
+    @max_chip.setter
+    def max_chip(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_deflection(self) -> float:
+        ...
+    @max_deflection.setter
+    def max_deflection(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_feed(self) -> float:
+        ...
+    @max_feed.setter
+    def max_feed(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_force(self) -> float:
+        ...
+    @max_force.setter
+    def max_force(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_power(self) -> float:
+        ...
+    @max_power.setter
+    def max_power(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_torque(self) -> float:
+        ...
+    @max_torque.setter
+    def max_torque(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_wall_error(self) -> float:
+        ...
+    @max_wall_error.setter
+    def max_wall_error(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def min_chip(self) -> float:
+        ...
+    @min_chip.setter
+    def min_chip(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def min_feed(self) -> float:
+        ...
+    @min_feed.setter
+    def min_feed(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
 def block_end_times(program: netshape._core.toolpath.Toolpath, rapid_feed: typing.SupportsFloat | typing.SupportsIndex = 250.0) -> list[float]:
     """
     program time at each block's end [s] from the programmed feeds (rapids at rapid_feed [mm/s])
@@ -465,6 +602,18 @@ def deflection_scheme_from_string(name: str) -> DeflectionScheme:
 def drawing_offsets(points: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], drawing: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"], side: netshape._core.deflection.WallSide, window: typing.SupportsFloat | typing.SupportsIndex = 2.0) -> DrawingOffsets:
     """
     signed offsets C, normals and foot arc lengths of program points against a drawing's contour
+    """
+def feed_limit_name(code: typing.SupportsInt | typing.SupportsIndex) -> str:
+    """
+    The limit's key (max_force_N, …, air_feed_mm_min, programmed) of a FeedLimit code.
+    """
+def feed_pieces_core(program: netshape._core.toolpath.Toolpath, block: typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"], fraction: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], engaged: typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"], walls: typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"], depth: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], chip_factor: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], engaged_share: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], allowed: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]", "flags.c_contiguous"], limits: FeedLimits, tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.1, min_length: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> dict:
+    """
+    Pieces of the feed blocks and their feeds [mm/s] (netshape.compensation.feeds).
+    """
+def feed_samples_core(stock: netshape._core.stock.ZMap, cutter: netshape._core.cutter.Cutter, program: netshape._core.toolpath.Toolpath, limits: FeedLimits, sampling: netshape._core.force.ProgramForceOptions, linear_edge: netshape._core.force.LinearEdgeCoefficients = None, ball_end: netshape._core.force.BallEndCoefficients = None) -> dict:
+    """
+    Per force sample, the largest feed [mm/s] each limit allows (netshape.compensation.feeds).
     """
 def one_d_compensation(model: netshape._core.deflection.DeflectionModel, side: netshape._core.deflection.WallSide, width: typing.SupportsFloat | typing.SupportsIndex, level_z: typing.SupportsFloat | typing.SupportsIndex, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, max_iterations: typing.SupportsInt | typing.SupportsIndex = 100) -> float:
     """

@@ -25,7 +25,7 @@ import sys
 from importlib import import_module
 
 # name of the module in netshape.cli, in the order they appear in --help
-_COMMANDS = ("info", "forces", "deflection", "volumetric", "plan", "posture", "diagnose", "run", "batch", "demo")
+_COMMANDS = ("info", "forces", "deflection", "volumetric", "plan", "feeds", "posture", "diagnose", "run", "batch", "demo")
 
 _EPILOG = """\
 examples:

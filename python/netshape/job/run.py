@@ -140,6 +140,8 @@ def stage_names(job: Job) -> list[str]:
         names.append("volumetric_compensation")
     if p["feed_plan"]:
         names += ["feed_plan", "feed_plan_compensated"]
+    if job.optimize is not None:
+        names.append("optimize")
     names.append("report")
     return names
 
@@ -245,6 +247,12 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
         if traj_c is None:
             S.skip("feed_plan_compensated")
 
+    optimized = None
+    if job.optimize is not None:
+        from .optimize import stage_optimize
+
+        optimized = S.run("optimize", stage_optimize, job, stock0)
+
     # ---- summary
     errors = {
         "deflection": st.error_stats(*((defl.before_mm, defl.after_mm) if defl is not None and defl.available
@@ -265,6 +273,8 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
         files["compensated_program"] = f"{stem}_compensated.ngc"
     if job.report["zmap_stl"]:
         files["zmap_stl"] = "zmap.stl"
+    if optimized is not None:
+        files["optimized_program"] = f"{stem}_feeds.ngc"
     summary = {
         "job": {"name": job.name, "source": str(job.source), "program": str(job.program),
                 "predictions": [k for k, v in p.items() if v], "compensations": applied,
@@ -290,6 +300,8 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
         from netshape.machine import machine_terms
 
         summary["machine"] = {"file": str(job.machine), "terms": machine_terms(job.machine)}
+    if optimized is not None:
+        summary["optimize"] = optimized[0]
     if vol is not None and vol.report:
         summary["volumetric_compensation"] = {k: v for k, v in vol.report.items() if isinstance(v, (int, float, str))}
 
@@ -303,6 +315,9 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
             with atomic_write(folder / files["compensated_program"], "w", encoding=tpm.gcode_encoding(job.program),
                               errors="replace") as fh:
                 fh.write(pg.write_program_text(compensated_program, header))
+        if optimized is not None:
+            with atomic_write(folder / files["optimized_program"], "w") as fh:
+                fh.write(optimized[1])
         if job.report["zmap_stl"]:
             with atomic_path(folder / "zmap.stl") as tmp:
                 zfinal.to_stl(tmp)

@@ -28,7 +28,7 @@ PREDICTIONS = ("forces", "deflection", "volumetric", "feed_plan")
 COMPENSATIONS = ("deflection", "volumetric")
 
 _TOP = {"name", "program", "output", "tool", "stock", "offsets", "coefficients", "machine", "limits",
-        "cutting", "predict", "compensate", "report", "grid", "start_mm", "clearance_mm"}
+        "cutting", "predict", "compensate", "report", "grid", "start_mm", "clearance_mm", "optimize"}
 _TOOL_KEYS = {"file", "kind", "diameter_mm", "corner_radius_mm", "flutes", "helix_deg", "flute_length_mm",
               "stick_out_mm", "youngs_modulus_MPa", "holder_compliance_um_per_N", "runout_rho_mm", "runout_lambda_deg"}
 _STOCK_KEYS = {"file", "min_mm", "max_mm", "spacing_mm", "heights", "pre_cut"}
@@ -78,6 +78,7 @@ class Job:
     raw: dict = field(default_factory=dict)  # the parsed TOML (for batch grids)
     start_mm: list | None = None     # tool tip before the first move, G54 frame (None: above the stock)
     clearance_mm: float = 5.0        # the default start's height above the stock top
+    optimize: dict | None = None     # [optimize]: feed scheduling limits (netshape.job.optimize)
 
     @property
     def compensations(self) -> list[str]:
@@ -420,13 +421,17 @@ def job_from_dict(doc: dict, *, source: str | os.PathLike = "<job>", base_dir: s
         raise _err(src, "clearance_mm", clearance, "must be at most 100000 [mm]")
     if start is not None and max(abs(x) for x in start) > 1e5:
         raise _err(src, "start_mm", start, "must lie within ±100000 mm")
+    from .optimize import check_optimize_needs, optimize_from_dict
+
+    optimize = optimize_from_dict(src, doc["optimize"]) if "optimize" in doc else None
+    check_optimize_needs(src, optimize, limits, coefficients)
     grid = {}
     if "grid" in doc:
         grid = _check_grid(src, doc) if check_grid else doc["grid"]
     return Job(source=Path(src), name=name, program=program, output=output, tool=tool, stock=stock,
                offsets=offsets, coefficients=coefficients, machine=machine, error_scale=scale, limits=limits,
                cutting=cutting, predict=predict, compensate=compensate, report=report, grid=grid,
-               raw=copy.deepcopy(doc), start_mm=start, clearance_mm=clearance)
+               raw=copy.deepcopy(doc), start_mm=start, clearance_mm=clearance, optimize=optimize)
 
 
 def _check_grid(src: str, doc: dict) -> dict:
