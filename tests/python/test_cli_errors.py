@@ -57,6 +57,7 @@ def _one_line(capsys, argv: list[str], prefix: str, *needles: str) -> str:
     (PLAN + ["--lookahead", "1"], "plan", "--lookahead = 1: must be in 2..1000000 [blocks]"),
     (PLAN + ["--ts2", "0"], "plan", "--ts2 = 0: must be in (0, 1] [s]"),
     (PLAN + ["--allowable", "-1"], "plan", "--allowable = -1: must be >= 0 [mm/min]"),
+    (PLAN + ["--tolerance", "1e-20"], "plan", "--tolerance = 1e-20: must be >= 1e-06 [mm]"),
     (POSTURE + ["--tilt-max", "95"], "posture plan", "--tilt-max = 95: must be in (0, 90) [deg]"),
     (POSTURE + ["--clearance", "-0.5"], "posture plan", "--clearance = -0.5: must be >= 0 [mm]"),
     (["batch", "study.toml", "--workers", "0"], "batch", "--workers = 0: must be >= 1"),

@@ -59,9 +59,11 @@ void PlanOptions::validate() const {
   NETSHAPE_CHECK(lookahead >= 2 && lookahead <= 1000000, "lookahead", lookahead, "must be in [2, 1e6] blocks");
   NETSHAPE_CHECK(std::isfinite(allowable_speed_difference) && allowable_speed_difference >= 0,
                  "allowable_speed_difference", allowable_speed_difference, "must be >= 0 [mm/s]");
-  NETSHAPE_CHECK(std::isfinite(tolerance) && tolerance > 0, "tolerance", tolerance, "must be positive [mm]");
-  NETSHAPE_CHECK(std::isfinite(corner_tolerance) && corner_tolerance >= 0, "corner_tolerance", corner_tolerance,
-                 "must be >= 0 [mm]");
+  // below a nanometre a blend is numerically a sharp corner: refused rather than planned with a jump
+  NETSHAPE_CHECK(std::isfinite(tolerance) && tolerance >= min_tolerance, "tolerance", tolerance,
+                 "must be >= 1e-06 [mm]");
+  NETSHAPE_CHECK(std::isfinite(corner_tolerance) && (corner_tolerance == 0 || corner_tolerance >= min_tolerance),
+                 "corner_tolerance", corner_tolerance, "must be 0 or >= 1e-06 [mm]");
   NETSHAPE_CHECK(std::isfinite(junction_deviation) && junction_deviation >= 0, "junction_deviation",
                  junction_deviation, "must be >= 0 [mm]");
   NETSHAPE_CHECK(std::isfinite(square_corner_velocity) && square_corner_velocity >= 0,

@@ -58,8 +58,8 @@ def register(sub) -> None:
     g.add_argument("--jmax", type=a.positive("--jmax", "mm/s^3"), metavar="MM_PER_S3",
                    help="jerk limit of every axis [mm/s^3] (S-curve profiles)")
     p.add_argument("--rule", required=True, choices=("paper", "vector", "per-axis", "junction-deviation", "blend", "smooth"))
-    p.add_argument("--tolerance", type=a.positive("--tolerance", "mm"), default=0.01, metavar="MM",
-                   help="blend / smooth tolerance ε [mm] (0.01)")
+    p.add_argument("--tolerance", type=a.real("--tolerance", "mm", ge=1e-6), default=0.01, metavar="MM",
+                   help="blend / smooth tolerance ε [mm], >= 1e-6 (0.01)")
     p.add_argument("--max-segment", type=a.positive("--max-segment", "mm"), default=4.0, metavar="MM",
                    help="smooth rule: longest line that is a micro-segment [mm] (4)")
     p.add_argument("--max-turn", type=a.real("--max-turn", "deg", gt=0, lt=180), default=30.0, metavar="DEG",

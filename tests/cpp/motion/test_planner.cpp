@@ -355,6 +355,15 @@ TEST_CASE("bad options and limits throw invalid_argument naming the field") {
   CHECK_THROWS_WITH_AS(l.validate(), doctest::Contains("limits.velocity.x"), std::invalid_argument);
   CHECK_THROWS_AS(parse_rule("fast"), std::invalid_argument);
   CHECK(parse_rule("per_axis") == CornerRule::per_axis);
+  // a blend below 1 nm is numerically a sharp corner (crossed with a velocity jump): refused
+  PlanOptions t;
+  t.tolerance = 1e-20;
+  CHECK_THROWS_WITH_AS(t.validate(), doctest::Contains("tolerance"), std::invalid_argument);
+  t.tolerance = min_tolerance;
+  t.corner_tolerance = 1e-9;
+  CHECK_THROWS_WITH_AS(t.validate(), doctest::Contains("corner_tolerance"), std::invalid_argument);
+  t.corner_tolerance = 0;
+  CHECK_NOTHROW(t.validate());
 }
 
 TEST_CASE("blend rule: the segments next_segment hands out chain up and agree with next() sampling") {

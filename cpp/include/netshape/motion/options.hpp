@@ -35,6 +35,9 @@ const char* rule_name(CornerRule rule) noexcept;
 /// Inverse of rule_name; also accepts underscores. Throws std::invalid_argument on unknown names.
 CornerRule parse_rule(const std::string& name);
 
+/// Smallest blend / smoothing tolerance [mm] (1 nm): below it a blend is numerically a sharp corner.
+inline constexpr double min_tolerance = 1e-6;
+
 /// Planner options. Plain value type; `validate()` checks it.
 struct PlanOptions {
   CornerRule rule = CornerRule::vector;

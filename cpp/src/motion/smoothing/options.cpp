@@ -2,12 +2,14 @@
 #include <cmath>
 
 #include "netshape/core/error.hpp"
+#include "netshape/motion/options.hpp"
 #include "netshape/motion/smoothing.hpp"
 
 namespace netshape::motion {
 
 void SmoothOptions::validate() const {
-  NETSHAPE_CHECK(tolerance > 0 && std::isfinite(tolerance), "tolerance", tolerance, "must be positive [mm]");
+  NETSHAPE_CHECK(tolerance >= min_tolerance && std::isfinite(tolerance), "tolerance", tolerance,
+                 "must be >= 1e-06 [mm]");
   NETSHAPE_CHECK(fit_share > 0 && fit_share < 1, "fit_share", fit_share, "must be in (0, 1)");
   NETSHAPE_CHECK(max_segment > 0 && std::isfinite(max_segment), "max_segment", max_segment, "must be positive [mm]");
   NETSHAPE_CHECK(max_turn > 0 && max_turn < pi, "max_turn", max_turn, "must be in (0, pi) [rad]");
