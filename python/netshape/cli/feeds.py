@@ -121,6 +121,18 @@ def _inputs(args):
     return stock, cutter, coeffs
 
 
+def _tool_spindle_limits(path) -> dict:
+    """``max_power_W`` / ``max_torque_Nm`` from the tool TOML (netshape.cutter.SPINDLE_KEYS), if given."""
+    from netshape._config import load_toml
+    from netshape.cli import CliError
+    from netshape.cutter import spindle_limits
+
+    try:
+        return spindle_limits(load_toml(path))
+    except (OSError, ValueError) as exc:
+        raise CliError(f"--tool = {path}: {exc}") from None
+
+
 def _axis_limits(args):
     from netshape.cli import CliError
     from netshape.motion import AxisLimits
@@ -150,6 +162,7 @@ def run(args) -> int:
 
     check_outputs(args, files=("--output", "--json", "--csv", "--plot"))
     table = {key: getattr(args, opt) for opt, key in _LIMIT_OPTIONS.items() if getattr(args, opt) is not None}
+    table = _tool_spindle_limits(args.tool) | table  # the options win over the tool file's spindle limits
     try:
         limits, split = feed_limits_from_dict(table, source="")
     except ValueError as exc:  # "<key> = v: rule" → the option

@@ -41,9 +41,13 @@ Cutter = _cutter.Cutter
 CutterKind = _cutter.CutterKind
 check_flutes = _cutter.check_flutes  # the one 1..64 check (C++), with the caller's field name
 
+#: The spindle's limits the tool runs under (read by feed scheduling, docs/feeds.md), optional.
+SPINDLE_KEYS = ("max_power_W", "max_torque_Nm")
+
 _KEYS = ("kind", "diameter_mm", "corner_radius_mm", "flutes", "helix_deg", "flute_length_mm", "stick_out_mm",
          "youngs_modulus_MPa", "shank_diameter_mm", "shank_length_mm", "holder_diameter_mm", "holder_length_mm",
-         "holder_profile_mm", "holder_compliance_um_per_N", "runout_rho_mm", "runout_lambda_deg")
+         "holder_profile_mm", "holder_compliance_um_per_N", "runout_rho_mm", "runout_lambda_deg",
+         *SPINDLE_KEYS)
 _REQUIRED = ("kind", "diameter_mm", "flutes", "helix_deg", "flute_length_mm", "stick_out_mm")
 
 
@@ -91,8 +95,18 @@ def cutter_from_dict(d: dict, *, source: str = "cutter") -> Cutter:
         c.runout_rho = number(None, "runout_rho_mm", d["runout_rho_mm"])
     if "runout_lambda_deg" in d:
         c.runout_lambda = math.radians(number(None, "runout_lambda_deg", d["runout_lambda_deg"]))
+    spindle_limits(d)  # checked here too, so a bad value fails wherever the tool is read
     c.validate()  # ValueError "cutter.<field> = value: requirement"
     return c
+
+
+def spindle_limits(d: dict) -> dict[str, float]:
+    """The optional spindle limits of a tool's TOML keys (``max_power_W``, ``max_torque_Nm``), each > 0."""
+    out = {}
+    for key in SPINDLE_KEYS:
+        if key in d:
+            out[key] = number(None, key, d[key], positive=True)
+    return out
 
 
 def cutter_to_dict(c: Cutter) -> dict:

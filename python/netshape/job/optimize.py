@@ -41,8 +41,11 @@ def stage_optimize(job, stock0) -> tuple[dict, str]:
 
     from .stages import coefficients_for, make_cutter
 
+    from netshape.cutter import spindle_limits
+
     cutter = make_cutter(job.tool)
-    limits, split = feed_limits_from_dict(job.optimize, source="optimize")
+    # the tool's spindle limits apply unless [optimize] states its own
+    limits, split = feed_limits_from_dict(spindle_limits(job.tool) | job.optimize, source="optimize")
     lim = job.limits
     axis = nmo.AxisLimits(lim["vmax_mm_s"], lim["amax_mm_s2"], lim.get("jmax_mm_s3", [math.inf] * 3))
     options = nmo.make_options(lim["rule"], ts1=lim["ts1_s"], ts2=lim["ts2_s"], lookahead=lim["lookahead"],

@@ -30,7 +30,8 @@ COMPENSATIONS = ("deflection", "volumetric")
 _TOP = {"name", "program", "output", "tool", "stock", "offsets", "coefficients", "machine", "limits",
         "cutting", "predict", "compensate", "report", "grid", "start_mm", "clearance_mm", "optimize"}
 _TOOL_KEYS = {"file", "kind", "diameter_mm", "corner_radius_mm", "flutes", "helix_deg", "flute_length_mm",
-              "stick_out_mm", "youngs_modulus_MPa", "holder_compliance_um_per_N", "runout_rho_mm", "runout_lambda_deg"}
+              "stick_out_mm", "youngs_modulus_MPa", "holder_compliance_um_per_N", "runout_rho_mm",
+              "runout_lambda_deg", "max_power_W", "max_torque_Nm"}
 _STOCK_KEYS = {"file", "min_mm", "max_mm", "spacing_mm", "heights", "pre_cut"}
 _PRE_CUT_KEYS = {"program", "tool"}
 _MACHINE_KEYS = {"file", "error_scale"}

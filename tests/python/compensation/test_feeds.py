@@ -174,6 +174,28 @@ def test_cli_refuses_a_limit_no_feed_keeps(tmp_path, capsys):
     assert not (tmp_path / "out.ngc").exists() and not (tmp_path / "s.json").exists()
 
 
+def test_cli_takes_the_spindle_limits_of_the_tool_file_unless_an_option_overrides(tmp_path, capsys):
+    base = _files(tmp_path) + ["--max-feed", "20000"]
+    assert main(base) == 0
+    free = json.loads((tmp_path / "s.json").read_text())
+    # a torque limit in the tool file binds and slows the program
+    (tmp_path / "tool.toml").write_text(TOOL + "max_torque_Nm = 1.0\n")
+    assert main(base) == 0
+    held = json.loads((tmp_path / "s.json").read_text())
+    assert held["binding"].get("max_torque_Nm", 0) > 0
+    assert held["cycle_time_s"]["optimized"] > 1.05 * free["cycle_time_s"]["optimized"]
+    # the option wins over the file
+    assert main(base + ["--max-torque", "1000"]) == 0
+    loose = json.loads((tmp_path / "s.json").read_text())
+    assert loose["binding"].get("max_torque_Nm", 0) == 0
+    # a bad value in the file is a one-line error naming the key
+    (tmp_path / "tool.toml").write_text(TOOL + "max_power_W = -5\n")
+    capsys.readouterr()
+    assert main(base) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "max_power_W = -5" in err, err
+
+
 @pytest.mark.parametrize("extra, field", [(["--max-force", "-3"], "--max-force"),
                                           (["--min-feed", "5000"], "--min-feed"),
                                           (["--min-chip", "0.2", "--max-chip", "0.1"], "--min-chip")])
