@@ -67,12 +67,13 @@ def run_case(case: dict) -> dict:
 
 def run_demo() -> dict:
     from netshape.job import stages as st
+    from netshape.job.program import stage_program
     from netshape.job.spec import load_job
     from netshape.job.stage_deflection import stage_deflection
 
     t = time.perf_counter()
     job = load_job(os.path.join(HERE, "..", "examples", "demo", "job.toml"))
-    r = stage_deflection(job, st.stage_stock(job), st.stage_program(job), compensate=True)
+    r = stage_deflection(job, st.stage_stock(job), stage_program(job), compensate=True)
     return {"before": r.levels_mm["before"], "after": r.levels_mm["after"], "converged": r.status == "ok",
             "worse": None, "status": r.status, "seconds": time.perf_counter() - t}
 

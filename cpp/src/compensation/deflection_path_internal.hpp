@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "netshape/compensation/deflection_compensation.hpp"
@@ -69,11 +70,24 @@ inline bool in_last_sweep(const Vec2& q, const Vec2& from, const Vec2& to, doubl
   return (from + t * ab - q).squaredNorm() < r * r;
 }
 
-/// Engagement of one point: the window, the axial depth, whether it cuts.
+/// Engagement of one point: the window from the first to the last material angle (phi_st, phi_ex, width),
+/// the separate material runs inside it (`runs`, (start, exit) with start in [0, 2π); one run when the
+/// material is contiguous), the axial depth, whether it cuts. The force acts on the runs only: an air gap
+/// between a sliver and the main cut carries none.
 struct PointCut {
   bool engaged = false;
   double phi_st = 0, phi_ex = 0, depth = 0, width = 0;
+  std::vector<std::pair<double, double>> runs;
 };
+
+/// True if angle a lies in one of pc's material runs (in its window when it lists no runs: a Z-map
+/// immersion, which knows only the window).
+inline bool runs_hold(const PointCut& pc, double a) {
+  if (pc.runs.empty()) return window_holds(pc.phi_st, pc.phi_ex, a);
+  for (const auto& r : pc.runs)
+    if (window_holds(r.first, r.second, a)) return true;
+  return false;
+}
 
 /// Everything a single-point evaluation needs; reused along the path.
 struct PointEvaluator {
@@ -96,8 +110,8 @@ struct PointEvaluator {
     out.engaged[i] = pc.engaged ? 1 : 0;
     int flags = 0;
     if (pc.engaged) {
-      if (window_holds(pc.phi_st, pc.phi_ex, 0.0)) flags |= 1;
-      if (window_holds(pc.phi_st, pc.phi_ex, pi)) flags |= 2;
+      if (runs_hold(pc, 0.0)) flags |= 1;
+      if (runs_hold(pc, pi)) flags |= 2;
     }
     out.wall_flags[i] = flags;
     if (!pc.engaged) {
@@ -112,6 +126,10 @@ struct PointEvaluator {
     const double st = wrap(pc.phi_st);
     model.force.engagement.phi_st = st;
     model.force.engagement.phi_ex = st + std::min(pc.phi_ex - pc.phi_st, two_pi);
+    model.windows.clear();
+    if (pc.runs.size() > 1)
+      for (const auto& r : pc.runs)
+        model.windows.push_back({r.first, r.first + std::min(r.second - r.first, two_pi)});
     ws.ensure(model);
     const Vec2 y_c(-x_c.y(), x_c.x());
     const VectorXd lv = deflection::cut_levels(pc.depth);
@@ -216,6 +234,7 @@ PointCut scan_window(const cutter::Cutter& cutter, const Vec3& tip, const Vec2& 
   if (count == m) {
     st = 0.0;
     ex = two_pi;
+    pc.runs.emplace_back(0.0, two_pi);
   } else {
     // largest circular run of empty samples
     int best_len = 0, best_start = 0;
@@ -245,13 +264,30 @@ PointCut scan_window(const cutter::Cutter& cutter, const Vec3& tip, const Vec2& 
     st = bisect(first_in * step - step, first_in * step);
     ex = bisect(last_in * step + step, last_in * step);
     while (ex < st) ex += two_pi;
+    // every run of material samples, from the first after the largest gap on; its edges bisected
+    for (int k = 0; k < m;) {
+      const int a = (first_in + k) % m;
+      if (!in[a]) {
+        ++k;
+        continue;
+      }
+      int len = 0;
+      while (k + len < m && in[(first_in + k + len) % m]) ++len;
+      const int b = (a + len - 1) % m;
+      const double rs = a == first_in ? st : bisect(a * step - step, a * step);
+      double re = b == last_in ? ex : bisect(b * step + step, b * step);
+      const double rs0 = wrap(rs);
+      re = rs0 + wrap(re - rs);
+      if (re - rs0 > 1e-12) pc.runs.emplace_back(rs0, re);
+      k += len;
+    }
   }
   // axial depth: material height above the tip along the engaged arc (pillar heights of the base),
   // capped at the flute length
   double depth = 0.0;
   for (int k = 0; k < m; ++k) {
     const double a = two_pi * k / m;
-    if (!window_holds(st, ex, a)) continue;
+    if (!runs_hold(pc, a)) continue;
     const Vec3 p = point(a);
     const double h = base.cell_height(p.x(), p.y());
     if (std::isfinite(h)) depth = std::max(depth, h - tip.z());

@@ -10,6 +10,7 @@ namespace netshape::deflection {
 
 namespace {
 constexpr double two_pi = 2.0 * pi;
+constexpr int max_windows = 64;  // separate material windows of one instant
 inline double wrap(double a) { return a - two_pi * std::floor(a / two_pi); }
 }  // namespace
 
@@ -39,6 +40,7 @@ void DeflectionModel::validate() const {
   NETSHAPE_CHECK_FINITE("holder_compliance", holder_compliance);
   NETSHAPE_CHECK(holder_compliance >= 0.0, "holder_compliance", holder_compliance, "must be ≥ 0 [mm/N]");
   chip.validate();
+  for (const auto& w : windows) w.validate();
 }
 
 void DeflectionWorkspace::reset(const DeflectionModel& model) {
@@ -69,7 +71,21 @@ void disk_forces(const DeflectionModel& model, DeflectionWorkspace& ws, double t
   const double dz = ws.dz_;
   const double hw = 0.5 * kb * dz;  // half angular extent of an element's helix segment [rad]
   const bool smooth = model.smooth_edges && hw > 0.0;
-  const double st = fm.engagement.phi_st, span = fm.engagement.phi_ex - fm.engagement.phi_st;
+  // the windows as (start, span); one element's weight sums its overlaps with all of them
+  double wst[max_windows], wspan[max_windows];
+  int nw = 0;
+  if (model.windows.empty()) {
+    wst[0] = fm.engagement.phi_st;
+    wspan[0] = fm.engagement.phi_ex - fm.engagement.phi_st;
+    nw = 1;
+  } else {
+    NETSHAPE_CHECK(model.windows.size() <= static_cast<std::size_t>(max_windows), "windows.size",
+                   static_cast<double>(model.windows.size()), "must be at most 64");
+    for (const auto& e : model.windows) {
+      wst[nw] = e.phi_st;
+      wspan[nw++] = e.phi_ex - e.phi_st;
+    }
+  }
   const double c = fm.feed_per_tooth;
   const bool kd = fm.coefficient_model == force::FlatCoefficientModel::kline_devor;
   const auto& k = fm.linear_edge;
@@ -89,21 +105,23 @@ void disk_forces(const DeflectionModel& model, DeflectionWorkspace& ws, double t
     double sx = 0.0, sy = 0.0;
     for (int j = 0; j < ws.flutes_; ++j) {
       const double phi = theta + j * gamma - kb * ws.z_[i];
-      const double u = wrap(phi - st);
-      double w;
-      if (smooth) {
-        // overlap of [u − hw, u + hw] with the window [0, span], the window repeated every 2π
-        double ov = 0.0;
-        for (int s = -1; s <= 1; ++s) {
-          const double a = u - hw + s * two_pi, b = u + hw + s * two_pi;
-          ov += std::max(0.0, std::min(b, span) - std::max(a, 0.0));
+      double w = 0.0;
+      for (int q = 0; q < nw; ++q) {
+        const double u = wrap(phi - wst[q]), span = wspan[q];
+        if (smooth) {
+          // overlap of [u − hw, u + hw] with the window [0, span], the window repeated every 2π
+          double ov = 0.0;
+          for (int s = -1; s <= 1; ++s) {
+            const double a = u - hw + s * two_pi, b = u + hw + s * two_pi;
+            ov += std::max(0.0, std::min(b, span) - std::max(a, 0.0));
+          }
+          w += ov / (2.0 * hw);
+        } else if (u <= span) {
+          w += 1.0;
         }
-        w = std::min(1.0, ov / (2.0 * hw));
-        if (w <= 0.0) continue;
-      } else {
-        if (u > span) continue;
-        w = 1.0;
       }
+      w = std::min(1.0, w);
+      if (w <= 0.0) continue;
       const double sp = std::sin(phi), cp = std::cos(phi);
       const double ww = w * dz;
       double h = std::max(c * sp, 0.0);

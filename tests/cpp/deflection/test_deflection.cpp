@@ -136,6 +136,40 @@ TEST_CASE("smooth edges: the total force over a revolution keeps its mean and ch
   CHECK(std::abs(e1 - e0) < 1e-3 * std::abs(e0));
 }
 
+TEST_CASE("separate windows: a sliver beside an air gap adds its own force, not the gap's") {
+  // the main cut [120°, 180°] and a sliver [10°, 16°] behind an air gap, with and without smooth edges
+  for (bool smooth : {true, false}) {
+    DeflectionModel main = paper_model();
+    main.smooth_edges = smooth;
+    main.force.engagement = {deg2rad(120.0), pi};
+    DeflectionModel sliver = main, both = main, span = main;
+    sliver.force.engagement = {deg2rad(10.0), deg2rad(16.0)};
+    both.windows = {sliver.force.engagement, main.force.engagement};
+    span.force.engagement = {deg2rad(10.0), pi};
+    DeflectionWorkspace ws(main);
+    const VectorXd z = cut_levels(2.5);
+    const WallErrors em = wall_errors(main, ws, WallSide::right, z);
+    const WallErrors es = wall_errors(sliver, ws, WallSide::right, z);
+    const WallErrors eb = wall_errors(both, ws, WallSide::right, z);
+    const WallErrors ew = wall_errors(span, ws, WallSide::right, z);
+    for (int k = 0; k < 3; ++k) {
+      CHECK(eb.error[k] == doctest::Approx(em.error[k] + es.error[k]).epsilon(1e-12).scale(1e-9));
+      for (int c = 0; c < 2; ++c) {
+        CHECK(eb.force(k, c) == doctest::Approx(em.force(k, c) + es.force(k, c)).epsilon(1e-12).scale(1e-6));
+        CHECK(eb.deflection(k, c) ==
+              doctest::Approx(em.deflection(k, c) + es.deflection(k, c)).epsilon(1e-12).scale(1e-9));
+      }
+      // the window spanning the gap puts force where there is no material
+      CHECK(std::abs(ew.error[k] - eb.error[k]) > 0.1 * std::abs(eb.error[k]));
+    }
+    // one window listed equals the window alone
+    DeflectionModel one = main;
+    one.windows = {main.force.engagement};
+    const WallErrors eo = wall_errors(one, ws, WallSide::right, z);
+    for (int k = 0; k < 3; ++k) CHECK(eo.error[k] == em.error[k]);
+  }
+}
+
 TEST_CASE("wall error sign: down milling leaves material on the right wall, up milling on the left") {
   DeflectionModel m = paper_model();
   DeflectionWorkspace ws(m);

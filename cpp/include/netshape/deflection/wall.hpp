@@ -23,6 +23,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "netshape/core/types.hpp"
 #include "netshape/deflection/cantilever.hpp"
@@ -60,6 +61,12 @@ struct DeflectionModel {
   /// force::flat_end_forces_extended, the power law evaluated exactly): flute j's chip
   /// h_j = c·sin φ + r_j − r_{j−1}, no force where h_j ≤ 0, cutting terms h_ref·(h_j/h_ref)^p.
   force::RunoutSizeEffect chip{};
+  /// Separate material windows of one instant (material, an air gap, material again: a sliver left
+  /// beside a cleared band). Empty: the single window force.engagement. Otherwise they replace it and
+  /// an element's weight is the sum of its weights in each window (capped at 1), so the disk forces,
+  /// and with them the deflection and the wall error, are the sums of the windows' own; the gaps
+  /// between them carry no force. Each window as AngularEngagement::validate requires.
+  std::vector<force::AngularEngagement> windows;
 
   /// force.validate(), beam.validate(), and beam.length ≥ force.axial_depth (a stick-out shorter than
   /// the cut cannot cut it); throws std::invalid_argument naming the field.
