@@ -116,7 +116,6 @@ def test_ctrl_c_stops_a_long_sweep_in_cpp_promptly():
         from netshape.cutter import Cutter
         from netshape.stock import ZMap
 
-REPO = Path(__file__).resolve().parents[2]
         rng = np.random.default_rng(1)
         n = 100000
         a = np.c_[rng.uniform(0, 200, (n, 2)), np.full(n, 5.0)]
