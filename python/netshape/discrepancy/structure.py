@@ -142,18 +142,36 @@ def smoother_noise(residual, positions, order, groups, direction=None) -> tuple[
 
 
 def _periodic_fit(v, y, periods):
-    """Best sinusoid a·cos + b·sin (+ mean) of y against v over ``periods`` → (ΔRSS, period, fitted)."""
+    """Best sinusoid a·cos + b·sin (+ mean) of y against v over ``periods`` → (ΔRSS, period, fitted).
+    Each period's least-squares fit is solved from its 2 × 2 normal equations, batched over periods;
+    directions of the Gram matrix below lstsq's default cut-off (eps·n relative to the largest singular
+    value) are dropped, as ``np.linalg.lstsq(rcond=None)`` drops them."""
+    v = np.asarray(v, float)
     yc = y - y.mean()
+    periods = np.asarray(periods, float)
+    n = v.size
     best = (0.0, None, None)
-    for P in periods:
-        w = 2 * np.pi * v / P
-        A = np.column_stack([np.cos(w), np.sin(w)])
-        A = A - A.mean(axis=0)
-        c, *_ = np.linalg.lstsq(A, yc, rcond=None)
-        f = A @ c
-        d = float(np.sum(yc**2) - np.sum((yc - f) ** 2))
-        if d > best[0]:
-            best = (d, float(P), f)
+    chunk = max(1, int(4e6 // max(n, 1)))
+    cut = (np.finfo(float).eps * max(n, 2)) ** 2
+    for k0 in range(0, periods.size, chunk):
+        w = (2 * np.pi / periods[k0:k0 + chunk])[:, None] * v[None, :]
+        C, S = np.cos(w), np.sin(w)
+        C -= C.mean(axis=1, keepdims=True)
+        S -= S.mean(axis=1, keepdims=True)
+        G = np.empty((w.shape[0], 2, 2))
+        G[:, 0, 0] = np.einsum("ij,ij->i", C, C)
+        G[:, 1, 1] = np.einsum("ij,ij->i", S, S)
+        G[:, 0, 1] = G[:, 1, 0] = np.einsum("ij,ij->i", C, S)
+        r = np.stack([C @ yc, S @ yc], axis=1)
+        lam, V = np.linalg.eigh(G)
+        keep = lam > cut * np.maximum(lam[:, 1:], 0.0)
+        inv = np.where(keep, 1.0 / np.where(keep, lam, 1.0), 0.0)
+        q = np.einsum("kji,kj->ki", V, r)  # r in the eigenbasis
+        d = np.einsum("ki,ki->k", q * inv, q)  # ΔRSS = rᵀ G⁺ r
+        i = int(np.argmax(d))
+        if d[i] > best[0]:
+            c = V[i] @ (inv[i] * q[i])
+            best = (float(d[i]), float(periods[k0 + i]), c[0] * C[i] + c[1] * S[i])
     return best
 
 
