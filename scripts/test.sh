@@ -18,5 +18,5 @@ ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build/sanitize -LE python --output-on-failure -j "$JOBS"
 # one pytest worker per core; a file stays on one worker, so its module fixtures are built once. Each
 # worker keeps NumPy's BLAS to one thread: with a thread pool per worker the cores are oversubscribed and
-# OpenBLAS's waiting threads burn the CPU (diagnose on a 4 800-point bundle: 35 s of CPU, 11 s with one).
+# OpenBLAS's waiting threads burn the CPU (diagnose of a 4 800-point bundle: 24 s of CPU, 10 s with one).
 OPENBLAS_NUM_THREADS="${OPENBLAS_NUM_THREADS:-1}" OMP_NUM_THREADS="${OMP_NUM_THREADS:-1}" "$PY" -m pytest tests/python -q -n "$JOBS" --dist loadfile
