@@ -20,8 +20,6 @@ by move; the compensation schemes (1-D, integrated, sectional, accelerated) live
 from __future__ import annotations
 
 import math
-import os
-import sys
 from dataclasses import dataclass
 
 import numpy as np
@@ -29,11 +27,6 @@ import numpy as np
 from .._core import compensation as _comp
 from .._core import deflection as _d
 from .._core import force as _f
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
 
 InertiaModel = _d.InertiaModel
 LoadModel = _d.LoadModel
@@ -207,54 +200,7 @@ def steady_wall(model: DeflectionModel, mode: str, levels: int = 21) -> dict:
 
 # --- stock and program --------------------------------------------------------------------------
 
-_STOCK_KEYS = ("min_mm", "max_mm", "spacing_mm", "pre_cut")
-
-
-def load_stock(path: str | os.PathLike):
-    """A Z-map from STOCK.toml: ``min_mm = [x, y, z]``, ``max_mm = [x, y, z]``, ``spacing_mm`` and
-    optional ``[[pre_cut]]`` tables (``program``, ``tool``: paths relative to the TOML) swept in order."""
-    from netshape import stock as _stock
-    from netshape.cutter import load_cutter
-    from netshape.toolpath import read_gcode
-
-    p = os.fspath(path)
-    with open(p, "rb") as fh:
-        try:
-            data = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise ValueError(f"{p}: not valid TOML: {exc}") from None
-    for key in data:
-        if key not in _STOCK_KEYS:
-            raise ValueError(f"{p}: {key}: unknown key (known: {', '.join(_STOCK_KEYS)})")
-    for key in ("min_mm", "max_mm", "spacing_mm"):
-        if key not in data:
-            raise ValueError(f"{p}: {key}: missing")
-    lo, hi = data["min_mm"], data["max_mm"]
-    for key, v in (("min_mm", lo), ("max_mm", hi)):
-        if (not isinstance(v, list) or len(v) != 3
-                or not all(isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x) for x in v)):
-            raise ValueError(f"{p}: {key} = {v!r}: must be [x, y, z] finite numbers [mm]")
-    for k in range(3):
-        if not hi[k] > lo[k]:
-            raise ValueError(f"{p}: max_mm = {hi!r}: must exceed min_mm = {lo!r} on every axis")
-    h = data["spacing_mm"]
-    if isinstance(h, bool) or not isinstance(h, (int, float)) or not math.isfinite(h) or h <= 0:
-        raise ValueError(f"{p}: spacing_mm = {h!r}: must be a positive number [mm]")
-    try:
-        zmap = _stock.ZMap(lo[0], hi[0], lo[1], hi[1], float(h), hi[2], lo[2])
-    except ValueError as exc:
-        raise ValueError(f"{p}: {exc}") from None
-    base = os.path.dirname(os.path.abspath(p))
-    pre = data.get("pre_cut", [])
-    if not isinstance(pre, list):
-        raise ValueError(f"{p}: pre_cut: must be an array of tables [[pre_cut]]")
-    for k, t in enumerate(pre):
-        if not isinstance(t, dict) or set(t) - {"program", "tool"} or "program" not in t or "tool" not in t:
-            raise ValueError(f"{p}: pre_cut[{k}] = {t!r}: needs exactly the keys program and tool")
-        tool = load_cutter(os.path.join(base, t["tool"]))
-        prog = read_gcode(os.path.join(base, t["program"]))
-        _stock.sweep(zmap, tool, prog)
-    return zmap
+from netshape.stock.config import load_stock  # noqa: E402  (the one stock format, docs/stock.md)
 
 
 def contour_of(program, spacing: float):

@@ -18,8 +18,9 @@ from pathlib import Path
 from typing import Any
 
 from netshape import _config as cfg
-from netshape._budget import MAX_STL_TRIANGLES, MAX_ZMAP_NODES
+from netshape._budget import MAX_STL_TRIANGLES
 from netshape.motion import PLAN_RULES
+from netshape.stock.config import PreCut, stock_from_dict  # noqa: F401  (PreCut: part of the Job API)
 
 #: Work offsets a program may select; the job gives each as ``G54_mm = [x, y, z]``.
 WORK_OFFSETS = ("G54", "G55", "G56", "G57", "G58", "G59")
@@ -32,8 +33,6 @@ _TOP = {"name", "program", "output", "tool", "stock", "offsets", "coefficients",
 _TOOL_KEYS = {"file", "kind", "diameter_mm", "corner_radius_mm", "flutes", "helix_deg", "flute_length_mm",
               "stick_out_mm", "youngs_modulus_MPa", "holder_compliance_um_per_N", "runout_rho_mm",
               "runout_lambda_deg", "max_power_W", "max_torque_Nm"}
-_STOCK_KEYS = {"file", "min_mm", "max_mm", "spacing_mm", "heights", "pre_cut"}
-_PRE_CUT_KEYS = {"program", "tool"}
 _MACHINE_KEYS = {"file", "error_scale"}
 _LIMIT_KEYS = {"vmax_mm_s", "amax_mm_s2", "jmax_mm_s3", "rule", "tolerance_mm", "ts1_s", "ts2_s", "lookahead"}
 _CUTTING_KEYS = {"spindle_rpm", "feed_per_tooth_mm", "feed_scale", "step_mm", "samples_per_revolution",
@@ -46,14 +45,6 @@ _COEFF_KEYS = ("Ktc", "Krc", "Kac", "Kte", "Kre", "Kae")
 
 class JobError(ValueError):
     """A bad job file: the message names the file and the key."""
-
-
-@dataclass
-class PreCut:
-    """A program swept through the stock before the job's program (paths resolved)."""
-
-    program: Path
-    tool: dict
 
 
 @dataclass
@@ -122,91 +113,8 @@ def _tool(src: str, base: Path, where: str, v: Any) -> dict:
 
 
 def _stock(src: str, base: Path, v: Any) -> dict:
-    if isinstance(v, str):
-        v = {"file": v}
-    t = _check_keys(src, "stock", v, _STOCK_KEYS)
-    sbase = base
-    if "file" in t:
-        p = _path(src, base, "stock.file", t["file"])
-        inner = _read_toml(p, str(p))
-        _check_keys(str(p), "", inner, _STOCK_KEYS - {"file"})
-        merged = dict(inner)
-        merged.update({k: x for k, x in t.items() if k != "file"})
-        t = merged
-        src, sbase = str(p), p.parent
-    out: dict = {"pre_cut": [], "heights": None}
-    for key in ("min_mm", "max_mm"):
-        if key not in t:
-            raise _err(src, f"stock.{key}", _MISSING, "missing (the stock box [x, y, z] in mm)")
-        out[key] = _vec3(src, f"stock.{key}", t[key])
-    lo, hi = out["min_mm"], out["max_mm"]
-    for i, ax in enumerate("xyz"):
-        if not hi[i] > lo[i]:
-            raise _err(src, f"stock.max_mm[{i}]", hi[i], f"must exceed stock.min_mm[{i}] = {lo[i]} ({ax}) [mm]")
-    if "spacing_mm" not in t and "heights" not in t:
-        raise _err(src, "stock.spacing_mm", _MISSING, "missing (Z-map node spacing in mm)")
-    if "spacing_mm" in t:
-        out["spacing_mm"] = _number(src, "stock.spacing_mm", t["spacing_mm"], positive=True)
-        cells = (hi[0] - lo[0]) / out["spacing_mm"] * (hi[1] - lo[1]) / out["spacing_mm"]
-        if cells > MAX_ZMAP_NODES:
-            raise _err(src, "stock.spacing_mm", t["spacing_mm"], f"gives {cells:.3g} Z-map nodes (> 4e7); "
-                       "use a coarser spacing")
-        out["nodes"] = cells
-    if "heights" in t:
-        hp = _path(src, sbase, "stock.heights", t["heights"])
-        if hp.suffix.lower() not in (".npy", ".csv"):
-            raise _err(src, "stock.heights", t["heights"], "must be a .npy or .csv file of (ny, nx) heights [mm]")
-        ny, nx, about = _heights_shape(hp)
-        if ny * nx > MAX_ZMAP_NODES:
-            raise _err(src, "stock.heights", t["heights"], f"holds {'at least ' if about else ''}{ny:.0f} x {nx} = "
-                       f"{ny * nx:.3g} Z-map nodes, over the limit of 4e7 (not loaded)")
-        out["heights"] = hp
-        out["nodes"] = ny * nx
-    pre = t.get("pre_cut", [])
-    if not isinstance(pre, list):
-        raise _err(src, "stock.pre_cut", pre, "must be an array of tables [[stock.pre_cut]]")
-    for i, pc in enumerate(pre):
-        w = f"stock.pre_cut[{i}]"
-        _check_keys(src, w, pc, _PRE_CUT_KEYS)
-        for k in ("program", "tool"):
-            if k not in pc:
-                raise _err(src, f"{w}.{k}", _MISSING, "missing")
-        out["pre_cut"].append(PreCut(program=_path(src, sbase, f"{w}.program", pc["program"]),
-                                     tool=_tool(src, sbase, f"{w}.tool", pc["tool"])))
-    return out
-
-
-def _heights_shape(path: Path, max_nodes: int = MAX_ZMAP_NODES) -> tuple[float, int, bool]:
-    """(ny, nx, at_least) of a heights file without loading it: a .npy header, or a CSV's first row (nx)
-    and its lines with data (ny), counted in 1 MB chunks. Counting stops once ny · nx exceeds
-    ``max_nodes``; then ny is a lower bound and ``at_least`` is True."""
-    if path.suffix.lower() == ".npy":
-        import numpy as np
-
-        try:
-            with open(path, "rb") as fh:
-                major, _ = np.lib.format.read_magic(fh)
-                read = np.lib.format.read_array_header_1_0 if major == 1 else np.lib.format.read_array_header_2_0
-                shape = read(fh)[0]
-        except (ValueError, OSError):
-            return 0.0, 0, False  # unreadable: the stock stage says so when it loads it
-        if len(shape) != 2:
-            return 0.0, 0, False
-        return float(shape[0]), int(shape[1]), False
-    with open(path, "rb") as fh:
-        first = fh.readline(1 << 20)
-        if not first.strip():
-            return 0.0, 0, False
-        nx = first.count(b",") + 1
-        ny, last = 1, b"\n"
-        while chunk := fh.read(1 << 20):
-            ny += chunk.count(b"\n")
-            last = chunk[-1:]
-            if ny * nx > max_nodes:
-                return float(ny), nx, True
-    if last != b"\n":  # a last row without its newline
-        ny += 1
-    return float(ny), nx, False
+    """``[stock]``: netshape.stock.config's one stock format, pre-cut tools read as ``[tool]`` is."""
+    return stock_from_dict(v, source=src, base=base, prefix="stock.", error=JobError, read_tool=_tool)
 
 
 def _coefficients(src: str, v: Any):

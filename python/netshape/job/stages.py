@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .program import Program, _sub_toolpath, read_program, stock_frame_toolpath
+from .program import Program, _sub_toolpath, stock_frame_toolpath
 from .spec import Job
 
 if TYPE_CHECKING:
@@ -30,34 +30,10 @@ def make_cutter(tool: dict):
 
 def stage_stock(job: Job):
     """The stock before the program: a box or a heights file, then every ``[[stock.pre_cut]]`` swept in
-    order. Returns a netshape.stock.ZMap."""
-    from netshape import stock as ns
+    order (netshape.stock.config.build_stock). Returns a netshape.stock.ZMap."""
+    from netshape.stock.config import build_stock
 
-    s = job.stock
-    lo, hi = s["min_mm"], s["max_mm"]
-    if s["heights"] is not None:
-        path = s["heights"]
-        if path.suffix.lower() == ".npy":
-            h = np.load(path, allow_pickle=False)
-        else:
-            import io
-
-            from netshape._text import read_text
-
-            h = np.loadtxt(io.StringIO(read_text(path)), delimiter=",", ndmin=2)
-        h = np.asarray(h, dtype=float)
-        if h.ndim != 2 or min(h.shape) < 2:
-            raise ValueError(f"stock.heights = {str(path)!r}: shape {h.shape}, must be (ny, nx) with ny, nx ≥ 2")
-        if not np.isfinite(h).all():
-            raise ValueError(f"stock.heights = {str(path)!r}: heights must be finite [mm]")
-        if h.min() < lo[2]:
-            raise ValueError(f"stock.heights = {str(path)!r}: height {h.min():g} below stock.min_mm[2] = {lo[2]:g}")
-        z = ns.from_heights(h, lo[0], hi[0], lo[1], hi[1], lo[2])
-    else:
-        z = ns.ZMap(lo[0], hi[0], lo[1], hi[1], s["spacing_mm"], hi[2], lo[2])
-    for pc in s["pre_cut"]:
-        ns.sweep(z, make_cutter(pc.tool), read_program(pc.program))
-    return z
+    return build_stock(job.stock)
 
 
 def stage_cut(job: Job, stock0, prog: Program, warnings: list | None = None):

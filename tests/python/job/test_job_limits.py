@@ -99,7 +99,7 @@ def test_a_huge_csv_heights_file_is_counted_before_it_is_loaded(capsys, tmp_path
 
 
 def test_heights_csv_rows_are_counted_exactly(tmp_path):
-    from netshape.job.spec import _heights_shape
+    from netshape.stock.config import heights_shape as _heights_shape
 
     p = tmp_path / "h.csv"
     p.write_text("1.000000,2,3\n4,5,6\n7,8,9")  # no newline after the last row
