@@ -100,6 +100,29 @@ def cutter_from_dict(d: dict, *, source: str = "cutter") -> Cutter:
     return c
 
 
+def tool_table(source: str, base, where: str, v, *, known=None, error: type = ValueError) -> dict:
+    """The cutter keys of a tool given as a TOML path string, or as a table of cutter keys with an
+    optional ``file`` (a cutter TOML, relative to ``base``) whose keys the table's override. Checked by
+    :func:`cutter_from_dict`; ``known`` limits the table's keys (default: every cutter key and ``file``).
+    Errors are ``error("SOURCE: WHERE.KEY = VALUE: WHY")``."""
+    from .._config import check_keys, file_path
+
+    if isinstance(v, (str, os.PathLike)):
+        v = {"file": os.fspath(v)}
+    t = check_keys(source, where, v, known if known is not None else {"file", *_KEYS}, error)
+    d: dict = {}
+    if "file" in t:
+        p = file_path(source, base, f"{where}.file", t["file"], error=error)
+        d = load_toml(p, str(p))
+    d.update({k: x for k, x in t.items() if k != "file"})
+    try:
+        cutter_from_dict(d, source=where)
+    except ValueError as exc:
+        msg = str(exc)
+        raise error(f"{source}: {msg if msg.startswith(where) else f'{where}: {msg}'}") from None
+    return d
+
+
 def spindle_limits(d: dict) -> dict[str, float]:
     """The optional spindle limits of a tool's TOML keys (``max_power_W``, ``max_torque_Nm``), each > 0."""
     out = {}

@@ -91,25 +91,9 @@ _read_toml = cfg.load_toml
 
 def _tool(src: str, base: Path, where: str, v: Any) -> dict:
     """Cutter keys from a path string, or a table with ``file`` and/or cutter keys (keys override)."""
-    from netshape.cutter import cutter_from_dict
+    from netshape.cutter import tool_table
 
-    if isinstance(v, str):
-        v = {"file": v}
-    t = _check_keys(src, where, v, _TOOL_KEYS)
-    d: dict = {}
-    if "file" in t:
-        p = _path(src, base, f"{where}.file", t["file"])
-        d = _read_toml(p, str(p))
-        extra = {k: x for k, x in t.items() if k != "file"}
-        d.update(extra)
-    else:
-        d = dict(t)
-    try:
-        cutter_from_dict(d, source=where)
-    except ValueError as exc:
-        msg = str(exc)
-        raise JobError(f"{src}: {msg if msg.startswith(where) else f'{where}: {msg}'}") from None
-    return d
+    return tool_table(src, base, where, v, known=_TOOL_KEYS, error=JobError)
 
 
 def _stock(src: str, base: Path, v: Any) -> dict:

@@ -7,7 +7,7 @@
     heights = "casting.npy"            # optional: (ny, nx) heights [mm] over the box, .npy or .csv
     [[pre_cut]]                        # optional, in order: programs swept through the stock first
     program = "rough.ngc"
-    tool = "rough_tool.toml"           # a cutter TOML path, or a table of its keys
+    tool = "rough_tool.toml"           # a cutter TOML path, or a table of its keys (and `file`)
 
 In a job the table is ``[stock]`` (or ``stock = "STOCK.toml"``, whose keys the table's override) and
 pre-cuts are ``[[stock.pre_cut]]``. Relative paths are taken from the file that names them.
@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 from typing import Any, Callable
 
@@ -39,33 +40,17 @@ class PreCut:
     tool: dict
 
 
-def tool_keys(source: str, base: Path, where: str, v: Any, error: type = ValueError) -> dict:
-    """Cutter keys from a path string or a table of cutter keys (checked by netshape.cutter)."""
-    from netshape.cutter import cutter_from_dict
-
-    if isinstance(v, str):
-        p = cfg.file_path(source, base, where, v, error=error)
-        d = cfg.load_toml(p, str(p))
-    elif isinstance(v, dict):
-        d = dict(v)
-    else:
-        raise cfg.field_error(source, where, v, "must be a cutter TOML path or a table of its keys", error)
-    try:
-        cutter_from_dict(d, source=where)
-    except ValueError as exc:
-        msg = str(exc)
-        raise error(f"{source}: {msg if msg.startswith(where) else f'{where}: {msg}'}") from None
-    return d
-
-
 def stock_from_dict(v: Any, *, source: str, base: Path, prefix: str = "", error: type = ValueError,
                     read_tool: Callable[..., dict] | None = None) -> dict:
     """The checked stock table ``v`` (or a STOCK.toml path string) as a dict: ``min_mm``, ``max_mm``,
     ``spacing_mm`` (if given), ``heights`` (Path or None), ``nodes`` (Z-map node count), ``pre_cut``
     (list of PreCut). Errors name ``source`` and the key as ``prefix + key``
     (e.g. ``job.toml: stock.spacing_mm = -1: must be positive``), raised as ``error``. ``read_tool``
-    (source, base, where, value) reads a pre-cut's tool (default :func:`tool_keys`)."""
-    read_tool = read_tool or (lambda s, b, w, x: tool_keys(s, b, w, x, error))
+    (source, base, where, value) reads a pre-cut's tool (default netshape.cutter.tool_table)."""
+    if read_tool is None:
+        from netshape.cutter import tool_table
+
+        read_tool = partial(tool_table, error=error)
     if isinstance(v, (str, os.PathLike)):
         v = {"file": os.fspath(v)}
     t = cfg.check_keys(source, prefix.rstrip("."), v, STOCK_KEYS, error)
