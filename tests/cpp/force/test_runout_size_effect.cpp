@@ -128,3 +128,37 @@ TEST_CASE("the deflection model's disk forces carry the same runout and size eff
     CHECK(worst <= (e.chip_exponent == 1.0 ? 1e-9 : 0.02) * peak);
   }
 }
+
+TEST_CASE("with an engagement map: the window model's chip on the elements the map marks") {
+  FlatEndModel m = cut();
+  const VectorXd th = rotation_angles(120);
+  // a slot: the bins of [0, π] are exactly the window's elements, so both models sum the same terms
+  m.engagement = AngularEngagement::from_mode(MillingMode::slot, 5.0, 10.0);
+  const EngagementMap slot = EngagementMap::from_window(m.engagement, m.disks(), 360);
+  FlatEndWorkspace ws(m);
+  Points3 G(th.size(), 3);
+  for (const RunoutSizeEffect e : {RunoutSizeEffect{0.01, deg2rad(40.0), 1.0, 0.0},
+                                   RunoutSizeEffect{0.006, deg2rad(200.0), 0.7, 0.05}}) {
+    const Points3 F = flat_end_forces_extended(m, e, th);
+    flat_end_forces_extended(m, e, ws, th, G, slot);
+    CHECK((F - G).cwiseAbs().maxCoeff() <= 1e-9 * F.cwiseAbs().maxCoeff());
+    // runout loads the flutes unequally: the force is no longer periodic over a flute pitch
+    const Eigen::Index pitch = th.size() / m.flutes;
+    double shift = 0.0;
+    for (Eigen::Index a = 0; a + pitch < th.size(); ++a)
+      shift = std::max(shift, (G.row(a) - G.row(a + pitch)).norm());
+    CHECK(shift > 0.05 * G.rowwise().norm().maxCoeff());
+  }
+  // a down-milling window: the map differs only in the bins cut by the window's edges
+  m.engagement = AngularEngagement::from_mode(MillingMode::down, 5.0, 4.0);
+  const EngagementMap down = EngagementMap::from_window(m.engagement, m.disks(), 3600);
+  const RunoutSizeEffect e{0.008, deg2rad(90.0), 0.8, 0.0};
+  const Points3 F = flat_end_forces_extended(m, e, th);
+  flat_end_forces_extended(m, e, ws, th, G, down);
+  CHECK((F - G).rowwise().norm().maxCoeff() <= 0.02 * F.rowwise().norm().maxCoeff());
+  // nothing set: exactly the plain kernel with the map
+  Points3 P(th.size(), 3);
+  flat_end_forces(m, ws, th, P, &down);
+  flat_end_forces_extended(m, RunoutSizeEffect{}, ws, th, G, down);
+  CHECK((P - G).cwiseAbs().maxCoeff() == 0.0);
+}

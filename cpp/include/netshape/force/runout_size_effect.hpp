@@ -39,4 +39,13 @@ struct RunoutSizeEffect {
 Points3 flat_end_forces_extended(const FlatEndModel& model, const RunoutSizeEffect& extension,
                                  const Eigen::Ref<const VectorXd>& angles);
 
+/// The same chip (h_j = c·sin φ + r_j − r_{j−1}, cutting terms g(h_j), edge terms where h_j > 0) on
+/// the elements an engagement `map` marks (as flat_end_forces with a map: bin ⌊φ·bins/2π⌋ of the
+/// element's disk), written into `out` (n, 3) [N]. The program force simulation's model
+/// (force/program.hpp). With `extension.none()` exactly flat_end_forces(model, workspace, angles,
+/// out, &map), which also applies edge forces on engaged elements with sin φ ≤ 0.
+void flat_end_forces_extended(const FlatEndModel& model, const RunoutSizeEffect& extension,
+                              FlatEndWorkspace& workspace, const Eigen::Ref<const VectorXd>& angles,
+                              Eigen::Ref<Points3> out, const EngagementMap& map);
+
 }  // namespace netshape::force
