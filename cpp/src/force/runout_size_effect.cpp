@@ -30,7 +30,8 @@ bool narrowed(const AngularEngagement& base, double s, AngularEngagement& out) {
 
 // g(h) = Σ_k w_k·max(0, h − h_k): the knots h_k and slope changes w_k of the piecewise-linear
 // interpolant of h_ref·(h/h_ref)^p (p = 1: the single term h)
-void chip_function(const RunoutSizeEffect& ext, double c, std::vector<double>& knots, std::vector<double>& weights) {
+void chip_function(const RunoutSizeEffect& ext, double c, std::vector<double>& knots,
+                   std::vector<double>& weights) {
   knots.assign(1, 0.0);
   weights.assign(1, 1.0);
   if (ext.chip_exponent == 1.0) return;

@@ -53,8 +53,8 @@ def simulate_program(stock, cutter, program, coefficients, *, step: float = 0.5,
     elif isinstance(coefficients, _f.BallEndCoefficients):
         ext, key = chip, "ball_end"
     else:
-        raise ValueError(f"coefficients = {coefficients!r}: must be LinearEdgeCoefficients, SizeEffectCoefficients "
-                         "or BallEndCoefficients")
+        raise ValueError(f"coefficients = {coefficients!r}: must be LinearEdgeCoefficients, "
+                         "SizeEffectCoefficients or BallEndCoefficients")
     z = stock.copy() if copy_stock else stock
     opts = _f.ProgramForceOptions(step=step, samples_per_revolution=samples_per_revolution, bins=bins,
                                   disk_height=disk_height, element_angle=math.radians(element_angle_deg),

@@ -132,8 +132,9 @@ FORCE_CHUNK_BLOCKS = 250
 
 def stage_forces(job: Job, stock0, prog: Program, progress=None):
     """Per-revolution forces on the cutter along the program, cut through a copy of the stock
-    (netshape.force.simulate_program, with the tool's runout and the coefficients' chip-size effect; :data:`FORCE_CHUNK_BLOCKS` blocks per call; ``progress(k)`` is
-    called with the blocks done after each call). Returns a ProgramForceResult."""
+    (netshape.force.simulate_program, with the tool's runout and the coefficients' chip-size effect;
+    :data:`FORCE_CHUNK_BLOCKS` blocks per call; ``progress(k)`` is called with the blocks done after
+    each call). Returns a ProgramForceResult."""
     from netshape.force import ProgramForceResult, simulate_program
 
     cutter = make_cutter(job.tool)

@@ -104,7 +104,8 @@ def test_job_coefficients_with_a_size_effect():
     assert k.coefficients.ktc == 900.0 and k.coefficients.krc == 0.0
     blocks = [SimpleNamespace(kind=0, line=1), SimpleNamespace(kind=1, line=3)]
     assert forces_without_chip_extension(job, blocks) == []  # a flat cutter's program forces carry both
-    ball = SimpleNamespace(coefficients="kim_zas_ball12", tool=dict(_tool_dict(), kind="ball", runout_rho_mm=0.01))
+    ball = SimpleNamespace(coefficients="kim_zas_ball12",
+                           tool=dict(_tool_dict(), kind="ball", runout_rho_mm=0.01))
     (w,) = forces_without_chip_extension(ball, blocks)
     assert w["kind"] == "forces_without_chip_extension" and w["line"] == 3
     assert "runout 0.01 mm" in w["message"]

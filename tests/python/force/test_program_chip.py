@@ -30,9 +30,9 @@ def _slot(cutter, coefficients, **kw):
 
 
 def _single(ext):
+    slot = nf.AngularEngagement.from_mode(nf.MillingMode.slot, 4.0, 8.0)
     m = nf.FlatEndModel(radius=4, flutes=3, helix=math.radians(30), axial_depth=AP, feed_per_tooth=C,
-                        engagement=nf.AngularEngagement.from_mode(nf.MillingMode.slot, 4.0, 8.0), linear_edge=K,
-                        disk_height=0.05)
+                        engagement=slot, linear_edge=K, disk_height=0.05)
     return nf.flat_end_forces_extended(m, ext, nf.rotation_angles(SPR))
 
 
@@ -43,7 +43,8 @@ def _cutter(rho=0.0, lam_deg=0.0):
 
 
 def _check(r, steady, F):
-    np.testing.assert_allclose(r.mean[steady], np.tile(F.mean(axis=0), (steady.sum(), 1)), rtol=0.02, atol=1.0)
+    mean = np.tile(F.mean(axis=0), (steady.sum(), 1))
+    np.testing.assert_allclose(r.mean[steady], mean, rtol=0.02, atol=1.0)
     np.testing.assert_allclose(r.peak_resultant[steady], np.linalg.norm(F, axis=1).max(), rtol=0.02)
 
 
