@@ -6,8 +6,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "netshape/compensation.hpp"
 #include "netshape/deflection.hpp"
 #include "netshape/force.hpp"
+#include "netshape/stock.hpp"
+#include "netshape/toolpath.hpp"
 
 using namespace netshape;
 using namespace netshape::force;
@@ -161,4 +164,31 @@ TEST_CASE("with an engagement map: the window model's chip on the elements the m
   flat_end_forces(m, ws, th, P, &down);
   flat_end_forces_extended(m, RunoutSizeEffect{}, ws, th, G, down);
   CHECK((P - G).cwiseAbs().maxCoeff() == 0.0);
+}
+
+TEST_CASE("the program force simulation carries the chip; ball cutters and the feed schedule refuse it") {
+  const toolpath::Toolpath prog = toolpath::parse_gcode("G21 G90 G0 X-6 Y0 Z0\nS6000 M3\nG1 X12 F900\n");
+  ProgramCoefficients k;
+  k.linear_edge = {958.8, 251.1, 146.4, 15.8, 19.4, 18.2};
+  ProgramForceOptions opt;
+  opt.step = 2.0;
+  opt.samples_per_revolution = 36;
+  const cutter::Cutter flat = cutter::Cutter::flat_end(8.0, 3, deg2rad(30.0));
+  auto run = [&](const cutter::Cutter& c, const ProgramCoefficients& kk) {
+    stock::ZMap z(0.0, 12.0, -8.0, 8.0, 0.2, 2.0, -5.0);
+    return simulate_program(z, c, prog, kk, opt);
+  };
+  const ProgramForces plain = run(flat, k);
+  ProgramCoefficients kr = k;
+  kr.chip = RunoutSizeEffect{0.015, deg2rad(20.0), 1.0, 0.0};
+  const ProgramForces with = run(flat, kr);
+  REQUIRE(plain.peak_resultant.size() == with.peak_resultant.size());
+  CHECK(with.peak_resultant.maxCoeff() > 1.2 * plain.peak_resultant.maxCoeff());
+  CHECK_THROWS_AS(run(cutter::Cutter::ball_end(8.0, 2, deg2rad(30.0)), kr), std::invalid_argument);
+  stock::ZMap z(0.0, 12.0, -8.0, 8.0, 0.2, 2.0, -5.0);
+  compensation::FeedLimits lim;
+  lim.max_feed = 200.0;
+  compensation::FeedScheduleOptions fo;
+  fo.sampling = opt;
+  CHECK_THROWS_AS(compensation::feed_samples(z, flat, prog, kr, lim, fo), std::invalid_argument);
 }
