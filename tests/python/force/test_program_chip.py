@@ -106,3 +106,35 @@ def test_the_feed_schedule_takes_size_effect_coefficients_as_their_linear_part()
     sized = schedule_feeds(block, _cutter(), prog, SizeEffectCoefficients(K, 0.7, 0.1), lim, **kw)
     np.testing.assert_array_equal(plain.samples["allowed"], sized.samples["allowed"])
     assert np.isfinite(plain.samples["allowed"][:, 0]).any()
+
+
+def test_the_jobs_forces_stage_carries_the_tools_runout_and_the_size_effect():
+    """The demo job with runout in its tool and a chip exponent in its coefficient table: the forces
+    stage changes and equals the program force simulation with both; no forces_without_chip_extension."""
+    import dataclasses
+    from pathlib import Path
+
+    import netshape.job.stages as stages
+    from netshape.job.program import stage_program
+    from netshape.job.spec import load_job
+    from netshape.job.warnings import forces_without_chip_extension
+
+    job = load_job(Path(__file__).resolve().parents[3] / "examples" / "demo" / "job.toml")
+    k = nf.linear_edge_coefficient_set(job.coefficients).coefficients
+    table = {"Ktc_N_mm2": k.ktc, "Krc_N_mm2": k.krc, "Kac_N_mm2": k.kac, "Kte_N_mm": k.kte, "Kre_N_mm": k.kre,
+             "Kae_N_mm": k.kae, "chip_exponent": 0.8, "reference_chip_mm": 0.05}
+    ext = dataclasses.replace(job, tool=dict(job.tool, runout_rho_mm=0.01, runout_lambda_deg=30.0),
+                              coefficients=table)
+    prog = stage_program(job)
+    stock0 = stages.stage_stock(job)
+    plain = stages.stage_forces(job, stock0, prog)
+    both = stages.stage_forces(ext, stock0, prog)
+    assert np.max(both.peak_resultant) > 1.1 * np.max(plain.peak_resultant)
+    cutter = stages.make_cutter(ext.tool)
+    assert cutter.runout_rho == 0.01
+    direct = nf.simulate_program(stock0, cutter, stages.stock_frame_toolpath(prog),
+                                 SizeEffectCoefficients(k, 0.8, 0.05), step=ext.cutting["step_mm"],
+                                 samples_per_revolution=ext.cutting["samples_per_revolution"],
+                                 disk_height=ext.cutting["disk_height_mm"])
+    np.testing.assert_allclose(both.peak_resultant, direct.peak_resultant, rtol=1e-9)
+    assert forces_without_chip_extension(ext, prog.toolpath.blocks) == []
