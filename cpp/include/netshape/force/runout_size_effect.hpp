@@ -34,7 +34,7 @@ struct RunoutSizeEffect {
 };
 
 /// Forces on the cutter (n, 3) [N] at the rotation angles (n) [rad] of flute 1 at the tip, for the
-/// model's angular engagement (engagement maps are not supported) and its coefficients (Kline–DeVor
+/// model's angular engagement (an engagement map: the overload below) and its coefficients (Kline–DeVor
 /// as its linear edge equivalent). With `extension.none()` equal to flat_end_forces(model, angles).
 Points3 flat_end_forces_extended(const FlatEndModel& model, const RunoutSizeEffect& extension,
                                  const Eigen::Ref<const VectorXd>& angles);
