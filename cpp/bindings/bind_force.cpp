@@ -332,10 +332,12 @@ void bind_force(py::module_& m) {
       "simulate_program_core",
       [](netshape::stock::ZMap& stock, const netshape::cutter::Cutter& cutter,
          const netshape::toolpath::Toolpath& program, const nf::LinearEdgeCoefficients* linear_edge,
-         const nf::BallEndCoefficients* ball_end, const nf::ProgramForceOptions& options) {
+         const nf::BallEndCoefficients* ball_end, const nf::ProgramForceOptions& options,
+         const nf::RunoutSizeEffect* chip) {
         nf::ProgramCoefficients k;
         if (linear_edge) k.linear_edge = *linear_edge;
         if (ball_end) k.ball_end = *ball_end;
+        if (chip) k.chip = *chip;
         nf::ProgramForces r;
         {
           py::gil_scoped_release rel;
@@ -347,5 +349,5 @@ void bind_force(py::module_& m) {
                         "removed_volume"_a = r.removed_volume);
       },
       "stock"_a, "cutter"_a, "program"_a, "linear_edge"_a = nullptr, "ball_end"_a = nullptr,
-      py::arg_v("options", nf::ProgramForceOptions{}, "ProgramForceOptions()"));
+      py::arg_v("options", nf::ProgramForceOptions{}, "ProgramForceOptions()"), "chip"_a = nullptr);
 }

@@ -318,6 +318,8 @@ void check_inputs(const cutter::Cutter& cutter, const force::ProgramCoefficients
   cutter.validate();
   NETSHAPE_CHECK(cutter.kind != cutter::CutterKind::bull, "cutter.kind", "bull",
                  "feed scheduling models flat and ball end mills");
+  NETSHAPE_CHECK(k.chip.none(), "chip", "runout/size effect",
+                 "feed scheduling solves the linear chip's force c·P + Q (docs/feeds.md)");
   if (cutter.kind == cutter::CutterKind::ball) {
     k.ball_end.validate();
     NETSHAPE_CHECK(!std::isfinite(limits.max_power) && !std::isfinite(limits.max_torque), "max_power_W",

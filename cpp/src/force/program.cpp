@@ -9,6 +9,7 @@
 #include "netshape/force/flat_end_model.hpp"
 #include "netshape/force/force_summary.hpp"
 #include "netshape/force/program_walk.hpp"
+#include "netshape/force/runout_size_effect.hpp"
 #include "netshape/stock/engagement.hpp"
 
 namespace netshape::force {
@@ -34,6 +35,9 @@ ProgramForces simulate_program(stock::ZMap& stock, const cutter::Cutter& cutter,
                  "force along a program models flat and ball end mills");
   const bool ball = cutter.kind == cutter::CutterKind::ball;
   if (ball) k.ball_end.validate(); else k.linear_edge.validate();
+  k.chip.validate();
+  NETSHAPE_CHECK(!ball || k.chip.none(), "chip", "runout/size effect",
+                 "runout and the chip-size effect are modelled for flat end mills");
   const int bins = opt.bins;
   VectorXd phi(bins);
   for (int b = 0; b < bins; ++b) phi[b] = (b + 0.5) * 2.0 * pi / bins;
@@ -89,8 +93,10 @@ ProgramForces simulate_program(stock::ZMap& stock, const cutter::Cutter& cutter,
     map.mask = mask.cast<std::uint8_t>();
     if (ball)
       ball_end_forces(bm, bws, angles, F, &map);
-    else
+    else if (k.chip.none())
       flat_end_forces(fm, fws, angles, F, &map);
+    else
+      flat_end_forces_extended(fm, k.chip, fws, angles, F, map);
     const ForceSummary sm = summarize(F);
     pos.push_back(w.tip);
     dir.push_back(w.feed_direction);

@@ -27,6 +27,35 @@ bool narrowed(const AngularEngagement& base, double s, AngularEngagement& out) {
   out.phi_ex = ex;
   return true;
 }
+
+// g(h) = Σ_k w_k·max(0, h − h_k): the knots h_k and slope changes w_k of the piecewise-linear
+// interpolant of h_ref·(h/h_ref)^p (p = 1: the single term h)
+void chip_function(const RunoutSizeEffect& ext, double c, std::vector<double>& knots,
+                   std::vector<double>& weights) {
+  knots.assign(1, 0.0);
+  weights.assign(1, 1.0);
+  if (ext.chip_exponent == 1.0) return;
+  const double href = ext.reference_chip > 0.0 ? ext.reference_chip : c;
+  const double p = ext.chip_exponent;
+  knots.clear();
+  weights.clear();
+  double prev_slope = 0.0;
+  for (std::size_t i = 0; i + 1 < knot_fraction.size(); ++i) {
+    const double h0 = c * knot_fraction[i], h1 = c * knot_fraction[i + 1];
+    const double slope = href * (std::pow(h1 / href, p) - std::pow(h0 / href, p)) / (h1 - h0);
+    knots.push_back(h0);
+    weights.push_back(slope - prev_slope);
+    prev_slope = slope;
+  }
+}
+
+// r_j − r_{j−1} for every flute j (zeros without runout)
+std::vector<double> runout_steps(const RunoutSizeEffect& ext, int flutes) {
+  std::vector<double> r(flutes), d(flutes);
+  for (int j = 0; j < flutes; ++j) r[j] = ext.runout_rho * std::cos(ext.runout_lambda - two_pi * j / flutes);
+  for (int j = 0; j < flutes; ++j) d[j] = r[j] - r[(j + flutes - 1) % flutes];
+  return d;
+}
 }  // namespace
 
 void RunoutSizeEffect::validate() const {
@@ -52,22 +81,8 @@ Points3 flat_end_forces_extended(const FlatEndModel& model, const RunoutSizeEffe
   const int N = model.flutes;
   const double c = model.feed_per_tooth;
   NETSHAPE_CHECK(c > 0.0, "feed_per_tooth", c, "must be positive with runout or a size effect [mm]");
-  // cutting term Σ_k w_k·max(0, h − h_k): w the slope changes of the interpolant of g
-  std::vector<double> knots{0.0}, weights{1.0};
-  if (ext.chip_exponent != 1.0) {
-    const double href = ext.reference_chip > 0.0 ? ext.reference_chip : c;
-    const double p = ext.chip_exponent;
-    knots.clear();
-    weights.clear();
-    double prev_slope = 0.0;
-    for (std::size_t i = 0; i + 1 < knot_fraction.size(); ++i) {
-      const double h0 = c * knot_fraction[i], h1 = c * knot_fraction[i + 1];
-      const double slope = href * (std::pow(h1 / href, p) - std::pow(h0 / href, p)) / (h1 - h0);
-      knots.push_back(h0);
-      weights.push_back(slope - prev_slope);
-      prev_slope = slope;
-    }
-  }
+  std::vector<double> knots, weights;
+  chip_function(ext, c, knots, weights);
   const bool runout = ext.runout_rho != 0.0;
   FlatEndModel one = model;
   one.coefficient_model = FlatCoefficientModel::linear_edge;
@@ -76,11 +91,10 @@ Points3 flat_end_forces_extended(const FlatEndModel& model, const RunoutSizeEffe
   const Eigen::Index n = angles.size();
   Points3 total = Points3::Zero(n, 3), part(n, 3);
   VectorXd shifted(n);
-  std::vector<double> r(N, 0.0);
-  for (int j = 0; j < N; ++j) r[j] = ext.runout_rho * std::cos(ext.runout_lambda - two_pi * j / N);
+  const std::vector<double> steps = runout_steps(ext, N);
   const int groups = runout ? N : 1;
   for (int j = 0; j < groups; ++j) {
-    const double delta = runout ? r[j] - r[(j + N - 1) % N] : 0.0;
+    const double delta = runout ? steps[j] : 0.0;
     shifted = angles.array() + (runout ? two_pi * j / N : 0.0);
     auto add = [&](double s, const LinearEdgeCoefficients& kk, double weight) {
       if (!narrowed(model.engagement, s, one.engagement)) return;
@@ -95,6 +109,46 @@ Points3 flat_end_forces_extended(const FlatEndModel& model, const RunoutSizeEffe
     add(-delta / c, {0.0, 0.0, 0.0, k.kte, k.kre, k.kae}, 1.0);  // edge forces wherever h_j > 0
   }
   return total;
+}
+
+void flat_end_forces_extended(const FlatEndModel& model, const RunoutSizeEffect& ext, FlatEndWorkspace& ws,
+                              const Eigen::Ref<const VectorXd>& angles, Eigen::Ref<Points3> out,
+                              const EngagementMap& map) {
+  ext.validate();
+  if (ext.none()) return flat_end_forces(model, ws, angles, out, &map);
+  flat_end_forces(model, ws, angles, out, &map);  // validates model, map and out; rebuilds ws if needed
+  const LinearEdgeCoefficients k = model.coefficient_model == FlatCoefficientModel::linear_edge
+                                       ? model.linear_edge
+                                       : model.kline_devor.to_linear_edge();
+  const int N = model.flutes, bins = map.bins();
+  const double c = model.feed_per_tooth, dz = ws.disk_height(), kb = model.k_beta();
+  NETSHAPE_CHECK(c > 0.0, "feed_per_tooth", c, "must be positive with runout or a size effect [mm]");
+  std::vector<double> knots, weights;
+  chip_function(ext, c, knots, weights);
+  const std::vector<double> steps = runout_steps(ext, N);
+  const VectorXd& z = ws.heights();
+  for (Eigen::Index a = 0; a < angles.size(); ++a) {
+    double fx = 0.0, fy = 0.0, fz = 0.0;
+    for (int i = 0; i < ws.disks(); ++i)
+      for (int j = 0; j < N; ++j) {
+        double ph = std::fmod(angles[a] + two_pi * j / N - kb * z[i], two_pi);
+        if (ph < 0.0) ph += two_pi;
+        const int b = std::min(bins - 1, static_cast<int>(ph * bins / two_pi));
+        if (!map.mask(i, b)) continue;
+        const double sp = std::sin(ph), cp = std::cos(ph);
+        const double h = c * sp + steps[j];  // this flute's chip: the runout step added
+        if (!(h > 0.0)) continue;
+        double g = 0.0;
+        for (std::size_t q = 0; q < knots.size() && h > knots[q]; ++q) g += weights[q] * (h - knots[q]);
+        const double ft = (k.ktc * g + k.kte) * dz, fr = (k.krc * g + k.kre) * dz;
+        fx += -ft * cp - fr * sp;
+        fy += ft * sp - fr * cp;
+        fz += (k.kac * g + k.kae) * dz;
+      }
+    out(a, 0) = fx;
+    out(a, 1) = fy;
+    out(a, 2) = fz;
+  }
 }
 
 }  // namespace netshape::force

@@ -173,7 +173,10 @@ def schedule_feeds(stock, cutter, program, coefficients, limits: FeedLimits, *, 
     netshape.force.simulate_program. Raises ValueError naming the limit and the block's line when a
     limit cannot be kept at any feed the limits allow."""
     from netshape._core import force as _f
+    from netshape.deflection.chip import SizeEffectCoefficients
 
+    if isinstance(coefficients, SizeEffectCoefficients):
+        coefficients = coefficients.coefficients  # the schedule is the linear chip's (docs/feeds.md)
     z = stock.copy() if copy_stock else stock
     opts = _f.ProgramForceOptions(step=step, samples_per_revolution=samples_per_revolution, bins=bins,
                                   disk_height=disk_height, element_angle=math.radians(element_angle_deg),

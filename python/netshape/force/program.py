@@ -32,23 +32,32 @@ class ProgramForceResult:
 
 def simulate_program(stock, cutter, program, coefficients, *, step: float = 0.5, samples_per_revolution: int = 72,
                      bins: int = 360, disk_height: float = 0.1, element_angle_deg: float = 2.0,
-                     feed_per_tooth: float = 0.0, spindle_rpm: float = 0.0, copy_stock: bool = True
-                     ) -> ProgramForceResult:
+                     feed_per_tooth: float = 0.0, spindle_rpm: float = 0.0, copy_stock: bool = True,
+                     chip=None) -> ProgramForceResult:
     """Cut ``program`` (netshape.toolpath Toolpath, feeds in mm/s) through ``stock``
     (netshape.stock.ZMap) with ``cutter`` and return the per-revolution forces at sample positions
-    every ``step`` mm. ``coefficients``: LinearEdgeCoefficients (flat) or BallEndCoefficients (ball).
+    every ``step`` mm. ``coefficients``: LinearEdgeCoefficients or
+    netshape.deflection.SizeEffectCoefficients (flat) or BallEndCoefficients (ball).
+    A flat cutter's chip carries the cutter's runout (``cutter.runout_rho``, ``runout_lambda``) and
+    the coefficients' chip-size effect, or ``chip`` (a RunoutSizeEffect) when given
+    (netshape.deflection.chip.chip_of); ball cutters refuse either.
     The stock is updated as the cutter moves; with ``copy_stock`` (default) a copy is cut and the
     argument is left as it was. ``feed_per_tooth`` / ``spindle_rpm`` > 0 override the program's."""
     import math
 
+    from netshape.deflection.chip import SizeEffectCoefficients, chip_of
+
+    if isinstance(coefficients, (_f.LinearEdgeCoefficients, SizeEffectCoefficients)):
+        coefficients, ext = chip_of(coefficients, chip, cutter)
+        key = "linear_edge"
+    elif isinstance(coefficients, _f.BallEndCoefficients):
+        ext, key = chip, "ball_end"
+    else:
+        raise ValueError(f"coefficients = {coefficients!r}: must be LinearEdgeCoefficients, "
+                         "SizeEffectCoefficients or BallEndCoefficients")
     z = stock.copy() if copy_stock else stock
     opts = _f.ProgramForceOptions(step=step, samples_per_revolution=samples_per_revolution, bins=bins,
                                   disk_height=disk_height, element_angle=math.radians(element_angle_deg),
                                   feed_per_tooth=feed_per_tooth, spindle_rpm=spindle_rpm)
-    if isinstance(coefficients, _f.LinearEdgeCoefficients):
-        r = _f.simulate_program_core(z, cutter, program, linear_edge=coefficients, options=opts)
-    elif isinstance(coefficients, _f.BallEndCoefficients):
-        r = _f.simulate_program_core(z, cutter, program, ball_end=coefficients, options=opts)
-    else:
-        raise ValueError(f"coefficients = {coefficients!r}: must be LinearEdgeCoefficients or BallEndCoefficients")
+    r = _f.simulate_program_core(z, cutter, program, options=opts, chip=ext, **{key: coefficients})
     return ProgramForceResult(**r)

@@ -108,15 +108,14 @@ FORCE_CHUNK_BLOCKS = 250
 
 def stage_forces(job: Job, stock0, prog: Program, progress=None):
     """Per-revolution forces on the cutter along the program, cut through a copy of the stock
-    (netshape.force.simulate_program, :data:`FORCE_CHUNK_BLOCKS` blocks per call; ``progress(k)`` is
-    called with the blocks done after each call). Returns a ProgramForceResult."""
+    (netshape.force.simulate_program, with the tool's runout and the coefficients' chip-size effect;
+    :data:`FORCE_CHUNK_BLOCKS` blocks per call; ``progress(k)`` is called with the blocks done after
+    each call). Returns a ProgramForceResult."""
     from netshape.force import ProgramForceResult, simulate_program
-
-    from netshape.deflection.chip import chip_of
 
     cutter = make_cutter(job.tool)
     c = job.cutting
-    coeffs = chip_of(coefficients_for(job, cutter))[0]  # the Z-map force simulation is the linear model's
+    coeffs = coefficients_for(job, cutter)  # a flat cutter's chip: its runout and the size effect
     tp = stock_frame_toolpath(prog)
     blocks = list(tp.blocks)
     z = stock0.copy()

@@ -55,17 +55,14 @@ def outside_travel(machine, tp_machine) -> list[dict]:
 
 
 def forces_without_chip_extension(job, blocks) -> list[dict]:
-    """The tool's runout or the coefficients' chip-size effect, which the program forces (the Z-map
-    force simulation, the linear edge-force model) leave out; the deflection stage includes them."""
-    coeffs = job.coefficients if isinstance(job.coefficients, dict) else {}
-    what = []
-    if job.tool.get("runout_rho_mm"):
-        what.append(f"runout {float(job.tool['runout_rho_mm']):g} mm")
-    if coeffs.get("chip_exponent", 1.0) != 1.0:
-        what.append(f"chip_exponent {coeffs['chip_exponent']:g}")
+    """The tool's runout, which the program forces of a ball end mill (the Z-map force simulation,
+    Feng–Menq's model) leave out; flat end mills carry it and the chip-size effect in their chips."""
+    if str(job.tool.get("kind", "flat")) != "ball" or not job.tool.get("runout_rho_mm"):
+        return []
     cut = [b for b in blocks if int(b.kind) != 0]
-    if not what or not cut:
+    if not cut:
         return []
     return [{"kind": "forces_without_chip_extension", "line": int(cut[0].line),
-             "message": f"the program forces leave out the {' and the '.join(what)} (the Z-map force "
-                        "simulation uses the linear edge-force model); the deflection stage includes them"}]
+             "message": f"the program forces leave out the runout {float(job.tool['runout_rho_mm']):g} mm "
+                        "(runout is modelled for flat end mills; the ball end mill's Z-map force simulation "
+                        "uses Feng–Menq's model without it)"}]

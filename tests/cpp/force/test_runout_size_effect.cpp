@@ -6,8 +6,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "netshape/compensation.hpp"
 #include "netshape/deflection.hpp"
 #include "netshape/force.hpp"
+#include "netshape/stock.hpp"
+#include "netshape/toolpath.hpp"
 
 using namespace netshape;
 using namespace netshape::force;
@@ -127,4 +130,65 @@ TEST_CASE("the deflection model's disk forces carry the same runout and size eff
     // the disk loop evaluates the power law exactly, the force kernel its interpolant (2 %)
     CHECK(worst <= (e.chip_exponent == 1.0 ? 1e-9 : 0.02) * peak);
   }
+}
+
+TEST_CASE("with an engagement map: the window model's chip on the elements the map marks") {
+  FlatEndModel m = cut();
+  const VectorXd th = rotation_angles(120);
+  // a slot: the bins of [0, π] are exactly the window's elements, so both models sum the same terms
+  m.engagement = AngularEngagement::from_mode(MillingMode::slot, 5.0, 10.0);
+  const EngagementMap slot = EngagementMap::from_window(m.engagement, m.disks(), 360);
+  FlatEndWorkspace ws(m);
+  Points3 G(th.size(), 3);
+  for (const RunoutSizeEffect e : {RunoutSizeEffect{0.01, deg2rad(40.0), 1.0, 0.0},
+                                   RunoutSizeEffect{0.006, deg2rad(200.0), 0.7, 0.05}}) {
+    const Points3 F = flat_end_forces_extended(m, e, th);
+    flat_end_forces_extended(m, e, ws, th, G, slot);
+    CHECK((F - G).cwiseAbs().maxCoeff() <= 1e-9 * F.cwiseAbs().maxCoeff());
+    // runout loads the flutes unequally: the force is no longer periodic over a flute pitch
+    const Eigen::Index pitch = th.size() / m.flutes;
+    double shift = 0.0;
+    for (Eigen::Index a = 0; a + pitch < th.size(); ++a)
+      shift = std::max(shift, (G.row(a) - G.row(a + pitch)).norm());
+    CHECK(shift > 0.05 * G.rowwise().norm().maxCoeff());
+  }
+  // a down-milling window: the map differs only in the bins cut by the window's edges
+  m.engagement = AngularEngagement::from_mode(MillingMode::down, 5.0, 4.0);
+  const EngagementMap down = EngagementMap::from_window(m.engagement, m.disks(), 3600);
+  const RunoutSizeEffect e{0.008, deg2rad(90.0), 0.8, 0.0};
+  const Points3 F = flat_end_forces_extended(m, e, th);
+  flat_end_forces_extended(m, e, ws, th, G, down);
+  CHECK((F - G).rowwise().norm().maxCoeff() <= 0.02 * F.rowwise().norm().maxCoeff());
+  // nothing set: exactly the plain kernel with the map
+  Points3 P(th.size(), 3);
+  flat_end_forces(m, ws, th, P, &down);
+  flat_end_forces_extended(m, RunoutSizeEffect{}, ws, th, G, down);
+  CHECK((P - G).cwiseAbs().maxCoeff() == 0.0);
+}
+
+TEST_CASE("the program force simulation carries the chip; ball cutters and the feed schedule refuse it") {
+  const toolpath::Toolpath prog = toolpath::parse_gcode("G21 G90 G0 X-6 Y0 Z0\nS6000 M3\nG1 X12 F900\n");
+  ProgramCoefficients k;
+  k.linear_edge = {958.8, 251.1, 146.4, 15.8, 19.4, 18.2};
+  ProgramForceOptions opt;
+  opt.step = 2.0;
+  opt.samples_per_revolution = 36;
+  const cutter::Cutter flat = cutter::Cutter::flat_end(8.0, 3, deg2rad(30.0));
+  auto run = [&](const cutter::Cutter& c, const ProgramCoefficients& kk) {
+    stock::ZMap z(0.0, 12.0, -8.0, 8.0, 0.2, 2.0, -5.0);
+    return simulate_program(z, c, prog, kk, opt);
+  };
+  const ProgramForces plain = run(flat, k);
+  ProgramCoefficients kr = k;
+  kr.chip = RunoutSizeEffect{0.015, deg2rad(20.0), 1.0, 0.0};
+  const ProgramForces with = run(flat, kr);
+  REQUIRE(plain.peak_resultant.size() == with.peak_resultant.size());
+  CHECK(with.peak_resultant.maxCoeff() > 1.2 * plain.peak_resultant.maxCoeff());
+  CHECK_THROWS_AS(run(cutter::Cutter::ball_end(8.0, 2, deg2rad(30.0)), kr), std::invalid_argument);
+  stock::ZMap z(0.0, 12.0, -8.0, 8.0, 0.2, 2.0, -5.0);
+  compensation::FeedLimits lim;
+  lim.max_feed = 200.0;
+  compensation::FeedScheduleOptions fo;
+  fo.sampling = opt;
+  CHECK_THROWS_AS(compensation::feed_samples(z, flat, prog, kr, lim, fo), std::invalid_argument);
 }

@@ -103,9 +103,12 @@ def test_job_coefficients_with_a_size_effect():
     assert isinstance(k, SizeEffectCoefficients) and (k.chip_exponent, k.reference_chip) == (0.8, 0.05)
     assert k.coefficients.ktc == 900.0 and k.coefficients.krc == 0.0
     blocks = [SimpleNamespace(kind=0, line=1), SimpleNamespace(kind=1, line=3)]
-    (w,) = forces_without_chip_extension(job, blocks)
+    assert forces_without_chip_extension(job, blocks) == []  # a flat cutter's program forces carry both
+    ball = SimpleNamespace(coefficients="kim_zas_ball12",
+                           tool=dict(_tool_dict(), kind="ball", runout_rho_mm=0.01))
+    (w,) = forces_without_chip_extension(ball, blocks)
     assert w["kind"] == "forces_without_chip_extension" and w["line"] == 3
-    assert "runout 0.01 mm" in w["message"] and "chip_exponent 0.8" in w["message"]
+    assert "runout 0.01 mm" in w["message"]
     plain = SimpleNamespace(coefficients="Ktc=900", tool=_tool_dict())
     assert forces_without_chip_extension(plain, blocks) == []
 

@@ -10,6 +10,7 @@
 #include "netshape/core/types.hpp"
 #include "netshape/cutter/cutter.hpp"
 #include "netshape/force/coefficients.hpp"
+#include "netshape/force/runout_size_effect.hpp"
 #include "netshape/stock/zmap.hpp"
 #include "netshape/toolpath/toolpath.hpp"
 
@@ -26,10 +27,13 @@ struct ProgramForceOptions {
   void validate() const;
 };
 
-/// Coefficients for a program run: linear edge for flat cutters, Feng–Menq for ball cutters.
+/// Coefficients for a program run: linear edge for flat cutters, Feng–Menq for ball cutters; `chip`:
+/// the flat cutter's runout and chip-size effect (runout_size_effect.hpp; none: the linear model,
+/// bit-identical to the plain kernel; ball cutters refuse anything else).
 struct ProgramCoefficients {
   LinearEdgeCoefficients linear_edge{};
   BallEndCoefficients ball_end{};
+  RunoutSizeEffect chip{};
 };
 
 /// Per sample: position of the tip, block index, feed direction, forces over one revolution.

@@ -34,9 +34,18 @@ struct RunoutSizeEffect {
 };
 
 /// Forces on the cutter (n, 3) [N] at the rotation angles (n) [rad] of flute 1 at the tip, for the
-/// model's angular engagement (engagement maps are not supported) and its coefficients (Kline–DeVor
+/// model's angular engagement (an engagement map: the overload below) and its coefficients (Kline–DeVor
 /// as its linear edge equivalent). With `extension.none()` equal to flat_end_forces(model, angles).
 Points3 flat_end_forces_extended(const FlatEndModel& model, const RunoutSizeEffect& extension,
                                  const Eigen::Ref<const VectorXd>& angles);
+
+/// The same chip (h_j = c·sin φ + r_j − r_{j−1}, cutting terms g(h_j), edge terms where h_j > 0) on
+/// the elements an engagement `map` marks (as flat_end_forces with a map: bin ⌊φ·bins/2π⌋ of the
+/// element's disk), written into `out` (n, 3) [N]. The program force simulation's model
+/// (force/program.hpp). With `extension.none()` exactly flat_end_forces(model, workspace, angles,
+/// out, &map), which also applies edge forces on engaged elements with sin φ ≤ 0.
+void flat_end_forces_extended(const FlatEndModel& model, const RunoutSizeEffect& extension,
+                              FlatEndWorkspace& workspace, const Eigen::Ref<const VectorXd>& angles,
+                              Eigen::Ref<Points3> out, const EngagementMap& map);
 
 }  // namespace netshape::force
