@@ -128,3 +128,21 @@ def test_ball_end_mill_is_reported_not_available(tmp_path, monkeypatch):
     job.coefficients = "kim_zas_ball12"
     res = sd.stage_deflection(job, st.stage_stock(job), stage_program(job), compensate=True)
     assert not res.available and "flat end mill" in res.reason
+
+
+def test_unconverged_points_carry_their_contour_pieces_line_and_count_the_rest():
+    # one run of two pieces: blocks of lines 18 (not a final wall, nominal points 0–3) and 36 (final,
+    # points 4–9), 0.5 mm apart; the written program's check misses the tolerance on both final stretches
+    from types import SimpleNamespace
+
+    arc = 0.5 * np.arange(10)
+    pieces = [{"line": 18, "final_wall": False, "points": slice(0, 4)},
+              {"line": 36, "final_wall": True, "points": slice(4, 10)}]
+    s = np.linspace(0.0, 4.5, 37)
+    err = np.zeros((37, 3))
+    err[:, 1] = np.where(s >= 2.0, 1e-3 * (1.0 + s), 0.0)
+    check = SimpleNamespace(s=s, error=err, final=s >= 2.0, points=np.c_[s, np.zeros(37), np.zeros(37)])
+    pts, left_out = sd.unconverged_points(check, 1, 5e-4, pieces, arc, limit=5)
+    assert {p["line"] for p in pts} == {36}
+    assert [p["x_mm"] for p in pts] == pytest.approx([4.5, 4.375, 4.25, 4.125, 4.0])  # the largest first
+    assert left_out == int(np.sum(s >= 2.0)) - 5
