@@ -67,7 +67,8 @@ def contour_runs(tp) -> list[tuple[int, int]]:
     return runs
 
 
-def unconverged_points(check, level: int, tol: float, pieces: list, arc, limit: int = UNCONVERGED_POINTS_LISTED):
+def unconverged_points(check, level: int, tol: float, pieces: list, arc,
+                       limit: int = UNCONVERGED_POINTS_LISTED):
     """The written program's final-wall samples of one contour run whose |error| at ``level`` exceeds
     ``tol``, largest first: ``(points, left_out)`` with at most ``limit`` points ``{"line", "x_mm",
     "y_mm", "error_mm"}`` and the number not listed. ``line`` is the first line of the contour piece
