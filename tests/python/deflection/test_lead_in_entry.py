@@ -167,3 +167,46 @@ def test_the_check_counts_what_the_move_along_the_offset_removes():
     first = np.flatnonzero(chk.final & (x > 1e-6))[0]
     steady = e[np.argmin(np.abs(x - 10.0) + 10 * ~chk.final)]
     assert abs(e[first] - steady) < 1e-3, (e[first], steady)
+
+
+def _straight_wall_setup():
+    import math
+
+    from pocket_cases import flat_cutter
+
+    stock = ns.stock.ZMap(-6.0, 26.0, -10.0, 10.0, 0.1, 0.0, -10.0)
+    clear = ns.cutter.Cutter.flat_end(10.0, 3, math.radians(30.0))
+    clear.flute_length = 20.0
+    ns.stock.sweep(stock, clear, ns.toolpath.parse_gcode(  # material left below y = −1.5 only
+        "G21 G90 G17\nG0 X-12 Y3.5 Z5\nG1 Z-2 F200\nG1 X32 F800\nG0 Z5\n"))
+    prog = ns.toolpath.parse_gcode(PROGRAM.replace("G1 X10 Y0", "G1 X20 Y0").replace("G1 X12 Y5", ""))
+    return d.setup_path(prog, flat_cutter(6.0), stock, coefficients="leekunhwee_flat_slot", rpm=8000,
+                        spacing=0.5, side="right", profile_levels=0)
+
+
+def test_never_worse_halves_the_sample_nearer_the_worse_points_once_a_round():
+    """A wall start whose corner offset overshoots (three times the compensated one) is worse than the
+    uncompensated program after the corner: never-worse halves the offset of the sample nearer each
+    worse point, once per round however many worse points lie nearer to it, until nothing is worse."""
+    from dataclasses import replace
+
+    from netshape.deflection import checked as ck
+
+    setup = _straight_wall_setup()
+    chk = ck.compensate_checked(setup, scheme="accelerated", level="middle", tolerance=5e-4, max_rounds=1)
+    corner = int(np.flatnonzero(chk.active)[0])
+    C = np.asarray(chk.offsets).copy()
+    C[corner] *= 3.0
+    d_pts = ck.dense_drawing(setup, 4)[0]
+    pos = np.asarray(chk.setup.nominal).copy()
+    pos[:, :2] += C[:, None] * np.asarray(chk.result.normals)
+    blocks, origin, check = ck._write_and_check(chk.setup, pos, d_pts, chk.final, 4, 5e-4, chk.active)
+    bad = replace(chk, blocks=blocks, origin=origin, check=check, offsets=C)
+    assert bad.worse_points > 1
+    fixed = ck._never_worse(bad, d_pts, 4, 5e-4)
+    assert fixed.worse_points == 0
+    # halved, not zeroed (every worse point used to halve both samples around it, so eight worse points
+    # took both to zero in the first round); the samples further on are kept
+    assert fixed.offsets[corner] in {C[corner] / 2 ** k for k in range(1, 6)}
+    assert fixed.offsets[corner + 1] in {C[corner + 1] / 2 ** k for k in range(0, 6)}
+    assert fixed.offsets[corner + 2] == C[corner + 2]
