@@ -67,22 +67,23 @@ def contour_runs(tp) -> list[tuple[int, int]]:
     return runs
 
 
-def unconverged_points(check, level: int, tol: float, pieces: list, arc,
+def unconverged_points(check, level: int, tol: float, pieces: list, arc, owner,
                        limit: int = UNCONVERGED_POINTS_LISTED):
     """The written program's final-wall samples of one contour run whose |error| at ``level`` exceeds
     ``tol``, largest first: ``(points, left_out)`` with at most ``limit`` points ``{"line", "x_mm",
     "y_mm", "error_mm"}`` and the number not listed. ``line`` is the first line of the contour piece
-    (walls.contour_pieces, the entries of ``info["contours"]``) whose drawing stretch ``arc`` [mm]
-    holds the sample's foot ``check.s``."""
+    (walls.contour_pieces, the entries of ``info["contours"]``) holding the block of the drawing that
+    the sample's foot ``check.s`` lies on (the segment of the samples ``arc`` [mm] that ends at sample
+    k belongs to block ``owner[k]``)."""
     err = np.asarray(check.error, dtype=float)[:, level]
     bad = np.flatnonzero(np.asarray(check.final, dtype=bool) & (np.abs(err) > tol))
     bad = bad[np.argsort(-np.abs(err[bad]), kind="stable")]
-    arc = np.asarray(arc, dtype=float)
-    starts = np.array([arc[pc["points"]][0] for pc in pieces])
+    arc, owner = np.asarray(arc, dtype=float), np.asarray(owner)
     out = []
     for i in bad[:limit]:
-        k = max(int(np.searchsorted(starts, check.s[i], side="right")) - 1, 0)
-        out.append({"line": int(pieces[k]["line"]), "x_mm": float(check.points[i, 0]),
+        block = owner[int(np.clip(np.searchsorted(arc, check.s[i], side="left"), 1, len(arc) - 1))]
+        pc = next((p for p in pieces if p["first_block"] <= block <= p["last_block"]), pieces[-1])
+        out.append({"line": int(pc["line"]), "x_mm": float(check.points[i, 0]),
                     "y_mm": float(check.points[i, 1]), "error_mm": float(err[i])})
     return out, int(max(len(bad) - limit, 0))
 
@@ -186,7 +187,7 @@ def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> De
             nrm_b.append(np.asarray(nd.wall_normals(chk.before.points, setup.side))[fin_b])
             lv_before = np.maximum(lv_before, list(chk.before_mm.values()))
             lv_after = np.maximum(lv_after, list(chk.after_mm.values()))
-            listed, left_out = unconverged_points(chk.check, level, tol, pieces, arc)
+            listed, left_out = unconverged_points(chk.check, level, tol, pieces, arc, setup.owner)
             unconv_pts.extend(listed)
             unconv_omitted += left_out
         else:
