@@ -164,8 +164,9 @@ class DrawingCheck:
     """A program's wall against a drawing: per sample of the program (``points``) the error at the
     bottom, middle and top of the wall the program leaves there (``error`` (n, 3) [mm], + material left:
     the envelope of the deflected tool's circles, :func:`wall_envelope`, and so ``profile`` (n,
-    levels); ``sample_error`` the sample's own circle), the signed offset from the drawing ``offsets``, the foot's arc length ``s`` along the
-    drawing and ``final`` (the drawing's final-wall status there)."""
+    levels); ``sample_error`` the sample's own circle), the signed offset from the drawing ``offsets``,
+    the foot's arc length ``s`` along the drawing and ``final`` (the drawing's final-wall status
+    there)."""
 
     points: np.ndarray
     error: np.ndarray

@@ -44,7 +44,8 @@ def test_material_left_everywhere_still_counts():
     e[10] = 0.035
     env = wall_envelope(foot, normals, e, R)
     np.testing.assert_allclose(np.delete(env, 10), 0.020, atol=1e-12)
-    assert env[10] == pytest.approx(0.020 + R - math.sqrt(R * R - 0.05 ** 2), abs=1e-12)  # neighbours' circles
+    # the neighbours' circles, 50 µm on either side
+    assert env[10] == pytest.approx(0.020 + R - math.sqrt(R * R - 0.05 ** 2), abs=1e-12)
 
 
 def test_every_level_on_its_own_and_a_concave_arc_keeps_a_uniform_error():
