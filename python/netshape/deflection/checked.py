@@ -176,8 +176,9 @@ def compensate_checked(setup, *, scheme: str = "accelerated", level: str = "midd
 
 
 def _never_worse(out: CheckedCompensation, d_pts, density: int, arc_tol: float) -> CheckedCompensation:
-    """Where the written program is worse than the uncompensated one between samples, halve the offsets
-    of the samples on either side (six times at most, then zero them), write and check again."""
+    """Where the written program is worse than the uncompensated one between samples, halve the offset
+    of the sample nearer each worse point, once per round however many worse points it is nearest to
+    (six rounds at most, then zero both samples around each), write and check again."""
     setup, res = out.setup, out.result
     nominal = np.asarray(setup.nominal, dtype=float)
     normals = np.asarray(res.normals, dtype=float)
@@ -188,9 +189,16 @@ def _never_worse(out: CheckedCompensation, d_pts, density: int, arc_tol: float) 
         worse = out.check.final & (np.abs(out.check.error[:, out.level]) > b + 0.01 * out.tolerance)
         if not np.any(worse):
             return out
+        # once per sample and round: the sample nearer each worse point (whose offset the written line
+        # there follows most), both neighbours in the last round (zeroed: the program as written)
+        hit = np.zeros(len(C), dtype=bool)
         for s in out.check.s[worse]:
             k = int(np.clip(np.searchsorted(arc, s), 1, len(arc) - 1))
-            C[k - 1:k + 1] = 0.0 if attempt == 6 else 0.5 * C[k - 1:k + 1]
+            if attempt == 6:
+                hit[k - 1:k + 1] = True
+            else:
+                hit[k - 1 if s - arc[k - 1] <= arc[k] - s else k] = True
+        C[hit] = 0.0 if attempt == 6 else 0.5 * C[hit]
         positions = nominal.copy()
         positions[:, :2] += C[:, None] * normals
         blocks, origin, check = _write_and_check(setup, positions, d_pts, out.final, density, arc_tol,

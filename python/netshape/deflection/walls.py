@@ -10,7 +10,12 @@
   (the nominal program): each sample's signed offset C from the drawing along the drawing's wall
   normal, the deflection evaluated at the sample, and the wall error e = −C − δ·n, as the compensation
   defines it, so the compensated program a user runs is checked by the same model that predicted the
-  error, at a density of its own choosing rather than at the compensation's samples.
+  error, at a density of its own choosing rather than at the compensation's samples. Every written
+  point is evaluated in order, the moves along the offset where a wall starts or ends too, so the
+  material each move removes is gone for the points after it.
+- **The wall that remains** at a point of the drawing is the deepest cut of the deflected tool's
+  circles there (:func:`wall_envelope`), what a CMM would measure: where the offset drops faster than
+  the tool's curvature follows, a sample whose own circle no longer reaches the wall is not the wall.
 """
 
 from __future__ import annotations
@@ -110,12 +115,58 @@ def contour_pieces(owner, final, first_line) -> list[dict]:
     return pieces
 
 
+#: Tool circles whose wall normals differ by more than this from a sample's are another wall (a lead-in
+#: or the next side beyond a corner): their deflection is known only along their own normal.
+ENVELOPE_SAME_WALL_DEG = 30.0
+
+
+def wall_envelope(foot, normals, error, radius: float) -> np.ndarray:
+    """The wall the tool leaves, as the envelope of its circles: per sample j (foot on the drawing
+    ``foot[j]``, wall normal ``normals[j]`` towards the material, wall errors ``error[j]`` (n, k) [mm], +
+    material left) the smallest error over the circles of radius ``radius`` that cut across the
+    drawing's normal line at W_j = foot_j + R·n_j, each at its own sample's centre moved by the
+    deflection, Q_i = foot_i − e_i·n_i (per level). Circle i reaches t = (Q_i − W_j)·n_j +
+    √(R² − ((Q_i − W_j)·t_j)²) past W_j, an error of −t; for i = j that is e_j, so the envelope is never
+    above a sample's own error: where a neighbour's circle cuts deeper (the offset drops faster than the
+    tool's curvature follows) it is that cut that remains, and material left only counts where no
+    circle removes it. Circles of samples whose normal turns more than ENVELOPE_SAME_WALL_DEG from n_j
+    (another wall) are left out; a sample's deflection is known only along its own normal."""
+    foot = np.asarray(foot, dtype=float)[:, :2]
+    n = np.asarray(normals, dtype=float)
+    err = np.asarray(error, dtype=float)
+    if err.ndim == 1:
+        return wall_envelope(foot, n, err[:, None], radius)[:, 0]
+    out = err.copy()
+    if len(foot) < 2:
+        return out
+    from scipy.spatial import cKDTree
+
+    R = float(radius)
+    W = foot + R * n
+    reach = R + float(np.max(np.abs(err))) + 1e-6
+    pairs = cKDTree(foot).query_ball_point(W, r=reach)
+    j = np.repeat(np.arange(len(foot)), [len(p) for p in pairs])
+    i = np.concatenate([np.asarray(p, dtype=np.int64) for p in pairs]) if len(j) else np.zeros(0, np.int64)
+    same = np.einsum("ij,ij->i", n[i], n[j]) >= math.cos(math.radians(ENVELOPE_SAME_WALL_DEG))
+    i, j = i[same], j[same]
+    tj = np.c_[-n[j, 1], n[j, 0]]
+    for k in range(err.shape[1]):
+        d = foot[i] - err[i, k][:, None] * n[i] - W[j]
+        along, across = np.einsum("ij,ij->i", d, n[j]), np.einsum("ij,ij->i", d, tj)
+        hit = np.abs(across) < R
+        e_ij = -(along[hit] + np.sqrt(R * R - across[hit] ** 2))
+        np.minimum.at(out[:, k], j[hit], e_ij)
+    return out
+
+
 @dataclass
 class DrawingCheck:
     """A program's wall against a drawing: per sample of the program (``points``) the error at the
-    bottom, middle and top (``error`` (n, 3) [mm], + material left), the signed offset from the drawing
-    ``offsets``, the foot's arc length ``s`` along the drawing and ``final`` (the drawing's final-wall
-    status there)."""
+    bottom, middle and top of the wall the program leaves there (``error`` (n, 3) [mm], + material left:
+    the envelope of the deflected tool's circles, :func:`wall_envelope`, and so ``profile`` (n,
+    levels); ``sample_error`` the sample's own circle), the signed offset from the drawing ``offsets``,
+    the foot's arc length ``s`` along the drawing and ``final`` (the drawing's final-wall status
+    there)."""
 
     points: np.ndarray
     error: np.ndarray
@@ -124,6 +175,7 @@ class DrawingCheck:
     final: np.ndarray
     engaged: np.ndarray
     profile: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+    sample_error: np.ndarray | None = None
 
     def max_mm(self) -> dict:
         """Largest |error| per level over the final-wall samples [mm] (0 where there are none)."""
@@ -131,32 +183,55 @@ class DrawingCheck:
         return dict(zip(_LEVELS, map(float, e.max(axis=0))))
 
 
+#: Feet closer than this [mm] along the drawing are one foot (see _separate_feet).
+_SAME_FOOT_MM = 1e-6
+
+
+def _separate_feet(foot) -> np.ndarray:
+    """(n, 2) feet with each run of feet that coincide (within _SAME_FOOT_MM: the written moves along
+    the offset where a wall starts or ends, whose points all have the wall's end as foot) spread by
+    1e-8 mm a step towards the next distinct foot (or on from the previous one at the end), so that
+    every written point is evaluated in order and its tool disc removes the material it cuts: a move
+    into the wall along the offset takes a sliver behind the wall's first sample away."""
+    foot = np.asarray(foot, dtype=float).copy()
+    n = len(foot)
+    i = 1
+    while i < n:
+        if np.hypot(*(foot[i] - foot[i - 1])) >= _SAME_FOOT_MM:
+            i += 1
+            continue
+        a = i - 1
+        b = i
+        while b < n and np.hypot(*(foot[b] - foot[a])) < _SAME_FOOT_MM:
+            b += 1
+        if b < n:
+            t = foot[b] - foot[a]
+        else:
+            t = foot[a] - foot[a - 1] if a > 0 else np.array([1.0, 0.0])
+        t = t / max(np.hypot(*t), 1e-300)
+        foot[a + 1:b] = foot[a] + 1e-8 * np.arange(1, b - a)[:, None] * t
+        i = b
+    return foot
+
+
 def check_against_drawing(model, cutter, stock, points, drawing, drawing_final, side, options) -> DrawingCheck:
     """Evaluate the wall of the tool-centre polyline ``points`` (n, 3) against the ``drawing``'s
-    polyline (m, 3), whose samples carry the final-wall flags ``drawing_final`` (m)."""
+    polyline (m, 3), whose samples carry the final-wall flags ``drawing_final`` (m); the error is the
+    wall the tool's circles leave (:func:`wall_envelope`)."""
     points = np.asarray(points, dtype=float)
     drawing = np.asarray(drawing, dtype=float)
     d = _comp.drawing_offsets(points, drawing, side)
     C = np.asarray(d.offsets, dtype=float)
     n = np.asarray(d.normals, dtype=float)
     # evaluated as foot + C·n, so that the cutting frame is the drawing's tangent as in the
-    # compensation (each point is where the program puts it either way); a point whose foot coincides
-    # with the previous one's (at a corner of the drawing, or a join shorter than a micrometre) takes
-    # that point's deflection
+    # compensation (each point is where the program puts it either way)
     foot = points.copy()
     foot[:, :2] -= C[:, None] * n
-    keep = np.concatenate([[True], np.hypot(*np.diff(foot[:, :2], axis=0).T) >= 1e-6])
-    src = np.maximum.accumulate(np.where(keep, np.arange(len(points)), 0))
-    k_idx = np.flatnonzero(keep)
-    r = _comp.path_wall_errors(model, cutter, stock, foot[keep], n[keep], C[keep], options)
-    pos = np.searchsorted(k_idx, src)
-    # e = −C − δ·n: the kept point's δ·n with each point's own C
-    dn = -(np.asarray(r.error, dtype=float) + C[keep][:, None])[pos]
-    err = -C[:, None] - dn
+    foot[:, :2] = _separate_feet(foot[:, :2])
+    r = _comp.path_wall_errors(model, cutter, stock, foot, n, C, options)
+    err = np.asarray(r.error, dtype=float)
     prof = np.asarray(r.profile, dtype=float)
-    if prof.size:
-        prof = -C[:, None] - (-(prof + C[keep][:, None]))[pos]
-    engaged = np.asarray(r.engaged, dtype=bool)[pos]
+    engaged = np.asarray(r.engaged, dtype=bool)
     arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(drawing[:, 0]), np.diff(drawing[:, 1])))])
     s = np.asarray(d.s, dtype=float)
     # a point is on a final wall when the drawing's segment its foot lies on joins two final-wall
@@ -164,5 +239,7 @@ def check_against_drawing(model, cutter, stock, points, drawing, drawing_final, 
     seg = np.clip(np.searchsorted(arc, s, side="left"), 1, len(drawing) - 1)
     df = np.asarray(drawing_final, dtype=bool)
     final = df[seg] & df[seg - 1] & (s > 1e-9) & (s < arc[-1] - 1e-9)
-    return DrawingCheck(points=points, error=err, offsets=C, s=s, final=final,
-                        engaged=engaged, profile=prof)
+    if prof.size:
+        prof = wall_envelope(foot, n, prof, cutter.radius)
+    return DrawingCheck(points=points, error=wall_envelope(foot, n, err, cutter.radius), offsets=C, s=s,
+                        final=final, engaged=engaged, profile=prof, sample_error=err)

@@ -38,6 +38,11 @@ class DeflectionResult:
     status: str = "ok"                                                  # ok, unconverged, skipped
 
 
+#: Unconverged points listed per contour run in the job's deflection block (the largest first); the
+#: block counts the rest in ``unconverged_points_omitted``.
+UNCONVERGED_POINTS_LISTED = 50
+
+
 def contour_runs(tp) -> list[tuple[int, int]]:
     """(first, last) block indices of the runs of XY cutting moves at one constant Z (lines, and arcs in
     G17), in program order: the 2-D contours whose walls tool deflection shapes."""
@@ -60,6 +65,27 @@ def contour_runs(tp) -> list[tuple[int, int]]:
     if cur:
         runs.append((cur[0], cur[-1]))
     return runs
+
+
+def unconverged_points(check, level: int, tol: float, pieces: list, arc, owner,
+                       limit: int = UNCONVERGED_POINTS_LISTED):
+    """The written program's final-wall samples of one contour run whose |error| at ``level`` exceeds
+    ``tol``, largest first: ``(points, left_out)`` with at most ``limit`` points ``{"line", "x_mm",
+    "y_mm", "error_mm"}`` and the number not listed. ``line`` is the first line of the contour piece
+    (walls.contour_pieces, the entries of ``info["contours"]``) holding the block of the drawing that
+    the sample's foot ``check.s`` lies on (the segment of the samples ``arc`` [mm] that ends at sample
+    k belongs to block ``owner[k]``)."""
+    err = np.asarray(check.error, dtype=float)[:, level]
+    bad = np.flatnonzero(np.asarray(check.final, dtype=bool) & (np.abs(err) > tol))
+    bad = bad[np.argsort(-np.abs(err[bad]), kind="stable")]
+    arc, owner = np.asarray(arc, dtype=float), np.asarray(owner)
+    out = []
+    for i in bad[:limit]:
+        block = owner[int(np.clip(np.searchsorted(arc, check.s[i], side="left"), 1, len(arc) - 1))]
+        pc = next((p for p in pieces if p["first_block"] <= block <= p["last_block"]), pieces[-1])
+        out.append({"line": int(pc["line"]), "x_mm": float(check.points[i, 0]),
+                    "y_mm": float(check.points[i, 1]), "error_mm": float(err[i])})
+    return out, int(max(len(bad) - limit, 0))
 
 
 def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> DeflectionResult:
@@ -107,6 +133,7 @@ def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> De
     lv_before, lv_after = np.zeros(3), np.zeros(3)
     origin: list[int] = []  # index in tp.blocks of the block each of out_blocks came from
     iterations = 0
+    unconv_omitted = 0
     done = 0
     for first, last in contour_runs(tp):
         if first > done:
@@ -160,11 +187,9 @@ def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> De
             nrm_b.append(np.asarray(nd.wall_normals(chk.before.points, setup.side))[fin_b])
             lv_before = np.maximum(lv_before, list(chk.before_mm.values()))
             lv_after = np.maximum(lv_after, list(chk.after_mm.values()))
-            bad = fin_a & (np.abs(chk.check.error[:, level]) > tol)
-            for i in np.flatnonzero(bad)[:50]:
-                unconv_pts.append({"line": int(run[0].line), "x_mm": float(chk.check.points[i, 0]),
-                                   "y_mm": float(chk.check.points[i, 1]),
-                                   "error_mm": float(chk.check.error[i, level])})
+            listed, left_out = unconverged_points(chk.check, level, tol, pieces, arc, setup.owner)
+            unconv_pts.extend(listed)
+            unconv_omitted += left_out
         else:
             fin = final & np.asarray(pred.engaged, dtype=bool)
             s_b.append(s_start[first] + arc[fin])
@@ -203,6 +228,7 @@ def stage_deflection(job: Job, stock0, prog: Program, *, compensate: bool) -> De
     if compensate:
         info["iterations"] = iterations
         info["contours_unconverged"] = [c["line"] for c in unconverged]
+        info["unconverged_points_omitted"] = unconv_omitted
     if not contours:
         why = skipped[0]["reason"] if skipped else "the program has no 2-D contour (XY moves at one Z)"
         return DeflectionResult(available=False, status="skipped", info=info,

@@ -7,9 +7,10 @@ blocks are compensated.
 - A lead-in whose wall side runs through the cleared pocket generates no wall: it is not a final wall,
   and its last point (where the finish starts) does not make it one; its moves are written as
   programmed up to that point.
-- The written program of a pocket with a diagonal lead-in and a round pre-cut whose floor is the
-  contour's Z (generated here, not the demo) meets a bound at the middle level, checked at four times
-  its sample density.
+
+The written program of such a pocket, compensated and checked at four times its sample density, is
+bench/deflection_lead_in.py's pocket A (``--check`` asserts its bound): a full compensation takes a
+minute or more on the shared machine, too long for the test suite.
 """
 
 from __future__ import annotations
@@ -17,11 +18,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import pytest
 
 from netshape import deflection as d
 from netshape.deflection import walls
-from netshape.deflection.checked import compensate_checked
 
 from pocket_cases import lead_in_pocket
 
@@ -59,19 +58,3 @@ def test_lead_in_is_not_a_final_wall():
     assert final[lead[-1]]               # its end: where the finish starts
     assert np.all(final[setup.owner >= finish_first])
 
-
-def test_lead_in_pocket_written_program_meets_the_bound():
-    p, prog, setup = _lead_in_pocket(pre_cut=True)
-    chk = compensate_checked(setup, scheme="accelerated", level="middle", tolerance=5e-4)
-    # the lead-in is written as programmed up to its last point
-    blocks = list(prog.blocks)
-    finish_first = max(i for i, b in enumerate(blocks) if int(b.kind) != 0) - 8
-    lead_blocks = [b for b, o in zip(chk.blocks, chk.origin) if o == finish_first - 1]
-    start = np.asarray(blocks[finish_first - 1].start)
-    assert np.linalg.norm(np.asarray(lead_blocks[0].start) - start) < 1e-9
-    u = np.asarray(blocks[finish_first - 1].end[:2]) - start[:2]
-    u /= np.linalg.norm(u)
-    off = [abs(u[0] * (b.end[1] - start[1]) - u[1] * (b.end[0] - start[0])) for b in lead_blocks[:-1]]
-    assert max(off, default=0.0) < 1e-6  # on the programmed line
-    assert chk.before_mm["middle"] > 0.07
-    assert chk.after_mm["middle"] <= 0.010, chk.after_mm

@@ -128,3 +128,23 @@ def test_ball_end_mill_is_reported_not_available(tmp_path, monkeypatch):
     job.coefficients = "kim_zas_ball12"
     res = sd.stage_deflection(job, st.stage_stock(job), stage_program(job), compensate=True)
     assert not res.available and "flat end mill" in res.reason
+
+
+def test_unconverged_points_carry_their_contour_pieces_line_and_count_the_rest():
+    # one run of two pieces: blocks 0–1 (line 18, not a final wall) and blocks 2–3 (line 36, final); the
+    # samples 0.5 mm apart, sample k ending block owner[k]; the final piece's first point (the corner,
+    # the end of block 1) counts as final, so the check misses the tolerance from x = 1.5 mm on
+    from types import SimpleNamespace
+
+    arc = 0.5 * np.arange(10)
+    owner = np.array([0, 0, 1, 1, 2, 2, 2, 3, 3, 3])
+    pieces = [{"line": 18, "final_wall": False, "first_block": 0, "last_block": 1, "points": slice(0, 4)},
+              {"line": 36, "final_wall": True, "first_block": 2, "last_block": 3, "points": slice(4, 10)}]
+    s = np.linspace(0.0, 4.5, 37)
+    err = np.zeros((37, 3))
+    err[:, 1] = np.where(s > 1.5, 1e-3 * (6.0 - s), 0.0)  # the largest just after the corner
+    check = SimpleNamespace(s=s, error=err, final=s > 1.5, points=np.c_[s, np.zeros(37), np.zeros(37)])
+    pts, left_out = sd.unconverged_points(check, 1, 5e-4, pieces, arc, owner, limit=5)
+    assert {p["line"] for p in pts} == {36}  # the stretch from the corner is block 2's: line 36
+    assert [p["x_mm"] for p in pts] == pytest.approx([1.625, 1.75, 1.875, 2.0, 2.125])  # the largest first
+    assert left_out == int(np.sum(s > 1.5)) - 5
