@@ -3,6 +3,7 @@
 // call makes exactly the moves of the same lines written out in its place. Calls nest up to
 // kMaxDepth; #1 … #30 take the call's arguments (0 where none is given) and get their values back
 // when the sub returns, as LinuxCNC does.
+#include <algorithm>
 #include <string>
 #include <utility>
 
@@ -106,8 +107,9 @@ void GcodeReader::Impl::define_sub(const std::string& label) {
     if (!fetch_line(b, e))
       throw ParseError(source, body.def_line, 1, "o" + label + " sub is not closed by o" + label + " endsub");
     normalize(b, e);
-    if (nlen > 1 && norm[0] == 'o' && o_keyword(norm, nlen) == "endsub" && o_label(norm, nlen) == label) break;
-    if (nlen > 1 && norm[0] == 'o' && o_keyword(norm, nlen) == "sub")
+    const bool o_line = nlen > 1 && norm[0] == 'o';
+    if (o_line && o_keyword(norm, nlen) == "endsub" && o_label(norm, nlen) == label) break;
+    if (o_line && o_keyword(norm, nlen) == "sub")
       fail("a subroutine cannot be defined inside o" + label + " sub");
     body.lines.emplace_back(line_no, std::string(b, e));
   }
@@ -139,7 +141,7 @@ void GcodeReader::Impl::call_sub(const std::string& label) {
 
 void GcodeReader::Impl::return_sub() {
   CallFrame& f = calls.back();
-  for (int i = 0; i < kSubParams; ++i) numbered[static_cast<std::size_t>(i + 1)] = f.saved[static_cast<std::size_t>(i)];
+  std::copy(f.saved.begin(), f.saved.end(), numbered.begin() + 1);  // #1 … #30 as before the call
   const long caller = f.caller_line;
   calls.pop_back();
   if (calls.empty()) line_no = caller;  // the source continues after the outermost call line
