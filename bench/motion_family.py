@@ -4,8 +4,9 @@ for the axis box, shown for reference) against the feed-only bound (every move a
 or the axis speed limit, no acceleration), per program of the held-out half of
 tests/python/motion/finishing_programs.py and the four shared programs (3D_Chips as written; tort,
 cds, arcspiral with feeds ×100). vmax 250 mm/s, amax 3000 mm/s² per axis, ts1 1 ms, look-ahead 64.
-Columns: smooth/blend ratio, smooth's largest deviation from the program (from the samples) and
-the share of the path in micro-segments (lines ≤ 4 mm).
+Columns: smooth/blend ratio; best/b, a bound on the ratio of any rule that plans the rapids as blend
+does (blend's time in the rapids plus the feed-only time of every feed move, over blend's); smooth's largest
+deviation from the program (from the samples) and the share of the path in micro-segments (lines ≤ 4 mm).
 
     PYTHONPATH=python python bench/motion_family.py [--quick] [--half tune|held-out] [--eps 0.01]
 """
@@ -45,9 +46,9 @@ def path_lengths(arr) -> np.ndarray:
     return length
 
 
-def feed_bound(arr) -> float:
-    """Σ length / speed cap: the programmed feed and the axis speed limits along the chord (arcs:
-    the feed only), rapids at the axis limits [s]."""
+def block_bounds(arr) -> np.ndarray:
+    """Per block, length / speed cap: the programmed feed and the axis speed limits along the chord
+    (arcs: the feed only), rapids at the axis limits [s] (0 for empty blocks)."""
     d = np.asarray(arr["end"]) - np.asarray(arr["start"])
     chord = np.linalg.norm(d, axis=1)
     kind = np.asarray(arr["kind"])
@@ -57,8 +58,22 @@ def feed_bound(arr) -> float:
     vax = np.where(kind == 2, np.min(LIM.velocity), vax)
     cap = np.where(kind == 0, vax, np.minimum(np.asarray(arr["feed"]), vax))
     length = path_lengths(arr)
-    ok = length > 1e-9
-    return float(np.sum(length[ok] / cap[ok]))
+    return np.where(length > 1e-9, length / np.where(length > 1e-9, cap, 1.0), 0.0)
+
+
+def feed_bound(arr) -> float:
+    """Σ block_bounds: the feed-only bound of the whole program [s]."""
+    return float(block_bounds(arr).sum())
+
+
+def best_time(arr, traj) -> float:
+    """A bound on the cycle time of any rule that plans the rapids as `traj` (a blend plan) does: its
+    time in the rapids plus the feed-only time of every feed move [s] (samples are counted to the block
+    they run in)."""
+    n = len(arr["kind"])
+    t = np.bincount(np.clip(np.asarray(traj.block), 0, n - 1), minlength=n) * traj.stats["ts2_s"]
+    rapid = np.asarray(arr["kind"]) == 0
+    return float(t[rapid].sum() + block_bounds(arr)[~rapid].sum())
 
 
 def micro_share(arr) -> float:
@@ -69,12 +84,14 @@ def micro_share(arr) -> float:
 
 
 def row(name, arr, eps):
-    b = nm.plan(arr, LIM, rule="blend", tolerance=eps, with_deviation=False).stats
+    bt = nm.plan(arr, LIM, rule="blend", tolerance=eps, with_deviation=False)
+    b = bt.stats
     s = nm.plan(arr, LIM, rule="smooth", tolerance=eps).stats
     j = nm.plan(arr, LIM, rule="junction-deviation", with_deviation=False).stats
     tb, ts = b["cycle_time_s"], s["cycle_time_s"]
     print(f"| {name:28s} | {int(np.count_nonzero(arr['kind'])):6d} | {micro_share(arr):4.2f} | {tb:8.2f} "
           f"| {ts:8.2f} | {ts / tb:5.3f} | {j['cycle_time_s']:8.2f} | {feed_bound(arr):8.2f} "
+          f"| {best_time(arr, bt) / tb:5.3f} "
           f"| {s['max_path_deviation_mm']:.4f} | {s['runs_smoothed']:5d} |", flush=True)
     return tb, ts
 
@@ -89,8 +106,8 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     seeds, scale = (1, 0.25) if args.quick else (args.seeds, 1.0)
     print(f"ε = {args.eps} mm, {args.half} half, vmax 250 mm/s, amax 3000 mm/s²; times [s]\n")
-    print("| program | moves | micro | blend | smooth | s/b | jd | feed-only | dev_mm | runs |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    print("| program | moves | micro | blend | smooth | s/b | jd | feed-only | best/b | dev_mm | runs |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     worst = 0.0
     for arr, d in fp.family(args.half, seeds, scale):
         name = (f"{d['strategy']} {d['surface']} s{d['seed']} δ{d['chord_tolerance_mm']:.3f} "

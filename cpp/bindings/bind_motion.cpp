@@ -13,6 +13,8 @@
 #include "motion_arrays.hpp"
 #include "netshape/core/error.hpp"
 #include "netshape/motion.hpp"
+#include "netshape/toolpath/block_arrays.hpp"
+#include "netshape/toolpath/toolpath.hpp"
 
 namespace py = pybind11;
 using namespace netshape;
@@ -21,6 +23,35 @@ using namespace netshape::motion;
 using motion_arrays::drain;
 
 void bind_motion_smooth(py::module_& m);  // bind_motion_smooth.cpp
+
+namespace {
+
+// plan() of blocks with their cubic controls as the tuple (t, position, velocity, feed, block, stats).
+py::tuple plan_tuple(const std::vector<toolpath::Block>& blocks, const std::vector<CubicControls>& controls,
+                     const AxisLimits& limits, const PlanOptions& options, bool with_deviation, long max_samples) {
+  Trajectory tr;
+  {
+    py::gil_scoped_release release;
+    tr = plan(blocks, controls, limits, options, with_deviation, max_samples);
+  }
+  const auto& s = tr.stats;
+  py::dict stats;
+  stats["blocks"] = s.blocks;
+  stats["samples"] = s.samples;
+  stats["cycle_time_s"] = s.cycle_time;
+  stats["max_axis_velocity_mm_s"] = s.max_axis_velocity;
+  stats["max_axis_accel_mm_s2"] = s.max_axis_acceleration;
+  stats["max_axis_jerk_mm_s3"] = s.max_axis_jerk;
+  stats["axis_velocity_mm_s"] = std::vector<double>{s.axis_velocity[0], s.axis_velocity[1], s.axis_velocity[2]};
+  stats["axis_accel_mm_s2"] = std::vector<double>{s.axis_acceleration[0], s.axis_acceleration[1], s.axis_acceleration[2]};
+  stats["axis_jerk_mm_s3"] = std::vector<double>{s.axis_jerk[0], s.axis_jerk[1], s.axis_jerk[2]};
+  stats["max_path_deviation_mm"] = s.max_path_deviation;
+  stats["end_error_mm"] = s.end_error;
+  return py::make_tuple(std::move(tr.t), std::move(tr.position), std::move(tr.velocity), std::move(tr.feed),
+                        std::move(tr.block), stats);
+}
+
+}  // namespace
 
 void bind_motion(py::module_& m) {
   py::class_<AxisLimits>(m, "AxisLimits", "Per-axis limits: velocity [mm/s], acceleration [mm/s^2], jerk [mm/s^3] (inf: none).")
@@ -143,31 +174,30 @@ void bind_motion(py::module_& m) {
         std::vector<CubicControls> controls;
         const auto blocks = motion_arrays::planned_blocks_from_arrays(kind, start, end, center, clockwise, plane, turns,
                                                                       feed, ctrl, controls);
-        Trajectory tr;
-        {
-          py::gil_scoped_release release;
-          tr = plan(blocks, controls, limits, options, with_deviation, max_samples);
-        }
-        const auto& s = tr.stats;
-        py::dict stats;
-        stats["blocks"] = s.blocks;
-        stats["samples"] = s.samples;
-        stats["cycle_time_s"] = s.cycle_time;
-        stats["max_axis_velocity_mm_s"] = s.max_axis_velocity;
-        stats["max_axis_accel_mm_s2"] = s.max_axis_acceleration;
-        stats["max_axis_jerk_mm_s3"] = s.max_axis_jerk;
-        stats["axis_velocity_mm_s"] = std::vector<double>{s.axis_velocity[0], s.axis_velocity[1], s.axis_velocity[2]};
-        stats["axis_accel_mm_s2"] =
-            std::vector<double>{s.axis_acceleration[0], s.axis_acceleration[1], s.axis_acceleration[2]};
-        stats["axis_jerk_mm_s3"] = std::vector<double>{s.axis_jerk[0], s.axis_jerk[1], s.axis_jerk[2]};
-        stats["max_path_deviation_mm"] = s.max_path_deviation;
-        stats["end_error_mm"] = s.end_error;
-        return py::make_tuple(std::move(tr.t), std::move(tr.position), std::move(tr.velocity), std::move(tr.feed),
-                              std::move(tr.block), stats);
+        return plan_tuple(blocks, controls, limits, options, with_deviation, max_samples);
       },
       py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
       py::arg("turns"), py::arg("feed"), py::arg("ctrl"), py::arg("limits"), py::arg("options"),
       py::arg("with_deviation") = true, py::arg("max_samples") = 0L);
+  // _plan_arrays on a Toolpath or BlockArrays as it is (no cubic blocks; no columns through Python).
+  m.def(
+      "_plan_program",
+      [](const toolpath::Toolpath& program, const AxisLimits& limits, const PlanOptions& options, bool with_deviation,
+         long max_samples) {
+        return plan_tuple(motion_arrays::program_blocks(program.blocks), {}, limits, options, with_deviation,
+                          max_samples);
+      },
+      py::arg("program"), py::arg("limits"), py::arg("options"), py::arg("with_deviation") = true,
+      py::arg("max_samples") = 0L);
+  m.def(
+      "_plan_program",
+      [](const toolpath::BlockArrays& program, const AxisLimits& limits, const PlanOptions& options,
+         bool with_deviation, long max_samples) {
+        return plan_tuple(motion_arrays::program_blocks(program.to_blocks()), {}, limits, options, with_deviation,
+                          max_samples);
+      },
+      py::arg("program"), py::arg("limits"), py::arg("options"), py::arg("with_deviation") = true,
+      py::arg("max_samples") = 0L);
 
   m.def(
       "_throughput",

@@ -17,6 +17,8 @@
 #include "motion_arrays.hpp"
 #include "netshape/core/error.hpp"
 #include "netshape/motion.hpp"
+#include "netshape/toolpath/block_arrays.hpp"
+#include "netshape/toolpath/toolpath.hpp"
 
 namespace py = pybind11;
 using namespace netshape;
@@ -29,8 +31,10 @@ using motion_arrays::program_blocks_from_arrays;
 namespace {
 
 SmoothOptions smooth_options(double tolerance, double fit_share, double max_segment, double max_turn, int min_blocks,
-                             int window, double smoothing_length, double lead_length, double max_fit_turn) {
+                             int window, double smoothing_length, double lead_length, double max_fit_turn,
+                             double space_flatness) {
   SmoothOptions o;
+  o.space_flatness = space_flatness;
   o.max_fit_turn = max_fit_turn;
   o.tolerance = tolerance;
   o.fit_share = fit_share;
@@ -90,6 +94,18 @@ py::dict smooth_stats(const SmoothResult& r) {
   stats["corners_rounded"] = r.corners_rounded;
   stats["max_fit_deviation_mm"] = r.max_fit_deviation;
   return stats;
+}
+
+// smooth() of program blocks as (new block arrays, first, last, stats).
+py::tuple smooth_tuple(const std::vector<toolpath::Block>& blocks, const SmoothOptions& o) {
+  SmoothResult r;
+  {
+    py::gil_scoped_release release;
+    r = smooth(blocks, o);
+  }
+  py::dict arrays = block_arrays(r.blocks, r.controls);
+  py::dict stats = smooth_stats(r);
+  return py::make_tuple(arrays, r.source_first, r.source_last, stats);
 }
 // Program -> Smoother in a second thread, its blocks handed through a bounded single-producer /
 // single-consumer ring to the Planner in this one (the two-stage pipeline of a controller, where
@@ -156,26 +172,50 @@ void bind_motion_smooth(py::module_& m) {
          py_types::RefPoints3 center, const Eigen::Ref<const Eigen::VectorXi>& clockwise,
          const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
          py_types::RefVector feed, double tolerance, double fit_share, double max_segment, double max_turn,
-         int min_blocks, int window, double smoothing_length, double lead_length, double max_fit_turn) {
+         int min_blocks, int window, double smoothing_length, double lead_length, double max_fit_turn,
+         double space_flatness) {
         // Tolerance-band smoothing (smoothing.hpp): the new blocks as arrays, per new block the first and
         // last program block it replaces, and the counts.
         const SmoothOptions o = smooth_options(tolerance, fit_share, max_segment, max_turn, min_blocks, window,
-                                               smoothing_length, lead_length, max_fit_turn);
-        const auto blocks = program_blocks_from_arrays(kind, start, end, center, clockwise, plane, turns, feed);
-        SmoothResult r;
-        {
-          py::gil_scoped_release release;
-          r = smooth(blocks, o);
-        }
-        py::dict arrays = block_arrays(r.blocks, r.controls);
-        py::dict stats = smooth_stats(r);
-        return py::make_tuple(arrays, r.source_first, r.source_last, stats);
+                                               smoothing_length, lead_length, max_fit_turn, space_flatness);
+        return smooth_tuple(program_blocks_from_arrays(kind, start, end, center, clockwise, plane, turns, feed), o);
       },
       py::arg("kind"), py::arg("start"), py::arg("end"), py::arg("center"), py::arg("clockwise"), py::arg("plane"),
       py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("fit_share") = 0.98, py::arg("max_segment") = 4.0,
       py::arg("max_turn") = 0.5236, py::arg("min_blocks") = 3, py::arg("window") = 4096,
       py::arg("smoothing_length") = SmoothOptions{}.smoothing_length, py::arg("lead_length") = 2.0,
-      py::arg("max_fit_turn") = 1.6057);
+      py::arg("max_fit_turn") = 1.6057, py::arg("space_flatness") = SmoothOptions{}.space_flatness);
+  // _smooth_arrays on a Toolpath or BlockArrays as it is (no columns through Python).
+  const auto smooth_program = [](const std::vector<toolpath::Block>& blocks, double tolerance, double fit_share,
+                                 double max_segment, double max_turn, int min_blocks, int window,
+                                 double smoothing_length, double lead_length, double max_fit_turn,
+                                 double space_flatness) {
+    const SmoothOptions o = smooth_options(tolerance, fit_share, max_segment, max_turn, min_blocks, window,
+                                           smoothing_length, lead_length, max_fit_turn, space_flatness);
+    return smooth_tuple(motion_arrays::program_blocks(blocks), o);
+  };
+  m.def(
+      "_smooth_program",
+      [smooth_program](const toolpath::Toolpath& program, double tolerance, double fit_share, double max_segment,
+                       double max_turn, int min_blocks, int window, double smoothing_length, double lead_length,
+                       double max_fit_turn, double space_flatness) {
+        return smooth_program(program.blocks, tolerance, fit_share, max_segment, max_turn, min_blocks, window,
+                              smoothing_length, lead_length, max_fit_turn, space_flatness);
+      },
+      py::arg("program"), py::arg("tolerance"), py::arg("fit_share"), py::arg("max_segment"), py::arg("max_turn"),
+      py::arg("min_blocks"), py::arg("window"), py::arg("smoothing_length"), py::arg("lead_length"),
+      py::arg("max_fit_turn"), py::arg("space_flatness"));
+  m.def(
+      "_smooth_program",
+      [smooth_program](const toolpath::BlockArrays& program, double tolerance, double fit_share, double max_segment,
+                       double max_turn, int min_blocks, int window, double smoothing_length, double lead_length,
+                       double max_fit_turn, double space_flatness) {
+        return smooth_program(program.to_blocks(), tolerance, fit_share, max_segment, max_turn, min_blocks, window,
+                              smoothing_length, lead_length, max_fit_turn, space_flatness);
+      },
+      py::arg("program"), py::arg("tolerance"), py::arg("fit_share"), py::arg("max_segment"), py::arg("max_turn"),
+      py::arg("min_blocks"), py::arg("window"), py::arg("smoothing_length"), py::arg("lead_length"),
+      py::arg("max_fit_turn"), py::arg("space_flatness"));
   m.def(
       "_smooth_stream_arrays",
       [](const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,
@@ -183,13 +223,13 @@ void bind_motion_smooth(py::module_& m) {
          const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
          py_types::RefVector feed, double tolerance, double fit_share, double max_segment, double max_turn,
          int min_blocks, int window, double smoothing_length, double lead_length, int chunk, double max_fit_turn,
-         int min_chunk) {
+         int min_chunk, double space_flatness) {
         // _smooth_arrays through the streaming Smoother (smoother.hpp), blocks pushed `chunk` at a time;
         // stats add the number of chunks smoothed and of forced cuts, and the blocks pushed before the
         // first block came out.
         NETSHAPE_CHECK(chunk >= 1, "chunk", chunk, "must be >= 1 [blocks]");
         const SmoothOptions o = smooth_options(tolerance, fit_share, max_segment, max_turn, min_blocks, window,
-                                               smoothing_length, lead_length, max_fit_turn);
+                                               smoothing_length, lead_length, max_fit_turn, space_flatness);
         const auto blocks = program_blocks_from_arrays(kind, start, end, center, clockwise, plane, turns, feed);
         SmoothResult r;
         SmoothCounts counts;
@@ -209,7 +249,8 @@ void bind_motion_smooth(py::module_& m) {
       py::arg("turns"), py::arg("feed"), py::arg("tolerance"), py::arg("fit_share") = 0.98, py::arg("max_segment") = 4.0,
       py::arg("max_turn") = 0.5236, py::arg("min_blocks") = 3, py::arg("window") = 4096,
       py::arg("smoothing_length") = SmoothOptions{}.smoothing_length, py::arg("lead_length") = 2.0,
-      py::arg("chunk") = 1, py::arg("max_fit_turn") = 1.6057, py::arg("min_chunk") = Smoother::default_min_chunk);
+      py::arg("chunk") = 1, py::arg("max_fit_turn") = 1.6057, py::arg("min_chunk") = Smoother::default_min_chunk,
+      py::arg("space_flatness") = SmoothOptions{}.space_flatness);
   m.def(
       "_smooth_plan",
       [](const Eigen::Ref<const Eigen::VectorXi>& kind, py_types::RefPoints3 start, py_types::RefPoints3 end,

@@ -106,6 +106,17 @@ std::vector<toolpath::Block> program_blocks_from_arrays(
   return planned_blocks_from_arrays(kind, start, end, center, clockwise, plane, turns, feed, no_ctrl, controls);
 }
 
+std::vector<toolpath::Block> program_blocks(const std::vector<toolpath::Block>& blocks) {
+  std::vector<toolpath::Block> out(blocks);
+  const toolpath::Block fresh;
+  for (std::size_t i = 0; i < out.size(); ++i) {  // what the columns do not carry: as a fresh Block
+    out[i].spindle_rpm = fresh.spindle_rpm;
+    out[i].tool = fresh.tool;
+    out[i].line = static_cast<long>(i) + 1;
+  }
+  return out;
+}
+
 motion::Status drain(motion::Planner& p, motion::PlannedSegment& seg, long& segments, double& t_end) {
   for (;;) {
     const motion::Status st = p.next_segment(seg);

@@ -34,6 +34,11 @@ std::vector<toolpath::Block> program_blocks_from_arrays(
     const Eigen::Ref<const Eigen::VectorXi>& plane, const Eigen::Ref<const Eigen::VectorXi>& turns,
     py_types::RefVector feed);
 
+/// Blocks of a program as program_blocks_from_arrays builds them from its columns: the eight planning
+/// fields of each block (kind, start, end, center, clockwise, plane, turns, feed), line = row + 1, the
+/// rest (spindle, tool) default — so a Toolpath or BlockArrays plans bit for bit as its arrays do.
+std::vector<toolpath::Block> program_blocks(const std::vector<toolpath::Block>& blocks);
+
 /// Hands out the Planner's segments until it needs blocks or is done (returns that status), counting
 /// them in `segments` and keeping the end time of the last in `t_end` [s].
 motion::Status drain(motion::Planner& p, motion::PlannedSegment& seg, long& segments, double& t_end);

@@ -280,7 +280,7 @@ bool GcodeReader::Impl::execute(Block& out) {
     out.feed = feed;
     out.spindle_rpm = spindle_dir * speed;
     out.tool = tool;
-    out.line = line_no;
+    out.line = owner_line();
     out.turns = 1;
     out.clockwise = false;
     out.plane = plane;

@@ -382,7 +382,7 @@ void GcodeReader::Impl::read_words() {
       continue;
     }
     if (c < 'a' || c > 'z') fail(std::string("expected a word letter, found '") + c + "'");
-    if (c == 'o') fail("o-word subroutines and control flow (O…) are not supported");
+    if (c == 'o') fail("an o-word must begin its line (oN sub / endsub / call / return, or O1234)");
     ++pos;
     const double v = real_value();
     if (c == 'g') {

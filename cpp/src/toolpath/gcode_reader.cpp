@@ -32,7 +32,7 @@ bool GcodeReader::Impl::next(Block& out) {
   const char* b = nullptr;
   const char* e = nullptr;
   while (!ended) {
-    if (!fetch_line(b, e)) {
+    if (!fetch(b, e)) {
       ended = true;
       break;
     }
@@ -44,6 +44,10 @@ bool GcodeReader::Impl::next(Block& out) {
     if (norm[0] == '%') {
       if (nlen == 1) continue;
       throw ParseError(source, line_no, column_of(1), "unexpected text after '%'");
+    }
+    if (norm[0] == 'o') {
+      o_word();
+      continue;
     }
     if (norm[0] == '/') throw ParseError(source, line_no, column_of(0), "block delete '/' is not supported");
     read_words();

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -161,6 +162,23 @@ struct CharClass {
 };
 inline constexpr CharClass kCharClass{};
 
+// A LinuxCNC subroutine `oN sub` … `oN endsub`: its body lines as written, with their line numbers.
+struct SubBody {
+  long def_line = 0;
+  std::vector<std::pair<long, std::string>> lines;
+};
+
+// An active `oN call`: the body being replayed, the next body line, the caller's line, and the
+// parameters #1 … #30 the call replaced (restored when the sub returns).
+inline constexpr int kSubParams = 30;
+struct CallFrame {
+  std::string label;
+  const SubBody* body = nullptr;
+  std::size_t next = 0;
+  long caller_line = 0;
+  std::array<double, kSubParams> saved{};
+};
+
 struct Assignment {
   int number = 0;        // numbered parameter, or 0 for a named one
   std::string name;      // named parameter
@@ -182,6 +200,8 @@ struct GcodeReader::Impl {
   bool eof = false;
   long line_no = 0;
   bool ended = false;        // M2 / M30 seen or end of input
+  std::map<std::string, SubBody> subs;  // subroutines defined so far, by label ("100", "<name>")
+  std::vector<CallFrame> calls;         // active calls, outermost first
 
   // ---- current line -----------------------------------------------------------------------------
   std::string norm;          // line without blanks/comments, lower case
@@ -237,7 +257,7 @@ struct GcodeReader::Impl {
     c.kind = kind;
     c.text = std::move(text);
     c.value = value;
-    c.line = line_no;
+    c.line = owner_line();
     pending.push_back(std::move(c));
   }
   // Initial state: G54 in force, no tool length, the tool at opt.initial_position (program coordinates).
@@ -269,6 +289,20 @@ struct GcodeReader::Impl {
   // ---- line input -------------------------------------------------------------------------------
   // Sets [b, e) to the next line (without its line break). False at the end of input.
   bool fetch_line(const char*& b, const char*& e);
+  // The next line to execute: the active subroutine's next body line, else the next source line.
+  bool fetch(const char*& b, const char*& e);
+  // The source line the current line's blocks and records belong to: the outermost call's line
+  // while a subroutine runs (so a call line owns every move it makes), the current line otherwise.
+  long owner_line() const { return calls.empty() ? line_no : calls.front().caller_line; }
+
+  // ---- o-words (gcode_subs.cpp) -----------------------------------------------------------------
+  // A line that starts with an o-word: a Fanuc program number `O1234` (kept as a word record), or
+  // LinuxCNC `oN sub` (the body is stored until `oN endsub`), `oN call [a] [b] …`, `oN return`.
+  // Control flow (if, while, do, repeat …) is refused with a ParseError naming the line.
+  void o_word();
+  void define_sub(const std::string& label);
+  void call_sub(const std::string& label);
+  void return_sub();
 
   // Copy the line into `norm` (lower case, no blanks, no comments). Source columns are not stored:
   // column_of() recomputes one when an error needs it.

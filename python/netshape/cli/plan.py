@@ -68,6 +68,9 @@ def register(sub) -> None:
                    help="smooth rule: a corner turning at most this that a curve meets (not straight on "
                         "both sides) is passed by the run's curve within the tolerance; 0 keeps every "
                         "corner [deg] in [0, 180) (92)")
+    p.add_argument("--space-flatness", type=a.real("--space-flatness", ge=0, lt=1), default=0.5, metavar="K",
+                   help="smooth rule: a run in space (3-D moves) is fitted in pieces each within K·0.98·tolerance "
+                        "of a plane of its own; 0 leaves runs in space as programmed, in [0, 1) (0.5)")
     p.add_argument("--smoothed-gcode", metavar="OUT.ngc",
                    help="smooth rule: write the program with its smoothed moves in place atomically (every other "
                         "line and word as written; new moves G1/G2/G3, G5 for cubics in XY, G1 chords within "
@@ -237,7 +240,7 @@ def run(args) -> int:
     with all_or_nothing():
         if args.rule == "smooth":
             skw = dict(max_segment=args.max_segment, max_turn=math.radians(args.max_turn),
-                       max_fit_turn=math.radians(args.max_fit_turn))
+                       max_fit_turn=math.radians(args.max_fit_turn), space_flatness=args.space_flatness)
             with _samples_named():
                 traj = plan(arrays, limits, rule="smooth", tolerance=args.tolerance, ts1=args.ts1, ts2=args.ts2,
                             lookahead=args.lookahead, max_samples=_max_samples(args), **skw)

@@ -147,7 +147,19 @@ def blocks_to_arrays(blocks) -> dict:
     return out
 
 
+def _program_object(program) -> bool:
+    """A Toolpath or toolpath BlockArrays: the bindings take it as it is (no columns through Python)."""
+    return isinstance(program, (_tp.Toolpath, _tp.BlockArrays))
+
+
+def _block_arrays(program):
+    """A Toolpath's BlockArrays (its columns built in C++); BlockArrays as they are."""
+    return _tp.BlockArrays.from_blocks(program.blocks) if isinstance(program, _tp.Toolpath) else program
+
+
 def _arrays(program, feed):
+    if isinstance(program, _tp.BlockArrays):
+        return program.to_dict()
     if isinstance(program, dict):
         return program
     if isinstance(program, np.ndarray) or (isinstance(program, (list, tuple)) and program
@@ -193,7 +205,9 @@ def path_points(program, limits: AxisLimits, options: PlanOptions, ds: float, *,
 def _dwells(program, n: int):
     """Dwell time [s] before each block and after the last, (n + 1,), or None when the program does
     not say (polylines, plain block lists). From the ``dwell`` array of
-    netshape.toolpath.read_gcode_arrays or the G4 commands of a netshape.toolpath.Toolpath."""
+    netshape.toolpath.read_gcode_arrays or of BlockArrays, or the G4 commands of a Toolpath."""
+    if isinstance(program, _tp.BlockArrays):
+        program = program.to_dict()
     if isinstance(program, dict):
         if program.get("dwell") is None:
             return None
@@ -218,15 +232,17 @@ def _dwells(program, n: int):
 
 def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float = 0.98,
                 max_segment: float = 4.0, max_turn: float = 0.5236, min_blocks: int = 3, window: int = 4096,
-                smoothing_length: float = 1.5, lead_length: float = 2.0, max_fit_turn: float = 1.6057):
+                smoothing_length: float = 1.5, lead_length: float = 2.0, max_fit_turn: float = 1.6057,
+                space_flatness: float = 0.5):
     """Tolerance-band smoothing of micro-segment runs (C++ ``netshape::motion::smooth``).
 
     Runs of line blocks each at most `max_segment` [mm] long, turning at most `max_turn` [rad] at every
     vertex, with one feed, are replaced by curvature-continuous cubic pieces (block kind 3) that
     follow a smoothing spline (penalty ``smoothing_length⁴·∫|s''|²``, `smoothing_length` [mm]) pulled back
     into the tube, and stay within ``fit_share·tolerance`` [mm] of the polyline both ways (checked). A
-    run in one coordinate plane is fitted as one curve; a run in space (3-D moves) in pieces each close
-    to a plane of its own (within half the fit tolerance), joined with one tangent. A
+    run in one coordinate plane is fitted as one curve; a run in space (3-D moves) in pieces each within
+    ``space_flatness·fit_share·tolerance`` of a plane of its own, joined with one tangent
+    (`space_flatness` in [0, 1); 0 leaves runs in space as programmed). A
     run borrows up to `lead_length` [mm] of an adjoining long line so that it joins it tangentially.
     Vertices turning more are corners, kept: the run ends there, and a vertex between two program lines
     becomes an arc within ``fit_share·tolerance`` (a corner made of several vertices around blocks
@@ -237,14 +253,18 @@ def smooth_path(program, tolerance: float = 0.01, *, feed=None, fit_share: float
     per new block the first and last program block it replaces, and ``runs_smoothed``, ``runs_kept``,
     ``corners_kept``, ``corners_rounded``, ``max_fit_deviation_mm``.
     """
-    return _run_smoother(_m._smooth_arrays, program, feed, tolerance, fit_share, max_segment, max_turn, min_blocks,
-                         window, smoothing_length, lead_length, max_fit_turn=float(max_fit_turn))
+    args = (float(tolerance), float(fit_share), float(max_segment), float(max_turn), int(min_blocks), int(window),
+            float(smoothing_length), float(lead_length), float(max_fit_turn), float(space_flatness))
+    if _program_object(program):
+        arr, first, last, stats = _m._smooth_program(program, *args)
+        return {k: np.asarray(v) for k, v in arr.items()}, np.asarray(first), np.asarray(last), dict(stats)
+    return _run_smoother(_m._smooth_arrays, program, feed, *args[:8], max_fit_turn=args[8], space_flatness=args[9])
 
 
 def smooth_path_streamed(program, tolerance: float = 0.01, *, chunk: int = 1, feed=None, fit_share: float = 0.98,
                          max_segment: float = 4.0, max_turn: float = 0.5236, min_blocks: int = 3,
                          window: int = 4096, smoothing_length: float = 1.5, lead_length: float = 2.0,
-                         max_fit_turn: float = 1.6057, min_chunk: int = 64):
+                         max_fit_turn: float = 1.6057, min_chunk: int = 64, space_flatness: float = 0.5):
     """:func:`smooth_path` through the streaming C++ ``netshape::motion::Smoother``.
 
     The program is pushed `chunk` blocks at a time into a smoother that holds at most ``2·window + 2``
@@ -257,7 +277,8 @@ def smooth_path_streamed(program, tolerance: float = 0.01, *, chunk: int = 1, fe
     """
     return _run_smoother(_m._smooth_stream_arrays, program, feed, tolerance, fit_share, max_segment, max_turn,
                          min_blocks, window, smoothing_length, lead_length, int(chunk),
-                         max_fit_turn=float(max_fit_turn), min_chunk=int(min_chunk))
+                         max_fit_turn=float(max_fit_turn), min_chunk=int(min_chunk),
+                         space_flatness=float(space_flatness))
 
 
 def _run_smoother(binding, program, feed, tolerance, fit_share, max_segment, max_turn, min_blocks, window,
@@ -276,11 +297,14 @@ def _plan_smooth(program, limits, feed, with_deviation, kw, max_samples=0):
     if not (tol > 0 and np.isfinite(tol)):
         raise ValueError(f"tolerance = {tol}: must be positive [mm]")
     skw = {k: kw.pop(k) for k in ("fit_share", "max_segment", "max_turn", "min_blocks", "window",
-                                          "smoothing_length", "lead_length", "max_fit_turn") if k in kw}
-    arr = _arrays(program, feed)
-    if _dwells(program, len(arr["kind"])) is not None and np.any(_dwells(program, len(arr["kind"]))[1:-1] > 0):
+                                  "smoothing_length", "lead_length", "max_fit_turn", "space_flatness") if k in kw}
+    arr = _block_arrays(program) if _program_object(program) else _arrays(program, feed)
+    n = len(arr) if isinstance(arr, _tp.BlockArrays) else len(arr["kind"])
+    dw = _dwells(program, n)
+    if dw is not None and np.any(dw[1:-1] > 0):
         raise ValueError("rule = 'smooth': programs with dwells between moves are not supported yet")
     new, first, last, sstats = smooth_path(arr, tol, **skw)
+    arr = _arrays(arr, feed)
     fit_share = float(skw.get("fit_share", 0.98))
     # blends next to cubic blocks get the rest of ε; between programmed pieces the whole ε, as `blend`
     options = make_options("blend", tolerance=tol * (1.0 - fit_share), corner_tolerance=tol, **kw)
@@ -311,8 +335,8 @@ def plan(program, limits: AxisLimits, options: PlanOptions | None = None, *, fee
          with_deviation: bool = True, max_samples: int = 0, **option_keywords) -> Trajectory:
     """Plan and interpolate a program.
 
-    program : a toolpath / sequence of blocks, a dict of block arrays, or (n, 3) points of a polyline
-        (then `feed` [mm/s] is required). In block arrays, kind 3 rows are cubic Bézier blocks: start
+    program : a Toolpath or toolpath.BlockArrays (taken by the core as they are), a sequence of
+        blocks, a dict of block arrays, or (n, 3) points of a polyline (then `feed` [mm/s] is required). In block arrays, kind 3 rows are cubic Bézier blocks: start
         = P0, end = P3, and P1, P2 in row k of the optional key ``ctrl`` (n, 2, 3) [mm].
     limits : AxisLimits. options : PlanOptions, or keywords of :func:`make_options`.
     Returns a :class:`Trajectory` whose samples are at options.ts2 and end at the program end point.
@@ -341,13 +365,21 @@ def plan(program, limits: AxisLimits, options: PlanOptions | None = None, *, fee
         options = make_options(**option_keywords)
     elif option_keywords:
         raise ValueError(f"options given twice: {sorted(option_keywords)}")
-    arr = _arrays(program, feed)
-    args = _call_args(arr)
-    n = len(args[0])
+    if _program_object(program):
+        n = len(program) if isinstance(program, _tp.BlockArrays) else len(program.blocks)
+    else:
+        args = _call_args(_arrays(program, feed))
+        n = len(args[0])
     dw = _dwells(program, n)
     cuts = [] if dw is None else [i for i in range(1, n) if dw[i] > 0.0]
+    if _program_object(program) and cuts:  # planned in pieces: the program's columns (built in C++)
+        args = _call_args(_arrays(_block_arrays(program), feed))
     if not cuts:
-        t, pos, vel, fd, blk, stats = _m._plan_arrays(*args, limits, options, with_deviation, int(max_samples))
+        if _program_object(program):
+            t, pos, vel, fd, blk, stats = _m._plan_program(program, limits, options, with_deviation,
+                                                           int(max_samples))
+        else:
+            t, pos, vel, fd, blk, stats = _m._plan_arrays(*args, limits, options, with_deviation, int(max_samples))
         stats = dict(stats)
         t = np.asarray(t)
         if dw is not None and dw.sum() > 0.0:  # dwells only before the first or after the last move

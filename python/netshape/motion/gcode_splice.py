@@ -10,6 +10,11 @@ offset and tool length of the block's program block taken off again) and units (
 whose block came out unchanged (same kind, same end; a line may start later, where the curve before
 it ended) is kept as written. No move is added that the program does not make.
 
+O-words stay where they are: a program number, and a subroutine's definition (`oN sub` … `oN endsub`),
+whose moves belong to the line that calls it. A call whose moves came out unchanged is kept as written;
+otherwise the moves it makes are written in place of the call line (its comments kept), and the
+definition stays, unused there.
+
 A changed line's N label goes on its first written move (a changed line whose moves a curve took in
 is left out when it holds nothing else). Before the next line kept as written, the program's modal
 state there is restored on one line — its motion mode, plane, G91 when the program is incremental
@@ -30,8 +35,13 @@ def _words(line: str) -> tuple[list[tuple[str, str]], str]:
     """(letter, value text) words of a line, its comments (as text); values may be numbers,
     #parameters or [expressions]. A parameter assignment line has no words."""
     words, comments, i, n = [], [], 0, len(line)
-    if line.lstrip().startswith("#"):
+    head = line.lstrip()
+    if head.startswith("#"):
         return [], ""
+    if head[:1] in "oO" and head[1:2].strip()[:1] in tuple("0123456789<"):  # o-word line: one word
+        code = head.split("(")[0].split(";")[0].strip()
+        j = head.find(code) + len(code)
+        return [("O", code[1:])], _words(head[j:])[1]
     while i < n:
         c = line[i]
         if c == "(":
@@ -153,7 +163,7 @@ def spliced_gcode_lines(text: str, program: dict, frame_shift, new: dict, first,
             continue
         modal.read(words)
         label = " ".join(f"{a}{v}" for a, v in words if a == "N")
-        rest = " ".join(f"{a}{v}" for a, v in words if a not in _MOTION_LETTERS and a != "N" and not (
+        rest = " ".join(f"{a}{v}" for a, v in words if a not in _MOTION_LETTERS and a not in "NO" and not (
             a == "G" and _number(v) in (0.0, 1.0, 2.0, 3.0, 5.0, 17.0, 18.0, 19.0, 90.0, 91.0)))
         if rest or comments:  # the line's other words (and its label) stay, on a line of their own
             out.append(" ".join(x for x in (label, rest, comments) if x))

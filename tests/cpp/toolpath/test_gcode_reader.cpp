@@ -163,7 +163,8 @@ TEST_CASE("errors name line, column and the reason") {
   CHECK(error_of("G81 X1 Y1 Z-1 R1\n").reason().find("canned cycle G81") == 0);
   CHECK(error_of("G92 X0\n").reason().find("G92") != std::string::npos);
   CHECK(error_of("G93\n").reason().find("G93") != std::string::npos);
-  CHECK(error_of("o100 sub\n").reason().find("o-word") != std::string::npos);
+  CHECK(error_of("o100 while [1]\n").reason().find("o-word") != std::string::npos);
+  CHECK(error_of("o100 sub\n").reason().find("not closed by o100 endsub") != std::string::npos);
   CHECK(error_of("M98 P1\n").reason().find("M98") != std::string::npos);
   CHECK(error_of("G1 X1\n").reason().find("no feed rate") != std::string::npos);
   CHECK(error_of("G0 X[1/0]\n").reason() == "division by zero");

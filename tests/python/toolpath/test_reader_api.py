@@ -44,7 +44,8 @@ def test_parse_error_has_position_and_reason():
         ("G83 X1 Y1 Z-1 R1 Q1", "canned cycle G83"),
         ("G92 X0", "G92"),
         ("G93", "inverse-time"),
-        ("O100 sub", "o-word"),
+        ("O100 while [1 LT 2]", "o-word control flow .while."),
+        ("O100 sub", "o100 sub is not closed by o100 endsub"),
         ("G0 B10", "axis word B"),
     ],
 )

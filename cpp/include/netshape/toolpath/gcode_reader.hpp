@@ -7,12 +7,14 @@
 /// Supported subset (docs/toolpath.md has the full list): G0 G1 G2 G3 (I J K and R forms, full
 /// circles, P turns, helical), G4 dwell, G17/18/19, G20/21 (inch input converted to mm), G90/G91,
 /// G90.1/G91.1, G94, F S T M0 M1 M2 M3 M4 M5 M6 M30, N words, comments, `%` lines, numbered and
-/// named parameters and `[...]` expressions. Work offsets G54–G59.3 and tool length G43 H / G49 are
+/// named parameters and `[...]` expressions, `O1234` program numbers (kept as words), LinuxCNC
+/// subroutines `oN sub`/`endsub`/`call`/`return` (a call replays the body; its blocks carry the call's
+/// line). Work offsets G54–G59.3 and tool length G43 H / G49 are
 /// applied from ReaderOptions when given (otherwise taken as zero, with one warning). Codes that do
 /// not move the tool (G40, G61/G61.1/G64 P Q, G80, G92.1/G92.2, G97, G98/G99, M0 M1 M7–M9, M48–M53,
 /// M60 …) and comments are kept as Commands in program order. Everything else that would change the
 /// path (cutter compensation G41/G42, canned cycles, NURBS, G92 offsets, G93/G95 feed modes, o-word
-/// subroutines and control flow, rotary axes …) is refused with a ParseError naming the line, the
+/// control flow, M98/M99, rotary axes …) is refused with a ParseError naming the line, the
 /// column and the word.
 ///
 /// Units of the output: mm, mm/s (the G-code F word is in mm/min or in/min), s (G4 P).
