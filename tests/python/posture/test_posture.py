@@ -92,7 +92,7 @@ def test_cli_writes_the_listed_files_and_keys(tmp_path):
 
     s = json.loads((out / "summary.json").read_text())
     assert set(s) == {"cutter", "clearance_mm", "points", "collisions", "repaired", "max_posture_change_deg_per_mm",
-                      "moves"}
+                      "moves", "rotary"}
     assert s["moves"]["machine"] == "head_bc" and s["moves"]["colliding"] == 0
     assert set(s["cutter"]) == {"ball_radius_mm", "shank_radius_mm", "shank_length_mm", "holder_radius_mm",
                                 "holder_length_mm"}
