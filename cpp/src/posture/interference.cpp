@@ -24,18 +24,21 @@ struct Part {
   detail::Frustum f;
   Vec3 centre, lo, hi, s0, s1;
   double radius;
+  double inv_len2 = 0.0;  ///< 1 / |s1 − s0|² of a frustum [1/mm²]
 
-  // Lower bound of the distance from the box [lo, hi] to the part [mm].
-  double box_bound(const Vec3& blo, const Vec3& bhi) const {
+  // Lower bound of the distance from the box [lo, hi] to the part [mm]; a frustum's second bound is not
+  // computed when the box–box distance alone reaches `cut` (the caller only asks whether the bound does).
+  double box_bound(const Vec3& blo, const Vec3& bhi, double cut) const {
     if (ball) return std::sqrt(box_distance(centre, blo, bhi)) - radius;
-    return std::max(std::sqrt(detail::box_distance2(blo, bhi, lo, hi)),
-                    sphere_bound(0.5 * (blo + bhi), 0.5 * (bhi - blo).norm()));
+    const double bb2 = detail::box_distance2(blo, bhi, lo, hi);
+    if (cut >= 0 && bb2 >= cut * cut) return std::sqrt(bb2);
+    return std::max(std::sqrt(bb2), sphere_bound(0.5 * (blo + bhi), 0.5 * (bhi - blo).norm()));
   }
   // Lower bound of the distance from the ball (m, r) to a frustum part: every point of the frustum lies within
   // its largest radius of the axis segment s0–s1 [mm].
   double sphere_bound(const Vec3& m, double r) const {
     const Vec3 u = s1 - s0;
-    const double t = std::clamp((m - s0).dot(u) / u.squaredNorm(), 0.0, 1.0);
+    const double t = std::clamp((m - s0).dot(u) * inv_len2, 0.0, 1.0);
     return (m - s0 - t * u).norm() - r - radius;
   }
   // Lower bound of the distance from the plane n·x = d (n unit) to a frustum part: its signed heights over the
@@ -61,7 +64,8 @@ int make_parts(const CutterAssembly& a, const std::vector<ProfileSection>& secs,
     const Vec3 p0 = tip + s.z0 * axis, p1 = tip + s.z1 * axis;
     Part& p = parts[n++];
     p = {false, {tip, axis, s.z0, s.z1, s.r0, s.r1}, p0, (p0 - s.r0 * across).cwiseMin(p1 - s.r1 * across),
-         (p0 + s.r0 * across).cwiseMax(p1 + s.r1 * across), p0, p1, std::max(s.r0, s.r1)};
+         (p0 + s.r0 * across).cwiseMax(p1 + s.r1 * across), p0, p1, std::max(s.r0, s.r1),
+         1.0 / (p1 - p0).squaredNorm()};
   }
   return n;
 }
@@ -103,7 +107,7 @@ InterferenceChecker::Outcome InterferenceChecker::search(const Vec3& tip, const 
     const Vec3 &tlo = bvh.lo[t], &thi = bvh.hi[t];
     for (int k = 0; k < np; ++k) {
       const Part& p = parts[k];
-      if (!(mask >> k & 1u) || p.box_bound(tlo, thi) >= cut) continue;
+      if (!(mask >> k & 1u) || p.box_bound(tlo, thi, cut) >= cut) continue;
       detail::DistanceBounds d;
       if (p.ball) {
         d.witness = detail::closest_on_triangle(p.centre, a, b, c);
@@ -159,7 +163,7 @@ InterferenceChecker::Outcome InterferenceChecker::search(const Vec3& tip, const 
       child[s] = {s == 0 ? node.left : node.right, 0u, kInf};
       for (int k = 0; k < np; ++k) {
         if (!(e.mask >> k & 1u)) continue;
-        const double lb = parts[k].box_bound(ch.lo, ch.hi);
+        const double lb = parts[k].box_bound(ch.lo, ch.hi, cut);
         if (lb < cut) {
           child[s].mask |= 1u << k;
           child[s].bound = std::min(child[s].bound, lb);
