@@ -1,7 +1,8 @@
 """Benchmark: 5-axis posture planning — CC points per second through C-space + MC-space + MB-spline + repair
 on the default impeller passage, interference checks per second, the between-point program (move check,
-repair, rotary subdivision), and the disagreement count of the C++ check against the exact NumPy
-solid–triangle test of tests/python/posture/conftest.py on the same mesh and random poses.
+repair, rotary subdivision), the rotary axes' peak and RMS angular velocity and acceleration at a feed on
+the impeller floor and on a blade-side path (Impeller.blade_path), and the disagreement count of the C++ check
+against the exact NumPy solid–triangle test of tests/python/posture/conftest.py on the same mesh and poses.
 
     PYTHONPATH=python python bench/posture.py [--points 200] [--poses 100000] [--quick] [--baseline DIR]
 
@@ -38,7 +39,7 @@ def _load(name, path):
 
 
 # One planning run in a child process: the C-space + MC + MB + repair of the impeller at `points` CC points;
-# prints "<CC points/s> <checks/s>". Runs against whichever `netshape` is first on the child's sys.path.
+# prints "<CC points/s> <checks/s> <GJK runs per check>" (−1: the build does not count them). Runs against whichever `netshape` is first on the child's sys.path.
 _CHILD = """
 import sys, time
 from netshape import posture as npost
@@ -51,7 +52,7 @@ chk = npost.InterferenceChecker(TriangleMesh(v, f), npost.default_assembly(), 0.
 t = time.process_time()
 r = npost.plan(chk, cc, normals)
 dt = time.process_time() - t
-print(n / dt, r.checks / dt)
+print(n / dt, r.checks / dt, getattr(chk, "gjk_runs", -1) / r.checks)
 """
 
 
@@ -59,7 +60,7 @@ def _child_rate(path, points):
     env = dict(os.environ, PYTHONPATH=str(path))
     out = subprocess.run([sys.executable, "-c", _CHILD, str(points)], env=env, capture_output=True, text=True,
                          check=True).stdout.split()
-    return float(out[0]), float(out[1])
+    return float(out[0]), float(out[1]), float(out[2])
 
 
 def compare(baseline, points, rounds):
@@ -70,8 +71,16 @@ def compare(baseline, points, rounds):
         ours.append(_child_rate(HERE.parent / "python", points))
     mo, mb = statistics.median(r[0] for r in ours), statistics.median(r[0] for r in base)
     print(f"interleaved x{rounds}, {points} CC points: this build {mo:.1f} CC points/s "
-          f"({statistics.median(r[1] for r in ours):.0f} checks/s), baseline {mb:.1f} CC points/s "
-          f"({statistics.median(r[1] for r in base):.0f} checks/s); ratio {mo / mb:.1f}x")
+          f"({statistics.median(r[1] for r in ours):.0f} checks/s, {ours[0][2]:.2f} GJK runs/check), baseline "
+          f"{mb:.1f} CC points/s ({statistics.median(r[1] for r in base):.0f} checks/s); ratio {mo / mb:.2f}x")
+
+
+def _print_rotary(name, rot):
+    for stage in ("raw", "mc", "final", "program"):
+        print(f"  {name:14s} {stage:7s} " + "; ".join(
+            f"{ax} {r['peak_velocity_deg_s']:7.2f}/{r['rms_velocity_deg_s']:6.2f} deg/s "
+            f"{r['peak_acceleration_deg_s2']:8.1f}/{r['rms_acceleration_deg_s2']:7.1f} deg/s^2"
+            for ax, r in rot[stage].items()))
 
 
 def main(argv=None):
@@ -80,6 +89,7 @@ def main(argv=None):
     ap.add_argument("--poses", type=int, default=100_000)
     ap.add_argument("--quick", action="store_true", help="CI size: 20 points, 4000 poses")
     ap.add_argument("--baseline", type=Path, help="directory holding the baseline build's netshape package")
+    ap.add_argument("--feed", type=float, default=1000.0, help="feed of the rotary-axis figures [mm/min]")
     ap.add_argument("--rounds", type=int, default=3, help="alternating runs per build with --baseline")
     args = ap.parse_args(argv)
     if args.quick:
@@ -93,7 +103,8 @@ def main(argv=None):
     print(f"load average {os.getloadavg()[0]:.1f}; obstacles {len(f)} triangles; {args.points} CC points")
 
     t = time.process_time()
-    run = npost.plan_postures(cc, normals, v, f, asm, clearance=0.5, approach_mm=10.0, chord_mm=0.01)
+    run = npost.plan_postures(cc, normals, v, f, asm, clearance=0.5, approach_mm=10.0, chord_mm=0.01,
+                              feed_mm_per_min=args.feed)
     dt = time.process_time() - t
     r, p, s = run.result, run.program, run.summary()
     t = time.process_time()
@@ -106,6 +117,19 @@ def main(argv=None):
           f"{p.inserted} CL points inserted, {len(p.tips)} program points")
     print(f"  collisions raw/mc/final {s['collisions']}, repaired {s['repaired']}, "
           f"max change deg/mm {s['max_posture_change_deg_per_mm']}")
+
+    print(f"rotary axes at {args.feed:g} mm/min (peak/RMS velocity deg/s, acceleration deg/s^2):")
+    _print_rotary("impeller floor", run.rotary_rates())
+    bc, bn, bv, bf = imp.blade_path(args.points)
+    t = time.process_time()
+    blade = npost.plan_postures(bc, bn, bv, bf, asm, clearance=0.5, approach_mm=10.0, chord_mm=0.01,
+                                feed_mm_per_min=args.feed)
+    dt = time.process_time() - t
+    bs = blade.summary()
+    print(f"blade-side path (blade 1 pressure face at 3/4 height, {args.points} CC points, {dt:.1f} s): collisions "
+          f"raw/mc/final {bs['collisions']}, moves colliding {bs['moves']['colliding']}, "
+          f"max change deg/mm {bs['max_posture_change_deg_per_mm']}")
+    _print_rotary("blade side", blade.rotary_rates())
 
     exact = _load("posture_exact", HERE.parent / "tests/python/posture/conftest.py")
     solids = _load("posture_solids", HERE.parent / "tests/python/posture/test_posture_solids.py")

@@ -69,7 +69,9 @@ void bind_posture(py::module_& m) {
       .def("gap", &InterferenceChecker::gap, py::arg("tip"), py::arg("axis"),
            "least distance between assembly and mesh [mm] (to the tolerance)")
       .def("clear_by", &InterferenceChecker::clear_by, py::arg("tip"), py::arg("axis"), py::arg("margin"),
-           "+1 gap certainly >= clearance + margin, -1 certainly < clearance, 0 undecided");
+           "+1 gap certainly >= clearance + margin, -1 certainly < clearance, 0 undecided")
+      .def_property_readonly("gjk_runs", &InterferenceChecker::gjk_runs,
+                             "frustum-triangle GJK runs of all queries so far (the work; shared by copies)");
 
   py::class_<CSpaceOptions>(m, "CSpaceOptions")
       .def(py::init<>())

@@ -70,6 +70,50 @@ Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3
 }
 
 namespace {
+// Squared distance between the segments p0–p1 and q0–q1 (Ericson, "Real-Time Collision Detection" §5.1.9).
+double segment_segment2(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
+  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  double s = 0.0, t = 0.0;
+  if (a <= 1e-300 && e <= 1e-300) return r.squaredNorm();
+  if (a <= 1e-300) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = d1.dot(r);
+    if (e <= 1e-300) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = d1.dot(d2), den = a * e - b * b;
+      s = den > 0 ? std::clamp((b * f - c * e) / den, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0) {
+        t = 0.0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (t > 1) {
+        t = 1.0;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  return (p0 + s * d1 - q0 - t * d2).squaredNorm();
+}
+}  // namespace
+
+double segment_triangle_distance(const Vec3& p0, const Vec3& p1, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 n = (b - a).cross(c - a);
+  const double h0 = n.dot(p0 - a), h1 = n.dot(p1 - a);
+  if ((h0 <= 0 && h1 >= 0) || (h0 >= 0 && h1 <= 0)) {  // the segment meets the plane: inside the triangle?
+    const Vec3 x = h0 == h1 ? p0 : Vec3(p0 + (h0 / (h0 - h1)) * (p1 - p0));
+    const double u = n.dot((b - a).cross(x - a)), v = n.dot((c - b).cross(x - b)), w = n.dot((a - c).cross(x - c));
+    if (u >= 0 && v >= 0 && w >= 0) return 0.0;
+  }
+  double d2 = std::min((closest_on_triangle(p0, a, b, c) - p0).squaredNorm(),
+                       (closest_on_triangle(p1, a, b, c) - p1).squaredNorm());
+  d2 = std::min({d2, segment_segment2(p0, p1, a, b), segment_segment2(p0, p1, b, c), segment_segment2(p0, p1, c, a)});
+  return std::sqrt(d2);
+}
+
+namespace {
 Vec3 frustum_support(const Frustum& f, const Vec3& d) {
   const double dp = d.dot(f.axis);
   Vec3 u = d - dp * f.axis;

@@ -32,6 +32,11 @@ struct DistanceBounds {
 DistanceBounds triangle_frustum(const Vec3& a, const Vec3& b, const Vec3& c, const Frustum& f, double near,
                                 double far, double tol);
 
+/// Distance [mm] between the segment p0–p1 and the triangle (a, b, c) (0 when the segment pierces it): the least
+/// of its endpoints to the triangle and of the triangle's edges to the segment. A frustum of largest radius r
+/// about the segment lies within r of it, so this minus r is a lower bound of the frustum's distance.
+double segment_triangle_distance(const Vec3& p0, const Vec3& p1, const Vec3& a, const Vec3& b, const Vec3& c);
+
 /// Closest point of the triangle (a, b, c) to p (Ericson, "Real-Time Collision Detection" §5.1.5); `bary`
 /// (optional) gets its barycentric weights of a, b, c.
 Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Vec3* bary = nullptr);

@@ -15,6 +15,7 @@ namespace {
 constexpr int kMaxParts = 32;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kTouch = 1e-9;  // [mm] a gap below this is contact
+constexpr double kRound = 1e-9;  // relative rounding margin of a lower bound (as in triangle_frustum)
 
 // One solid of the assembly at a pose: the ball (centre, radius) or a frustum, with its bounding box and,
 // for a frustum, its axis segment s0–s1 and largest radius.
@@ -23,19 +24,29 @@ struct Part {
   detail::Frustum f;
   Vec3 centre, lo, hi, s0, s1;
   double radius;
+  double inv_len2 = 0.0;  ///< 1 / |s1 − s0|² of a frustum [1/mm²]
 
-  // Lower bound of the distance from the box [lo, hi] to the part [mm].
-  double box_bound(const Vec3& blo, const Vec3& bhi) const {
+  // Lower bound of the distance from the box [lo, hi] to the part [mm]; a frustum's second bound is not
+  // computed when the box–box distance alone reaches `cut` (the caller only asks whether the bound does).
+  double box_bound(const Vec3& blo, const Vec3& bhi, double cut) const {
     if (ball) return std::sqrt(box_distance(centre, blo, bhi)) - radius;
-    return std::max(std::sqrt(detail::box_distance2(blo, bhi, lo, hi)),
-                    sphere_bound(0.5 * (blo + bhi), 0.5 * (bhi - blo).norm()));
+    const double bb2 = detail::box_distance2(blo, bhi, lo, hi);
+    if (cut >= 0 && bb2 >= cut * cut) return std::sqrt(bb2);
+    return std::max(std::sqrt(bb2), sphere_bound(0.5 * (blo + bhi), 0.5 * (bhi - blo).norm()));
   }
   // Lower bound of the distance from the ball (m, r) to a frustum part: every point of the frustum lies within
   // its largest radius of the axis segment s0–s1 [mm].
   double sphere_bound(const Vec3& m, double r) const {
     const Vec3 u = s1 - s0;
-    const double t = std::clamp((m - s0).dot(u) / u.squaredNorm(), 0.0, 1.0);
+    const double t = std::clamp((m - s0).dot(u) * inv_len2, 0.0, 1.0);
     return (m - s0 - t * u).norm() - r - radius;
+  }
+  // Lower bound of the distance from the plane n·x = d (n unit) to a frustum part: its signed heights over the
+  // plane span the end discs' centre heights ∓ r·|n × axis|, and a triangle lies in its plane [mm].
+  double plane_bound(const Vec3& n, double d) const {
+    const double across = std::sqrt(std::max(0.0, 1.0 - n.dot(f.axis) * n.dot(f.axis)));
+    const double h0 = n.dot(s0) - d, h1 = n.dot(s1) - d, e0 = f.r0 * across, e1 = f.r1 * across;
+    return std::max(std::min(h0 - e0, h1 - e1), -std::max(h0 + e0, h1 + e1));
   }
   static double box_distance(const Vec3& p, const Vec3& blo, const Vec3& bhi) {
     return (blo - p).cwiseMax(p - bhi).cwiseMax(0.0).squaredNorm();
@@ -53,7 +64,8 @@ int make_parts(const CutterAssembly& a, const std::vector<ProfileSection>& secs,
     const Vec3 p0 = tip + s.z0 * axis, p1 = tip + s.z1 * axis;
     Part& p = parts[n++];
     p = {false, {tip, axis, s.z0, s.z1, s.r0, s.r1}, p0, (p0 - s.r0 * across).cwiseMin(p1 - s.r1 * across),
-         (p0 + s.r0 * across).cwiseMax(p1 + s.r1 * across), p0, p1, std::max(s.r0, s.r1)};
+         (p0 + s.r0 * across).cwiseMax(p1 + s.r1 * across), p0, p1, std::max(s.r0, s.r1),
+         1.0 / (p1 - p0).squaredNorm()};
   }
   return n;
 }
@@ -70,6 +82,7 @@ InterferenceChecker::InterferenceChecker(geometry::TriangleMesh obstacles, Cutte
                  "at most 30 sections");
   bvh_ = std::make_shared<const detail::TriangleBvh>(mesh_);
   last_hit_ = std::make_shared<std::atomic<int>>(-1);
+  gjk_runs_ = std::make_shared<std::atomic<long long>>(0);
 }
 
 InterferenceChecker::Outcome InterferenceChecker::search(const Vec3& tip, const Vec3& axis, double near, double far,
@@ -83,21 +96,30 @@ InterferenceChecker::Outcome InterferenceChecker::search(const Vec3& tip, const 
   const unsigned all = (1u << np) - 1u;
   Outcome out{kInf, +1, tip};
   double cut = far;
+  struct Tally {  // GJK runs of this query, added to the checker's count on every return
+    std::atomic<long long>& total;
+    long long n = 0;
+    ~Tally() { total.fetch_add(n, std::memory_order_relaxed); }
+  } runs{*gjk_runs_};
   // Test triangle t against the parts in `mask`; true when the search is decided.
   auto test = [&](int t, unsigned mask) {
     const Vec3 &a = bvh.a[t], &b = bvh.b[t], &c = bvh.c[t];
-    const Vec3 tlo = a.cwiseMin(b).cwiseMin(c), thi = a.cwiseMax(b).cwiseMax(c);
+    const Vec3 &tlo = bvh.lo[t], &thi = bvh.hi[t];
     for (int k = 0; k < np; ++k) {
       const Part& p = parts[k];
-      if (!(mask >> k & 1u) || p.box_bound(tlo, thi) >= cut) continue;
+      if (!(mask >> k & 1u) || p.box_bound(tlo, thi, cut) >= cut) continue;
       detail::DistanceBounds d;
       if (p.ball) {
         d.witness = detail::closest_on_triangle(p.centre, a, b, c);
         d.lower = d.upper = std::max(0.0, (d.witness - p.centre).norm() - p.radius);
       } else {
-        const Vec3 m = (a + b + c) / 3.0;
-        const double r = std::sqrt(std::max({(a - m).squaredNorm(), (b - m).squaredNorm(), (c - m).squaredNorm()}));
-        if (p.sphere_bound(m, r) >= cut) continue;  // cheaper than GJK for a triangle off a tilted part
+        // cheaper than GJK: a triangle off a tilted part, a part wholly on one side of the triangle's plane, or
+        // a triangle off the capsule of the part's largest radius about its axis segment. The capsule skips only
+        // at cut + tol, where GJK could not have ended undecided either, so no answer changes.
+        if (p.sphere_bound(bvh.m[t], bvh.r[t]) >= cut || p.plane_bound(bvh.n[t], bvh.d[t]) >= cut) continue;
+        const double capsule = detail::segment_triangle_distance(p.s0, p.s1, a, b, c) - p.radius;
+        if (capsule - kRound * (1.0 + p.s1.cwiseAbs().maxCoeff()) >= cut + tol) continue;
+        ++runs.n;
         d = detail::triangle_frustum(a, b, c, p.f, least ? -kInf : near, cut, tol);
       }
       if (d.upper < out.upper) out.upper = d.upper, out.witness = d.witness;
@@ -141,7 +163,7 @@ InterferenceChecker::Outcome InterferenceChecker::search(const Vec3& tip, const 
       child[s] = {s == 0 ? node.left : node.right, 0u, kInf};
       for (int k = 0; k < np; ++k) {
         if (!(e.mask >> k & 1u)) continue;
-        const double lb = parts[k].box_bound(ch.lo, ch.hi);
+        const double lb = parts[k].box_bound(ch.lo, ch.hi, cut);
         if (lb < cut) {
           child[s].mask |= 1u << k;
           child[s].bound = std::min(child[s].bound, lb);

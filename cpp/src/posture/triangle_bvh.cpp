@@ -2,6 +2,7 @@
 #include "posture/triangle_bvh.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 namespace netshape::detail {
@@ -68,6 +69,14 @@ TriangleBvh::TriangleBvh(const geometry::TriangleMesh& mesh) {
     a.push_back(bld.a[static_cast<std::size_t>(t)]);
     b.push_back(bld.b[static_cast<std::size_t>(t)]);
     c.push_back(bld.c[static_cast<std::size_t>(t)]);
+    const Vec3 &p = a.back(), &q = b.back(), &s = c.back();
+    lo.push_back(p.cwiseMin(q).cwiseMin(s));
+    hi.push_back(p.cwiseMax(q).cwiseMax(s));
+    m.push_back((p + q + s) / 3.0);
+    r.push_back(std::sqrt(std::max({(p - m.back()).squaredNorm(), (q - m.back()).squaredNorm(),
+                                    (s - m.back()).squaredNorm()})));
+    n.push_back((q - p).cross(s - p).normalized());
+    d.push_back(n.back().dot(p));
   }
 }
 

@@ -19,6 +19,11 @@ struct BvhNode {
 
 struct TriangleBvh {
   std::vector<Vec3> a, b, c;  ///< corners of the non-degenerate triangles, in leaf order [mm]
+  std::vector<Vec3> lo, hi;   ///< bounding box of each triangle [mm]
+  std::vector<Vec3> m;        ///< centroid (a + b + c) / 3 of each triangle [mm]
+  std::vector<double> r;      ///< largest distance of a corner from the centroid [mm]
+  std::vector<Vec3> n;        ///< unit normal of each triangle's plane
+  std::vector<double> d;      ///< offset n · a of each triangle's plane [mm]
   std::vector<BvhNode> nodes; ///< nodes[0] is the root
 
   explicit TriangleBvh(const geometry::TriangleMesh& mesh);

@@ -99,6 +99,11 @@ class InterferenceChecker:
     def clearance(self) -> float:
         ...
     @property
+    def gjk_runs(self) -> int:
+        """
+        frustum-triangle GJK runs of all queries so far (the work; shared by copies)
+        """
+    @property
     def obstacles(self) -> netshape._core.geometry.TriangleMesh:
         ...
     @property

@@ -54,7 +54,7 @@ def register(sub) -> None:
     q.add_argument("--tilt-max", type=a.real("--tilt-max", "deg", gt=0, lt=90), default=60.0, metavar="DEG",
                    help="largest tilt searched [deg] in (0, 90) (default 60)")
     q.add_argument("--feed", type=a.positive("--feed", "mm/min"), default=1000.0, metavar="MM_PER_MIN",
-                   help="feed of program.ngc [mm/min] (default 1000)")
+                   help="feed of program.ngc and of the rotary-axis figures [mm/min] (default 1000)")
     q.add_argument("--approach-mm", type=a.non_negative("--approach-mm", "mm"), default=10.0, metavar="MM",
                    help="approach and retract along the tool axis [mm] (default 10; 0: none)")
     q.add_argument("--chord-mm", type=a.positive("--chord-mm", "mm"), default=0.01, metavar="MM",
@@ -107,7 +107,8 @@ def run(args) -> int:
     opts.passes = args.passes
     opts.cspace.theta_max = math.radians(args.tilt_max)
     run_ = npost.plan_postures(cc, normals, verts, faces, assembly, clearance=args.clearance, options=opts,
-                               kinematics=kin, approach_mm=args.approach_mm, chord_mm=args.chord_mm)
+                               kinematics=kin, approach_mm=args.approach_mm, chord_mm=args.chord_mm,
+                               feed_mm_per_min=args.feed)
     from netshape._atomic import make_output_folder
 
     out = make_output_folder(args.out, "--out")
@@ -119,4 +120,10 @@ def run(args) -> int:
           f"{s['max_posture_change_deg_per_mm']['mc']:.3g} (mc) -> {s['max_posture_change_deg_per_mm']['final']:.3g} "
           f"(final) deg/mm; moves colliding {s['moves']['colliding_before_repair']} -> {s['moves']['colliding']} "
           f"({s['moves']['inserted']} CL points inserted); written to {out}")
+    rot = s["rotary"]
+    for stage in ("raw", "mc", "final", "program"):
+        print(f"  rotary {stage:7s} at {rot['feed_mm_per_min']:g} mm/min: " + "; ".join(
+            f"{ax} peak/rms {r['peak_velocity_deg_s']:.3g}/{r['rms_velocity_deg_s']:.3g} deg/s, "
+            f"{r['peak_acceleration_deg_s2']:.3g}/{r['rms_acceleration_deg_s2']:.3g} deg/s²"
+            for ax, r in rot[stage].items()))
     return 0

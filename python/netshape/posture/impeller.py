@@ -187,6 +187,33 @@ class Impeller:
         pts, nrm = self.floor.evaluate_with_normals(uv)
         return np.asarray(pts), np.asarray(nrm)
 
+    def blade_path(self, points: int, height: float = 0.75) -> tuple[np.ndarray, np.ndarray, np.ndarray,
+                                                                       np.ndarray]:
+        """A second 5-axis path: point milling of blade 1's pressure face (the passage side) along its iso-curve
+        at `height` (fraction of the blade height, v) from the leading to the trailing edge, u ∈ [0, 1].
+
+        Returns CC points (n, 3), unit normals (n, 3) pointing into the passage (towards blade 0), and the
+        obstacles (vertices, faces): blade 0 (the opposite wall) and the passage floor. The normal posture lies
+        nearly horizontal across the passage, so the tool must tilt up out of it; the face leans and turns
+        along the path, so even the normal posture turns the rotary axes. The machined face itself, like the
+        floor of :meth:`cc_path`, is not an obstacle."""
+        if not isinstance(points, int) or points < 4:
+            raise ValueError(f"points = {points!r}: must be an integer ≥ 4")
+        if not 0 < height < 1:
+            raise ValueError(f"height = {height!r}: must be in (0, 1)")
+        face = self.blade_faces[1][0]
+        uv = np.column_stack([np.linspace(0.0, 1.0, points), np.full(points, float(height))])
+        pts, nrm = (np.asarray(x) for x in face.evaluate_with_normals(uv))
+        towards = (self.blade_faces[0][1].evaluate_with_normals(uv)[0] - pts)  # across the passage
+        nrm = nrm * np.sign(np.sum(nrm * towards, axis=1))[:, None]
+        v0, f0 = self.blade_mesh(0)
+        nu, nv = self.params.mesh_count_u, self.params.mesh_count_v
+        grid = self.floor.evaluate_grid(np.linspace(0, 1, nu), np.linspace(0, 1, nv), normals=False)
+        fv = np.asarray(grid).reshape(-1, 3)
+        ff = [(i * nv + j, (i + 1) * nv + j, (i + 1) * nv + j + 1) for i in range(nu - 1) for j in range(nv - 1)]
+        ff += [(i * nv + j, (i + 1) * nv + j + 1, i * nv + j + 1) for i in range(nu - 1) for j in range(nv - 1)]
+        return pts, nrm, np.concatenate([v0, fv]), np.concatenate([f0, np.asarray(ff, np.int64) + len(v0)])
+
 
 def make_impeller(params: ImpellerParams | None = None) -> Impeller:
     """Build the impeller's NURBS surfaces from validated parameters (defaults: :class:`ImpellerParams`)."""

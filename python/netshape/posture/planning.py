@@ -161,6 +161,7 @@ class PostureRun:
     kinematics: _p.Kinematics
     program: _p.MovePlan
     extra: dict = field(default_factory=dict)
+    feed_mm_per_min: float = 1000.0  # feed of the rotary-axis figures and of program.ngc [mm/min]
 
     def table(self, stage: str) -> np.ndarray:
         """(n, 7) rows of :data:`CSV_COLUMNS` for stage "raw", "mc", "smoothed" or "final"."""
@@ -171,6 +172,28 @@ class PostureRun:
     def max_change_deg_per_mm(self, stage: str) -> float:
         """Largest angle between neighbouring axes per mm of path [deg/mm]."""
         return math.degrees(_p.max_posture_change(self.result.s, getattr(self.result, stage).axes))
+
+    def rotary_rates(self) -> dict:
+        """Peak and RMS angular velocity [deg/s] and acceleration [deg/s²] of the rotary axes at
+        :attr:`feed_mm_per_min` (see :mod:`netshape.posture.rates`): for "raw", "mc" and "final" from the
+        machine joints of the CL points (inverse kinematics on this run's machine), and for "program" from the
+        joints of the program (the final postures with the inserted points, between approach and retract)."""
+        from .rates import joint_rates
+
+        tilt = "A" if self.kinematics.kind == _p.MachineKind.table_ac else "B"
+        radius = self.assembly.ball_radius
+        out: dict = {"feed_mm_per_min": self.feed_mm_per_min, "machine": self.kinematics.kind.name}
+        for stage in ("raw", "mc", "final"):
+            st = getattr(self.result, stage)
+            tips, axes = np.asarray(st.tips), np.asarray(st.axes)
+            joints = _p.inverse_kinematics(self.kinematics, tips, axes)
+            out[stage] = joint_rates(joints, tips + radius * axes, self.feed_mm_per_min, tilt)
+        src = np.asarray(self.program.source)
+        cl = (src >= 0) & (src <= len(self.result.s) - 1)  # not the approach / retract points
+        tips, axes = np.asarray(self.program.tips)[cl], np.asarray(self.program.axes)[cl]
+        out["program"] = joint_rates(np.asarray(self.program.joints)[cl], tips + radius * axes,
+                                     self.feed_mm_per_min, tilt)
+        return out
 
     def summary(self) -> dict:
         """The summary.json contents."""
@@ -197,6 +220,7 @@ class PostureRun:
                 "program_points": int(len(self.program.tips)),
                 "colliding": int(np.sum(self.program.move_collides)),
             },
+            "rotary": self.rotary_rates(),
         }
 
     def write(self, out_dir: str | os.PathLike, *, plot: bool = False, plot_point: int | None = None,
@@ -261,11 +285,11 @@ class PostureRun:
 def plan_postures(cc, normals, obstacle_vertices, obstacle_faces, assembly: _p.CutterAssembly, *,
                   clearance: float = 0.5, options: _p.PlanOptions | None = None,
                   kinematics: _p.Kinematics | None = None, approach_mm: float = 10.0,
-                  chord_mm: float = 0.01) -> PostureRun:
+                  chord_mm: float = 0.01, feed_mm_per_min: float = 1000.0) -> PostureRun:
     """Run the planner: C-space per CC point, MC-space, MB-spline smoothing, repair; then the CL program on the
     machine (default: table_ac at the origin): the moves between the final postures checked and repaired,
     rotary moves subdivided to `chord_mm`, approach and retract `approach_mm` along the tool axis, every move
-    checked (see docs/posture.md)."""
+    checked (see docs/posture.md); the rotary-axis figures of the summary at `feed_mm_per_min`."""
     from ..geometry import TriangleMesh
 
     if not (isinstance(clearance, (int, float)) and math.isfinite(clearance) and clearance >= 0):
@@ -274,6 +298,9 @@ def plan_postures(cc, normals, obstacle_vertices, obstacle_faces, assembly: _p.C
     f = np.ascontiguousarray(obstacle_faces, np.int64).reshape(-1, 3)
     if len(f) == 0:
         raise ValueError("obstacles: the mesh is empty (no triangles)")
+    if isinstance(feed_mm_per_min, bool) or not isinstance(feed_mm_per_min, (int, float)) \
+            or not math.isfinite(feed_mm_per_min) or feed_mm_per_min <= 0:
+        raise ValueError(f"feed_mm_per_min = {feed_mm_per_min!r}: must be a positive number [mm/min]")
     mesh = TriangleMesh(v, f)
     checker = _p.InterferenceChecker(mesh, assembly, float(clearance))
     for key, value, ok in (("approach_mm", approach_mm, lambda x: x >= 0), ("chord_mm", chord_mm, lambda x: x > 0)):
@@ -284,4 +311,5 @@ def plan_postures(cc, normals, obstacle_vertices, obstacle_faces, assembly: _p.C
     kinematics = kinematics or _p.Kinematics()
     program = _p.plan_program(checker, kinematics, result, options, float(approach_mm), float(chord_mm))
     return PostureRun(result=result, assembly=assembly, clearance=float(clearance), obstacle_vertices=v,
-                      obstacle_faces=f, kinematics=kinematics, program=program)
+                      obstacle_faces=f, kinematics=kinematics, program=program,
+                      feed_mm_per_min=float(feed_mm_per_min))

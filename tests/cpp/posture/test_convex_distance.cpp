@@ -72,3 +72,23 @@ TEST_CASE("GJK support direction along the axis: the rim point stays on the rim 
   CHECK(d.lower <= oracle);
   CHECK(d.upper == doctest::Approx(oracle).epsilon(1e-4));
 }
+
+TEST_CASE("Segment–triangle distance equals the least distance of the triangle's points to the segment") {
+  // oracle: a frustum of radius 0 is the segment; grid_distance is within the grid spacing above the distance
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> U(-1, 1);
+  int unsafe = 0, off = 0;
+  for (int k = 0; k < 1000; ++k) {
+    const Vec3 p0(3 * U(rng), 3 * U(rng), 3 * U(rng)), dir = Vec3(U(rng), U(rng), U(rng)).normalized();
+    const double len = 0.5 + 4 * std::abs(U(rng));
+    const Vec3 a(4 * U(rng), 4 * U(rng), 4 * U(rng));
+    Vec3 b = a + 4 * Vec3(U(rng), U(rng), U(rng)), c = a + 4 * Vec3(U(rng), U(rng), U(rng));
+    if (k % 5 == 0) c = b + 2 * U(rng) * dir;  // an edge parallel to the segment
+    const double d = detail::segment_triangle_distance(p0, p0 + len * dir, a, b, c);
+    const double oracle = grid_distance(a, b, c, Frustum{p0, dir, 0.0, len, 0.0, 0.0}, 120);
+    unsafe += d > oracle + 1e-12;
+    off += oracle - d > 0.06;  // grid spacing ≤ 8/120 mm along an edge
+  }
+  CHECK(unsafe == 0);
+  CHECK(off == 0);
+}

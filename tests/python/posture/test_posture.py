@@ -92,7 +92,7 @@ def test_cli_writes_the_listed_files_and_keys(tmp_path):
 
     s = json.loads((out / "summary.json").read_text())
     assert set(s) == {"cutter", "clearance_mm", "points", "collisions", "repaired", "max_posture_change_deg_per_mm",
-                      "moves"}
+                      "moves", "rotary"}
     assert s["moves"]["machine"] == "head_bc" and s["moves"]["colliding"] == 0
     assert set(s["cutter"]) == {"ball_radius_mm", "shank_radius_mm", "shank_length_mm", "holder_radius_mm",
                                 "holder_length_mm"}
@@ -227,3 +227,18 @@ def test_cli_surface_and_obstacles_and_impeller_toml(tmp_path, capsys):
     imp.write_text("blade_count = 10\n")
     assert main(["posture", "plan", "--impeller", str(imp), "--out", str(tmp_path / "i")]) == 2
     assert "blade_count" in capsys.readouterr().err
+
+
+def test_blade_path_runs_on_blade_1_pressure_face_with_normals_into_the_passage():
+    imp = npost.make_impeller()
+    cc, n, v, f = imp.blade_path(12)
+    np.testing.assert_allclose(np.linalg.norm(n, axis=1), 1.0, atol=1e-9)
+    np.testing.assert_allclose(cc[:, 2], 0.75 * imp.params.blade_height_mm, atol=1e-9)  # ruled in z
+    # on blade 1's pressure face: turned by pitch − δ from blade 0's camber surface at the same (u, v)
+    angle = np.arctan2(cc[:, 1], cc[:, 0])
+    suction0 = imp.blade_faces[0][1].evaluate_with_normals(np.column_stack([np.linspace(0, 1, 12),
+                                                                             np.full(12, 0.75)]))[0]
+    gap = angle - np.arctan2(suction0[:, 1], suction0[:, 0])
+    np.testing.assert_allclose(gap, imp.pitch - 2 * imp.delta, atol=1e-9)
+    assert np.all(np.sum(n * (suction0 - cc), axis=1) > 0)  # towards blade 0, across the passage
+    assert len(f) > 0 and f.max() < len(v)

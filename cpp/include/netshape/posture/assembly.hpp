@@ -94,6 +94,8 @@ class InterferenceChecker {
   int clear_by(const Vec3& tip, const Vec3& axis, double margin) const;
   /// Closest point of the mesh to p [mm].
   Vec3 closest_point(const Vec3& p) const;
+  /// Frustum–triangle GJK runs of all queries so far (a measure of the work, shared by copies).
+  long long gjk_runs() const noexcept { return gjk_runs_->load(std::memory_order_relaxed); }
 
  private:
   struct Outcome {
@@ -111,6 +113,7 @@ class InterferenceChecker {
   std::vector<ProfileSection> sections_;
   std::shared_ptr<const detail::TriangleBvh> bvh_;
   std::shared_ptr<std::atomic<int>> last_hit_;  ///< triangle of the last collision (a hint; −1 none)
+  std::shared_ptr<std::atomic<long long>> gjk_runs_;  ///< see gjk_runs()
   double clearance_ = 0.0;
   double tolerance_ = 1e-3;
 };
