@@ -120,6 +120,10 @@ def run(args) -> int:
           f"{s['max_posture_change_deg_per_mm']['mc']:.3g} (mc) -> {s['max_posture_change_deg_per_mm']['final']:.3g} "
           f"(final) deg/mm; moves colliding {s['moves']['colliding_before_repair']} -> {s['moves']['colliding']} "
           f"({s['moves']['inserted']} CL points inserted); written to {out}")
+    if s["status"] != "ok":
+        print(f"  warning: status {s['status']}: {s['collisions']['final']} final postures and "
+              f"{s['moves']['colliding']} moves of program.ngc still come within --clearance of the obstacles; "
+              "check them before running the program")
     rot = s["rotary"]
     for stage in ("raw", "mc", "final", "program"):
         print(f"  rotary {stage:7s} at {rot['feed_mm_per_min']:g} mm/min: " + "; ".join(

@@ -198,7 +198,10 @@ class PostureRun:
     def summary(self) -> dict:
         """The summary.json contents."""
         a, r = self.assembly, self.result
+        left = r.final.collision_count() + int(np.sum(self.program.move_collides))
         return {
+            # "ok" only when every final posture and every move of the written program keeps the clearance
+            "status": "ok" if left == 0 else "collisions_left",
             "cutter": {
                 "ball_radius_mm": a.ball_radius,
                 "shank_radius_mm": a.shank_radius,

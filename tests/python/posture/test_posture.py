@@ -242,3 +242,19 @@ def test_blade_path_runs_on_blade_1_pressure_face_with_normals_into_the_passage(
     np.testing.assert_allclose(gap, imp.pitch - 2 * imp.delta, atol=1e-9)
     assert np.all(np.sum(n * (suction0 - cc), axis=1) > 0)  # towards blade 0, across the passage
     assert len(f) > 0 and f.max() < len(v)
+
+
+def test_status_says_when_collisions_are_left(default_run):
+    """The summary's status is "ok" only when no final posture and no move of the written program comes
+    within the clearance. The blade-side path leaves colliding moves (the repair clears the postures, not
+    every move between them), and must say so."""
+    _, run, _ = default_run
+    s = run.summary()
+    assert s["moves"]["colliding"] == 0 and s["collisions"]["final"] == 0 and s["status"] == "ok"
+    imp = npost.make_impeller()
+    bc, bn, bv, bf = imp.blade_path(POINTS)
+    blade = npost.plan_postures(bc, bn, bv, bf, npost.default_assembly(), clearance=0.5)
+    b = blade.summary()
+    left = b["moves"]["colliding"] + b["collisions"]["final"]
+    assert left > 0, b  # the case this test is about
+    assert b["status"] == "collisions_left"
