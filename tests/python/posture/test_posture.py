@@ -92,8 +92,8 @@ def test_cli_writes_the_listed_files_and_keys(tmp_path):
 
     s = json.loads((out / "summary.json").read_text())
     assert set(s) == {"cutter", "clearance_mm", "points", "collisions", "repaired", "max_posture_change_deg_per_mm",
-                      "moves", "rotary"}
-    assert s["moves"]["machine"] == "head_bc" and s["moves"]["colliding"] == 0
+                      "moves", "rotary", "status"}
+    assert s["moves"]["machine"] == "head_bc" and s["moves"]["colliding"] == 0 and s["status"] == "ok"
     assert set(s["cutter"]) == {"ball_radius_mm", "shank_radius_mm", "shank_length_mm", "holder_radius_mm",
                                 "holder_length_mm"}
     assert set(s["collisions"]) == {"raw", "mc", "final"} == set(s["max_posture_change_deg_per_mm"])
