@@ -1,6 +1,7 @@
 """Feed scheduling (issue 41, docs/feeds.md): blocks/s of the scheduler on a 10 000-block surfacing
 program, and the cycle-time saving on the demo job's program and on ../shared/data/gcode/3D_Chips.ngc
-with a 10 mm ball end mill, at stated limits.
+with a 10 mm ball end mill on the stock its roughing left (the part's surface offset by the finishing
+allowance), at stated limits.
 
     PYTHONPATH=python python bench/feeds.py [--quick]
 """
@@ -40,6 +41,31 @@ def _stock(box, spacing, pre_cut=()):
     st = {"min_mm": box[0], "max_mm": box[1], "spacing_mm": spacing, "heights": None,
           "pre_cut": list(pre_cut)}
     return stage_stock(SimpleNamespace(stock=st))
+
+
+def finishing_stock(box, spacing, tp, ball, allowance: float):
+    """The stock a roughing pass leaves for the ball-end finishing program ``tp`` (first start placed): the
+    block less what a ball of radius R − ``allowance`` removes with its centre on the program's ball
+    centres (its tip ``allowance`` higher): the envelope R − a from the centres is the part's surface
+    offset outwards by ``allowance`` along its normal."""
+    import netshape as ns
+    import numpy as np
+    from netshape.compensation.feeds_gcode import copy_block
+
+    stock = _stock(box, spacing)
+    small = ns.cutter.cutter_from_dict({"kind": "ball", "diameter_mm": 2 * (ball.radius - allowance),
+                                        "flutes": ball.flutes, "helix_deg": math.degrees(ball.helix),
+                                        "flute_length_mm": ball.flute_length, "stick_out_mm": ball.stick_out})
+    d = np.array([0.0, 0.0, allowance])
+    blocks = []
+    for b in tp.blocks:
+        nb = copy_block(b)
+        nb.start, nb.end = np.asarray(b.start) + d, np.asarray(b.end) + d
+        if int(b.kind) == 2:
+            nb.center = np.asarray(b.center) + d
+        blocks.append(nb)
+    ns.stock.sweep(stock, small, tp.with_blocks(blocks, list(range(len(blocks)))))
+    return stock
 
 
 def throughput(blocks: int) -> dict:
@@ -87,6 +113,12 @@ def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--quick", action="store_true", help="1000 blocks, the demo program only")
     p.add_argument("--chips-only", action="store_true", help="only the 3D_Chips saving")
+    p.add_argument("--allowance", type=float, default=0.5,
+                   help="3D_Chips: finishing allowance the roughing left, normal to the part [mm] (0.5)")
+    p.add_argument("--max-force", type=float, default=1500.0,
+                   help="3D_Chips: force limit [N] (1500: the program's own peak on the finishing stock)")
+    p.add_argument("--max-chip", type=float, default=0.3,
+                   help="3D_Chips: chip limit [mm] (0.3: its F900 moves at 1600 rev/min are 0.28 mm)")
     a = p.parse_args(argv)
     import netshape as ns
     from netshape.job.spec import PreCut
@@ -105,22 +137,21 @@ def main(argv=None) -> int:
                {"max_force_N": 300.0, "max_chip_mm": 0.05, "max_feed_mm_min": 3000.0,
                 "air_feed_mm_min": 5000.0})
     if not a.quick and CHIPS.is_file():
-        stock = _stock(([-50, -50, -50], [50, 50, 0]), 0.5)
         ball = ns.cutter.cutter_from_dict({"kind": "ball", "diameter_mm": 10.0, "flutes": 2,
                                            "helix_deg": 30.0, "flute_length_mm": 30.0, "stick_out_mm": 50.0})
         kim = ns.force.ball_end_coefficient_set("kim_zas_ball12").coefficients
-        # the file sets #<fscale> = 10000 (F up to 2.25e6 mm/min); its header states 450 mm/min: fscale 2
+        # the file sets #<fscale> = 10000 (F up to 4.5e6 mm/min); its header states 450 mm/min: fscale 2
+        # (F450 and, for most of its moves, F900)
         text = re.sub(r"#<fscale>\s*=\s*[\d.]+", "#<fscale> = 2.0", CHIPS.read_text())
-        # the program finishes a part from a block: a semi-finishing pass of itself 1 mm higher first
-        import numpy as np
+        from netshape.compensation.feeds_run import read_program_text, with_start
 
-        from netshape.compensation.feeds_run import read_program_text
-        from netshape.job.stages import shift_toolpath
-
-        tp = read_program_text(text, "3D_Chips")
-        ns.stock.sweep(stock, ball, shift_toolpath(tp, np.tile([0.0, 0.0, 1.0], (len(tp.blocks), 1))))
-        saving("3D_Chips.ngc (ball D10, #<fscale> = 2, 1 mm left)", text, stock, ball, kim,
-               {"max_force_N": 600.0, "max_chip_mm": 0.2, "max_feed_mm_min": 3000.0,
+        box = ([-50, -50, -50], [50, 50, 0])
+        # a finishing program runs on what roughing left: the part's surface offset by the allowance
+        tp = with_start(read_program_text(text, "3D_Chips"), _stock(box, 0.5))
+        stock = finishing_stock(box, 0.5, tp, ball, a.allowance)
+        saving(f"3D_Chips.ngc (ball D10, #<fscale> = 2, {a.allowance:g} mm allowance)", text, stock, ball,
+               kim,
+               {"max_force_N": a.max_force, "max_chip_mm": a.max_chip, "max_feed_mm_min": 3000.0,
                 "air_feed_mm_min": 5000.0})
     print(f"(load average {os.getloadavg()[0]:.1f})")
     return 0

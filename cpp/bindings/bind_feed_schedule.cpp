@@ -55,7 +55,8 @@ void bind_feed_schedule(py::module_& m) {
                         "engaged"_a = r.engaged, "walls"_a = r.walls, "depth"_a = r.depth,
                         "chip_factor"_a = r.chip_factor, "engaged_share"_a = r.engaged_share,
                         "allowed"_a = r.allowed, "lowest"_a = r.lowest,
-                        "force"_a = r.force, "removed_volume"_a = r.removed_volume);
+                        "force"_a = r.force, "deflection"_a = r.deflection,
+                        "wall_error"_a = r.wall_error, "removed_volume"_a = r.removed_volume);
       },
       "stock"_a, "cutter"_a, "program"_a, "limits"_a, "sampling"_a, "linear_edge"_a = nullptr,
       "ball_end"_a = nullptr, "Per force sample, the largest feed [mm/s] each limit allows (netshape.compensation.feeds).");

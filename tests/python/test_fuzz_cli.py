@@ -359,6 +359,16 @@ def _entry_points(inp: Path, out: Path) -> dict:
                                    "-o", str(out / "c.ngc"), "--json", str(out / "c.json")],
                                   ["mini.ngc", "tool.toml", "stock.toml"], ["--rpm", "--tolerance", "--max-iterations"],
                                   ["-o", "--json"], []),
+        "feeds": (["feeds", ngc, "--tool", str(inp / "tool.toml"), "--stock", str(inp / "stock.toml"),
+                   "--coefficients", "leekunhwee_flat_slot", "--max-force", "400", "--max-wall-error", "0.05",
+                   "--max-feed", "3000", "--vmax", "200", "--amax", "2000", "--step", "1.0",
+                   "--samples", "24", "--disk-height", "0.5", "--var", str(inp / "o.var"),
+                   "-o", str(out / "feeds.ngc"),
+                   "--json", str(out / "feeds.json")],
+                  ["mini.ngc", "tool.toml", "stock.toml"],
+                  ["--max-force", "--max-wall-error", "--max-feed", "--vmax", "--amax", "--step",
+                   "--samples"],
+                  ["-o", "--json"], []),
         "volumetric map": (["volumetric", "map", str(inp / "machine.toml"), "--grid", "3,3,3",
                             "--json", str(out / "m.json")], ["machine.toml"], [], ["--json"], []),
         "volumetric compensate": (["volumetric", "compensate", ngc, "--machine", str(inp / "machine.toml"),
@@ -383,6 +393,7 @@ def _entry_points(inp: Path, out: Path) -> dict:
 
 #: mutations per entry point (a few hundred in all)
 COUNTS = {"info": 30, "forces": 30, "deflection wall": 25, "deflection predict": 25, "deflection compensate": 20,
+          "feeds": 25,
           "volumetric map": 25, "volumetric compensate": 25, "plan": 35, "posture plan": 30, "diagnose": 15,
           "run": 50, "batch": 12, "demo": 4}
 

@@ -2,6 +2,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "netshape/force/flat_end_model.hpp"
 #include "netshape/force/program_walk.hpp"
 #include "netshape/stock/engagement.hpp"
+#include "compensation/feed_deflection.hpp"
 
 namespace netshape::compensation {
 
@@ -81,17 +83,7 @@ double largest_feed_per_tooth(const Points3& P, const Points3& Q, double p, doub
       m = std::max(m, (cp * P.row(k) + cq * Q.row(k)).transpose().cwiseProduct(w).norm());
     return m;
   };
-  double lo = 0.0, hi = 1e-4;
-  while (peak(hi) <= limit) {
-    lo = hi;
-    hi *= 2.0;
-    if (hi > 1e3) return inf;
-  }
-  for (int it = 0; it < 60; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    (peak(mid) <= limit ? lo : hi) = mid;
-  }
-  return lo;
+  return largest_below(peak, limit);
 }
 
 /// Mean over the angles of Σ max(sin φ, 0)·dz and Σ dz over the engaged elements of a flat end mill
@@ -243,6 +235,8 @@ class SampleForces {
 using Allowed = std::array<double, feed_limit_columns>;
 
 /// The largest feed [mm/s] each limit allows at an engaged sample (FeedLimit 0..5; inf: no bound).
+/// Deflection and wall error here for ball end mills only (the cantilever bound of the file comment);
+/// flat end mills take them from SampleDeflection.
 Allowed allowed_feeds(const SampleForces& sf, const MaskFacts& m, const FeedLimits& lim,
                       const deflection::Cantilever& beam, double holder_compliance, int flutes, double rpm) {
   Allowed al;
@@ -256,9 +250,10 @@ Allowed allowed_feeds(const SampleForces& sf, const MaskFacts& m, const FeedLimi
   };
   al[0] = largest(all, lim.max_force);
   if (m.chip > 0.0) al[1] = lim.max_chip / m.chip * to_feed;
-  al[2] = largest(xy, lim.max_deflection / kappa);
-  if (m.walls) al[3] = largest(y, lim.max_wall_error / kappa);
-  if (!sf.ball()) {
+  if (sf.ball()) {
+    al[2] = largest(xy, lim.max_deflection / kappa);
+    if (m.walls) al[3] = largest(y, lim.max_wall_error / kappa);
+  } else {
     auto torque_feed = [&](double t_nmm) {
       if (!std::isfinite(t_nmm)) return inf;
       if (sf.torque_edge >= t_nmm) return 0.0;
@@ -274,7 +269,7 @@ Allowed allowed_feeds(const SampleForces& sf, const MaskFacts& m, const FeedLimi
 struct Collected {
   std::vector<Vec3> pos, dir;
   std::vector<int> block;
-  std::vector<double> fraction, rpm, lowest, force;
+  std::vector<double> fraction, rpm, lowest, force, deflection, wall_error;
   std::vector<MaskFacts> facts;
   std::vector<Allowed> allowed;
 
@@ -293,6 +288,8 @@ struct Collected {
     out.allowed.resize(m, feed_limit_columns);
     out.lowest.resize(m);
     out.force.resize(m);
+    out.deflection.resize(m);
+    out.wall_error.resize(m);
     for (Eigen::Index i = 0; i < m; ++i) {
       out.positions.row(i) = pos[i].transpose();
       out.feed_direction.row(i) = dir[i].transpose();
@@ -307,6 +304,8 @@ struct Collected {
       for (int j = 0; j < feed_limit_columns; ++j) out.allowed(i, j) = allowed[i][j];
       out.lowest[i] = lowest[i];
       out.force[i] = force[i];
+      out.deflection[i] = deflection[i];
+      out.wall_error[i] = wall_error[i];
     }
   }
 };
@@ -342,6 +341,10 @@ FeedSamples feed_samples(stock::ZMap& stock, const cutter::Cutter& cutter, const
   const deflection::Cantilever beam = deflection::Cantilever::tool(
       cutter.diameter(), cutter.stick_out, cutter.youngs_modulus, deflection::InertiaModel::square);
   SampleForces sf(cutter, k, opt, angles.size());
+  const bool flat_deflection = cutter.kind == cutter::CutterKind::flat &&
+                               (std::isfinite(limits.max_deflection) || std::isfinite(limits.max_wall_error));
+  std::optional<detail::SampleDeflection> sd;
+  if (flat_deflection) sd.emplace(cutter, k.linear_edge, opt.disk_height, angles);
   stock::MaskR mask;
   Collected c;
   FeedSamples out;
@@ -354,7 +357,7 @@ FeedSamples feed_samples(stock::ZMap& stock, const cutter::Cutter& cutter, const
     const MaskFacts facts = read_mask(mask, phi, z, dz);
     Allowed al;
     al.fill(inf);
-    double low = 0.0, fprog = 0.0;
+    double low = 0.0, fprog = 0.0, defl = 0.0, wall = 0.0;
     if (facts.engaged) {
       NETSHAPE_CHECK(rpm > 0.0, ("block at line " + std::to_string(b.line) + ": spindle_rpm").c_str(), rpm,
                      "a cutting move needs a spindle speed (S word) [rev/min]");
@@ -363,6 +366,14 @@ FeedSamples feed_samples(stock::ZMap& stock, const cutter::Cutter& cutter, const
       const double to_feed = cutter.flutes * rpm / 60.0;
       if (facts.chip > 0.0) low = limits.min_chip / facts.chip * to_feed;
       fprog = sf.peak(b.feed / to_feed);
+      if (sd) {
+        const auto d = sd->evaluate(stock, w.tip, w.feed_direction, facts.walls, b.feed / to_feed,
+                                    limits.max_deflection, limits.max_wall_error);
+        al[2] = d.deflection_c * to_feed;
+        al[3] = d.wall_c * to_feed;
+        defl = d.deflection;
+        wall = d.wall_error;
+      }
     }
     c.pos.push_back(w.tip);
     c.dir.push_back(w.feed_direction);
@@ -373,6 +384,8 @@ FeedSamples feed_samples(stock::ZMap& stock, const cutter::Cutter& cutter, const
     c.allowed.push_back(al);
     c.lowest.push_back(low);
     c.force.push_back(fprog);
+    c.deflection.push_back(defl);
+    c.wall_error.push_back(wall);
   };
   out.removed_volume = force::walk_program(stock, cutter, program, opt.step, visit, "feeds");
   c.into(out);

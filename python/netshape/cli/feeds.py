@@ -26,7 +26,8 @@ examples:
       --max-force 400 --max-chip 0.08 --max-feed 3000 --vmax 200 --amax 2000 -o part_feeds.ngc \\
       --json feeds.json --csv feeds.csv --plot feeds.png
 stock TOML: min_mm = [x, y, z], max_mm = [...], spacing_mm = 0.25 (the job's [stock] keys, docs/job.md),
-in the program's coordinates. Summary keys: cycle_time_s {original, optimized}, binding (pieces per limit),
+in G54 work coordinates: a block under G55…G59 is moved by its offset less G54's (--var).
+Summary keys: cycle_time_s {original, optimized}, binding (pieces per limit),
 max_force_N {original, optimized}, max_chip_mm, check (the written program re-simulated).
 """
 
@@ -94,43 +95,59 @@ def register(sub) -> None:
                    help="disk height of the force model [mm] (0.1)")
     s.add_argument("--rpm", type=a.positive("--rpm", "rev/min"), metavar="RPM",
                    help="spindle speed [rev/min] (default: the program's S words)")
+    p.add_argument("--var", metavar="FILE.var",
+                   help="LinuxCNC parameter file: the work offsets G54-G59 the program selects; the stock "
+                        "is in G54 work coordinates (without it all offsets are zero)")
     p.add_argument("--json", metavar="OUT.json", help="summary")
     p.add_argument("--csv", metavar="OUT.csv", help="per program line: binding limit, feeds, force, chip")
     p.add_argument("--plot", metavar="OUT.png", help="feed and force along the path, before and after")
     p.set_defaults(func=run)
 
 
-def _inputs(args):
-    """Stock, cutter and coefficients from their files, errors naming the option."""
-    from pathlib import Path
+def _inputs(args, cutter):
+    """Stock and coefficients from their files, errors naming the option."""
     from types import SimpleNamespace
 
     from netshape.cli import CliError
-    from netshape.cutter import load_cutter
-    from netshape.job.spec import _coefficients, _stock
-    from netshape.job.stages import coefficients_for, stage_stock
+    from netshape.job.spec import _coefficients
+    from netshape.job.stages import coefficients_for
+    from netshape.stock.config import load_stock
 
-    cutter = load_cutter(args.tool)
-    st = _stock("--stock", Path.cwd(), {"file": args.stock})
-    stock = stage_stock(SimpleNamespace(stock=st))
+    stock = load_stock(args.stock)
     try:
         spec = _coefficients("--coefficients", args.coefficients)
         coeffs = coefficients_for(SimpleNamespace(coefficients=spec), cutter)
     except ValueError as exc:
         raise CliError(f"--coefficients = {args.coefficients}: {str(exc).split(': ', 1)[-1]}") from None
-    return stock, cutter, coeffs
+    return stock, coeffs
 
 
-def _tool_spindle_limits(path) -> dict:
-    """``max_power_W`` / ``max_torque_Nm`` from the tool TOML (netshape.cutter.SPINDLE_KEYS), if given."""
+def _tool(path):
+    """(cutter, spindle limits) from one reading of the tool TOML: the cutter's keys and its optional
+    ``max_power_W`` / ``max_torque_Nm`` (netshape.cutter.SPINDLE_KEYS)."""
     from netshape._config import load_toml
     from netshape.cli import CliError
-    from netshape.cutter import spindle_limits
+    from netshape.cutter import cutter_from_dict, spindle_limits
 
     try:
-        return spindle_limits(load_toml(path))
+        data = load_toml(path)
+        return cutter_from_dict(data, source=str(path)), spindle_limits(data)
     except (OSError, ValueError) as exc:
-        raise CliError(f"--tool = {path}: {exc}") from None
+        msg = str(exc)
+        raise CliError(msg if msg.startswith(str(path)) else f"--tool = {path}: {msg}") from None
+
+
+def _work_offsets(args):
+    """(9, 3) work offsets G54…G59.3 [mm] from --var, or None."""
+    from netshape.cli import CliError
+    from netshape.toolpath import read_var_file
+
+    if args.var is None:
+        return None
+    try:
+        return read_var_file(args.var)
+    except (OSError, ValueError) as exc:
+        raise CliError(f"--var = {args.var}: {exc}") from None
 
 
 def _axis_limits(args):
@@ -162,7 +179,8 @@ def run(args) -> int:
 
     check_outputs(args, files=("--output", "--json", "--csv", "--plot"))
     table = {key: getattr(args, opt) for opt, key in _LIMIT_OPTIONS.items() if getattr(args, opt) is not None}
-    table = _tool_spindle_limits(args.tool) | table  # the options win over the tool file's spindle limits
+    cutter, spindle = _tool(args.tool)
+    table = spindle | table  # the options win over the tool file's spindle limits
     try:
         limits, split = feed_limits_from_dict(table, source="")
     except ValueError as exc:  # "<key> = v: rule" → the option
@@ -171,13 +189,14 @@ def run(args) -> int:
         opt = next((o for o, k in _LIMIT_OPTIONS.items() if k == key), key)
         raise CliError("--" + opt.replace("_", "-") + msg[len(key):]) from None
     axis = _axis_limits(args)
-    stock, cutter, coeffs = _inputs(args)
+    work_offsets = _work_offsets(args)
+    stock, coeffs = _inputs(args, cutter)
     sampling = {"step": args.step, "samples_per_revolution": args.samples, "disk_height": args.disk_height,
                 "spindle_rpm": args.rpm or 0.0}
     text = read_text(args.program)
     res = optimize_program(text, args.program, stock, cutter, coeffs, limits, axis_limits=axis,
                            plan_options=make_options(args.rule, ts1=2e-3, ts2=1e-3), split=split,
-                           sampling=sampling)
+                           sampling=sampling, work_offsets=work_offsets)
     if not res.rows:
         raise CliError(f"{args.program}: no feed moves to schedule")
     res.summary["output"] = args.output

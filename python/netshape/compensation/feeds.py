@@ -163,6 +163,44 @@ def _refuse_infeasible(program, samples: dict, allowed: np.ndarray, limits: Feed
                      f"{best[i] * 60:.4g} mm/min, under the {low[i] * 60:.4g} mm/min that {need}")
 
 
+def _sampling_options(step, samples_per_revolution, bins, disk_height, element_angle_deg, spindle_rpm):
+    from netshape._core import force as _f
+
+    return _f.ProgramForceOptions(step=step, samples_per_revolution=samples_per_revolution, bins=bins,
+                                  disk_height=disk_height, element_angle=math.radians(element_angle_deg),
+                                  feed_per_tooth=0.0, spindle_rpm=spindle_rpm)
+
+
+def sample_limits(stock, cutter, program, coefficients, limits: FeedLimits, *, step: float = 0.5,
+                  samples_per_revolution: int = 72, bins: int = 360, disk_height: float = 0.1,
+                  element_angle_deg: float = 2.0, spindle_rpm: float = 0.0,
+                  copy_stock: bool = True) -> tuple[dict, np.ndarray]:
+    """(samples, final_wall): the C++ sample pass (netshape::compensation::FeedSamples as a dict of
+    arrays, ``allowed`` with the wall-error column lifted where the wall does not remain) and (m) bool
+    where a sample generates a wall that remains at the end of the program. Also the re-simulation of
+    a written program: ``deflection`` and ``wall_error`` are then the values at its own feeds."""
+    from netshape._core import force as _f
+    from netshape.deflection.chip import SizeEffectCoefficients
+
+    if isinstance(coefficients, SizeEffectCoefficients):
+        coefficients = coefficients.coefficients  # the schedule is the linear chip's (docs/feeds.md)
+    z = stock.copy() if copy_stock else stock
+    opts = _sampling_options(step, samples_per_revolution, bins, disk_height, element_angle_deg, spindle_rpm)
+    key = "linear_edge" if isinstance(coefficients, _f.LinearEdgeCoefficients) else "ball_end"
+    if key == "ball_end" and not isinstance(coefficients, _f.BallEndCoefficients):
+        raise ValueError(f"coefficients = {coefficients!r}: must be LinearEdgeCoefficients or "
+                         "BallEndCoefficients")
+    s = _c.feed_samples_core(z, cutter, program, limits=limits, sampling=opts, **{key: coefficients})
+    s = {k: (np.asarray(v) if not isinstance(v, float) else v) for k, v in s.items()}
+    allowed = np.array(s["allowed"], dtype=float)
+    final = np.zeros(len(allowed), dtype=bool)
+    if math.isfinite(limits.max_wall_error) and len(allowed):
+        final = _final_walls(program, s, cutter.radius)
+        allowed[~final, 3] = np.inf
+    s["allowed"] = allowed
+    return s, final
+
+
 def schedule_feeds(stock, cutter, program, coefficients, limits: FeedLimits, *, split_tolerance: float = 0.1,
                    min_piece_mm: float = 1.0, step: float = 0.5, samples_per_revolution: int = 72,
                    bins: int = 360, disk_height: float = 0.1, element_angle_deg: float = 2.0,
@@ -172,25 +210,11 @@ def schedule_feeds(stock, cutter, program, coefficients, limits: FeedLimits, *, 
     (LinearEdgeCoefficients or BallEndCoefficients) under ``limits``. Sampling as
     netshape.force.simulate_program. Raises ValueError naming the limit and the block's line when a
     limit cannot be kept at any feed the limits allow."""
-    from netshape._core import force as _f
-    from netshape.deflection.chip import SizeEffectCoefficients
-
-    if isinstance(coefficients, SizeEffectCoefficients):
-        coefficients = coefficients.coefficients  # the schedule is the linear chip's (docs/feeds.md)
-    z = stock.copy() if copy_stock else stock
-    opts = _f.ProgramForceOptions(step=step, samples_per_revolution=samples_per_revolution, bins=bins,
-                                  disk_height=disk_height, element_angle=math.radians(element_angle_deg),
-                                  feed_per_tooth=0.0, spindle_rpm=spindle_rpm)
-    key = "linear_edge" if isinstance(coefficients, _f.LinearEdgeCoefficients) else "ball_end"
-    if key == "ball_end" and not isinstance(coefficients, _f.BallEndCoefficients):
-        raise ValueError(f"coefficients = {coefficients!r}: must be LinearEdgeCoefficients or "
-                         "BallEndCoefficients")
-    s = _c.feed_samples_core(z, cutter, program, limits=limits, sampling=opts, **{key: coefficients})
-    allowed = np.array(s["allowed"], dtype=float)
-    final = np.zeros(len(allowed), dtype=bool)
-    if math.isfinite(limits.max_wall_error) and len(allowed):
-        final = _final_walls(program, s, cutter.radius)
-        allowed[~final, 3] = np.inf
+    s, final = sample_limits(stock, cutter, program, coefficients, limits, step=step,
+                             samples_per_revolution=samples_per_revolution, bins=bins,
+                             disk_height=disk_height, element_angle_deg=element_angle_deg,
+                             spindle_rpm=spindle_rpm, copy_stock=copy_stock)
+    allowed = s["allowed"]
     _refuse_infeasible(program, s, allowed, limits)
     p = _c.feed_pieces_core(program, s["block"], s["fraction"], s["engaged"], s["walls"], s["depth"],
                             s["chip_factor"], s["engaged_share"], allowed, limits, split_tolerance,
@@ -198,6 +222,4 @@ def schedule_feeds(stock, cutter, program, coefficients, limits: FeedLimits, *, 
     p = {k: np.asarray(v) for k, v in p.items()}
     floor = np.where(p["binding"] == int(FeedLimit.programmed), 0.0, limits.min_feed)
     p["feed"] = np.maximum(p["feed"], floor)
-    s = {k: (np.asarray(v) if not isinstance(v, float) else v) for k, v in s.items()}
-    s["allowed"] = allowed
     return FeedSchedule(samples=s, pieces=p, limits=limits, final_wall=final)

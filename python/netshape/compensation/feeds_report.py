@@ -79,10 +79,11 @@ def per_line(program, cutter, samples: dict, pieces: dict, after_forces) -> list
 
 
 def summary(program_path, output_path, limits, pieces: dict, rows: list[dict], cycle_before: float,
-            cycle_after: float, samples: dict, after_forces) -> dict:
+            cycle_after: float, samples: dict, after_forces, after_deflection: dict | None = None) -> dict:
     """The summary JSON: ``cycle_time_s`` {original, optimized}, ``binding`` (pieces per limit),
     ``max_force_N`` {original, optimized}, ``max_chip_mm`` {original, optimized}, the limits stated,
-    counts, and ``check``: per stated force-like limit the largest re-simulated value and its ratio."""
+    counts, and ``check``: per stated force, deflection or wall-error limit the largest re-simulated
+    value and its ratio (``after_deflection``: {limit key: largest re-simulated value [mm]})."""
     names = ["acceleration" if c else limit_name(b) for b, c in
              zip(pieces["binding"], pieces.get("capped", np.zeros(len(pieces["binding"]), bool)))]
     binding = {n: 0 for n in [*(k for k in PHYSICAL if k in stated(limits)), "max_feed_mm_min"]}
@@ -104,9 +105,11 @@ def summary(program_path, output_path, limits, pieces: dict, rows: list[dict], c
         "max_chip_mm": {"original": max((r["chip_before_mm"] for r in rows), default=0.0),
                         "optimized": max((r["chip_after_mm"] for r in rows), default=0.0)},
     }
-    if "max_force_N" in out["limits"]:
-        lim = out["limits"]["max_force_N"]
-        out["check"] = {"max_force_N": {"limit": lim, "resimulated_max": max_after, "ratio": max_after / lim}}
+    resimulated = {"max_force_N": max_after, **(after_deflection or {})}
+    check = {key: {"limit": out["limits"][key], "resimulated_max": v, "ratio": v / out["limits"][key]}
+             for key, v in resimulated.items() if key in out["limits"]}
+    if check:
+        out["check"] = check
     return out
 
 

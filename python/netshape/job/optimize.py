@@ -30,8 +30,9 @@ def check_optimize_needs(src: str, optimize: dict | None, limits, coefficients) 
         raise ValueError(f"{src}: coefficients: missing: [optimize] needs cutting coefficients")
 
 
-def stage_optimize(job, stock0) -> tuple[dict, str]:
-    """(summary, scheduled program text) of the job's program under its ``[optimize]`` limits."""
+def stage_optimize(job, stock0) -> tuple[dict, str, object]:
+    """(summary, scheduled program text, FeedsResult) of the job's program under its ``[optimize]``
+    limits."""
     import math
 
     from netshape import motion as nmo
@@ -39,6 +40,7 @@ def stage_optimize(job, stock0) -> tuple[dict, str]:
     from netshape.compensation.feeds import feed_limits_from_dict
     from netshape.compensation.feeds_run import optimize_program
 
+    from .program import job_work_offsets
     from .stages import coefficients_for, make_cutter
 
     from netshape.cutter import spindle_limits
@@ -55,5 +57,14 @@ def stage_optimize(job, stock0) -> tuple[dict, str]:
                 "disk_height": c["disk_height_mm"], "spindle_rpm": c["spindle_rpm"] or 0.0}
     coeffs = coefficients_for(job, cutter)
     res = optimize_program(read_text(job.program), str(job.program), stock0, cutter, coeffs, limits,
-                           axis_limits=axis, plan_options=options, split=split, sampling=sampling)
-    return res.summary, res.text
+                           axis_limits=axis, plan_options=options, split=split, sampling=sampling,
+                           work_offsets=job_work_offsets(job))
+    return res.summary, res.text, res
+
+
+def plot_optimize(res, title: str):
+    """The feed and force plot of a FeedsResult (netshape.compensation.feeds_report.plot_feeds)."""
+    from netshape.compensation.feeds_report import plot_feeds
+
+    return plot_feeds(res.schedule.samples, res.pieces, res.after.positions, res.after.peak_resultant,
+                      res.program, title=title)

@@ -93,9 +93,14 @@ def stage_program(job: Job) -> Program:
         tp = tp.with_blocks(blocks, list(range(len(blocks))))
     tp = _with_start(job, tp)
     _refuse_unknown_offsets(tp, job.program)
+    return Program(toolpath=tp, offsets=job_work_offsets(job))
+
+
+def job_work_offsets(job: Job) -> np.ndarray:
+    """(9, 3) work offsets G54…G59.3 [mm] of the job's ``[offsets]`` (G59.1–G59.3 zero)."""
     offsets = np.zeros((9, 3))
     offsets[:len(WORK_OFFSETS)] = [job.offsets[g] for g in WORK_OFFSETS]
-    return Program(toolpath=tp, offsets=offsets)
+    return offsets
 
 
 def _with_start(job: Job, tp):

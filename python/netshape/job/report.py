@@ -16,6 +16,8 @@ PLOTS = {
     "feed": "feed.png",
     "zmap": "zmap.png",
 }
+#: The plot of the ``[optimize]`` table (feed and force along the path), written when the job has one.
+OPTIMIZE_PLOT = {"optimize": "feeds.png"}
 
 
 def _figure(w=8.0, h=3.6):
@@ -163,7 +165,38 @@ def summary_rows(summary: dict) -> list[tuple[str, str, object]]:
         rows.append((f"cycle_time_s.{k}", f"cycle time, {k} [s]", v))
     for k, v in summary["run_time_s"].items():
         rows.append((f"run_time_s.{k}", f"run time of stage {k} [s]", v))
+    return rows + optimize_rows(summary)
+
+
+def optimize_rows(summary: dict) -> list[tuple[str, str, object]]:
+    """(key path, label, value) of the ``[optimize]`` results: cycle time before and after, the saving,
+    pieces per binding limit, the largest force before and after, the re-simulated checks."""
+    o = summary.get("optimize")
+    if not o:
+        return []
+    rows = [(f"optimize.cycle_time_s.{k}", f"cycle time, {k} [s]", v) for k, v in o["cycle_time_s"].items()]
+    rows.append(("optimize.saving_percent", "cycle-time saving [%]", o["saving_percent"]))
+    rows += [(f"optimize.binding.{k}", f"pieces bound by {k}", v) for k, v in o["binding"].items()]
+    rows += [(f"optimize.max_force_N.{k}", f"largest force, {k} [N]", v) for k, v in o["max_force_N"].items()]
+    rows += [(f"optimize.check.{k}.ratio", f"re-simulated {k} / limit", c["ratio"])
+             for k, c in o.get("check", {}).items()]
     return rows
+
+
+def _optimize_html(summary: dict) -> list[str]:
+    """The ``[optimize]`` section: limits stated and optimize_rows as a table."""
+    o = summary.get("optimize")
+    if not o:
+        return []
+    limits = ", ".join(f"{html.escape(k)} {_fmt(v)}" for k, v in o.get("limits", {}).items())
+    out = ["<h2>Feed scheduling ([optimize])</h2>",
+           f"<p>Program written: <code>{html.escape(summary.get('files', {}).get('optimized_program', ''))}"
+           f"</code>; limits: {limits or 'none'}; {o.get('pieces', 0)} pieces.</p>",
+           '<table id="optimize"><tr><th>quantity</th><th>value</th></tr>']
+    out += [f'<tr><td>{html.escape(label)}</td><td data-key="{key}">{_fmt(v)}</td></tr>'
+            for key, label, v in optimize_rows(summary)]
+    out.append("</table>")
+    return out
 
 
 def write_html(path, summary: dict, images: dict[str, str]) -> None:
@@ -240,6 +273,7 @@ def write_html(path, summary: dict, images: dict[str, str]) -> None:
     for k, v in summary["cycle_time_s"].items():
         out.append(f'<tr><td>{k}</td><td data-key="cycle_time_s.{k}">{_fmt(v)}</td></tr>')
     out.append("</table>")
+    out += _optimize_html(summary)
     out.append('<h2>Run time per stage [s]</h2><table id="runtime"><tr><th>stage</th><th>time</th></tr>')
     for k, v in summary["run_time_s"].items():
         out.append(f'<tr><td>{k}</td><td data-key="run_time_s.{k}">{_fmt(v)}</td></tr>')
@@ -251,7 +285,8 @@ def write_html(path, summary: dict, images: dict[str, str]) -> None:
                "whose direction the residual distance does not give); elsewhere the volumetric error.</p>")
     out.append("<h2>Plots</h2>")
     captions = {"force": "Cutting force along the path", "wall_error": "Error before and after compensation",
-                "volumetric": "Volumetric error map", "feed": "Feed profile", "zmap": "Z-map heights"}
+                "volumetric": "Volumetric error map", "feed": "Feed profile", "zmap": "Z-map heights",
+                "optimize": "Scheduled feed and force along the path ([optimize])"}
     for key, name in images.items():
         out.append(f"<h3>{html.escape(captions.get(key, key))}</h3>")
         out.append(f'<img src="{html.escape(name)}" alt="{html.escape(captions.get(key, key))}">')

@@ -329,9 +329,14 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
             figs = {"force": rp.plot_force(forces), "wall_error": rp.plot_wall_error(defl, vol, order),
                     "volumetric": rp.plot_volumetric_map(vol), "feed": rp.plot_feed(traj, traj_c),
                     "zmap": rp.plot_zmap(zfinal)}
+            if optimized is not None:
+                from .optimize import plot_optimize
+
+                figs["optimize"] = plot_optimize(optimized[2], f"{job.program.name}: feeds scheduled")
         for key, fig in figs.items():
-            atomic_save_figure(fig, folder / rp.PLOTS[key], dpi=job.report["dpi"])
-            files[f"plot_{key}"] = rp.PLOTS[key]
+            name = {**rp.PLOTS, **rp.OPTIMIZE_PLOT}[key]
+            atomic_save_figure(fig, folder / name, dpi=job.report["dpi"])
+            files[f"plot_{key}"] = name
         return rp
 
     _check_results(job, summary)  # no output of a run whose results are not finite
@@ -346,8 +351,8 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
                        and p.name not in written and p.name not in earlier)
         if stale:
             summary["stale_files"] = stale
-        rp.write_html(folder / "report.html", summary,
-                      {k: rp.PLOTS[k] for k in rp.PLOTS} if job.report["plots"] else {})
+        shown_plots = {**rp.PLOTS, **(rp.OPTIMIZE_PLOT if optimized is not None else {})}
+        rp.write_html(folder / "report.html", summary, shown_plots if job.report["plots"] else {})
         from netshape._json import write_json
 
         write_json(folder / "summary.json", summary, cause=str(job.source))

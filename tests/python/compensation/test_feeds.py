@@ -224,7 +224,7 @@ def test_job_optimize_table(tmp_path):
 
     job = job_from_dict(_job_doc(tmp_path, {"max_force_N": 400.0, "max_feed_mm_min": 20000.0}),
                         source=str(tmp_path / "job.toml"), base_dir=tmp_path)
-    summary, text = stage_optimize(job, stage_stock(job))
+    summary, text, _ = stage_optimize(job, stage_stock(job))
     assert summary["binding"]["max_force_N"] >= 2
     assert summary["check"]["max_force_N"]["ratio"] <= 1.005
     assert text.startswith("(netshape feeds:")
@@ -255,3 +255,29 @@ def test_ball_end_mill_reaches_the_force_limit():
     ratio = res.summary["check"]["max_force_N"]["ratio"]
     assert 0.98 <= ratio <= 1.005, ratio
     assert res.summary["binding"]["max_force_N"] >= 2
+
+
+def test_the_tool_file_is_read_once(tmp_path, monkeypatch):
+    """`netshape feeds` reads the tool TOML once: the cutter and its spindle limits come from one dict."""
+    import netshape._config as config
+    import netshape.cutter as cutter_module
+
+    real, reads = config.load_toml, []
+
+    def counting(path, *args, **kwargs):
+        if str(path).endswith("tool.toml"):
+            reads.append(str(path))
+        return real(path, *args, **kwargs)
+
+    monkeypatch.setattr(config, "load_toml", counting)
+    monkeypatch.setattr(cutter_module, "load_toml", counting)
+    (tmp_path / "t.ngc").write_text(PROGRAM)
+    (tmp_path / "tool.toml").write_text(TOOL + "max_torque_Nm = 50.0\n")
+    (tmp_path / "stock.toml").write_text(STOCK)
+    code = main(["feeds", str(tmp_path / "t.ngc"), "--tool", str(tmp_path / "tool.toml"), "--stock",
+                 str(tmp_path / "stock.toml"), "--coefficients", "leekunhwee_flat_slot", "--max-feed", "3000",
+                 "--vmax", "200", "--amax", "2000", "--step", "1", "--samples", "36", "--disk-height", "0.25",
+                 "-o", str(tmp_path / "out.ngc"), "--json", str(tmp_path / "s.json")])
+    assert code == 0
+    assert reads == [str(tmp_path / "tool.toml")]
+    assert json.loads((tmp_path / "s.json").read_text())["limits"]["max_torque_Nm"] == 50.0

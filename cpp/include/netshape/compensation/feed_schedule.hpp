@@ -20,14 +20,17 @@
 /// Limits, each optional (infinity = not stated):
 ///   force       max_θ |F|                                    ≤ max_force [N]
 ///   chip        c · max sin φ over the engaged bins          ≤ max_chip [mm]
-///   deflection  max_θ |F_xy| · κ                             ≤ max_deflection [mm]
-///   wall_error  max_θ |F_y| · κ, where a wall is generated   ≤ max_wall_error [mm]
+///   deflection  max_θ |δ(tip)|                               ≤ max_deflection [mm]
+///   wall_error  max |e| at the bottom, middle, top of the cut ≤ max_wall_error [mm] (walls generated)
 ///   power       mean_θ T · 2π·rpm/60                          ≤ max_power [W] (flat end mills)
 ///   torque      mean_θ T,  T = R·Σ dF_t                      ≤ max_torque [N·m] (flat end mills)
-/// κ = g(L; L − a/2) + holder compliance [mm/N]: the tool tip's deflection per newton of a load at
-/// the middle of the engaged height a (netshape::deflection::Cantilever, stick-out L, the square
-/// section of the deflection model), an upper bound of the deflection anywhere along the cut; the
-/// wall error is bounded by the tip's deflection along the wall normal ±Y_c.
+/// Flat end mills: δ and e from the surface-generation model of netshape deflection
+/// (deflection::DeflectionModel built from the cutter: square-section cantilever over the stick-out,
+/// distributed load, holder compliance, runout; the window and axial depth of stock::immersion at the
+/// sample; e at each generated wall's instant as deflection/wall.hpp). Without runout δ and e are
+/// linear in c, so their largest c is in closed form, else a bisection. Ball end mills: the bound
+/// κ·max_θ |F_xy| (tip) and κ·max_θ |F_y| (wall), κ = g(L; L − a/2) + holder compliance [mm/N],
+/// the tip's deflection per newton at the middle of the engaged height a (deflection::Cantilever).
 /// min_chip gives a lower bound c ≥ min_chip / max sin φ.
 
 #include <cstdint>
@@ -90,6 +93,10 @@ struct FeedSamples {
   MatrixXdR allowed;        ///< (m, 6) largest feed [mm/s] each limit allows (FeedLimit 0..5); inf: no bound
   VectorXd lowest;          ///< (m) smallest feed [mm/s] min_chip allows (0 without it)
   VectorXd force;           ///< (m) max_θ |F| at the block's programmed feed [N]
+  VectorXd deflection;      ///< (m) flat end mills with a deflection limit: max_θ |δ(tip)| at the
+                            ///< programmed feed [mm] (0 otherwise)
+  VectorXd wall_error;      ///< (m) flat end mills with a wall-error limit: max |e| over the levels
+                            ///< and generated walls at the programmed feed [mm] (0 otherwise)
   double removed_volume = 0.0;  ///< [mm³]
 };
 
