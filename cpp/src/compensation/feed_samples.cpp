@@ -242,8 +242,10 @@ Allowed allowed_feeds(const SampleForces& sf, const MaskFacts& m, const FeedLimi
   Allowed al;
   al.fill(inf);
   const double to_feed = flutes * rpm / 60.0;  // [mm/s] per [mm/tooth]
-  const double a = std::min(m.depth, beam.length);
-  const double kappa = beam.influence(beam.length, beam.length - 0.5 * a) + holder_compliance;
+  // g(x; l) ≤ g(L; L) for every x, l in [0, L]: the tip under a load at the tip deflects most, so κ·|F|
+  // bounds the deflection anywhere on the tool for any split of F over the engaged height that pushes
+  // one way (a load at mid-height, g(L; L − a/2), did not: g is convex in l, and a ball's load sits low).
+  const double kappa = beam.influence(beam.length, beam.length) + holder_compliance;
   const Vec3 all(1, 1, 1), xy(1, 1, 0), y(0, 1, 0);
   auto largest = [&](const Vec3& w, double limit) {
     return detail::largest_feed_per_tooth(sf.P, sf.Q, sf.p, sf.q, w, limit) * to_feed;

@@ -66,6 +66,21 @@ TEST_CASE("cantilever: tip deflection P L^3 / 3EI and the point-load formula (Ge
   }
 }
 
+TEST_CASE("cantilever: no unit load anywhere deflects any point more than a tip load deflects the tip") {
+  // the bound the ball-end feed schedule takes for its deflection and wall-error limits
+  // (compensation/feed_samples.cpp: κ = g(L; L)); a load at mid-height of the cut is not such a bound
+  const Cantilever c{45.0, 600e3, 80.0};
+  const double L = c.length, top = c.influence(L, L);
+  double largest = 0.0;
+  for (int i = 0; i <= 90; ++i)
+    for (int j = 0; j <= 90; ++j) largest = std::max(largest, c.influence(L * i / 90.0, L * j / 90.0));
+  CHECK(largest <= top);
+  CHECK(largest == doctest::Approx(top).epsilon(1e-14));
+  // a load concentrated 0.5 mm above the tip of a 10 mm deep cut deflects the tip more than the
+  // mid-height estimate says: the old κ = g(L; L − a/2) was exceeded
+  CHECK(c.influence(L, L - 0.5) > 1.15 * c.influence(L, L - 5.0));  // 1.18 at L = 45 mm
+}
+
 TEST_CASE("second moment: inscribed square D^4/48 and equivalent diameter 0.8 D") {
   CHECK(second_moment(10.0, InertiaModel::square) == doctest::Approx(1e4 / 48.0));
   CHECK(second_moment(10.0, InertiaModel::equivalent) == doctest::Approx(pi * std::pow(8.0, 4) / 64.0));

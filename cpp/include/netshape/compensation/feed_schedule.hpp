@@ -29,8 +29,10 @@
 /// distributed load, holder compliance, runout; the window and axial depth of stock::immersion at the
 /// sample; e at each generated wall's instant as deflection/wall.hpp). Without runout δ and e are
 /// linear in c, so their largest c is in closed form, else a bisection. Ball end mills: the bound
-/// κ·max_θ |F_xy| (tip) and κ·max_θ |F_y| (wall), κ = g(L; L − a/2) + holder compliance [mm/N],
-/// the tip's deflection per newton at the middle of the engaged height a (deflection::Cantilever).
+/// κ·max_θ |F_xy| (tip) and κ·max_θ |F_y| (wall), κ = g(L; L) + holder compliance [mm/N], the tip's
+/// deflection per newton at the tip (deflection::Cantilever): no load on the tool, wherever it acts,
+/// deflects any point more (g(x; l) ≤ g(L; L)), so it bounds the deflection when the disks' forces push
+/// one way.
 /// min_chip gives a lower bound c ≥ min_chip / max sin φ.
 
 #include <cstdint>
