@@ -63,6 +63,49 @@ std::size_t grow_piece(const ProgramView& v, std::size_t a, const Vec3& o, std::
   return b_best;
 }
 
+// The largest curvature of the cubic Bézier p0..p3 at 17 parameters [1/mm].
+double cubic_peak_curvature(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3) {
+  double k = 0;
+  for (int i = 0; i <= 16; ++i) {
+    const double u = i / 16.0, w = 1.0 - u;
+    const Vec3 d1 = 3.0 * (w * w * (p1 - p0) + 2.0 * w * u * (p2 - p1) + u * u * (p3 - p2));
+    const Vec3 d2 = 6.0 * (w * (p2 - 2.0 * p1 + p0) + u * (p3 - 2.0 * p2 + p1));
+    const double n = d1.norm();
+    if (n > 0) k = std::max(k, d1.cross(d2).norm() / (n * n * n));
+  }
+  return k;
+}
+
+// The curvature at the middle of the blend `blend` plans at vertex c between two program lines with
+// the whole ε (planner/blend.cpp: control points P0, the vertex twice, P3, each end d = min(0.45 of
+// the shorter line, 4ε / sin(θ/2)) from the vertex): (8/3)·sin(θ/2) / (d·cos²(θ/2)); 0 where blend
+// does not blend (θ ≤ 10⁻⁶ rad).
+double blend_curvature(const ProgramView& v, std::size_t c) {
+  const double th = v.vertex_turn(c);
+  if (!(th > 1e-6)) return 0.0;
+  const double sh = std::sin(0.5 * th), ch = std::cos(0.5 * th);
+  const double d = std::min(0.45 * std::min(v.program[c - 1].length(), v.program[c].length()),
+                            4.0 * v.opt.tolerance / sh);
+  return 8.0 / 3.0 * sh / (d * ch * ch);
+}
+
+// Whether no cubic of new blocks [from, end of out) curves more than the largest of blend's corner
+// blends at the program vertices it replaces: its curvature-limited speed √(a/κ) is then no lower
+// than blend's at its corners there.
+bool curves_as_blend(const ProgramView& v, const StageOutput& out, std::size_t from) {
+  const auto& res = out.res;
+  for (std::size_t k = from; k < res.blocks.size(); ++k) {
+    if (!res.controls[k].cubic) continue;
+    const auto& b = res.blocks[k];
+    double kb = 0;
+    for (auto c = static_cast<std::size_t>(res.source_first[k]);
+         c <= static_cast<std::size_t>(res.source_last[k]) + 1 && c < v.nb; ++c)
+      kb = std::max(kb, blend_curvature(v, c));
+    if (cubic_peak_curvature(b.start, res.controls[k].c1, res.controls[k].c2, b.end) > kb) return false;
+  }
+  return true;
+}
+
 // Fit the piece [a, b) from p0 (on block a) to p1 (on block b − 1) in its frame, its end tangents t_in,
 // t_end where given; its cubic blocks appended to out, the unit tangent at its end in t_out. False
 // (nothing appended) when the fit fails its check.
@@ -92,11 +135,21 @@ bool fit_piece(const ProgramView& v, std::size_t a, std::size_t b, const Vec3& p
   RunFit rf;
   if (!fit_run(pts, ends, len / static_cast<double>(b - a), o2, rf)) return false;
   auto& res = out.res;
+  const std::size_t n0 = res.blocks.size();
+  const long corners0 = res.corners_kept;
+  const double dev0 = res.max_fit_deviation;
   ++res.runs_smoothed;
   res.max_fit_deviation = std::max(res.max_fit_deviation, rf.bound + h);
   for (std::size_t q = a + 1; q < b; ++q)
     if (v.turn_at(q) > v.opt.max_turn) --res.corners_kept;
   append_pieces(out, program[a], rf, pts, src, p0, p1, [&f](const V2& p) { return f.to3(p); });
+  if (!curves_as_blend(v, out, n0)) {  // slower than blending its vertices: a failed fit
+    while (res.blocks.size() > n0) out.pop_back();
+    --res.runs_smoothed;
+    res.corners_kept = corners0;
+    res.max_fit_deviation = dev0;
+    return false;
+  }
   const Piece& last = rf.pieces.back();
   V2 tail = last.b3 - last.b2;
   if (!(tail.norm() > 0)) tail = last.b3 - last.b1;
@@ -129,69 +182,6 @@ bool end_frame(const ProgramView& v, std::size_t a, const Vec3& p0, std::size_t 
   return h <= h_max;
 }
 
-// The largest curvature of the cubic Bézier p0..p3 at 17 parameters [1/mm].
-double cubic_peak_curvature(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3) {
-  double k = 0;
-  for (int i = 0; i <= 16; ++i) {
-    const double u = i / 16.0, w = 1.0 - u;
-    const Vec3 d1 = 3.0 * (w * w * (p1 - p0) + 2.0 * w * u * (p2 - p1) + u * u * (p3 - p2));
-    const Vec3 d2 = 6.0 * (w * (p2 - 2.0 * p1 + p0) + u * (p3 - 2.0 * p2 + p1));
-    const double n = d1.norm();
-    if (n > 0) k = std::max(k, d1.cross(d2).norm() / (n * n * n));
-  }
-  return k;
-}
-
-// The curvature at the middle of the blend `blend` plans at vertex c between two program lines with
-// the whole ε (planner/blend.cpp: control points P0, the vertex twice, P3, each end d = min(0.45 of
-// the shorter line, 4ε / sin(θ/2)) from the vertex): (8/3)·sin(θ/2) / (d·cos²(θ/2)); 0 where blend
-// does not blend (θ ≤ 10⁻⁶ rad).
-double blend_curvature(const ProgramView& v, std::size_t c) {
-  const double th = v.vertex_turn(c);
-  if (!(th > 1e-6)) return 0.0;
-  const double sh = std::sin(0.5 * th), ch = std::cos(0.5 * th);
-  const double d = std::min(0.45 * std::min(v.program[c - 1].length(), v.program[c].length()),
-                            4.0 * v.opt.tolerance / sh);
-  return 8.0 / 3.0 * sh / (d * ch * ch);
-}
-
-// Unit tangent of new block k at its start / end (a cubic's from its control points).
-Vec3 new_tangent(const StageOutput& out, std::size_t k, bool at_end) {
-  const auto& b = out.res.blocks[k];
-  const auto& c = out.res.controls[k];
-  Vec3 t = b.end - b.start;
-  if (c.cubic) {
-    t = at_end ? Vec3(b.end - c.c2) : Vec3(c.c1 - b.start);
-    if (!(t.norm() > 0)) t = at_end ? Vec3(b.end - c.c1) : Vec3(c.c2 - b.start);
-  } else if (b.kind != toolpath::MotionKind::line) {
-    t = b.tangent_at(at_end ? 1.0 : 0.0);
-  }
-  return t.normalized();
-}
-
-// Whether a run's new blocks [from, end of out) are planned no slower than `blend` plans the program
-// blocks they replace, by two cheap bounds: no joint next to a cubic turns (the planner would blend it
-// within the (1 − fit_share)·ε left to it), and no cubic curves more than the largest of blend's
-// corner blends at the program vertices it replaces (its curvature-limited speed √(a/κ) is then no
-// lower than at blend's corners there).
-bool as_fast_as_blend(const ProgramView& v, const StageOutput& out, std::size_t from) {
-  const auto& res = out.res;
-  for (std::size_t k = from; k < res.blocks.size(); ++k) {
-    const bool cubic = res.controls[k].cubic;
-    const auto& b = res.blocks[k];
-    if (k + 1 < res.blocks.size() && (cubic || res.controls[k + 1].cubic) &&
-        turn_between(new_tangent(out, k, true), new_tangent(out, k + 1, false)) > 1e-6)
-      return false;
-    if (!cubic) continue;
-    double kb = 0;
-    for (auto c = static_cast<std::size_t>(res.source_first[k]);
-         c <= static_cast<std::size_t>(res.source_last[k]) + 1 && c < v.nb; ++c)
-      kb = std::max(kb, blend_curvature(v, c));
-    if (cubic_peak_curvature(b.start, res.controls[k].c1, res.controls[k].c2, b.end) > kb) return false;
-  }
-  return true;
-}
-
 }  // namespace
 
 std::size_t find_space_run(const ProgramView& view, std::size_t i) {
@@ -208,10 +198,6 @@ void smooth_space_run(const ProgramView& view, std::size_t first, std::size_t la
   const auto& program = view.program;
   const auto mb = static_cast<std::size_t>(view.opt.min_blocks);
   const double h_max = view.opt.space_flatness * view.opt.fit_tolerance();
-  auto& res = out.res;
-  const std::size_t out0 = res.blocks.size();
-  const long smoothed0 = res.runs_smoothed, kept0 = res.runs_kept, corners0 = res.corners_kept;
-  const double dev0 = res.max_fit_deviation;
   Vec3 t_in = Vec3::Zero(), t_end = Vec3::Zero();
   bool have_t = joined_tangent(view, first, true, t_in);
   bool have_end = joined_tangent(view, last, false, t_end);
@@ -278,20 +264,13 @@ void smooth_space_run(const ProgramView& view, std::size_t first, std::size_t la
       continue;
     }
     if (b - a >= mb) ++out.res.runs_kept;
-    out.keep(program, a);  // no piece from here: the block as programmed, the next one fresh
+    out.keep(program, a);  // no piece from here: the block as programmed, the next piece along it
     if (a == first && split_start) out.res.blocks.back().start = mid0;
+    t_in = view.dir(a);
     ++a;
-    have_t = false;
+    have_t = true;
     limit = max_piece_blocks;
   }
-  if (as_fast_as_blend(view, out, out0)) return;
-  // the run as programmed, planned as blend plans it with the whole ε
-  while (res.blocks.size() > out0) out.pop_back();
-  res.runs_smoothed = smoothed0;
-  res.runs_kept = kept0 + 1;
-  res.corners_kept = corners0;
-  res.max_fit_deviation = dev0;
-  for (std::size_t q = first; q < last; ++q) out.keep(program, q);
 }
 
 }  // namespace netshape::motion::detail
