@@ -63,6 +63,49 @@ std::size_t grow_piece(const ProgramView& v, std::size_t a, const Vec3& o, std::
   return b_best;
 }
 
+// The largest curvature of the cubic Bézier p0..p3 at 17 parameters [1/mm].
+double cubic_peak_curvature(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3) {
+  double k = 0;
+  for (int i = 0; i <= 16; ++i) {
+    const double u = i / 16.0, w = 1.0 - u;
+    const Vec3 d1 = 3.0 * (w * w * (p1 - p0) + 2.0 * w * u * (p2 - p1) + u * u * (p3 - p2));
+    const Vec3 d2 = 6.0 * (w * (p2 - 2.0 * p1 + p0) + u * (p3 - 2.0 * p2 + p1));
+    const double n = d1.norm();
+    if (n > 0) k = std::max(k, d1.cross(d2).norm() / (n * n * n));
+  }
+  return k;
+}
+
+// The curvature at the middle of the blend `blend` plans at vertex c between two program lines with
+// the whole ε (planner/blend.cpp: control points P0, the vertex twice, P3, each end d = min(0.45 of
+// the shorter line, 4ε / sin(θ/2)) from the vertex): (8/3)·sin(θ/2) / (d·cos²(θ/2)); 0 where blend
+// does not blend (θ ≤ 10⁻⁶ rad).
+double blend_curvature(const ProgramView& v, std::size_t c) {
+  const double th = v.vertex_turn(c);
+  if (!(th > 1e-6)) return 0.0;
+  const double sh = std::sin(0.5 * th), ch = std::cos(0.5 * th);
+  const double d = std::min(0.45 * std::min(v.program[c - 1].length(), v.program[c].length()),
+                            4.0 * v.opt.tolerance / sh);
+  return 8.0 / 3.0 * sh / (d * ch * ch);
+}
+
+// Whether no cubic of new blocks [from, end of out) curves more than the largest of blend's corner
+// blends at the program vertices it replaces: its curvature-limited speed √(a/κ) is then no lower
+// than blend's at its corners there.
+bool curves_as_blend(const ProgramView& v, const StageOutput& out, std::size_t from) {
+  const auto& res = out.res;
+  for (std::size_t k = from; k < res.blocks.size(); ++k) {
+    if (!res.controls[k].cubic) continue;
+    const auto& b = res.blocks[k];
+    double kb = 0;
+    for (auto c = static_cast<std::size_t>(res.source_first[k]);
+         c <= static_cast<std::size_t>(res.source_last[k]) + 1 && c < v.nb; ++c)
+      kb = std::max(kb, blend_curvature(v, c));
+    if (cubic_peak_curvature(b.start, res.controls[k].c1, res.controls[k].c2, b.end) > kb) return false;
+  }
+  return true;
+}
+
 // Fit the piece [a, b) from p0 (on block a) to p1 (on block b − 1) in its frame, its end tangents t_in,
 // t_end where given; its cubic blocks appended to out, the unit tangent at its end in t_out. False
 // (nothing appended) when the fit fails its check.
@@ -92,11 +135,21 @@ bool fit_piece(const ProgramView& v, std::size_t a, std::size_t b, const Vec3& p
   RunFit rf;
   if (!fit_run(pts, ends, len / static_cast<double>(b - a), o2, rf)) return false;
   auto& res = out.res;
+  const std::size_t n0 = res.blocks.size();
+  const long corners0 = res.corners_kept;
+  const double dev0 = res.max_fit_deviation;
   ++res.runs_smoothed;
   res.max_fit_deviation = std::max(res.max_fit_deviation, rf.bound + h);
   for (std::size_t q = a + 1; q < b; ++q)
     if (v.turn_at(q) > v.opt.max_turn) --res.corners_kept;
   append_pieces(out, program[a], rf, pts, src, p0, p1, [&f](const V2& p) { return f.to3(p); });
+  if (!curves_as_blend(v, out, n0)) {  // slower than blending its vertices: a failed fit
+    while (res.blocks.size() > n0) out.pop_back();
+    --res.runs_smoothed;
+    res.corners_kept = corners0;
+    res.max_fit_deviation = dev0;
+    return false;
+  }
   const Piece& last = rf.pieces.back();
   V2 tail = last.b3 - last.b2;
   if (!(tail.norm() > 0)) tail = last.b3 - last.b1;
@@ -190,7 +243,16 @@ void smooth_space_run(const ProgramView& view, std::size_t first, std::size_t la
       break;
     }
     const Vec3* t0 = have_t ? &t_in : nullptr;
-    if (b - a >= mb && fit_piece(view, a, b, p0, program[b - 1].end, f, h, t0, nullptr, out, t_out)) {
+    // a piece that the next one continues ends with the polyline's direction at their joint vertex
+    // (the mean of its two blocks' directions, projected into the piece's plane), which the next
+    // piece's polyline suits too: a free end tangent hands the next piece a direction up to the tube
+    // off its polyline, which it must turn away from within its first block (curvature peaks of
+    // 3.5× the path's on a helix, slower than blending the vertices).
+    Vec3 t_joint = Vec3::Zero();
+    const bool joint = b < last && b - a >= mb;
+    if (joint) t_joint = (view.dir(b - 1) + view.dir(b)).normalized();
+    if (b - a >= mb &&
+        fit_piece(view, a, b, p0, program[b - 1].end, f, h, t0, joint ? &t_joint : nullptr, out, t_out)) {
       t_in = t_out;
       have_t = true;
       a = b;
@@ -202,10 +264,11 @@ void smooth_space_run(const ProgramView& view, std::size_t first, std::size_t la
       continue;
     }
     if (b - a >= mb) ++out.res.runs_kept;
-    out.keep(program, a);  // no piece from here: the block as programmed, the next one fresh
+    out.keep(program, a);  // no piece from here: the block as programmed, the next piece along it
     if (a == first && split_start) out.res.blocks.back().start = mid0;
+    t_in = view.dir(a);
     ++a;
-    have_t = false;
+    have_t = true;
     limit = max_piece_blocks;
   }
 }
