@@ -36,7 +36,8 @@ class CheckedCompensation:
     program against the drawing at ``density``× the samples, ``before`` the uncompensated program's
     check on the same drawing, ``rounds`` the compensations run, ``final`` the final-wall flag of each
     dense drawing sample, ``active`` which of the setup's samples are compensated (final walls),
-    ``offsets`` the offsets written at them [mm] (None: the result's)."""
+    ``offsets`` the offsets written at them [mm] (None: the result's), ``normals`` the samples' wall normals
+    (None: the result's; set where samples were added after the compensation, see _refine_entries)."""
 
     result: object
     setup: object
@@ -50,6 +51,7 @@ class CheckedCompensation:
     tolerance: float
     active: np.ndarray | None = None
     offsets: np.ndarray | None = None
+    normals: np.ndarray | None = None
 
     @property
     def after_mm(self) -> dict:
@@ -135,6 +137,12 @@ def compensate_checked(setup, *, scheme: str = "accelerated", level: str = "midd
     before = check_against_drawing(setup.model, setup.cutter, setup.stock, d_pts, d_pts, final, setup.side, opt)
     p_arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(p_pts[:, 0]), np.diff(p_pts[:, 1])))])
     rounds = 0
+
+    def finish(out, sel):
+        if out.result.converged:
+            out = _refine_entries(out, p_pts, sel, d_pts, density, arc_tol)
+        return _never_worse(out, d_pts, density, arc_tol)
+
     best = None  # (largest written-program error on final walls, + 1 when not converged; result)
     while True:
         rounds += 1
@@ -156,10 +164,10 @@ def compensate_checked(setup, *, scheme: str = "accelerated", level: str = "midd
         bad = check.final & ((a_ref > tolerance) | (a_ref > b_ref + 0.01 * tolerance))
         score = float(np.max(a_ref[check.final], initial=0.0)) + (0.0 if res.converged else 1.0)
         if best is not None and score >= best[0]:
-            return _never_worse(best[1], d_pts, density, arc_tol)  # refining did not help: the best one
-        best = (score, out)
+            return finish(best[1], best[2])  # refining did not help: the best one
+        best = (score, out, selected)
         if not np.any(bad) or rounds >= max_rounds or not res.converged:
-            return _never_worse(out, d_pts, density, arc_tol)
+            return finish(out, selected)
         # the pool's samples within one check spacing of each miss (largest misses first, at most as
         # many new samples as the setup has)
         grow = np.zeros(len(p_pts), dtype=bool)
@@ -171,7 +179,7 @@ def compensate_checked(setup, *, scheme: str = "accelerated", level: str = "midd
             grow |= near
             budget -= int(np.sum(near))
         if not np.any(grow):
-            return _never_worse(out, d_pts, density, arc_tol)
+            return finish(out, selected)
         selected = selected | grow
 
 
@@ -181,7 +189,7 @@ def _never_worse(out: CheckedCompensation, d_pts, density: int, arc_tol: float) 
     (six rounds at most, then zero both samples around each), write and check again."""
     setup, res = out.setup, out.result
     nominal = np.asarray(setup.nominal, dtype=float)
-    normals = np.asarray(res.normals, dtype=float)
+    normals = np.asarray(res.normals if out.normals is None else out.normals, dtype=float)
     C = np.asarray(res.offsets if out.offsets is None else out.offsets, dtype=float).copy()
     arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(nominal[:, 0]), np.diff(nominal[:, 1])))])
     for attempt in range(7):
@@ -204,7 +212,7 @@ def _never_worse(out: CheckedCompensation, d_pts, density: int, arc_tol: float) 
         blocks, origin, check = _write_and_check(setup, positions, d_pts, out.final, density, arc_tol,
                                                  out.active)
         out = CheckedCompensation(res, setup, blocks, origin, check, out.before, out.rounds, out.final, out.level,
-                                  out.tolerance, out.active, C.copy())
+                                  out.tolerance, out.active, C.copy(), out.normals)
     return out
 
 
@@ -244,3 +252,98 @@ def _write_and_check(setup, positions, d_pts, final, density: int, arc_tol: floa
     check = check_against_drawing(setup.model, setup.cutter, setup.stock, w_pts, d_pts, final, setup.side,
                                   setup.options)
     return blocks, origin, check
+
+
+def _refine_entries(out: CheckedCompensation, p_pts, selected, d_pts, density: int, arc_tol: float,
+                    iterations: int = 4) -> CheckedCompensation:
+    """Samples added where a final wall starts and its offsets solved point by point in path order.
+
+    Entering a wall, the engagement ramps up over about one tool diameter of travel and the offset the
+    wall needs bends within the first sample spacings, where the written straight ramp between two
+    samples misses it. In each sample interval within one diameter after an entry where the written
+    program's check misses the tolerance, samples of the check's density are added (offsets interpolated
+    from the interval's ends) and every sample from the entry on to one sample past the last added one is
+    solved for its own error with the offsets before it held: a point's engagement depends only on the
+    moves before it, so this Gauss-Seidel sweep in path order is a triangular solve, where the schemes'
+    simultaneous update of dense samples is driven by the strong coupling of a sample to the one just
+    before it (that one's disc sets how much wall is left to cut) and diverges. The entry corner is tied to
+    the first sample after it: its engagement is the turn's, one instant, and its own offset (solved by
+    _entry_offsets) overcuts the stretch after it, where the engagement has already fallen. Per sample: a
+    fixed-point step C ← C + e, then secant steps bounded by 2|e|. Kept only when the written program's
+    largest error on final walls at the reference level falls and no more points are worse than before."""
+    setup, res, lv, tol = out.setup, out.result, out.level, out.tolerance
+    if out.active is None:
+        return out
+    active = np.asarray(out.active, dtype=bool)
+    C = np.asarray(res.offsets if out.offsets is None else out.offsets, dtype=float)
+    normals = np.asarray(res.normals if out.normals is None else out.normals, dtype=float)
+    idx = np.flatnonzero(selected)  # pool index of each sample
+    p_arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(p_pts[:, 0]), np.diff(p_pts[:, 1])))])
+    arc = p_arc[idx]
+    chk = out.check
+    miss = chk.final & (np.abs(chk.error[:, lv]) > tol)
+    reach = 2.0 * setup.cutter.radius
+    step = max(1, (len(p_pts) - 1) // max(1, len(d_pts) - 1))  # pool points per check spacing
+    add, solve_from, solve_to = [], [], []
+    for k0 in np.flatnonzero(active[1:] & ~active[:-1]) + 1:
+        last = None
+        for k in range(k0, len(idx) - 1):
+            if arc[k] - arc[k0] > reach or not active[k + 1]:
+                break
+            if np.any(miss & (chk.s > arc[k]) & (chk.s < arc[k + 1])):
+                add.extend(range(idx[k] + step, idx[k + 1] - step // 2, step))
+                last = k + 1
+        if last is not None:
+            solve_from.append(p_arc[idx[k0]])
+            solve_to.append(p_arc[idx[min(last + 1, len(idx) - 1)]])
+    if not add:
+        return out
+    sel2 = selected.copy()
+    sel2[np.asarray(add, dtype=np.int64)] = True
+    idx2 = np.flatnonzero(sel2)
+    old = np.isin(idx2, idx)
+    arc2 = p_arc[idx2]
+    nominal2 = p_pts[idx2]
+    C2 = np.interp(arc2, arc, C)
+    normals2 = np.asarray(_comp.wall_normals(nominal2, setup.side), dtype=float)
+    normals2[old] = normals
+    active2 = np.interp(arc2, arc, active.astype(float)) > 0.5
+    active2[old] = active
+    owner = np.asarray(setup.owner)
+    owner2 = np.empty(len(idx2), dtype=owner.dtype)
+    owner2[old] = owner
+    pos = np.searchsorted(idx, idx2[~old])  # an added sample lies inside the block of the sample after it
+    owner2[~old] = owner[np.minimum(pos, len(idx) - 1)]
+    sub = replace(setup, nominal=nominal2, owner=owner2)
+
+    def errors(c):
+        r = _comp.path_wall_errors(setup.model, setup.cutter, setup.stock, nominal2, normals2, c, setup.options)
+        return np.asarray(r.error, dtype=float)[:, lv]
+
+    for a0, a1 in zip(solve_from, solve_to):
+        k0 = int(np.argmin(np.abs(arc2 - a0)))
+        for j in np.flatnonzero((arc2 > a0 + 1e-12) & (arc2 <= a1 + 1e-12) & active2):
+            prev = None
+            if j == k0 + 1:
+                C2[k0] = C2[j]
+            for _ in range(iterations):
+                e = errors(C2)[j]
+                if abs(e) <= 0.5 * tol:
+                    break
+                if prev is None or abs(e - prev[1]) < 1e-12:
+                    dc = e  # e = −C − δ·n: δ held
+                else:
+                    dc = -e * (C2[j] - prev[0]) / (e - prev[1])
+                    dc = float(np.clip(dc, -2 * abs(e), 2 * abs(e)))
+                prev = (C2[j], e)
+                C2[j] += dc
+                if j == k0 + 1:
+                    C2[k0] = C2[j]
+    positions = nominal2.copy()
+    positions[:, :2] += C2[:, None] * normals2
+    blocks, origin, check = _write_and_check(sub, positions, d_pts, out.final, density, arc_tol, active2)
+    new = CheckedCompensation(res, sub, blocks, origin, check, out.before, out.rounds, out.final, lv, tol,
+                              active2, C2, normals2)
+    a_old = float(np.max(np.abs(chk.error[chk.final, lv]), initial=0.0))
+    a_new = float(np.max(np.abs(check.error[check.final, lv]), initial=0.0))
+    return new if a_new < a_old and new.worse_points <= out.worse_points else out
