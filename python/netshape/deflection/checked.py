@@ -66,6 +66,11 @@ class CheckedCompensation:
         return bool(self.result.converged) and self.after_mm[_LEVELS[self.level]] <= self.tolerance * (1 + 1e-9)
 
     @property
+    def sample_normals(self) -> np.ndarray:
+        """The wall normal of each of ``setup``'s samples (n × 2)."""
+        return np.asarray(self.result.normals if self.normals is None else self.normals, dtype=float)
+
+    @property
     def worse_points(self) -> int:
         """Written-program samples whose |error| at the reference level exceeds the uncompensated one's
         (by more than 1 % of the tolerance) — 0 when the never-worse rule holds."""
@@ -189,7 +194,7 @@ def _never_worse(out: CheckedCompensation, d_pts, density: int, arc_tol: float) 
     (six rounds at most, then zero both samples around each), write and check again."""
     setup, res = out.setup, out.result
     nominal = np.asarray(setup.nominal, dtype=float)
-    normals = np.asarray(res.normals if out.normals is None else out.normals, dtype=float)
+    normals = out.sample_normals
     C = np.asarray(res.offsets if out.offsets is None else out.offsets, dtype=float).copy()
     arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(nominal[:, 0]), np.diff(nominal[:, 1])))])
     for attempt in range(7):
@@ -276,7 +281,7 @@ def _refine_entries(out: CheckedCompensation, p_pts, selected, d_pts, density: i
         return out
     active = np.asarray(out.active, dtype=bool)
     C = np.asarray(res.offsets if out.offsets is None else out.offsets, dtype=float)
-    normals = np.asarray(res.normals if out.normals is None else out.normals, dtype=float)
+    normals = out.sample_normals
     idx = np.flatnonzero(selected)  # pool index of each sample
     p_arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(p_pts[:, 0]), np.diff(p_pts[:, 1])))])
     arc = p_arc[idx]
