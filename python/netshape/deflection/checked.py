@@ -144,9 +144,14 @@ def compensate_checked(setup, *, scheme: str = "accelerated", level: str = "midd
     rounds = 0
 
     def finish(out, sel):
-        if out.result.converged:
-            out = _refine_entries(out, p_pts, sel, d_pts, density, arc_tol)
-        return _never_worse(out, d_pts, density, arc_tol)
+        # the wall starts refined (_refine_entries) where that makes the final written program better
+        plain = _never_worse(out, d_pts, density, arc_tol)
+        refined = _refine_entries(out, p_pts, sel, d_pts, density, arc_tol) if out.result.converged else out
+        if refined is out:
+            return plain
+        refined = _never_worse(refined, d_pts, density, arc_tol)
+        better = _largest(refined) < _largest(plain) and refined.worse_points <= plain.worse_points
+        return refined if better else plain
 
     best = None  # (largest written-program error on final walls, + 1 when not converged; result)
     while True:
@@ -274,8 +279,9 @@ def _refine_entries(out: CheckedCompensation, p_pts, selected, d_pts, density: i
     before it (that one's disc sets how much wall is left to cut) and diverges. The entry corner is tied to
     the first sample after it: its engagement is the turn's, one instant, and its own offset (solved by
     _entry_offsets) overcuts the stretch after it, where the engagement has already fallen. Per sample: a
-    fixed-point step C ← C + e, then secant steps bounded by 2|e|. Kept only when the written program's
-    largest error on final walls at the reference level falls and no more points are worse than before."""
+    fixed-point step C ← C + e, then secant steps bounded by 2|e|. compensate_checked keeps it only when,
+    never-worse applied to both, its written program's largest error on final walls at the reference
+    level is below the unrefined one's with no more worse points."""
     setup, res, lv, tol = out.setup, out.result, out.level, out.tolerance
     if out.active is None:
         return out
@@ -349,6 +355,9 @@ def _refine_entries(out: CheckedCompensation, p_pts, selected, d_pts, density: i
     blocks, origin, check = _write_and_check(sub, positions, d_pts, out.final, density, arc_tol, active2)
     new = CheckedCompensation(res, sub, blocks, origin, check, out.before, out.rounds, out.final, lv, tol,
                               active2, C2, normals2)
-    a_old = float(np.max(np.abs(chk.error[chk.final, lv]), initial=0.0))
-    a_new = float(np.max(np.abs(check.error[check.final, lv]), initial=0.0))
-    return new if a_new < a_old and new.worse_points <= out.worse_points else out
+    return new
+
+
+def _largest(out: CheckedCompensation) -> float:
+    """The written program's largest |error| on final walls at the reference level [mm]."""
+    return float(np.max(np.abs(out.check.error[out.check.final, out.level]), initial=0.0))
