@@ -275,8 +275,8 @@ def _refine_entries(out: CheckedCompensation, p_pts, selected, d_pts, density: i
     wall needs bends within the first sample spacings, where the written straight ramp between two
     samples misses it. In each sample interval within one diameter after an entry where the written
     program's check misses the tolerance, samples of the check's density are added (offsets interpolated
-    from the interval's ends) and every sample from the entry on to one sample past the last added one is
-    solved for its own error with the offsets before it held: a point's engagement depends only on the
+    from the interval's ends); the added samples and each refined interval's end are solved for their own
+    errors, in path order, with the offsets before them held: a point's engagement depends only on the
     moves before it, so this Gauss-Seidel sweep in path order is a triangular solve, where the schemes'
     simultaneous update of dense samples is driven by the strong coupling of a sample to the one just
     before it (that one's disc sets how much wall is left to cut) and diverges. The entry corner is tied to
@@ -298,7 +298,7 @@ def _refine_entries(out: CheckedCompensation, p_pts, selected, d_pts, density: i
     miss = chk.final & (np.abs(chk.error[:, lv]) > tol)
     reach = 2.0 * setup.cutter.radius
     step = max(1, (len(p_pts) - 1) // max(1, len(d_pts) - 1))  # pool points per check spacing
-    add, solve_from, solve_to = [], [], []
+    add, ends, solve_from, solve_to = [], [], [], []
     for k0 in np.flatnonzero(active[1:] & ~active[:-1]) + 1:
         last = None
         for k in range(k0, len(idx) - 1):
@@ -306,6 +306,7 @@ def _refine_entries(out: CheckedCompensation, p_pts, selected, d_pts, density: i
                 break
             if np.any(miss & (chk.s > arc[k]) & (chk.s < arc[k + 1])):
                 add.extend(range(idx[k] + step, idx[k + 1] - step // 2, step))
+                ends.append(idx[k + 1])
                 last = k + 1
         if last is not None:
             solve_from.append(p_arc[idx[k0]])
@@ -336,7 +337,9 @@ def _refine_entries(out: CheckedCompensation, p_pts, selected, d_pts, density: i
 
     for a0, a1 in zip(solve_from, solve_to):
         k0 = int(np.argmin(np.abs(arc2 - a0)))
-        for j in np.flatnonzero((arc2 > a0 + 1e-12) & (arc2 <= a1 + 1e-12) & active2):
+        solve = ~old | np.isin(idx2, ends)  # the added samples and the ends of their intervals
+        solve[min(k0 + 1, len(solve) - 1)] = True  # the corner's tie
+        for j in np.flatnonzero((arc2 > a0 + 1e-12) & (arc2 <= a1 + 1e-12) & active2 & solve):
             prev = None
             if j == k0 + 1:
                 C2[k0] = C2[j]
