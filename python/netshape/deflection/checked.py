@@ -332,7 +332,8 @@ def _refine_entries(out: CheckedCompensation, p_pts, selected, d_pts, density: i
     sub = replace(setup, nominal=nominal2, owner=owner2)
 
     def errors(c):
-        r = _comp.path_wall_errors(setup.model, setup.cutter, setup.stock, nominal2, normals2, c, setup.options)
+        r = _comp.path_wall_errors(setup.model, setup.cutter, setup.stock, nominal2, normals2, c,
+                                   setup.options)
         return np.asarray(r.error, dtype=float)[:, lv]
 
     for a0, a1 in zip(solve_from, solve_to):
@@ -364,7 +365,8 @@ def _refine_entries(out: CheckedCompensation, p_pts, selected, d_pts, density: i
     return new
 
 
-def _better(a: CheckedCompensation, b: CheckedCompensation, count_worse: bool = True, slack: float = 0.0) -> bool:
+def _better(a: CheckedCompensation, b: CheckedCompensation, count_worse: bool = True,
+            slack: float = 0.0) -> bool:
     """Whether written program ``a`` is better than ``b`` at the reference level on final walls: a largest
     |error| no larger (by more than ``slack``), no more worse points (unless not ``count_worse``), and a
     smaller mean |error|."""
