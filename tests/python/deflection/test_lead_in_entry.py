@@ -199,7 +199,7 @@ def test_never_worse_halves_the_sample_nearer_the_worse_points_once_a_round():
     C[corner] *= 3.0
     d_pts = ck.dense_drawing(setup, 4)[0]
     pos = np.asarray(chk.setup.nominal).copy()
-    pos[:, :2] += C[:, None] * np.asarray(chk.result.normals)
+    pos[:, :2] += C[:, None] * chk.sample_normals
     blocks, origin, check = ck._write_and_check(chk.setup, pos, d_pts, chk.final, 4, 5e-4, chk.active)
     bad = replace(chk, blocks=blocks, origin=origin, check=check, offsets=C)
     assert bad.worse_points > 1
@@ -208,5 +208,10 @@ def test_never_worse_halves_the_sample_nearer_the_worse_points_once_a_round():
     # halved, not zeroed (every worse point used to halve both samples around it, so eight worse points
     # took both to zero in the first round); the samples further on are kept
     assert fixed.offsets[corner] in {C[corner] / 2 ** k for k in range(1, 6)}
-    assert fixed.offsets[corner + 1] in {C[corner + 1] / 2 ** k for k in range(0, 6)}
-    assert fixed.offsets[corner + 2] == C[corner + 2]
+    nominal = np.asarray(chk.setup.nominal)
+    arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(nominal[:, :2], axis=0).T))])
+    after = np.flatnonzero(arc > arc[corner])
+    near = after[arc[after] <= arc[corner] + 0.5]  # within one sample spacing of the corner: halved or kept
+    assert all(fixed.offsets[k] in {C[k] / 2 ** j for j in range(0, 6)} for k in near)
+    far = after[arc[after] > arc[corner] + 1.0]
+    np.testing.assert_array_equal(fixed.offsets[far], C[far])
