@@ -218,15 +218,17 @@ void bind_force(py::module_& m) {
   py::class_<nf::BallEndModel>(m, "BallEndModel", "Ball end mill force model (Kim et al.).")
       .def(py::init([](double radius, int flutes, double helix, double axial_depth, double feed_per_tooth,
                        double inclination, nf::AngularEngagement engagement, nf::BallEndCoefficients coefficients,
-                       double element_angle, double disk_height) {
-             return validated(nf::BallEndModel{radius, flutes, helix, axial_depth, feed_per_tooth, inclination,
-                                               engagement, coefficients, element_angle, disk_height});
+                       double element_angle, double disk_height, double runout_rho, double runout_lambda) {
+             return validated(nf::BallEndModel{radius, flutes, helix, axial_depth, feed_per_tooth,
+                                               inclination, engagement, coefficients, element_angle,
+                                               disk_height, runout_rho, runout_lambda});
            }),
            "radius"_a = 6.0, "flutes"_a = 2, "helix"_a = 0.5235987755982988, "axial_depth"_a = 3.0,
            "feed_per_tooth"_a = 0.05, "inclination"_a = 0.0, py::arg_v("engagement", nf::AngularEngagement{}, "AngularEngagement()"),
            py::arg_v("coefficients", nf::ball_end_coefficient_set("kim_zas_ball12").coefficients,
                      "ball_end_coefficient_set('kim_zas_ball12').coefficients"),
-           "element_angle"_a = 0.0174532925199432957, "disk_height"_a = 0.05)
+           "element_angle"_a = 0.0174532925199432957, "disk_height"_a = 0.05, "runout_rho"_a = 0.0,
+           "runout_lambda"_a = 0.0)
       .def_readwrite("radius", &nf::BallEndModel::radius)
       .def_readwrite("flutes", &nf::BallEndModel::flutes)
       .def_readwrite("helix", &nf::BallEndModel::helix)
@@ -237,6 +239,9 @@ void bind_force(py::module_& m) {
       .def_readwrite("coefficients", &nf::BallEndModel::coefficients)
       .def_readwrite("element_angle", &nf::BallEndModel::element_angle)
       .def_readwrite("disk_height", &nf::BallEndModel::disk_height)
+      .def_readwrite("runout_rho", &nf::BallEndModel::runout_rho,
+                     "rho, offset of the tool axis [mm]; flute j cuts at + rho cos(lambda - j 2pi/N)")
+      .def_readwrite("runout_lambda", &nf::BallEndModel::runout_lambda, "lambda [rad]")
       .def("validate", &nf::BallEndModel::validate)
       .def("k_beta", &nf::BallEndModel::k_beta);
 

@@ -33,6 +33,10 @@ void BallEndModel::validate() const {
   NETSHAPE_CHECK_FINITE("disk_height", disk_height);
   NETSHAPE_CHECK(disk_height > 0.0 && axial_depth / disk_height <= 1e6, "disk_height", disk_height,
                  "must be positive and give at most 1e6 disks [mm]");
+  NETSHAPE_CHECK_FINITE("runout_rho", runout_rho);
+  NETSHAPE_CHECK(runout_rho >= 0.0 && runout_rho < radius, "runout_rho", runout_rho,
+                 "must be in [0, R) [mm]");
+  NETSHAPE_CHECK_FINITE("runout_lambda", runout_lambda);
   engagement.validate();
   coefficients.validate();
 }
@@ -66,6 +70,8 @@ void BallEndWorkspace::reset(const BallEndModel& model) {
   is_ball_.resize(rows);
   kt_.resize(rows);
   kr_.resize(rows);
+  cos_psi_.resize(rows);
+  runout_step_.resize(flutes_);
   // ball rows from the tip upwards, then the cylinder
   for (int k = 0; k < nb; ++k) {
     const double psi = 0.5 * pi - (k + 0.5) * dpsi;
@@ -76,8 +82,10 @@ void BallEndWorkspace::reset(const BallEndModel& model) {
     is_ball_[k] = 1;
     w0_[k] = r_[k] * dpsi;
   }
+  for (int i = 0; i < nb; ++i) cos_psi_[i] = std::cos(psi_[i]);
   for (int k = 0; k < nc; ++k) {
     const int i = nb + k;
+    cos_psi_[i] = 1.0;
     psi_[i] = 0.0;
     z_[i] = R + (k + 0.5) * dz;
     r_[i] = R;
@@ -106,6 +114,12 @@ void ball_end_forces(const BallEndModel& model, BallEndWorkspace& ws, const Eige
   for (int i = 0; i < rows; ++i) {
     ws.kt_[i] = K.kt(ws.psi_[i]);
     ws.kr_[i] = K.kr(ws.psi_[i]);
+  }
+  const bool runout = model.runout_rho != 0.0;
+  for (int j = 0; j < ws.flutes_; ++j) {  // r_j − r_{j−1}, r_j = ρ·cos(λ − j·2π/N)
+    const int jp = (j + ws.flutes_ - 1) % ws.flutes_;
+    ws.runout_step_[j] = model.runout_rho * (std::cos(model.runout_lambda - two_pi * j / ws.flutes_) -
+                                             std::cos(model.runout_lambda - two_pi * jp / ws.flutes_));
   }
   const double R = model.radius;
   const double f = model.feed_per_tooth;
@@ -142,7 +156,8 @@ void ball_end_forces(const BallEndModel& model, BallEndWorkspace& ws, const Eige
         }
         if (!in) continue;
         const double rho = std::sqrt(Xp * Xp + Y * Y);  // R cos φ'
-        const double t = f * Xp / rho;                  // chip f sin ϕ [mm]
+        double t = f * Xp / rho;                        // chip f sin ϕ [mm]
+        if (runout) t += ws.runout_step_[j] * ws.cos_psi_[i];  // the flute's step along the normal
         if (t <= 0.0) continue;
         const double dw = ws.is_ball_[i] ? rho * ws.step_[i] : ws.step_[i];
         const double lt = std::log(t);

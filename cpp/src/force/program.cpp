@@ -36,8 +36,8 @@ ProgramForces simulate_program(stock::ZMap& stock, const cutter::Cutter& cutter,
   const bool ball = cutter.kind == cutter::CutterKind::ball;
   if (ball) k.ball_end.validate(); else k.linear_edge.validate();
   k.chip.validate();
-  NETSHAPE_CHECK(!ball || k.chip.none(), "chip", "runout/size effect",
-                 "runout and the chip-size effect are modelled for flat end mills");
+  NETSHAPE_CHECK(!ball || k.chip.chip_exponent == 1.0, "chip.chip_exponent", k.chip.chip_exponent,
+                 "a ball end mill's chip-size effect is its Feng–Menq exponents m_T, m_R (must be 1 here)");
   const int bins = opt.bins;
   VectorXd phi(bins);
   for (int b = 0; b < bins; ++b) phi[b] = (b + 0.5) * 2.0 * pi / bins;
@@ -61,6 +61,8 @@ ProgramForces simulate_program(stock::ZMap& stock, const cutter::Cutter& cutter,
   bm.coefficients = k.ball_end;
   bm.element_angle = opt.element_angle;
   bm.disk_height = opt.disk_height;
+  bm.runout_rho = k.chip.runout_rho;  // ball_end_model.hpp: the runout step along the element normal
+  bm.runout_lambda = k.chip.runout_lambda;
   FlatEndWorkspace fws;
   BallEndWorkspace bws;
 

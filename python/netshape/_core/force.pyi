@@ -409,7 +409,7 @@ class BallEndModel:
     """
     coefficients: BallEndCoefficients
     engagement: AngularEngagement
-    def __init__(self, radius: typing.SupportsFloat | typing.SupportsIndex = 6.0, flutes: typing.SupportsInt | typing.SupportsIndex = 2, helix: typing.SupportsFloat | typing.SupportsIndex = 0.5235987755982988, axial_depth: typing.SupportsFloat | typing.SupportsIndex = 3.0, feed_per_tooth: typing.SupportsFloat | typing.SupportsIndex = 0.05, inclination: typing.SupportsFloat | typing.SupportsIndex = 0.0, engagement: AngularEngagement = ..., coefficients: BallEndCoefficients = ..., element_angle: typing.SupportsFloat | typing.SupportsIndex = 0.017453292519943295, disk_height: typing.SupportsFloat | typing.SupportsIndex = 0.05) -> None:
+    def __init__(self, radius: typing.SupportsFloat | typing.SupportsIndex = 6.0, flutes: typing.SupportsInt | typing.SupportsIndex = 2, helix: typing.SupportsFloat | typing.SupportsIndex = 0.5235987755982988, axial_depth: typing.SupportsFloat | typing.SupportsIndex = 3.0, feed_per_tooth: typing.SupportsFloat | typing.SupportsIndex = 0.05, inclination: typing.SupportsFloat | typing.SupportsIndex = 0.0, engagement: AngularEngagement = ..., coefficients: BallEndCoefficients = ..., element_angle: typing.SupportsFloat | typing.SupportsIndex = 0.017453292519943295, disk_height: typing.SupportsFloat | typing.SupportsIndex = 0.05, runout_rho: typing.SupportsFloat | typing.SupportsIndex = 0.0, runout_lambda: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         ...
     def k_beta(self) -> float:
         ...
@@ -462,6 +462,22 @@ class BallEndModel:
         ...
     @radius.setter
     def radius(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def runout_lambda(self) -> float:
+        """
+        lambda [rad]
+        """
+    @runout_lambda.setter
+    def runout_lambda(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def runout_rho(self) -> float:
+        """
+        rho, offset of the tool axis [mm]; flute j cuts at + rho cos(lambda - j 2pi/N)
+        """
+    @runout_rho.setter
+    def runout_rho(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
 class BallEndWorkspace:
     def __init__(self, model: BallEndModel) -> None:

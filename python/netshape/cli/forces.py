@@ -59,7 +59,7 @@ def register(sub) -> None:
                    metavar="DEG", help="ball end mill: ramp angle xi of the feed [deg] in (-80, 80), > 0 climbing "
                    "(default 0)")
     p.add_argument("--runout-rho", type=a.real("--runout-rho", "mm", ge=0, lt=1), default=0.0, metavar="MM",
-                   help="cutter runout: offset of the tool axis [mm] (flat tool; default 0)")
+                   help="cutter runout: offset of the tool axis [mm] (default 0)")
     p.add_argument("--runout-lambda", type=a.real("--runout-lambda", "deg"), default=0.0, metavar="DEG",
                    help="runout angle [deg]: flute j cuts at R + rho cos(lambda - j 360/N) (default 0)")
     p.add_argument("--chip-exponent", type=a.real("--chip-exponent", gt=0, le=2), default=1.0, metavar="P",
@@ -110,8 +110,9 @@ def run(args) -> int:
 
     ext = RunoutSizeEffect(runout_rho=args.runout_rho, runout_lambda=math.radians(args.runout_lambda),
                            chip_exponent=args.chip_exponent, reference_chip=args.reference_chip)
-    if args.tool == "ball" and not ext.none():
-        raise CliError("--runout-rho/--chip-exponent: modelled for --tool flat only")
+    if args.tool == "ball" and ext.chip_exponent != 1.0:
+        raise CliError(f"--chip-exponent = {args.chip_exponent:g}: modelled for --tool flat only (a ball end "
+                       "mill's size effect is its Feng–Menq exponents)")
     angles, forces = cutter_forces(
         tool=args.tool, diameter=args.diameter, flutes=args.flutes, helix_deg=args.helix,
         feed_per_tooth=args.feed_per_tooth, ap=args.ap, ae=args.ae, mode=args.mode,

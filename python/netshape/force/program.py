@@ -40,7 +40,8 @@ def simulate_program(stock, cutter, program, coefficients, *, step: float = 0.5,
     netshape.deflection.SizeEffectCoefficients (flat) or BallEndCoefficients (ball).
     A flat cutter's chip carries the cutter's runout (``cutter.runout_rho``, ``runout_lambda``) and
     the coefficients' chip-size effect, or ``chip`` (a RunoutSizeEffect) when given
-    (netshape.deflection.chip.chip_of); ball cutters refuse either.
+    (netshape.deflection.chip.chip_of); a ball cutter's carries the same runout (along the element
+    normal, docs/force.md) and refuses a chip exponent ≠ 1 (its size effect is Feng–Menq's m_T, m_R).
     The stock is updated as the cutter moves; with ``copy_stock`` (default) a copy is cut and the
     argument is left as it was. ``feed_per_tooth`` / ``spindle_rpm`` > 0 override the program's."""
     import math
@@ -51,7 +52,8 @@ def simulate_program(stock, cutter, program, coefficients, *, step: float = 0.5,
         coefficients, ext = chip_of(coefficients, chip, cutter)
         key = "linear_edge"
     elif isinstance(coefficients, _f.BallEndCoefficients):
-        ext, key = chip, "ball_end"
+        _, ext = chip_of(coefficients, chip, cutter)  # the cutter's runout unless ``chip`` is given
+        key = "ball_end"
     else:
         raise ValueError(f"coefficients = {coefficients!r}: must be LinearEdgeCoefficients, "
                          "SizeEffectCoefficients or BallEndCoefficients")

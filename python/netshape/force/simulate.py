@@ -72,7 +72,9 @@ def cutter_forces(
     ``ae`` [mm] is measured from the wall to the tool's largest radius (diameter/2); in up and down
     milling a ball element of radius r(z) < diameter/2 meets that wall at its own angle (no cut where
     r(z) ≤ diameter/2 − ae). For ``mode="slot"`` ae is the diameter or None. ``extension``: a
-    RunoutSizeEffect (cutter runout, chip-size effect; flat end mills). See docs/force.md.
+    RunoutSizeEffect: cutter runout and chip-size effect (flat end mills); a ball end mill takes its
+    runout (chip along the element normal) and refuses a chip exponent ≠ 1 (its size effect is
+    Feng–Menq's m_T, m_R). See docs/force.md.
     """
     if tool not in ("flat", "ball"):
         raise ValueError(f"tool = {tool!r}: must be flat or ball")
@@ -119,11 +121,14 @@ def cutter_forces(
         if extension is not None and not extension.none():
             return angles, _f.flat_end_forces_extended(model, extension, angles)
         return angles, _f.flat_end_forces(model, angles)
-    if extension is not None and not extension.none():
-        raise ValueError("extension: runout and the size effect are modelled for flat end mills only")
+    ext = extension if extension is not None else _f.RunoutSizeEffect()
+    if ext.chip_exponent != 1.0:
+        raise ValueError(f"extension.chip_exponent = {ext.chip_exponent:g}: a ball end mill's chip-size "
+                         "effect is its Feng–Menq exponents m_T, m_R (chip exponents are for flat end mills)")
     if coefficients is not None and not isinstance(coefficients, _f.BallEndCoefficients):
         raise ValueError("coefficients: a ball end mill needs BallEndCoefficients or --coefficient-set")
     k = coefficients if coefficients is not None else _f.ball_end_coefficient_set(coefficient_set or "kim_zas_ball12").coefficients
     model = _f.BallEndModel(radius=radius, flutes=flutes, helix=helix, axial_depth=ap, feed_per_tooth=feed_per_tooth,
-                            inclination=math.radians(inclination_deg), engagement=engagement, coefficients=k)
+                            inclination=math.radians(inclination_deg), engagement=engagement, coefficients=k,
+                            runout_rho=ext.runout_rho, runout_lambda=ext.runout_lambda)
     return angles, _f.ball_end_forces(model, angles)

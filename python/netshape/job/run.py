@@ -26,7 +26,7 @@ from . import stage_volumetric as sv
 from . import stages as st
 from .spec import Job
 from .stage_deflection import stage_deflection
-from .warnings import forces_without_chip_extension, outside_travel
+from .warnings import outside_travel
 
 
 class StageFailed(Exception):
@@ -199,7 +199,6 @@ def run_job(job: Job, out: str | Path | None = None, *, quiet: bool = True, out_
         forces = S.run("forces", st.stage_forces, job, stock0, prog, progress=S.sub_progress(
             "forces", len(prog.toolpath.blocks), "block"))
         S.close_sub()
-        warnings += forces_without_chip_extension(job, prog.toolpath.blocks)
 
     defl = None
     if p["deflection"]:

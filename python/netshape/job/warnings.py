@@ -52,17 +52,3 @@ def outside_travel(machine, tp_machine) -> list[dict]:
     if count > len(out):
         out[-1]["message"] += f"; {count - len(out)} more moves leave the travel"
     return out
-
-
-def forces_without_chip_extension(job, blocks) -> list[dict]:
-    """The tool's runout, which the program forces of a ball end mill (the Z-map force simulation,
-    Feng–Menq's model) leave out; flat end mills carry it and the chip-size effect in their chips."""
-    if str(job.tool.get("kind", "flat")) != "ball" or not job.tool.get("runout_rho_mm"):
-        return []
-    cut = [b for b in blocks if int(b.kind) != 0]
-    if not cut:
-        return []
-    return [{"kind": "forces_without_chip_extension", "line": int(cut[0].line),
-             "message": f"the program forces leave out the runout {float(job.tool['runout_rho_mm']):g} mm "
-                        "(runout is modelled for flat end mills; the ball end mill's Z-map force simulation "
-                        "uses Feng–Menq's model without it)"}]

@@ -91,7 +91,6 @@ def test_job_coefficients_with_a_size_effect():
     from netshape.job.spec import JobError
     from netshape.job.spec import _coefficients
     from netshape.job.stages import coefficients_for
-    from netshape.job.warnings import forces_without_chip_extension
 
     table = {"Ktc_N_mm2": 900.0, "Kte_N_mm": 16.0, "chip_exponent": 0.8, "reference_chip_mm": 0.05}
     assert _coefficients("job.toml", table) == table
@@ -102,15 +101,6 @@ def test_job_coefficients_with_a_size_effect():
     k = coefficients_for(job, cutter)
     assert isinstance(k, SizeEffectCoefficients) and (k.chip_exponent, k.reference_chip) == (0.8, 0.05)
     assert k.coefficients.ktc == 900.0 and k.coefficients.krc == 0.0
-    blocks = [SimpleNamespace(kind=0, line=1), SimpleNamespace(kind=1, line=3)]
-    assert forces_without_chip_extension(job, blocks) == []  # a flat cutter's program forces carry both
-    ball = SimpleNamespace(coefficients="kim_zas_ball12",
-                           tool=dict(_tool_dict(), kind="ball", runout_rho_mm=0.01))
-    (w,) = forces_without_chip_extension(ball, blocks)
-    assert w["kind"] == "forces_without_chip_extension" and w["line"] == 3
-    assert "runout 0.01 mm" in w["message"]
-    plain = SimpleNamespace(coefficients="Ktc=900", tool=_tool_dict())
-    assert forces_without_chip_extension(plain, blocks) == []
 
 
 def _tool_dict():

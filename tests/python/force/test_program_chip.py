@@ -83,13 +83,14 @@ def test_no_runout_and_no_size_effect_is_bit_identical_to_the_linear_model():
         np.testing.assert_array_equal(getattr(plain, f), getattr(same, f))
 
 
-def test_a_ball_end_mill_refuses_a_chip_extension():
+def test_a_ball_end_mill_refuses_a_chip_exponent():
+    """Its size effect is Feng–Menq's m_T, m_R; its runout: tests/python/force/test_program_ball_runout.py."""
     cutter = st.Cutter.ball_end(8.0, 2, math.radians(30))
     block = st.ZMap(0.0, 10.0, -8.0, 8.0, 0.2, 1.0, -5.0)
     prog = tp.parse_gcode("G21 G90 G0 X-6 Y0 Z0\nS6000 M3\nG1 X5 F600\n")
     kb = nf.ball_end_coefficient_set("kim_zas_ball12").coefficients
-    with pytest.raises(ValueError, match="flat end mills"):
-        nf.simulate_program(block, cutter, prog, kb, chip=nf.RunoutSizeEffect(runout_rho=0.01))
+    with pytest.raises(ValueError, match="chip_exponent"):
+        nf.simulate_program(block, cutter, prog, kb, chip=nf.RunoutSizeEffect(chip_exponent=0.8))
 
 
 def test_the_feed_schedule_takes_size_effect_coefficients_as_their_linear_part():
@@ -110,14 +111,13 @@ def test_the_feed_schedule_takes_size_effect_coefficients_as_their_linear_part()
 
 def test_the_jobs_forces_stage_carries_the_tools_runout_and_the_size_effect():
     """The demo job with runout in its tool and a chip exponent in its coefficient table: the forces
-    stage changes and equals the program force simulation with both; no forces_without_chip_extension."""
+    stage changes and equals the program force simulation with both."""
     import dataclasses
     from pathlib import Path
 
     import netshape.job.stages as stages
     from netshape.job.program import stage_program
     from netshape.job.spec import load_job
-    from netshape.job.warnings import forces_without_chip_extension
 
     job = load_job(Path(__file__).resolve().parents[3] / "examples" / "demo" / "job.toml")
     k = nf.linear_edge_coefficient_set(job.coefficients).coefficients
@@ -137,4 +137,3 @@ def test_the_jobs_forces_stage_carries_the_tools_runout_and_the_size_effect():
                                  samples_per_revolution=ext.cutting["samples_per_revolution"],
                                  disk_height=ext.cutting["disk_height_mm"])
     np.testing.assert_allclose(both.peak_resultant, direct.peak_resultant, rtol=1e-9)
-    assert forces_without_chip_extension(ext, prog.toolpath.blocks) == []

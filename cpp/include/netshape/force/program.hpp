@@ -29,7 +29,8 @@ struct ProgramForceOptions {
 
 /// Coefficients for a program run: linear edge for flat cutters, Feng–Menq for ball cutters; `chip`:
 /// the flat cutter's runout and chip-size effect (runout_size_effect.hpp; none: the linear model,
-/// bit-identical to the plain kernel; ball cutters refuse anything else).
+/// bit-identical to the plain kernel); a ball cutter takes its runout (ball_end_model.hpp; ρ = 0:
+/// bit-identical) and refuses a chip exponent ≠ 1 (its size effect is Feng–Menq's m_T, m_R).
 struct ProgramCoefficients {
   LinearEdgeCoefficients linear_edge{};
   BallEndCoefficients ball_end{};
