@@ -94,11 +94,11 @@ void disk_forces(const DeflectionModel& model, DeflectionWorkspace& ws, double t
   const auto& ext = model.chip;
   const bool extended = !ext.none();
   const double href = ext.reference_chip > 0.0 ? ext.reference_chip : c;
-  // chip of flute j at immersion φ: c·sin φ plus its runout step r_j − r_{j−1}; g the cutting term
+  // chip of flute j at immersion φ: c·sin φ plus its runout step r_j − r_{j+1}; g the cutting term
   auto step = [&](int j) {
     const int n = ws.flutes_;
     return ext.runout_rho * (std::cos(ext.runout_lambda - two_pi * j / n) -
-                             std::cos(ext.runout_lambda - two_pi * ((j + n - 1) % n) / n));
+                             std::cos(ext.runout_lambda - two_pi * ((j + 1) % n) / n));
   };
   auto g = [&](double h) { return ext.chip_exponent == 1.0 ? h : href * std::pow(h / href, ext.chip_exponent); };
   for (int i = 0; i < ws.disks_; ++i) {

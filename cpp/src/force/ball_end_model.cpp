@@ -116,8 +116,8 @@ void ball_end_forces(const BallEndModel& model, BallEndWorkspace& ws, const Eige
     ws.kr_[i] = K.kr(ws.psi_[i]);
   }
   const bool runout = model.runout_rho != 0.0;
-  for (int j = 0; j < ws.flutes_; ++j) {  // r_j − r_{j−1}, r_j = ρ·cos(λ − j·2π/N)
-    const int jp = (j + ws.flutes_ - 1) % ws.flutes_;
+  for (int j = 0; j < ws.flutes_; ++j) {  // r_j − r_{j+1}: flute j + 1 passed each angle just before j
+    const int jp = (j + 1) % ws.flutes_;
     ws.runout_step_[j] = model.runout_rho * (std::cos(model.runout_lambda - two_pi * j / ws.flutes_) -
                                              std::cos(model.runout_lambda - two_pi * jp / ws.flutes_));
   }

@@ -49,11 +49,12 @@ void chip_function(const RunoutSizeEffect& ext, double c, std::vector<double>& k
   }
 }
 
-// r_j − r_{j−1} for every flute j (zeros without runout)
+// r_j − r_{j+1} for every flute j (zeros without runout): with φ_j = θ + j·2π/N and φ growing with time,
+// flute j + 1 passes every angle 2π/N before flute j, so flute j cuts the surface flute j + 1 left
 std::vector<double> runout_steps(const RunoutSizeEffect& ext, int flutes) {
   std::vector<double> r(flutes), d(flutes);
   for (int j = 0; j < flutes; ++j) r[j] = ext.runout_rho * std::cos(ext.runout_lambda - two_pi * j / flutes);
-  for (int j = 0; j < flutes; ++j) d[j] = r[j] - r[(j + flutes - 1) % flutes];
+  for (int j = 0; j < flutes; ++j) d[j] = r[j] - r[(j + 1) % flutes];
   return d;
 }
 }  // namespace

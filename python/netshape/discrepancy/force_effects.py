@@ -173,7 +173,7 @@ class ForceProblem(Problem):
         if spec.runout is not None:
             rho, lam = spec.runout
             r = rho * np.cos(lam - 2 * np.pi * np.arange(N) / N)
-            groups = [(True, 2 * np.pi * j / N, r[j] - r[j - 1]) for j in range(N)]
+            groups = [(True, 2 * np.pi * j / N, r[j] - r[(j + 1) % N]) for j in range(N)]
         else:
             groups = [(False, 0.0, 0.0)]
         if spec.chip_exponent is None:

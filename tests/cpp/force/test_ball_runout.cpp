@@ -1,4 +1,4 @@
-// Ball end mill with cutter runout: flute j's chip t_j = f·sin ϕ + (r_j − r_{j−1})·cos ψ, clamped at 0
+// Ball end mill with cutter runout: flute j's chip t_j = f·sin ϕ + (r_j − r_{j+1})·cos ψ, clamped at 0
 // (ball_end_model.hpp), in the single cut, with an engagement map and along a program.
 #include <doctest/doctest.h>
 
@@ -8,6 +8,8 @@
 #include "netshape/force.hpp"
 #include "netshape/stock.hpp"
 #include "netshape/toolpath.hpp"
+
+#include "flute_order.hpp"
 
 using namespace netshape;
 using namespace netshape::force;
@@ -53,7 +55,7 @@ TEST_CASE("ball runout: the flutes' peaks differ, the mean per revolution stays"
   CHECK(p1 > 1.05 * q1);
   CHECK(p2 < 0.95 * q2);
   CHECK(p1 > 1.1 * p2);  // a once-per-revolution component
-  // the chip removed per revolution is unchanged (Σ_j (r_j − r_{j−1}) = 0); t^m with m < 1 and the
+  // the chip removed per revolution is unchanged (Σ_j (r_j − r_{j+1}) = 0); t^m with m < 1 and the
   // clamp near entry and exit (f sin ϕ < 10 µm) leave a small difference
   const double scale = F0.rowwise().norm().mean();
   CHECK((F.colwise().mean() - F0.colwise().mean()).norm() < 0.02 * scale);
@@ -76,7 +78,7 @@ TEST_CASE("ball runout: a direct element sum at one angle") {
       if (X <= 0.0) continue;
       auto r = [&](int q) { return m.runout_rho * std::cos(m.runout_lambda - q * 2.0 * pi / 3); };
       const double psi = ws.position_angles()[i];
-      const double t = m.feed_per_tooth * std::sin(ph) + (r(j) - r((j + 2) % 3)) * std::cos(psi);
+      const double t = m.feed_per_tooth * std::sin(ph) + (r(j) - r(flute_before(j, 3))) * std::cos(psi);
       if (t <= 0.0) continue;
       const double dw = ws.widths()[i];
       const double ft = K.kt(psi) * std::pow(t, K.m_t) * dw;

@@ -54,7 +54,7 @@ def oracle_forces(
     F = np.zeros((len(angles), 3))
     for j in range(N):
         phi = np.mod(angles[:, None] + 2 * np.pi * j / N - kb * z[None, :], 2 * np.pi)
-        h = feed * np.sin(phi) + (r[j] - r[j - 1])
+        h = feed * np.sin(phi) + (r[j] - r[(j + 1) % len(r)])  # flute j + 1 passed just before j
         on = (phi >= st) & (phi <= ex) & (h > 0)
         h = np.where(on, h, 0.0)
         g = h if exponent is None else h_ref * (h / h_ref) ** exponent

@@ -1,4 +1,4 @@
-"""Ball end mill runout (flute j's chip f·sin ϕ + (r_j − r_{j−1})·cos ψ, docs/force.md) in the single cut
+"""Ball end mill runout (flute j's chip f·sin ϕ + (r_j − r_{j+1})·cos ψ, docs/force.md) in the single cut
 (netshape forces), the program force simulation and the job's forces stage; the kernel against a direct
 element sum: tests/cpp/force/test_ball_runout.cpp."""
 

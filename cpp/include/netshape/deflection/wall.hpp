@@ -59,7 +59,7 @@ struct DeflectionModel {
   double holder_compliance = 0.0;
   /// Runout and chip-size effect of the element chips (force::RunoutSizeEffect, the same chip as
   /// force::flat_end_forces_extended, the power law evaluated exactly): flute j's chip
-  /// h_j = c·sin φ + r_j − r_{j−1}, no force where h_j ≤ 0, cutting terms h_ref·(h_j/h_ref)^p.
+  /// h_j = c·sin φ + r_j − r_{j+1}, no force where h_j ≤ 0, cutting terms h_ref·(h_j/h_ref)^p.
   force::RunoutSizeEffect chip{};
   /// Separate material windows of one instant (material, an air gap, material again: a sliver left
   /// beside a cleared band). Empty: the single window force.engagement. Otherwise they replace it and

@@ -31,9 +31,9 @@
 /// Runout (the catalogue's `runout`, as flat end mills, runout_size_effect.hpp): the tool axis is
 /// offset by ρ at angle λ; flute j (0 … N−1) cuts at a radius larger by r_j = ρ·cos(λ − j·2π/N),
 /// measured horizontally. On the sphere the element's outward normal is n = cos ψ·e_r − sin ψ·e_z, so
-/// the horizontal step r_j − r_{j−1} over the flute before it thickens the chip (measured along n) by
-/// (r_j − r_{j−1})·cos ψ (the full step on the cylinder, ψ = 0; none at the tip): t_j = f·sin ϕ +
-/// (r_j − r_{j−1})·cos ψ, clamped at 0, where the element cuts (X' > 0, in the window or map). The
+/// the horizontal step r_j − r_{j+1} over the flute before it thickens the chip (measured along n) by
+/// (r_j − r_{j+1})·cos ψ (the full step on the cylinder, ψ = 0; none at the tip): t_j = f·sin ϕ +
+/// (r_j − r_{j+1})·cos ψ, clamped at 0, where the element cuts (X' > 0, in the window or map). The
 /// chip-size effect is the Feng–Menq exponents m_T, m_R. With ρ = 0 the forces are bit-identical to
 /// the model without runout.
 
@@ -89,7 +89,7 @@ class BallEndWorkspace {
   Eigen::ArrayXi is_ball_;
   Eigen::ArrayXd kt_, kr_;       // per row, refreshed each call from the coefficients
   Eigen::ArrayXd cos_psi_;       // per row: projection of a horizontal radial step on the normal
-  Eigen::ArrayXd runout_step_;   // per flute: r_j − r_{j−1} [mm], refreshed each call
+  Eigen::ArrayXd runout_step_;   // per flute: r_j − r_{j+1} [mm], refreshed each call
 };
 
 /// Forces on the cutter [N] at the angles (n) [rad] into out (n, 3). With `map`, rows of the map are

@@ -4,8 +4,8 @@
 /// `size_effect`, docs/discrepancy.md), on top of the linear edge-force model of flat_end_model.hpp.
 ///
 /// Runout: the tool axis is offset by ρ at angle λ; flute j (0 … N−1, flute 1 = j 0) cuts at radius
-/// R_j = R + r_j, r_j = ρ·cos(λ − j·2π/N), and removes the chip h_j = c·sin φ + r_j − r_{j−1},
-/// clamped at 0 (the flute before it left the surface at r_{j−1}).
+/// R_j = R + r_j, r_j = ρ·cos(λ − j·2π/N), and removes the chip h_j = c·sin φ + r_j − r_{j+1},
+/// clamped at 0 (the flute before it left the surface at r_{j+1}).
 /// Size effect: the cutting terms follow g(h) = h_ref·(h/h_ref)^p instead of h (p = 1: the linear
 /// model; p < 1: thin chips cut relatively harder), so dFt = (ktc·g(h) + kte)·dz where h > 0.
 /// g is evaluated as its piecewise-linear interpolant over the knots h_k = c·{0, .006, .02, .05, .1,
@@ -39,7 +39,7 @@ struct RunoutSizeEffect {
 Points3 flat_end_forces_extended(const FlatEndModel& model, const RunoutSizeEffect& extension,
                                  const Eigen::Ref<const VectorXd>& angles);
 
-/// The same chip (h_j = c·sin φ + r_j − r_{j−1}, cutting terms g(h_j), edge terms where h_j > 0) on
+/// The same chip (h_j = c·sin φ + r_j − r_{j+1}, cutting terms g(h_j), edge terms where h_j > 0) on
 /// the elements an engagement `map` marks (as flat_end_forces with a map: bin ⌊φ·bins/2π⌋ of the
 /// element's disk), written into `out` (n, 3) [N]. The program force simulation's model
 /// (force/program.hpp). With `extension.none()` exactly flat_end_forces(model, workspace, angles,
