@@ -171,6 +171,10 @@ struct SubBody {
 // An active `oN call`: the body being replayed, the next body line, the caller's line, and the
 // parameters #1 … #30 the call replaced (restored when the sub returns).
 inline constexpr int kSubParams = 30;
+// Lines all calls of a program may replay together: calls nest only kMaxDepth deep, but a sub that
+// calls another twice at each of 40 levels would replay 2^40 lines; past this budget the reader
+// refuses the program instead of expanding it until memory runs out.
+inline constexpr long kMaxReplayedLines = 5'000'000;
 struct CallFrame {
   std::string label;
   const SubBody* body = nullptr;
@@ -202,6 +206,7 @@ struct GcodeReader::Impl {
   bool ended = false;        // M2 / M30 seen or end of input
   std::map<std::string, SubBody> subs;  // subroutines defined so far, by label ("100", "<name>")
   std::vector<CallFrame> calls;         // active calls, outermost first
+  long replayed = 0;                    // body lines replayed by calls so far (≤ kMaxReplayedLines)
 
   // ---- current line -----------------------------------------------------------------------------
   std::string norm;          // line without blanks/comments, lower case

@@ -51,6 +51,10 @@ bool GcodeReader::Impl::fetch(const char*& b, const char*& e) {
   while (!calls.empty()) {
     CallFrame& f = calls.back();
     if (f.next < f.body->lines.size()) {
+      if (++replayed > kMaxReplayedLines)
+        throw ParseError(source, calls.front().caller_line, 1,
+                         "o-word calls replay more than " + std::to_string(kMaxReplayedLines) +
+                             " lines (subroutines calling each other too often); the program is not read");
       const auto& [ln, text] = f.body->lines[f.next++];
       line_no = ln;
       b = text.data();

@@ -100,3 +100,17 @@ TEST_CASE("what cannot be supported is refused naming the line") {
   e = sub_error("G0 X1\nM98 P1234\n");
   CHECK(e.line() == 2);
 }
+
+TEST_CASE("calls that would replay an exponential number of lines are refused at the outermost call") {
+  // o1 calls o2 twice, o2 calls o3 twice … o40 moves twice: 2^40 moves, 40 levels deep (under the
+  // nesting limit); the reader stops at its line budget instead of running out of memory
+  std::string s = "G21 G90\no40 sub\nG1 X1 F100\nG1 X0\no40 endsub\n";
+  for (int k = 39; k >= 1; --k) {
+    const std::string a = std::to_string(k), b = std::to_string(k + 1);
+    s += "o" + a + " sub\no" + b + " call\no" + b + " call\no" + a + " endsub\n";
+  }
+  s += "G0 Z5\no1 call\nM30\n";
+  const ParseError e = sub_error(s);
+  CHECK(e.line() == 2 + 4 + 39 * 4 + 1);  // the line of "o1 call"
+  CHECK(e.reason().find("replay more than") != std::string::npos);
+}
