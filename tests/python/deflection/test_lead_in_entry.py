@@ -99,24 +99,30 @@ def test_the_active_flags_must_match_the_points():
         d.compensated_blocks(setup, pts, active=np.ones(3, dtype=bool))
 
 
+def _straight_wall_setup(grid: float = 0.1):
+    """A 6 mm flat end mill's straight wall after a lead-in corner, on stock (Z-map node spacing ``grid``)
+    cleared above y = −1.5 by a 10 mm pass: the material is left below that line only."""
+    import math
+
+    from pocket_cases import flat_cutter
+
+    stock = ns.stock.ZMap(-6.0, 26.0, -10.0, 10.0, grid, 0.0, -10.0)
+    clear = ns.cutter.Cutter.flat_end(10.0, 3, math.radians(30.0))
+    clear.flute_length = 20.0
+    ns.stock.sweep(stock, clear, ns.toolpath.parse_gcode(
+        "G21 G90 G17\nG0 X-12 Y3.5 Z5\nG1 Z-2 F200\nG1 X32 F800\nG0 Z5\n"))
+    prog = ns.toolpath.parse_gcode(PROGRAM.replace("G1 X10 Y0", "G1 X20 Y0").replace("G1 X12 Y5", ""))
+    return d.setup_path(prog, flat_cutter(6.0), stock, coefficients="leekunhwee_flat_slot", rpm=8000,
+                        spacing=0.5, side="right", profile_levels=0)
+
+
 def test_the_entry_corner_is_solved_for_its_own_error():
     """The scheme ties a corner's offset to the next sample's; where the wall starts after the lead-in,
     compensate_checked solves the corner for its own error instead (the written program reaches it along
     the offset, so that offset is written exactly at the corner)."""
-    import math
-
     from netshape.deflection.checked import _entry_offsets
 
-    from pocket_cases import flat_cutter
-
-    stock = ns.stock.ZMap(-6.0, 26.0, -10.0, 10.0, 0.2, 0.0, -10.0)
-    clear = ns.cutter.Cutter.flat_end(10.0, 3, math.radians(30.0))
-    clear.flute_length = 20.0
-    ns.stock.sweep(stock, clear, ns.toolpath.parse_gcode(  # material left below y = −1.5 only
-        "G21 G90 G17\nG0 X-12 Y3.5 Z5\nG1 Z-2 F200\nG1 X32 F800\nG0 Z5\n"))
-    prog = ns.toolpath.parse_gcode(PROGRAM.replace("G1 X10 Y0", "G1 X20 Y0").replace("G1 X12 Y5", ""))
-    setup = d.setup_path(prog, flat_cutter(6.0), stock, coefficients="leekunhwee_flat_slot", rpm=8000,
-                         spacing=0.5, side="right", profile_levels=0)
+    setup = _straight_wall_setup(0.2)
     wall = np.flatnonzero(setup.owner == setup.first + 1)
     active = np.zeros(len(setup.nominal), dtype=bool)
     active[wall[0] - 1:] = True  # the corner (the lead-in's end) and the wall
@@ -139,20 +145,9 @@ def test_the_check_counts_what_the_move_along_the_offset_removes():
     that move's too, so the wall's first points see the sliver gone and leave the wall the rest of it
     leaves. (The check used to skip the points whose foot is the corner: the sliver stayed, loaded the
     tool and left 12 µm at the first point of the demo's level-2 wall.)"""
-    import math
-
     from netshape.deflection.walls import check_against_drawing
 
-    from pocket_cases import flat_cutter
-
-    stock = ns.stock.ZMap(-6.0, 26.0, -10.0, 10.0, 0.1, 0.0, -10.0)
-    clear = ns.cutter.Cutter.flat_end(10.0, 3, math.radians(30.0))
-    clear.flute_length = 20.0
-    ns.stock.sweep(stock, clear, ns.toolpath.parse_gcode(  # material left below y = −1.5 only
-        "G21 G90 G17\nG0 X-12 Y3.5 Z5\nG1 Z-2 F200\nG1 X32 F800\nG0 Z5\n"))
-    prog = ns.toolpath.parse_gcode(PROGRAM.replace("G1 X10 Y0", "G1 X20 Y0").replace("G1 X12 Y5", ""))
-    setup = d.setup_path(prog, flat_cutter(6.0), stock, coefficients="leekunhwee_flat_slot", rpm=8000,
-                         spacing=0.5, side="right", profile_levels=0)
+    setup = _straight_wall_setup(0.1)
     wall = np.flatnonzero(setup.owner == setup.first + 1)
     on = np.zeros(len(setup.nominal), dtype=bool)
     on[wall[0] - 1:] = True
@@ -167,21 +162,6 @@ def test_the_check_counts_what_the_move_along_the_offset_removes():
     first = np.flatnonzero(chk.final & (x > 1e-6))[0]
     steady = e[np.argmin(np.abs(x - 10.0) + 10 * ~chk.final)]
     assert abs(e[first] - steady) < 1e-3, (e[first], steady)
-
-
-def _straight_wall_setup():
-    import math
-
-    from pocket_cases import flat_cutter
-
-    stock = ns.stock.ZMap(-6.0, 26.0, -10.0, 10.0, 0.1, 0.0, -10.0)
-    clear = ns.cutter.Cutter.flat_end(10.0, 3, math.radians(30.0))
-    clear.flute_length = 20.0
-    ns.stock.sweep(stock, clear, ns.toolpath.parse_gcode(  # material left below y = −1.5 only
-        "G21 G90 G17\nG0 X-12 Y3.5 Z5\nG1 Z-2 F200\nG1 X32 F800\nG0 Z5\n"))
-    prog = ns.toolpath.parse_gcode(PROGRAM.replace("G1 X10 Y0", "G1 X20 Y0").replace("G1 X12 Y5", ""))
-    return d.setup_path(prog, flat_cutter(6.0), stock, coefficients="leekunhwee_flat_slot", rpm=8000,
-                        spacing=0.5, side="right", profile_levels=0)
 
 
 def test_never_worse_halves_the_sample_nearer_the_worse_points_once_a_round():
