@@ -10,6 +10,8 @@
 #include "netshape/core/error.hpp"
 #include "netshape/toolpath.hpp"
 
+#include "parse_error_of.hpp"
+
 using namespace netshape;
 using namespace netshape::toolpath;
 
@@ -23,15 +25,6 @@ double eval(const std::string& expr, const std::string& pre = "") {
   return t.blocks[0].end.x();
 }
 
-ParseError error_of(const std::string& s) {
-  try {
-    P(s);
-  } catch (const ParseError& e) {
-    return e;
-  }
-  FAIL("no ParseError for: " << s);
-  return ParseError("", 0, 0, "");
-}
 }  // namespace
 
 TEST_CASE("words, comments, case and blanks") {
@@ -149,49 +142,49 @@ TEST_CASE("arcs: IJK, R, full circles, turns, planes, helix") {
 }
 
 TEST_CASE("errors name line, column and the reason") {
-  ParseError e = error_of("G0 X1\nG1 X2 G7 F100\n");
+  ParseError e = parse_error_of("G0 X1\nG1 X2 G7 F100\n");
   CHECK(e.line() == 2);
   CHECK(e.column() == 7);
   CHECK(e.reason() == "unknown G-code G7");
-  e = error_of("G0 X5\nG2 X0 Y5.2 I-5 F60\n");
+  e = parse_error_of("G0 X5\nG2 X0 Y5.2 I-5 F60\n");
   CHECK(e.reason() == "arc radius mismatch: start radius 5.000 mm, end radius 5.200 mm");
-  e = error_of("G0 X5\nG2 X5 R3 F60\n");
+  e = parse_error_of("G0 X5\nG2 X5 R3 F60\n");
   CHECK(e.reason().find("R arc with coincident end points") == 0);
-  CHECK(error_of("G5.2 X1 Y2 P1\n").reason().find("G5.2") != std::string::npos);
-  CHECK(error_of("G6.2 X1\n").reason().find("G6.2") != std::string::npos);
-  CHECK(error_of("G41 D1\n").reason().find("G41") != std::string::npos);
-  CHECK(error_of("G81 X1 Y1 Z-1 R1\n").reason().find("canned cycle G81") == 0);
-  CHECK(error_of("G92 X0\n").reason().find("G92") != std::string::npos);
-  CHECK(error_of("G93\n").reason().find("G93") != std::string::npos);
-  CHECK(error_of("o100 while [1]\n").reason().find("o-word") != std::string::npos);
-  CHECK(error_of("o100 sub\n").reason().find("not closed by o100 endsub") != std::string::npos);
-  CHECK(error_of("M98 P1\n").reason().find("M98") != std::string::npos);
-  CHECK(error_of("G1 X1\n").reason().find("no feed rate") != std::string::npos);
-  CHECK(error_of("G0 X[1/0]\n").reason() == "division by zero");
-  CHECK(error_of("G0 X[SQRT[-1]]\n").reason().find("SQRT of a negative") == 0);
-  CHECK(error_of("G0 X[0/0]\n").reason() == "division by zero");
-  CHECK(error_of("G0 X[ACOS[2]]\n").reason().find("ACOS") == 0);
-  CHECK(error_of("G0 X#<nope>\n").reason() == "parameter #<nope> is not defined");
-  CHECK(error_of("G0 X1 X2\n").reason().find("twice") != std::string::npos);
-  CHECK(error_of("G0 A1\n").reason().find("axis word A") == 0);
-  CHECK(error_of("G0 X1 (open\n").reason().find("comment") != std::string::npos);
-  CHECK(error_of("G0 X1.2.3\n").reason().find("malformed number") == 0);
-  CHECK(error_of("G0 X[1+2\n").reason().find("']'") != std::string::npos);
-  CHECK(error_of("G0 G1 X1 F1\n").reason().find("same modal group") != std::string::npos);
-  CHECK(error_of("G0 X99999999999\n").reason().find("out of range") != std::string::npos);
-  CHECK(error_of("G17 G2 X1 K1 F1\n").reason().find("K word") == 0);
-  CHECK(error_of("G0 X1 \x01\n").column() == 7);
+  CHECK(parse_error_of("G5.2 X1 Y2 P1\n").reason().find("G5.2") != std::string::npos);
+  CHECK(parse_error_of("G6.2 X1\n").reason().find("G6.2") != std::string::npos);
+  CHECK(parse_error_of("G41 D1\n").reason().find("G41") != std::string::npos);
+  CHECK(parse_error_of("G81 X1 Y1 Z-1 R1\n").reason().find("canned cycle G81") == 0);
+  CHECK(parse_error_of("G92 X0\n").reason().find("G92") != std::string::npos);
+  CHECK(parse_error_of("G93\n").reason().find("G93") != std::string::npos);
+  CHECK(parse_error_of("o100 while [1]\n").reason().find("o-word") != std::string::npos);
+  CHECK(parse_error_of("o100 sub\n").reason().find("not closed by o100 endsub") != std::string::npos);
+  CHECK(parse_error_of("M98 P1\n").reason().find("M98") != std::string::npos);
+  CHECK(parse_error_of("G1 X1\n").reason().find("no feed rate") != std::string::npos);
+  CHECK(parse_error_of("G0 X[1/0]\n").reason() == "division by zero");
+  CHECK(parse_error_of("G0 X[SQRT[-1]]\n").reason().find("SQRT of a negative") == 0);
+  CHECK(parse_error_of("G0 X[0/0]\n").reason() == "division by zero");
+  CHECK(parse_error_of("G0 X[ACOS[2]]\n").reason().find("ACOS") == 0);
+  CHECK(parse_error_of("G0 X#<nope>\n").reason() == "parameter #<nope> is not defined");
+  CHECK(parse_error_of("G0 X1 X2\n").reason().find("twice") != std::string::npos);
+  CHECK(parse_error_of("G0 A1\n").reason().find("axis word A") == 0);
+  CHECK(parse_error_of("G0 X1 (open\n").reason().find("comment") != std::string::npos);
+  CHECK(parse_error_of("G0 X1.2.3\n").reason().find("malformed number") == 0);
+  CHECK(parse_error_of("G0 X[1+2\n").reason().find("']'") != std::string::npos);
+  CHECK(parse_error_of("G0 G1 X1 F1\n").reason().find("same modal group") != std::string::npos);
+  CHECK(parse_error_of("G0 X99999999999\n").reason().find("out of range") != std::string::npos);
+  CHECK(parse_error_of("G17 G2 X1 K1 F1\n").reason().find("K word") == 0);
+  CHECK(parse_error_of("G0 X1 \x01\n").column() == 7);
 }
 
 TEST_CASE("expression nesting is bounded") {
   std::string deep = "G0 X";
   for (int i = 0; i < 100000; ++i) deep += '[';
   deep += "1";
-  const ParseError e = error_of(deep + "\n");
+  const ParseError e = parse_error_of(deep + "\n");
   CHECK(e.reason().find("nested deeper") != std::string::npos);
   std::string signs = "G0 X";
   for (int i = 0; i < 100000; ++i) signs += '-';
-  CHECK(error_of(signs + "1\n").reason().find("nested deeper") != std::string::npos);
+  CHECK(parse_error_of(signs + "1\n").reason().find("nested deeper") != std::string::npos);
 }
 
 TEST_CASE("program end: M2/M30 stop reading") {

@@ -7,21 +7,13 @@
 #include "netshape/core/error.hpp"
 #include "netshape/toolpath.hpp"
 
+#include "parse_error_of.hpp"
+
 using namespace netshape;
 using namespace netshape::toolpath;
 
 namespace {
 Toolpath P(const std::string& s) { return parse_gcode(s, "t"); }
-
-ParseError sub_error(const std::string& s) {
-  try {
-    P(s);
-  } catch (const ParseError& e) {
-    return e;
-  }
-  FAIL("no ParseError for: " << s);
-  return ParseError("", 0, 0, "");
-}
 
 void check_same_moves(const Toolpath& a, const Toolpath& b) {
   REQUIRE(a.blocks.size() == b.blocks.size());
@@ -79,25 +71,25 @@ TEST_CASE("a call gives #1 … #30 their values back and return leaves early") {
 }
 
 TEST_CASE("what cannot be supported is refused naming the line") {
-  ParseError e = sub_error("G0 X1\no100 while [#1 LT 3]\nG1 X2 F100\no100 endwhile\n");
+  ParseError e = parse_error_of("G0 X1\no100 while [#1 LT 3]\nG1 X2 F100\no100 endwhile\n");
   CHECK(e.line() == 2);
   CHECK(e.reason().find("'while'") != std::string::npos);
-  e = sub_error("G0 X1\n\no200 if [#1 GT 0]\n");
+  e = parse_error_of("G0 X1\n\no200 if [#1 GT 0]\n");
   CHECK(e.line() == 3);
   CHECK(e.reason().find("'if'") != std::string::npos);
-  e = sub_error("G0 X1\no5 call\n");
+  e = parse_error_of("G0 X1\no5 call\n");
   CHECK(e.line() == 2);
   CHECK(e.reason().find("no subroutine o5") != std::string::npos);
-  e = sub_error("o5 sub\nG1 X1 F100\n");
+  e = parse_error_of("o5 sub\nG1 X1 F100\n");
   CHECK(e.line() == 1);
   CHECK(e.reason().find("not closed") != std::string::npos);
-  e = sub_error("o5 sub\no6 sub\no6 endsub\no5 endsub\n");
+  e = parse_error_of("o5 sub\no6 sub\no6 endsub\no5 endsub\n");
   CHECK(e.line() == 2);
-  e = sub_error("o5 sub\no5 call\no5 endsub\no5 call\n");  // endless recursion stops at the depth limit
+  e = parse_error_of("o5 sub\no5 call\no5 endsub\no5 call\n");  // endless recursion stops at the depth limit
   CHECK(e.reason().find("nested deeper") != std::string::npos);
-  e = sub_error("G1 X1 F100 o5 call\n");
+  e = parse_error_of("G1 X1 F100 o5 call\n");
   CHECK(e.reason().find("must begin its line") != std::string::npos);
-  e = sub_error("G0 X1\nM98 P1234\n");
+  e = parse_error_of("G0 X1\nM98 P1234\n");
   CHECK(e.line() == 2);
 }
 
@@ -110,7 +102,7 @@ TEST_CASE("calls that would replay an exponential number of lines are refused at
     s += "o" + a + " sub\no" + b + " call\no" + b + " call\no" + a + " endsub\n";
   }
   s += "G0 Z5\no1 call\nM30\n";
-  const ParseError e = sub_error(s);
+  const ParseError e = parse_error_of(s);
   CHECK(e.line() == 2 + 4 + 39 * 4 + 1);  // the line of "o1 call"
   CHECK(e.reason().find("replay more than") != std::string::npos);
 }
