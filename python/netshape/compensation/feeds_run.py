@@ -63,18 +63,6 @@ def with_start(tp, stock, clearance: float = 5.0):
     return tp.with_blocks([nb] + blocks[1:], list(range(len(blocks))))
 
 
-def _program_frame(tp, prog):
-    """``tp`` (the stock frame, first start placed) back in program coordinates: ``prog``'s blocks with
-    the first block's start moved as in ``tp``."""
-    if not len(tp.blocks):
-        return prog
-    shift = np.asarray(tp.blocks[0].end, dtype=float) - np.asarray(prog.blocks[0].end, dtype=float)
-    blocks = list(prog.blocks)
-    nb = fg.copy_block(blocks[0])
-    nb.start = np.asarray(tp.blocks[0].start, dtype=float) - shift
-    return prog.with_blocks([nb] + blocks[1:], list(range(len(blocks))))
-
-
 def _plan(tp, axis_limits, options):
     from netshape import motion as nmo
     from netshape._budget import MAX_PLAN_SAMPLES
@@ -125,7 +113,7 @@ def optimize_program(text: str, source: str, stock, cutter, coefficients, limits
     opt_tp, which = fg.pieces_toolpath(tp, pieces)
     cycle_after = float(_plan(opt_tp, axis_limits, plan_options).stats["cycle_time_s"])
     cycle_before = float(_plan(tp, axis_limits, plan_options).stats["cycle_time_s"])
-    lines, src = fg.scheduled_gcode_lines(text, _program_frame(tp, prog), pieces,
+    lines, src = fg.scheduled_gcode_lines(text, tp.to_program(), pieces,
                                           fg.header_comment(stated(limits)))
     out_text = "\n".join(lines) + "\n"
     # the independent check: the written text read back and cut again by the force simulation
